@@ -1,0 +1,1 @@
+"""scikit-fem stiffness extraction (stage 2 of the chain)."""

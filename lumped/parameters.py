@@ -1,0 +1,159 @@
+"""Parameters of the lumped planetary model, SI units throughout."""
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+STIFFNESS_FIELDS = ("c_sp", "c_rp", "c_p", "c_c", "c_r", "c_s", "c_su", "c_cu", "c_ru")
+MASS_FIELDS = ("m_s", "m_c", "m_r", "m_p", "mu_s", "mu_c", "mu_r", "mu_p")
+DIAMETER_FIELDS = ("d_s", "d_c", "d_r", "d_p")
+ANGLE_TOLERANCE = 1e-9  # [rad] two planets closer than this are the same planet
+
+
+class ParameterError(ValueError):
+    """A parameter is outside its allowed range; the message names it."""
+
+
+@dataclass(frozen=True)
+class PlanetaryParameters:
+    """One planetary stage: sun ``s``, carrier ``c``, ring ``r``, planets ``p``.
+
+    Parameters
+    ----------
+    m_s, m_c, m_r, m_p : float
+        Masses of sun, carrier, ring and of each planet [kg].
+    mu_s, mu_c, mu_r, mu_p : float
+        Reduced masses ``J / r_b**2`` of the rotations, taken along the base
+        circle of each member [kg].
+    d_s, d_c, d_r, d_p : float
+        Base-circle diameters [m] (the carrier's is the planet-centre circle
+        scaled as in the paper).  Only used to convert rotations and torques.
+    c_sp, c_rp : float
+        Sun-planet and ring-planet mesh stiffness along the line of action [N/m].
+    c_p, c_c, c_r : float
+        Planet, carrier and ring bearing (support) stiffness [N/m].
+    c_s : float
+        Sun bearing stiffness [N/m]; 0 is a floating sun (the paper's case).
+    c_su, c_cu, c_ru : float
+        Reduced torsional stiffness of sun, carrier and ring [N/m]:
+        torsional stiffness [N m/rad] divided by the base radius squared.
+    alpha_s, alpha_r : float
+        Working pressure angle of the sun-planet and ring-planet mesh [rad].
+    theta : tuple of float
+        Angular position of each planet centre from the x axis [rad]; its
+        length is the number of planets N >= 1.
+    """
+
+    m_s: float
+    m_c: float
+    m_r: float
+    m_p: float
+    mu_s: float
+    mu_c: float
+    mu_r: float
+    mu_p: float
+    d_s: float
+    d_c: float
+    d_r: float
+    d_p: float
+    c_sp: float
+    c_rp: float
+    c_p: float
+    c_c: float
+    c_r: float
+    c_su: float
+    c_cu: float
+    c_ru: float
+    alpha_s: float
+    alpha_r: float
+    theta: tuple[float, ...]
+    c_s: float = 0.0
+
+    def __post_init__(self):
+        for name in STIFFNESS_FIELDS:
+            _check_number(name, getattr(self, name), lower=0.0, closed=True)
+        for name in MASS_FIELDS + DIAMETER_FIELDS:
+            _check_number(name, getattr(self, name), lower=0.0, closed=False)
+        for name in ("alpha_s", "alpha_r"):
+            value = getattr(self, name)
+            _check_number(name, value, lower=0.0, closed=False)
+            if value >= math.pi / 2:
+                raise ParameterError(f"{name} = {value!r} rad, but it must lie in (0, pi/2)")
+        _check_planet_angles(self.theta)
+        object.__setattr__(self, "theta", tuple(float(t) for t in self.theta))
+
+    @property
+    def n_planets(self) -> int:
+        """Number of planets N."""
+        return len(self.theta)
+
+    @property
+    def n_dof(self) -> int:
+        """Degrees of freedom, 9 + 3 N."""
+        return 9 + 3 * self.n_planets
+
+    def replace(self, **changes) -> "PlanetaryParameters":
+        """Copy with some fields changed (validated like the original)."""
+        unknown = set(changes) - {f.name for f in dataclasses.fields(self)}
+        if unknown:
+            raise ParameterError(
+                f"unknown parameter(s) {sorted(unknown)}; known: {sorted(field_names())}"
+            )
+        return dataclasses.replace(self, **changes)
+
+    def equally_spaced(self, tolerance: float = 1e-12) -> bool:
+        """True when the planets are at theta_1 + 2 pi (i - 1) / N."""
+        n = self.n_planets
+        ideal = [self.theta[0] + 2 * math.pi * i / n for i in range(n)]
+        return all(abs(_wrap(a - b)) <= tolerance for a, b in zip(self.theta, ideal))
+
+    def to_dict(self) -> dict:
+        """Plain dict (theta as a list) for JSON/TOML output."""
+        data = dataclasses.asdict(self)
+        data["theta"] = list(self.theta)
+        return data
+
+
+def field_names() -> tuple[str, ...]:
+    """Names of all parameters, as accepted by ``replace`` and ``--set``."""
+    return tuple(f.name for f in dataclasses.fields(PlanetaryParameters))
+
+
+def equally_spaced_angles(n_planets: int, theta_1: float = 0.0) -> tuple[float, ...]:
+    """Planet angles theta_i = theta_1 + 2 pi (i - 1) / N [rad]."""
+    if isinstance(n_planets, bool) or not isinstance(n_planets, int) or n_planets < 1:
+        raise ParameterError(f"n_planets = {n_planets!r}, but it must be an integer >= 1")
+    return tuple(theta_1 + 2 * math.pi * i / n_planets for i in range(n_planets))
+
+
+def _wrap(angle: float) -> float:
+    return (angle + math.pi) % (2 * math.pi) - math.pi
+
+
+def _check_number(name, value, lower, closed):
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ParameterError(f"{name} = {value!r}, but it must be a real number")
+    if not math.isfinite(value):
+        raise ParameterError(f"{name} = {value!r}, but it must be finite")
+    if value < lower or (value == lower and not closed):
+        bound = f">= {lower}" if closed else f"> {lower}"
+        raise ParameterError(f"{name} = {value!r}, but it must be {bound}")
+
+
+def _check_planet_angles(theta):
+    if not isinstance(theta, (tuple, list)):
+        raise ParameterError(
+            f"theta = {theta!r}, but it must be a sequence of planet angles [rad], one per planet"
+        )
+    if len(theta) < 1:
+        raise ParameterError("theta has 0 planet angles, but N >= 1 planets are required")
+    for i, t in enumerate(theta):
+        _check_number(f"theta[{i}]", t, lower=-math.inf, closed=True)
+    for i in range(len(theta)):
+        for j in range(i):
+            if abs(_wrap(theta[i] - theta[j])) <= ANGLE_TOLERANCE:
+                raise ParameterError(
+                    f"theta[{j}] = {theta[j]!r} and theta[{i}] = {theta[i]!r} rad put two planets "
+                    f"at the same place; planet angles must differ by more than {ANGLE_TOLERANCE} rad"
+                )

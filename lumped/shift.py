@@ -1,0 +1,74 @@
+"""Frequency shift between a baseline and a modified parameter set."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .parameters import PlanetaryParameters
+from .sweep import sweep
+
+
+@dataclass(frozen=True)
+class FrequencyShift:
+    """Per-mode shift; modes matched by shape along a continuation path.
+
+    ``omega_base``, ``omega_modified`` [rad/s]; ``percent`` is
+    ``100 (omega_modified - omega_base) / omega_base``.
+    """
+
+    parameter: str
+    base_value: float
+    modified_value: float
+    kind: tuple[str, ...]
+    omega_base: np.ndarray
+    omega_modified: np.ndarray
+
+    @property
+    def delta_rad_s(self) -> np.ndarray:
+        return self.omega_modified - self.omega_base
+
+    @property
+    def delta_hz(self) -> np.ndarray:
+        return self.delta_rad_s / (2 * math.pi)
+
+    @property
+    def percent(self) -> np.ndarray:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(self.omega_base > 0, 100 * self.delta_rad_s / self.omega_base, 0.0)
+
+    def rows(self) -> list[dict]:
+        return [
+            {
+                "mode": i + 1, "kind": k,
+                "omega_base_rad_s": float(a), "omega_modified_rad_s": float(b),
+                "delta_rad_s": float(d), "delta_hz": float(h), "percent": float(p),
+            }
+            for i, (k, a, b, d, h, p) in enumerate(
+                zip(self.kind, self.omega_base, self.omega_modified,
+                    self.delta_rad_s, self.delta_hz, self.percent)
+            )
+        ]
+
+
+def frequency_shift(
+    params: PlanetaryParameters, parameter: str, modified_value: float,
+    steps: int = 16, method: str = "jacobi",
+) -> FrequencyShift:
+    """Shift of every mode when ``parameter`` goes from its value in ``params``
+    to ``modified_value``.
+
+    Modes are followed through ``steps`` intermediate values (geometric when
+    both ends are positive) so that crossings do not swap them.
+    """
+    base = float(getattr(params, parameter))
+    params.replace(**{parameter: float(modified_value)})  # validates the target
+    if base > 0 and modified_value > 0:
+        path = np.geomspace(base, modified_value, steps + 1)
+    else:
+        path = np.linspace(base, modified_value, steps + 1)
+    result = sweep(params, parameter, path, method)
+    return FrequencyShift(
+        parameter, base, float(modified_value), result.kind, result.omega[0], result.omega[-1]
+    )

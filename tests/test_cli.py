@@ -1,0 +1,79 @@
+import json
+import subprocess
+import sys
+
+import pytest
+
+from hubvib.cli import main
+
+
+def _json(capsys, argv):
+    assert main(argv) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_spectrum_json(capsys):
+    data = _json(capsys, ["spectrum", "--json"])
+    assert len(data["modes"]) == 18 and data["n_rigid"] == 0
+    assert data["modes"][0]["omega_rad_s"] == pytest.approx(336.454, abs=1e-3)
+
+
+def test_spectrum_set_and_params_file(capsys, tmp_path):
+    params = tmp_path / "p.toml"
+    params.write_text('preset = "raba118"\nc_ru = 1e5\nn_planets = 4\n')
+    data = _json(capsys, ["spectrum", "--params", str(params), "--set", "alpha_w_deg=22", "--json"])
+    assert len(data["modes"]) == 21
+    assert {m["kind"] for m in data["modes"]} == {"rotational", "translational", "planet"}
+
+
+def test_spectrum_reports_rigid_body_modes(capsys):
+    assert main(["spectrum", "--set", "c_su=0", "--set", "c_cu=0", "--set", "c_ru=0"]) == 0
+    assert "2 rigid-body mode(s)" in capsys.readouterr().out
+
+
+def test_shift_json(capsys):
+    data = _json(capsys, ["shift", "--to", "c_ru", "1e5", "--json"])
+    assert data["modes"][0]["percent"] == pytest.approx(-43.64, abs=0.01)
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["spectrum", "--set", "c_ru=-5"], "c_ru = -5.0, but it must be >= 0.0"),
+    (["spectrum", "--set", "m_p=nan"], "m_p = nan, but it must be finite"),
+    (["spectrum", "--set", "n_planets=0"], "n_planets = 0"),
+    (["spectrum", "--set", "theta_deg=10,10"], "same place"),
+    (["spectrum", "--set", "c_xx=1"], "unknown parameter 'c_xx'"),
+    (["spectrum", "--set", "c_ru"], "expected KEY=VALUE"),
+    (["shift", "--to", "c_ru", "abc"], "c_ru = 'abc', but it must be a number"),
+])
+def test_bad_input_exit_code_and_message(capsys, argv, message):
+    assert main(argv) == 2
+    assert message in capsys.readouterr().err
+
+
+def test_unknown_preset_rejected(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["spectrum", "--preset", "nope"])
+    assert exc.value.code == 2
+    assert "invalid choice: 'nope'" in capsys.readouterr().err
+
+
+def test_validate_writes_report(capsys, tmp_path):
+    assert main(["validate", "raba118", "--out", str(tmp_path), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["passed"] and summary["printed_max_relative_deviation"] <= 0.002
+    assert len(summary["printed_negative_eigenvalues_rad2_s2"]) == 4
+    for name in ("spectrum.csv", "theory.csv", "summary.json", "fig4_c_ru_sweep.png"):
+        assert (tmp_path / name).stat().st_size > 0
+
+
+def test_stability_command(capsys):
+    data = _json(capsys, ["stability", "--repeats", "1", "--json"])
+    assert data["passed"] and data["target"] == 1e-6
+
+
+def test_import_lumped_stays_light():
+    code = ("import sys, lumped, hubvib.cli; "
+            "heavy = {'gmsh', 'skfem', 'pyvista', 'matplotlib', 'meshio', 'mpmath'} & set(sys.modules); "
+            "print(sorted(heavy))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"

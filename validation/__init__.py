@@ -1,0 +1,1 @@
+"""Scripted checks of hubvib against published data, exact and high-precision references."""
