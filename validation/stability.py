@@ -41,6 +41,7 @@ def cases() -> dict[str, PlanetaryParameters]:
         "torsion 0 (rigid-body mode)": p.replace(c_su=0.0, c_cu=0.0, c_ru=0.0),
         "torsion 1e-6 N/m (nearly rigid)": p.replace(c_su=1e-6, c_cu=1e-6, c_ru=1e-6),
         "N = 1": p.replace(theta=equally_spaced_angles(1)),
+        "N = 2": p.replace(theta=equally_spaced_angles(2)),
         "N = 12": p.replace(theta=equally_spaced_angles(12)),
         "planets 1e-6 rad apart": p.replace(theta=(0.0, 1e-6, 2 * math.pi / 3)),
     }
