@@ -146,14 +146,10 @@ def _stability(args) -> int:
 
 
 def _run(args) -> int:
-    from .scene import SceneError, load_scene
+    from .scene import load_scene
     from .study import run_study, write_study
 
-    try:
-        scene = load_scene(args.scene)
-    except SceneError as exc:
-        print(f"hubvib: error: {exc}", file=sys.stderr)
-        return 2
+    scene = load_scene(args.scene)
     if scene.plots and importlib.util.find_spec("matplotlib") is None:
         print("hubvib: error: scene asks for plots ([output] plots = true) but matplotlib is "
               "not installed: pip install 'hubvib[report]', or set plots = false", file=sys.stderr)

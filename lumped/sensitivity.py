@@ -14,9 +14,7 @@ from .network import mass_diagonal, spring_network
 from .parameters import ParameterError, PlanetaryParameters
 from .spectrum import Spectrum, natural_modes
 
-MASS_DOFS = {
-    "m_s": (0, 1), "m_c": (2, 3), "m_r": (4, 5), "mu_s": (6,), "mu_c": (7,), "mu_r": (8,),
-}
+MASS_FIELDS = ("m_s", "m_c", "m_r", "m_p", "mu_s", "mu_c", "mu_r", "mu_p")
 
 
 @dataclass(frozen=True)
@@ -67,14 +65,12 @@ def _matrix_derivatives(params, parameter):
     rows = network.rows_of(parameter)
     if rows.any():
         dK = network.G[rows].T @ network.G[rows]
-    elif parameter in MASS_DOFS or parameter in ("m_p", "mu_p"):
-        template = mass_diagonal(params.replace(**{parameter: 1.0})) - mass_diagonal(
-            params.replace(**{parameter: 2.0})
-        )
-        dM = np.diag(-template)
+    elif parameter in MASS_FIELDS:  # the mass matrix is linear in each mass field
+        dM = np.diag(mass_diagonal(params.replace(**{parameter: 2.0}))
+                     - mass_diagonal(params.replace(**{parameter: 1.0})))
     else:
         raise ParameterError(
             f"parameter = {parameter!r}: sensitivities exist for stiffnesses "
-            f"{sorted(set(network.parameter))} and masses {sorted(MASS_DOFS) + ['m_p', 'mu_p']}"
+            f"{sorted(set(network.parameter))} and masses {list(MASS_FIELDS)}"
         )
     return dK, dM

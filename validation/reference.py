@@ -36,14 +36,3 @@ def eigenvalues_of_factor(G, k, mass, dps: int = 50) -> np.ndarray:
         values = mp.eigsy(K, eigvals_only=True)
         return np.sort(np.array([float(v) for v in values]))
 
-
-def reference_eigenvalues_assembled(K, mass, dps: int = 50) -> np.ndarray:
-    """Eigenvalues of an assembled symmetric ``M^(-1/2) K M^(-1/2)`` in ``dps`` digits."""
-    n = len(mass)
-    with mp.workdps(dps):
-        scale = [1 / mp.sqrt(mp.mpf(float(m))) for m in mass]
-        A = mp.matrix(n, n)
-        for a in range(n):
-            for b in range(n):
-                A[a, b] = mp.mpf(float(K[a][b])) * scale[a] * scale[b]
-        return np.sort(np.array([float(v) for v in mp.eigsy(A, eigvals_only=True)]))
