@@ -11,10 +11,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .network import mass_diagonal, spring_network
-from .parameters import ParameterError, PlanetaryParameters
+from .parameters import MASS_FIELDS, ParameterError, PlanetaryParameters
 from .spectrum import Spectrum, natural_modes
-
-MASS_FIELDS = ("m_s", "m_c", "m_r", "m_p", "mu_s", "mu_c", "mu_r", "mu_p")
 
 
 @dataclass(frozen=True)
