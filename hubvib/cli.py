@@ -8,7 +8,9 @@ import sys
 from pathlib import Path
 
 from lumped import METHODS, PRESETS, ParameterError, field_names
+from meshing.session import MeshingError
 
+from . import mesh_command
 from .params_input import CONVENIENCE_KEYS, load_parameters, parse_set
 
 PARAMETER_HELP = (
@@ -25,8 +27,12 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         return args.handler(args)
-    except (ParameterError, ValueError) as exc:
+    except (ParameterError, ValueError, MeshingError) as exc:
         print(f"hubvib: error: {exc}", file=sys.stderr)
+        return 2
+    except ModuleNotFoundError as exc:
+        print(f"hubvib: error: {exc.name} is not installed; this command needs the FE extras: "
+              f"pip install \"hubvib[fem]\"", file=sys.stderr)
         return 2
 
 
@@ -64,6 +70,8 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--repeats", type=int, default=20)
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=_stability)
+
+    mesh_command.add_parser(sub)
 
     p = sub.add_parser("run", help="run a scene (default: the embedded Raba 118/76 study)")
     p.add_argument("scene", nargs="?", type=Path, help="scene TOML file (see scenes/)")

@@ -26,6 +26,12 @@ def involute(angle):
     return np.tan(angle) - angle
 
 
+def rotation(angle: float) -> np.ndarray:
+    """2x2 matrix turning plane vectors counter-clockwise by ``angle`` [rad]."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s], [s, c]])
+
+
 def inverse_involute(value: float) -> float:
     """Pressure angle a in [0, pi/2) with inv(a) = value (Newton, to machine precision)."""
     if not value >= 0:

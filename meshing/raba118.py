@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 
 from .gear import SpurGear, involute
+from .ring_gear import RingGear, Supports, outer_diameter_for_mass
 
 MODULE = 3.25e-3  # [m]
 PRESSURE_ANGLE = math.radians(20.0)
@@ -41,3 +42,23 @@ def planet() -> SpurGear:
 def ring() -> SpurGear:
     return SpurGear(TEETH["ring"], MODULE, PRESSURE_ANGLE, shift_sum() + PLANET_SHIFT,
                     face_width=FACE_WIDTH, internal=True)
+
+
+# ring body ----------------------------------------------------------------
+RING_MASS = 6.8  # [kg] from the paper
+#: ASSUMED: six clamped spline/bolt pads of 20 deg on the outer surface, the first at 0 deg.
+RING_SUPPORTS = Supports(count=6, width=math.radians(20.0), first_angle=0.0)
+
+
+def ring_gear(supports: Supports = RING_SUPPORTS, fillet: str = "trochoid") -> RingGear:
+    """Raba 118/76 ring with its rim (outer diameter from the paper's 6.8 kg).
+
+    ASSUMED (not in the paper): steel 7850 kg/m^3; face width 40 mm; the fillet
+    and root circle cut by a 25-tooth shaper cutter (x0 = 0, h_a0* = 1.25,
+    rho_a0* = 0.25); six clamped support arcs of 20 deg (spline/bolt pads) on
+    the outer surface.  The outer diameter (272.8 mm, rim 24.5 mm below the
+    root circle) follows from the mass with the exact tooth geometry.
+    """
+    gear = ring()
+    return RingGear(gear, outer_diameter_for_mass(gear, RING_MASS, fillet=fillet), supports,
+                    fillet=fillet, working_pressure_angle=WORKING_PRESSURE_ANGLE)

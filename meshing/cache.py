@@ -1,0 +1,41 @@
+"""Meshes cached on disk by a hash of everything that defines them."""
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+from dataclasses import asdict, is_dataclass
+from pathlib import Path
+
+from .fe_mesh import FEMesh
+
+VERSION = 1  # bump when the mesher changes what a given parameter set produces
+
+
+def default_folder() -> Path:
+    """``$HUBVIB_CACHE`` or ``~/.cache/hubvib/meshes``."""
+    root = os.environ.get("HUBVIB_CACHE")
+    return Path(root) / "meshes" if root else Path.home() / ".cache" / "hubvib" / "meshes"
+
+
+def key(*parts) -> str:
+    """Stable hash of dataclasses and plain values."""
+    def plain(value):
+        return asdict(value) if is_dataclass(value) else value
+    text = json.dumps([VERSION, *[plain(p) for p in parts]], sort_keys=True, default=repr)
+    return hashlib.sha256(text.encode()).hexdigest()[:24]
+
+
+def cached(build, *parts, folder: Path | None = None) -> tuple[FEMesh, bool]:
+    """``build()`` once per parameter set; returns the mesh and whether it came from the cache."""
+    folder = Path(folder) if folder is not None else default_folder()
+    path = folder / f"{key(*parts)}.npz"
+    if path.exists():
+        try:
+            return FEMesh.load(path), True
+        except (OSError, ValueError, KeyError):
+            path.unlink(missing_ok=True)  # a damaged entry is rebuilt
+    mesh = build()
+    folder.mkdir(parents=True, exist_ok=True)
+    mesh.save(path)
+    return mesh, False

@@ -1,0 +1,103 @@
+"""Write an ``FEMesh`` for people: VTU for ParaView, PNG for reports."""
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from .fe_mesh import FEMesh
+
+_MESHIO = {"triangle": "triangle", "triangle6": "triangle6", "tetra": "tetra",
+           "tetra10": "tetra10"}
+_FACETS = {(2, 1): "line", (2, 2): "line3", (3, 1): "triangle", (3, 2): "triangle6"}
+
+
+def _atomic(path: Path, suffix: str):
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=suffix)
+    os.close(fd)
+    return path, Path(tmp)
+
+
+def write_vtu(mesh: FEMesh, path: Path) -> Path:
+    """VTU with the cells and every named boundary group as cells of its own.
+
+    Cell data ``group`` holds the group number; field data maps names to numbers
+    (0 is the body).  Written atomically.
+    """
+    import meshio
+
+    names = sorted(mesh.boundaries)
+    facet_type = _FACETS[(mesh.dim, mesh.order)]
+    cells = [(_MESHIO[mesh.cell_type], mesh.cells)]
+    groups = [np.zeros(len(mesh.cells), dtype=np.int32)]
+    for number, name in enumerate(names, start=1):
+        elements = mesh.boundaries[name]
+        if len(elements):
+            if mesh.order == 2 and mesh.dim == 2:
+                elements = elements[:, [0, 1, 2]]  # gmsh line3 is (v0, v1, mid) like VTK
+            cells.append((facet_type, elements))
+            groups.append(np.full(len(elements), number, dtype=np.int32))
+    points = mesh.points if mesh.dim == 3 else np.column_stack(
+        [mesh.points, np.zeros(len(mesh.points))])
+    out = meshio.Mesh(points, cells, cell_data={"group": groups},
+                      field_data={name: np.array([i, mesh.dim - 1]) for i, name in
+                                  enumerate(names, start=1)})
+    path, tmp = _atomic(path, ".vtu")
+    try:
+        meshio.write(tmp, out, file_format="vtu")
+        os.replace(tmp, path)
+    finally:
+        tmp.unlink(missing_ok=True)
+    return path
+
+
+def write_png(mesh: FEMesh, path: Path, centre=None, half_width: float | None = None,
+              title: str = "") -> Path:
+    """Picture of the mesh edges around ``centre`` [m] (default: the crack, else the whole part).
+
+    Crack faces are drawn red, supports blue, load patches green.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import LineCollection
+
+    xy = mesh.points[:, :2]
+    path_points = np.asarray(mesh.info.get("crack_path") or [])
+    if centre is None and len(path_points):
+        centre = path_points.mean(axis=0)
+        half_width = half_width or 1.5 * np.ptp(path_points, axis=0).max() + 2e-3
+    fig, ax = plt.subplots(figsize=(7, 7))
+    edges = mesh.cells[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2) if mesh.dim == 2 else None
+    if centre is not None:
+        centre = np.asarray(centre, dtype=float)
+        inside = np.all(np.abs(xy[edges].mean(axis=1) - centre) < 1.2 * half_width, axis=1)
+        edges = edges[inside]
+    ax.add_collection(LineCollection(xy[edges], colors="0.35", linewidths=0.3))
+    for prefix, colour in (("crack_", "red"), ("support_", "tab:blue"), ("_load", "tab:green")):
+        for name, elements in mesh.boundaries.items():
+            if (name.startswith(prefix) or name.endswith(prefix)) and len(elements):
+                ax.add_collection(LineCollection(xy[elements[:, :2]], colors=colour,
+                                                 linewidths=1.5))
+    if centre is not None:
+        ax.set_xlim(centre[0] - half_width, centre[0] + half_width)
+        ax.set_ylim(centre[1] - half_width, centre[1] + half_width)
+    else:
+        ax.autoscale()
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title(title or f"{mesh.info.get('elements', len(mesh.cells))} {mesh.cell_type} elements")
+    path, tmp = _atomic(path, ".png")
+    try:
+        fig.savefig(tmp, dpi=130, bbox_inches="tight")
+        os.replace(tmp, path)
+    finally:
+        tmp.unlink(missing_ok=True)
+        plt.close(fig)
+    return path

@@ -1,0 +1,84 @@
+"""A finite-element mesh with named groups, as handed to the FE stage (SI units)."""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+#: gmsh element type -> (name, dimension, number of vertices)
+ELEMENT_TYPES = {
+    1: ("line", 1, 2), 8: ("line3", 1, 2),
+    2: ("triangle", 2, 3), 9: ("triangle6", 2, 3),
+    4: ("tetra", 3, 4), 11: ("tetra10", 3, 4),
+}
+
+
+@dataclass(frozen=True, eq=False)
+class FEMesh:
+    """Nodes, cells and named groups.
+
+    Attributes
+    ----------
+    points : ndarray (n, 2 or 3)
+        Node coordinates [m].
+    cells : ndarray (n_cells, nodes per cell)
+        Connectivity in gmsh node order (triangle6: 3 vertices, then the
+        mid-edge nodes of edges 01, 12, 20; tetra10 likewise, gmsh order).
+    cell_type : str
+        One of ``triangle``, ``triangle6``, ``tetra``, ``tetra10``.
+    boundaries : dict str -> ndarray (n_facets, nodes per facet)
+        Boundary facets (lines in 2D, triangles in 3D) of each named group,
+        same node order convention.
+    points_of : dict str -> ndarray
+        Named node sets (crack tip, crack mouth).
+    info : dict
+        Parameters and measures (JSON-serialisable).
+    """
+
+    points: np.ndarray
+    cells: np.ndarray
+    cell_type: str
+    boundaries: dict = field(default_factory=dict)
+    points_of: dict = field(default_factory=dict)
+    info: dict = field(default_factory=dict)
+
+    @property
+    def dim(self) -> int:
+        return 3 if self.cell_type.startswith("tetra") else 2
+
+    @property
+    def order(self) -> int:
+        return 2 if self.cell_type in ("triangle6", "tetra10") else 1
+
+    @property
+    def vertex_count(self) -> int:
+        return self.dim + 1
+
+    def vertices(self) -> np.ndarray:
+        """Indices of the nodes that are element vertices."""
+        return np.unique(self.cells[:, :self.vertex_count])
+
+    def save(self, path: Path) -> None:
+        """Write to ``path`` (.npz), atomically."""
+        path = Path(path)
+        arrays = {"points": self.points, "cells": self.cells}
+        arrays.update({f"boundary:{k}": v for k, v in self.boundaries.items()})
+        arrays.update({f"points_of:{k}": v for k, v in self.points_of.items()})
+        meta = json.dumps({"cell_type": self.cell_type, "info": self.info})
+        tmp = path.with_name(path.name + ".part")
+        with open(tmp, "wb") as handle:
+            np.savez(handle, meta=np.array(meta), **arrays)
+        tmp.replace(path)
+
+    @classmethod
+    def load(cls, path: Path) -> "FEMesh":
+        with np.load(path, allow_pickle=False) as data:
+            meta = json.loads(str(data["meta"]))
+            return cls(points=data["points"], cells=data["cells"], cell_type=meta["cell_type"],
+                       boundaries={k.split(":", 1)[1]: data[k] for k in data.files
+                                   if k.startswith("boundary:")},
+                       points_of={k.split(":", 1)[1]: data[k] for k in data.files
+                                  if k.startswith("points_of:")},
+                       info=meta["info"])

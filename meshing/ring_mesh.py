@@ -1,0 +1,365 @@
+"""Plane (2D) gmsh mesh of the ring gear, intact or with a zero-width crack (SI units).
+
+Named groups handed to the FE stage (``FEMesh.boundaries``):
+
+``support_j`` / ``supports``
+    Held arcs of the outer surface (all of it when ``Supports.count == 0``).
+``outer_free``
+    The rest of the outer surface.
+``tooth{k}_flank_pos`` / ``tooth{k}_flank_neg``
+    Flank and fillet of tooth k on its counter-clockwise (+psi) and clockwise side.
+``tooth{k}_load``
+    Patch of ``tooth{k}_flank_pos`` around the working pitch radius where a
+    planet's mesh force is applied.
+``crack_a`` / ``crack_b``
+    The two faces of the crack (same geometry, separate nodes except at the tip).
+
+Node sets (``FEMesh.points_of``): ``crack_tip`` (one node), ``crack_mouth``.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from .crack import Crack
+from .fe_mesh import ELEMENT_TYPES, FEMesh
+from .gear import GearGeometryError, rotation
+from .ring_gear import RingGear
+from .session import MeshingError, gmsh_model
+
+
+@dataclass(frozen=True)
+class MeshOptions:
+    """Element sizes [m] and order.
+
+    Parameters
+    ----------
+    size : float
+        Element size in the rim, away from teeth, loads and crack.
+    tooth_size : float
+        Element size along the toothed boundary.
+    tip_size : float
+        Element size at the crack tip.
+    load_size : float
+        Element size on the load patches.
+    grading : float
+        Growth of the element size per unit distance from a refined spot, (0, 1].
+    load_patch : float
+        Radial extent of each load patch on the flank [m].
+    order : int
+        1 (straight triangles) or 2 (curved, on the exact boundary).
+    """
+
+    size: float = 2.0e-3
+    tooth_size: float = 0.5e-3
+    tip_size: float = 0.05e-3
+    load_size: float = 0.1e-3
+    grading: float = 0.3
+    load_patch: float = 0.4e-3
+    order: int = 2
+
+    def __post_init__(self):
+        for name in ("size", "tooth_size", "tip_size", "load_size", "load_patch"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
+                    math.isfinite(value) and 1e-7 <= value <= 0.1):
+                raise GearGeometryError(f"mesh.{name} = {value!r} m, allowed 1e-7..0.1 m")
+        if not 0 < self.grading <= 1:
+            raise GearGeometryError(f"mesh.grading = {self.grading!r}, allowed (0, 1]")
+        if self.order not in (1, 2):
+            raise GearGeometryError(f"mesh.order = {self.order!r}, allowed 1 or 2")
+
+
+INVOLUTE_POINTS = 32  # spline points per involute piece
+FILLET_POINTS = 48    # spline points per fillet piece
+
+
+def ring_mesh(ring: RingGear, crack: Crack | None = None,
+              options: MeshOptions = MeshOptions()) -> FEMesh:
+    """Mesh the ring's cross-section with gmsh (plane, triangles).
+
+    A crack of zero depth (or ``None``) gives the intact mesh.
+    """
+    if crack is not None and crack.depth == 0:
+        crack = None
+    crack_path = crack.path(ring) if crack is not None else None
+    patch_low = ring.load_radius - options.load_patch / 2
+    patch_high = ring.load_radius + options.load_patch / 2
+    prof = ring.profile
+    if not (prof.tip_radius < patch_low and patch_high < prof.form_radius):
+        raise GearGeometryError(
+            f"mesh.load_patch = {options.load_patch} m does not fit on the involute between "
+            f"r = {prof.tip_radius:.6g} and {prof.form_radius:.6g} m around the load radius "
+            f"{ring.load_radius:.6g} m")
+    started = time.perf_counter()
+    with gmsh_model("ring") as gmsh:
+        builder = _RingBuilder(gmsh, ring, crack, crack_path, options)
+        builder.geometry()
+        try:
+            builder.mesh()
+        except Exception as error:  # gmsh raises bare Exceptions with its log text
+            raise MeshingError(
+                f"gmsh failed to mesh the ring (size={options.size}, tooth_size="
+                f"{options.tooth_size}, tip_size={options.tip_size}, crack={crack}): "
+                f"{str(error).splitlines()[0] if str(error) else type(error).__name__}") from None
+        mesh = builder.extract()
+    info = dict(mesh.info)
+    info.update(seconds=time.perf_counter() - started, ring=_describe(ring), options=asdict(options),
+                crack=None if crack is None else asdict(crack),
+                crack_path=None if crack_path is None else crack_path.tolist(),
+                exact_area=ring.area(), face_width=ring.gear.face_width, density=ring.density)
+    return FEMesh(mesh.points, mesh.cells, mesh.cell_type, mesh.boundaries, mesh.points_of, info)
+
+
+def _describe(ring: RingGear) -> dict:
+    g = ring.gear
+    return dict(teeth=g.teeth, module=g.module, pressure_angle=g.pressure_angle,
+                profile_shift=g.profile_shift, face_width=g.face_width,
+                outer_diameter=ring.outer_diameter, rim_thickness=ring.rim_thickness,
+                fillet=ring.fillet, supports=asdict(ring.supports),
+                load_radius=ring.load_radius)
+
+
+class _RingBuilder:
+    def __init__(self, gmsh, ring, crack, crack_path, options):
+        self.gmsh, self.ring, self.crack, self.path, self.opt = gmsh, ring, crack, crack_path, options
+        self.geo = gmsh.model.geo
+        self.groups: dict[str, list[int]] = {}
+        self.load_curves: list[int] = []
+        self.inner_curves: list[int] = []
+        self.crack_lines: list[int] = []
+        self.crack_points: dict[str, int] = {}
+
+    # geometry ----------------------------------------------------------
+    def point(self, xy, size: float = 0.0) -> int:
+        return self.geo.addPoint(float(xy[0]), float(xy[1]), 0.0, size)
+
+    def spline(self, start: int, points, end: int) -> int:
+        inner = [self.point(p) for p in points[1:-1]]
+        return self.geo.addSpline([start, *inner, end])
+
+    def arc(self, start: int, end: int) -> int:
+        return self.geo.addCircleArc(start, self.centre, end)
+
+    def geometry(self):
+        ring, prof, opt = self.ring, self.ring.profile, self.opt
+        self.centre = self.geo.addPoint(0, 0, 0)
+        z = ring.teeth
+        root_crack_tooth = self.crack.tooth if self.crack and self.crack.start == "root" else None
+        t_crit = prof.critical_parameter() if root_crack_tooth is not None else None
+
+        # half profile (+psi side), pieces from the tip towards the space centre
+        radii = sorted([prof.tip_radius, ring.load_radius - opt.load_patch / 2,
+                        ring.load_radius + opt.load_patch / 2, prof.form_radius])
+        if ring.gear.internal is False:
+            radii = radii[::-1]
+        involute_pieces = [ring.gear.flank(np.linspace(a, b, INVOLUTE_POINTS))
+                           for a, b in zip(radii[:-1], radii[1:])]
+        load_piece = 1
+
+        def fillet_pieces(split):
+            cuts = [1.0, split, 0.0] if split is not None else [1.0, 0.0]
+            return [prof.fillet_points(np.linspace(a, b, FILLET_POINTS))
+                    for a, b in zip(cuts[:-1], cuts[1:])]
+
+        space_points = [self.point(prof.root_radius * np.array(
+            [math.cos((2 * k + 1) * math.pi / z), math.sin((2 * k + 1) * math.pi / z)]),
+            opt.tooth_size) for k in range(z)]
+        patch_ends = {load_piece, load_piece + 1}  # pieces whose first point ends a patch
+        mirror = np.array([1.0, -1.0])
+        for k in range(z):
+            rot = rotation(ring.tooth_angle(k))
+            fillets = fillet_pieces(t_crit if k == root_crack_tooth else None)
+            pos_pieces = involute_pieces + fillets
+            neg_pieces = [(p * mirror)[::-1] for p in involute_pieces + fillet_pieces(None)][::-1]
+            # clockwise side: space centre -> land end -> fillet -> involute -> tip
+            start = space_points[k - 1]
+            land_end = self.point(rot @ neg_pieces[0][0], opt.tooth_size)
+            neg = [self.arc(start, land_end)]
+            current = land_end
+            for piece in neg_pieces:
+                nxt = self.point(rot @ piece[-1], opt.tooth_size)
+                neg.append(self.spline(current, [rot @ p for p in piece], nxt))
+                current = nxt
+            tip_pos = self.point(rot @ pos_pieces[0][0], opt.tooth_size)
+            tip = self.arc(current, tip_pos)
+            current, pos = tip_pos, []
+            for index, piece in enumerate(pos_pieces):
+                end_size = opt.load_size if index + 1 in patch_ends else opt.tooth_size
+                nxt = self.point(rot @ piece[-1], end_size)
+                pos.append(self.spline(current, [rot @ p for p in piece], nxt))
+                if k == root_crack_tooth and index == len(involute_pieces):
+                    self.crack_points["mouth"] = nxt
+                current = nxt
+            pos.append(self.arc(current, space_points[k]))
+            self.inner_curves += neg + [tip] + pos
+            self.groups[f"tooth{k}_flank_neg"] = neg[1:]
+            self.groups[f"tooth{k}_flank_pos"] = pos[:-1]
+            self.groups[f"tooth{k}_load"] = [pos[load_piece]]
+            self.load_curves.append(pos[load_piece])
+        inner_loop = self.geo.addCurveLoop(self.inner_curves)
+        outer_loop = self.geo.addCurveLoop(self.outer_boundary())
+        self.surface = self.geo.addPlaneSurface([outer_loop, inner_loop])
+        if self.path is not None:
+            self.crack_geometry()
+        self.geo.synchronize()
+        if self.crack_lines:
+            self.gmsh.model.mesh.embed(1, self.crack_lines, 2, self.surface)
+        model = self.gmsh.model
+        model.addPhysicalGroup(2, [self.surface], name="ring")
+        for name, curves in self.groups.items():
+            model.addPhysicalGroup(1, curves, name=name)
+
+    def outer_boundary(self) -> list[int]:
+        ring = self.ring
+        supports = ring.supports.arcs()
+        breaks = [a for arc in supports for a in arc] or [0.0]
+        special = {}
+        if self.path is not None and (self.crack.start == "rim" or self.crack.is_through(ring)):
+            end = self.path[0] if self.crack.start == "rim" else self.path[-1]
+            angle = math.atan2(end[1], end[0])
+            special[angle % (2 * math.pi)] = "crack_end"
+            breaks.append(angle)
+        angles = sorted({round(a % (2 * math.pi), 15) for a in breaks})
+        while True:  # arcs must be shorter than pi
+            gaps = np.diff(angles + [angles[0] + 2 * math.pi])
+            widest = int(np.argmax(gaps))
+            if gaps[widest] < 0.6 * math.pi:
+                break
+            angles.insert(widest + 1, angles[widest] + gaps[widest] / 2)
+        r = ring.outer_radius
+        points = []
+        for a in angles:
+            points.append(self.point(r * np.array([math.cos(a), math.sin(a)]), self.opt.size))
+            if any(abs(a - s) < 1e-14 for s in special):
+                self.crack_points["outer_end"] = points[-1]
+        curves, free = [], []
+        support_groups = {f"support_{j}": [] for j in range(len(supports))}
+        for i, a in enumerate(angles):
+            curve = self.arc(points[i], points[(i + 1) % len(points)])
+            curves.append(curve)
+            mid = a + (((angles[(i + 1) % len(angles)] - a) % (2 * math.pi)) / 2)
+            held = [j for j, (lo, hi) in enumerate(supports)
+                    if (mid - lo) % (2 * math.pi) < (hi - lo)]
+            if ring.supports.count == 0:
+                support_groups.setdefault("support_0", []).append(curve)
+            elif held:
+                support_groups[f"support_{held[0]}"].append(curve)
+            else:
+                free.append(curve)
+        self.groups.update(support_groups)
+        self.groups["supports"] = [c for v in support_groups.values() for c in v]
+        if free:
+            self.groups["outer_free"] = free
+        return curves
+
+    def crack_geometry(self):
+        path, crack = self.path, self.crack
+        if crack.start == "root":
+            first = self.crack_points["mouth"]
+        else:
+            first = self.crack_points["outer_end"]
+            self.crack_points["mouth"] = first
+        tags = [first]
+        for i, p in enumerate(path[1:], start=1):
+            last = i == len(path) - 1
+            if last and crack.start == "root" and crack.is_through(self.ring):
+                tags.append(self.crack_points["outer_end"])
+            else:
+                tags.append(self.point(p, self.opt.tip_size if last else self.opt.tooth_size))
+        self.crack_points["tip"] = tags[-1]
+        self.crack_lines = [self.geo.addLine(a, b) for a, b in zip(tags[:-1], tags[1:])]
+
+    # mesh --------------------------------------------------------------
+    def threshold(self, size, *, points=(), curves=(), sampling=20):
+        field = self.gmsh.model.mesh.field
+        distance = field.add("Distance")
+        if points:
+            field.setNumbers(distance, "PointsList", list(points))
+        if curves:
+            field.setNumbers(distance, "CurvesList", list(curves))
+            field.setNumber(distance, "Sampling", sampling)
+        threshold = field.add("Threshold")
+        field.setNumber(threshold, "InField", distance)
+        field.setNumber(threshold, "SizeMin", size)
+        field.setNumber(threshold, "SizeMax", self.opt.size)
+        field.setNumber(threshold, "DistMin", 0.0)
+        field.setNumber(threshold, "DistMax", max((self.opt.size - size) / self.opt.grading,
+                                                  1e-12))
+        return threshold
+
+    def mesh(self):
+        gmsh, opt = self.gmsh, self.opt
+        fields = [self.threshold(opt.tooth_size, curves=self.inner_curves, sampling=8),
+                  self.threshold(opt.load_size, curves=self.load_curves, sampling=4)]
+        if self.crack_lines:
+            fields.append(self.threshold(opt.tooth_size, curves=self.crack_lines))
+            fields.append(self.threshold(opt.tip_size, points=[self.crack_points["tip"]]))
+        field = gmsh.model.mesh.field
+        smallest = field.add("Min")
+        field.setNumbers(smallest, "FieldsList", fields)
+        field.setAsBackgroundMesh(smallest)
+        for name, value in (("Mesh.MeshSizeExtendFromBoundary", 0),
+                            ("Mesh.MeshSizeFromPoints", 0), ("Mesh.MeshSizeFromCurvature", 0),
+                            ("Mesh.Algorithm", 6), ("Mesh.ElementOrder", 1)):
+            gmsh.option.setNumber(name, value)
+        gmsh.model.mesh.generate(2)
+        if opt.order == 2:
+            gmsh.model.mesh.setOrder(2)
+        if self.crack_lines:
+            model = gmsh.model
+            crack_group = model.addPhysicalGroup(1, self.crack_lines, name="crack")
+            open_points = [self.crack_points["mouth"]]
+            if self.crack.is_through(self.ring):
+                open_points.append(self.crack_points["tip"])
+            self.before_crack = {tag for _, tag in model.getEntities(1)}
+            open_group = model.addPhysicalGroup(0, open_points, name="crack_open")
+            gmsh.plugin.setNumber("Crack", "Dimension", 1)
+            gmsh.plugin.setNumber("Crack", "PhysicalGroup", crack_group)
+            gmsh.plugin.setNumber("Crack", "OpenBoundaryPhysicalGroup", open_group)
+            gmsh.plugin.run("Crack")
+
+    # extraction --------------------------------------------------------
+    def extract(self) -> FEMesh:
+        model = self.gmsh.model
+        tags, coords, _ = model.mesh.getNodes()
+        types, element_tags, nodes = model.mesh.getElements(2)
+        if len(types) != 1:
+            raise MeshingError(f"expected one triangle type, gmsh gave types {list(types)}")
+        name, _, _ = ELEMENT_TYPES[int(types[0])]
+        per = 6 if name == "triangle6" else 3
+        # keep only nodes of the triangles (spline control points are nodes too), in tag order
+        used = np.unique(nodes[0])
+        index = np.full(int(tags.max()) + 1, -1, dtype=np.int64)
+        index[used] = np.arange(len(used))
+        lookup = np.full(int(tags.max()) + 1, -1, dtype=np.int64)
+        lookup[tags] = np.arange(len(tags))
+        points = coords.reshape(-1, 3)[lookup[used], :2]
+        cells = index[nodes[0].reshape(-1, per)]
+        quality = model.mesh.getElementQualities(element_tags[0], "minSICN")
+
+        def curve_elements(curves):
+            blocks = []
+            for curve in curves:
+                etypes, _, enodes = model.mesh.getElements(1, curve)
+                for t, n in zip(etypes, enodes):
+                    blocks.append(index[n.reshape(-1, 3 if int(t) == 8 else 2)])
+            return np.vstack(blocks) if blocks else np.zeros((0, 3 if per == 6 else 2), int)
+
+        boundaries = {name: curve_elements(curves) for name, curves in self.groups.items()}
+        points_of = {}
+        if self.crack_lines:
+            created = sorted({t for _, t in model.getEntities(1)} - self.before_crack)
+            boundaries["crack_a"] = curve_elements(self.crack_lines)
+            boundaries["crack_b"] = curve_elements(created)
+            tip_nodes = model.mesh.getNodes(0, self.crack_points["tip"])[0]
+            mouth_xy = self.path[0]
+            points_of["crack_tip"] = index[tip_nodes]
+            points_of["crack_mouth"] = np.nonzero(
+                np.hypot(*(points - mouth_xy).T) < 1e-12 * self.ring.outer_radius)[0]
+        info = dict(nodes=int(len(points)), elements=int(len(cells)),
+                    min_quality=float(quality.min()), mean_quality=float(quality.mean()))
+        return FEMesh(points, cells, name, boundaries, points_of, info)

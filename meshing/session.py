@@ -1,0 +1,42 @@
+"""A gmsh session that leaves no global state behind."""
+from __future__ import annotations
+
+import contextlib
+import itertools
+
+_counter = itertools.count()
+
+
+class MeshingError(RuntimeError):
+    """gmsh could not build a mesh; the message names the parameters that failed."""
+
+
+@contextlib.contextmanager
+def gmsh_model(name: str = "hubvib"):
+    """Yield the gmsh module with a fresh, empty model made current.
+
+    Initialises gmsh if needed (without its SIGINT handler, so it works in
+    threads and worker processes), uses one thread so meshes are repeatable,
+    and removes the model afterwards; gmsh is finalised again only if this
+    call initialised it.
+    """
+    import gmsh
+
+    owner = not gmsh.isInitialized()
+    if owner:
+        gmsh.initialize(readConfigFiles=False, interruptible=False)
+    model = f"{name}-{next(_counter)}"
+    try:
+        gmsh.option.setNumber("General.Terminal", int(__import__("os").environ.get("HUBVIB_GMSH_LOG", "0")))
+        gmsh.option.setNumber("General.Verbosity", 5 if __import__("os").environ.get("HUBVIB_GMSH_LOG") else 0)
+        gmsh.option.setNumber("General.NumThreads", 1)
+        gmsh.option.setNumber("Mesh.MaxNumThreads2D", 1)
+        gmsh.option.setNumber("Mesh.MaxNumThreads3D", 1)
+        gmsh.model.add(model)
+        yield gmsh
+    finally:
+        with contextlib.suppress(Exception):
+            gmsh.model.setCurrent(model)
+            gmsh.model.remove()
+        if owner:
+            gmsh.finalize()
