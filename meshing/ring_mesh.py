@@ -8,6 +8,8 @@ Named groups handed to the FE stage (``FEMesh.boundaries``):
     The rest of the outer surface.
 ``tooth{k}_flank_pos`` / ``tooth{k}_flank_neg``
     Flank and fillet of tooth k on its counter-clockwise (+psi) and clockwise side.
+``tooth{k}_root``
+    The two root-land arcs beside tooth k (on the root circle).
 ``tooth{k}_load``
     Patch of ``tooth{k}_flank_pos`` around the working pitch radius where a
     planet's mesh force is applied.
@@ -25,9 +27,10 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from .crack import Crack
-from .fe_mesh import ELEMENT_TYPES, FEMesh
+from .fe_mesh import FEMesh
 from .gear import GearGeometryError, rotation
 from .ring_gear import RingGear
+from .extract import extract_plane
 from .session import MeshingError, gmsh_model
 
 
@@ -199,6 +202,7 @@ class _RingBuilder:
             self.groups[f"tooth{k}_flank_neg"] = neg[1:]
             self.groups[f"tooth{k}_flank_pos"] = pos[:-1]
             self.groups[f"tooth{k}_load"] = [pos[load_piece]]
+            self.groups[f"tooth{k}_root"] = [neg[0], pos[-1]]
             self.load_curves.append(pos[load_piece])
         inner_loop = self.geo.addCurveLoop(self.inner_curves)
         outer_loop = self.geo.addCurveLoop(self.outer_boundary())
@@ -325,41 +329,16 @@ class _RingBuilder:
     # extraction --------------------------------------------------------
     def extract(self) -> FEMesh:
         model = self.gmsh.model
-        tags, coords, _ = model.mesh.getNodes()
-        types, element_tags, nodes = model.mesh.getElements(2)
-        if len(types) != 1:
-            raise MeshingError(f"expected one triangle type, gmsh gave types {list(types)}")
-        name, _, _ = ELEMENT_TYPES[int(types[0])]
-        per = 6 if name == "triangle6" else 3
-        # keep only nodes of the triangles (spline control points are nodes too), in tag order
-        used = np.unique(nodes[0])
-        index = np.full(int(tags.max()) + 1, -1, dtype=np.int64)
-        index[used] = np.arange(len(used))
-        lookup = np.full(int(tags.max()) + 1, -1, dtype=np.int64)
-        lookup[tags] = np.arange(len(tags))
-        points = coords.reshape(-1, 3)[lookup[used], :2]
-        cells = index[nodes[0].reshape(-1, per)]
-        quality = model.mesh.getElementQualities(element_tags[0], "minSICN")
-
-        def curve_elements(curves):
-            blocks = []
-            for curve in curves:
-                etypes, _, enodes = model.mesh.getElements(1, curve)
-                for t, n in zip(etypes, enodes):
-                    blocks.append(index[n.reshape(-1, 3 if int(t) == 8 else 2)])
-            return np.vstack(blocks) if blocks else np.zeros((0, 3 if per == 6 else 2), int)
-
-        boundaries = {name: curve_elements(curves) for name, curves in self.groups.items()}
+        groups = dict(self.groups)
+        if self.crack_lines:
+            groups["crack_a"] = self.crack_lines
+            groups["crack_b"] = sorted({t for _, t in model.getEntities(1)} - self.before_crack)
+        mesh, index = extract_plane(self.gmsh, groups)
         points_of = {}
         if self.crack_lines:
-            created = sorted({t for _, t in model.getEntities(1)} - self.before_crack)
-            boundaries["crack_a"] = curve_elements(self.crack_lines)
-            boundaries["crack_b"] = curve_elements(created)
             tip_nodes = model.mesh.getNodes(0, self.crack_points["tip"])[0]
-            mouth_xy = self.path[0]
             points_of["crack_tip"] = index[tip_nodes]
             points_of["crack_mouth"] = np.nonzero(
-                np.hypot(*(points - mouth_xy).T) < 1e-12 * self.ring.outer_radius)[0]
-        info = dict(nodes=int(len(points)), elements=int(len(cells)),
-                    min_quality=float(quality.min()), mean_quality=float(quality.mean()))
-        return FEMesh(points, cells, name, boundaries, points_of, info)
+                np.hypot(*(mesh.points - self.path[0]).T) < 1e-12 * self.ring.outer_radius)[0]
+        return FEMesh(mesh.points, mesh.cells, mesh.cell_type, mesh.boundaries, points_of,
+                      mesh.info)

@@ -1,0 +1,101 @@
+"""Benchmark of the FE chain: prints tables of error / size against run time.
+
+    python -m validation.benchmark
+
+Timings are measured here, never asserted in tests.
+"""
+from __future__ import annotations
+
+import math
+import time
+
+
+def mesh_table() -> list[dict]:
+    """2D Raba ring meshing time against element count, intact and cracked."""
+    from meshing import raba118
+    from meshing.crack import Crack
+    from meshing.ring_mesh import MeshOptions, ring_mesh
+
+    ring = raba118.ring_gear()
+    rows = []
+    for size, tooth in ((4e-3, 1e-3), (2e-3, 0.5e-3), (1e-3, 0.25e-3)):
+        for crack in (None, Crack(0, 5e-3)):
+            options = MeshOptions(size=size, tooth_size=tooth, tip_size=1e-5)
+            started = time.perf_counter()
+            mesh = ring_mesh(ring, crack, options)
+            rows.append({"case": "cracked, tip 10 um" if crack else "intact",
+                         "tooth_size_mm": tooth * 1e3, "elements": mesh.info["elements"],
+                         "nodes_p2": mesh.info["nodes"], "seconds": time.perf_counter() - started})
+    return rows
+
+
+def annulus_table() -> list[dict]:
+    """Annulus in torsion: relative error of k_theta against the exact value, and time."""
+    import numpy as np
+    import skfem
+
+    from fem.elasticity import plane_model, solve
+    from fem.material import Material
+    from meshing.annulus import annulus_mesh
+
+    a, b, t, steel = 0.08, 0.1, 0.01, Material()
+    exact = 4 * math.pi * steel.shear_modulus * t * a * a * b * b / (b * b - a * a)
+    rows = []
+    for order in (1, 2):
+        for size in (8e-3, 4e-3, 2e-3, 1e-3):
+            started = time.perf_counter()
+            model = plane_model(annulus_mesh(a, b, size, order), steel, t)
+            fe = model.basis.mesh
+            fb = skfem.FacetBasis(fe, model.basis.elem, facets=fe.boundaries["outer"],
+                                  intorder=4)
+            tau = 1 / (2 * math.pi * b * b * t)
+
+            @skfem.LinearForm
+            def load(v, w):
+                x, y = w.x
+                r = np.sqrt(x * x + y * y)
+                return t * tau * (-y / r * v[0] + x / r * v[1])
+
+            f = load.assemble(fb)
+            u = solve(model, f, ["inner"]).u
+            rows.append({"order": order, "size_mm": size * 1e3, "dofs": model.ndofs,
+                         "relative_error": abs(1 / (f @ u) / exact - 1),
+                         "seconds": time.perf_counter() - started})
+    return rows
+
+
+def ring_table() -> list[dict]:
+    """c_ru and c_r of the Raba ring, intact and with a 10 mm root crack, on the default
+    mesh with the error estimated against a mesh twice as coarse (``hubvib stiffness``)."""
+    from hubvib.stiffness_command import estimate
+    from meshing import raba118
+    from meshing.crack import Crack
+
+    ring = raba118.ring_gear()
+    rows = []
+    for name, crack in (("intact", None), ("root crack 10 mm", Crack(0, 10e-3))):
+        r = estimate(ring, crack)
+        rows.append({"case": name, "dofs": r["dofs"], "c_ru": r["c_ru_N_m"],
+                     "c_ru_rel_error": r["c_ru_error_N_m"] / r["c_ru_N_m"],
+                     "c_r": r["c_r_N_m"], "c_r_rel_error": r["c_r_error_N_m"] / r["c_r_N_m"],
+                     "mesh_s": r["seconds_mesh"], "fe_s": r["seconds_fe"]})
+    return rows
+
+
+def _print(title, rows):
+    print(f"\n{title}")
+    keys = list(rows[0])
+    print(" | ".join(keys))
+    for row in rows:
+        print(" | ".join(f"{row[k]:.3g}" if isinstance(row[k], float) else str(row[k])
+                         for k in keys))
+
+
+def main():
+    _print("Mesh: 2D Raba ring (P2), time vs elements", mesh_table())
+    _print("Annulus in torsion: error vs time (exact k_theta)", annulus_table())
+    _print("Raba ring c_ru (intact), mesh levels", ring_table())
+
+
+if __name__ == "__main__":
+    main()
