@@ -7,6 +7,7 @@ import pytest
 pytest.importorskip("gmsh")
 skfem = pytest.importorskip("skfem")
 
+from fem.annulus import fe_k_theta  # noqa: E402
 from fem.elasticity import SingularSystemError, plane_model, solve  # noqa: E402
 from fem.material import Material, MaterialError  # noqa: E402
 from fem.ring_stiffness import ring_stiffness  # noqa: E402
@@ -21,22 +22,7 @@ STEEL = Material()
 
 
 def annulus_k_theta(size, order):
-    """Torsional stiffness of the annulus, inner edge clamped, torque as a uniform shear
-    traction on the outer edge; rotation from the work T theta = f . u."""
-    model = plane_model(annulus_mesh(A, B, size, order), STEEL, T)
-    fe = model.basis.mesh
-    fb = skfem.FacetBasis(fe, model.basis.elem, facets=fe.boundaries["outer"], intorder=4)
-    tau = 1.0 / (2 * math.pi * B * B * T)
-
-    @skfem.LinearForm
-    def load(v, w):
-        x, y = w.x
-        r = np.sqrt(x * x + y * y)
-        return T * tau * (-y / r * v[0] + x / r * v[1])
-
-    f = load.assemble(fb)
-    u = solve(model, f, ["inner"]).u
-    return 1.0 / (f @ u), model.ndofs
+    return fe_k_theta(A, B, T, STEEL, size, order)
 
 
 EXACT = 4 * math.pi * STEEL.shear_modulus * T * A ** 2 * B ** 2 / (B ** 2 - A ** 2)
