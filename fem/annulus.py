@@ -24,8 +24,7 @@ def fe_k_theta(inner: float, outer: float, thickness: float, material: Material,
     import skfem
 
     model = plane_model(annulus_mesh(inner, outer, size, order), material, thickness)
-    fe = model.basis.mesh
-    fb = skfem.FacetBasis(fe, model.basis.elem, facets=fe.boundaries["outer"], intorder=4)
+    fb = model.facet_basis(["outer"])
     tau = 1.0 / (2 * math.pi * outer ** 2 * thickness)
 
     @skfem.LinearForm

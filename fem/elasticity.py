@@ -50,36 +50,43 @@ class PlaneModel:
     def ndofs(self) -> int:
         return self.K.shape[0]
 
-    def traction_load(self, group: str, traction) -> np.ndarray:
-        """Load vector of a uniform traction [Pa] (2-vector) on a named boundary."""
+    def facet_basis(self, groups: list[str]):
+        """skfem FacetBasis on the union of named boundaries (curved geometry)."""
         import skfem
 
         fe = self.basis.mesh
-        if group not in fe.boundaries or len(fe.boundaries[group]) == 0:
-            raise KeyError(f"the mesh has no boundary group {group!r}")
-        fb = skfem.FacetBasis(fe, self.basis.elem, facets=fe.boundaries[group],
-                              intorder=2 * self.mesh.order)
-        g = np.asarray(traction, dtype=float)
+        missing = [g for g in groups if g not in fe.boundaries or len(fe.boundaries[g]) == 0]
+        if missing:
+            raise KeyError(f"the mesh has no boundary group {', '.join(map(repr, missing))}")
+        facets = np.concatenate([fe.boundaries[g] for g in groups])
+        return skfem.FacetBasis(fe, self.basis.elem, facets=facets, intorder=2 * self.mesh.order)
 
-        @skfem.LinearForm
-        def load(v, w):
-            return self.thickness * (g[0] * v[0] + g[1] * v[1])
-
-        return load.assemble(fb)
-
-    def group_length(self, group: str) -> float:
-        """Length of a named boundary [m] (on the curved geometry)."""
+    def unit_traction_loads(self, facet_basis) -> np.ndarray:
+        """Load vectors (2, ndofs) of a uniform 1 Pa traction along x and along y [N]."""
         import skfem
 
-        fe = self.basis.mesh
-        fb = skfem.FacetBasis(fe, self.basis.elem, facets=fe.boundaries[group],
-                              intorder=2 * self.mesh.order)
+        loads = []
+        for i in range(2):
+            @skfem.LinearForm
+            def load(v, w, i=i):
+                return self.thickness * v[i]
+            loads.append(load.assemble(facet_basis))
+        return np.array(loads)
+
+    @staticmethod
+    def boundary_means(facet_basis, u: np.ndarray) -> tuple[float, float, float, float]:
+        """Length [m], mean u_x, mean u_y [m] and mean rotation u_theta / r [rad]
+        (counter-clockwise positive) over the facets of ``facet_basis``."""
+        import skfem
 
         @skfem.Functional
-        def one(w):
-            return 1.0 + 0 * w.x[0]
+        def means(w):
+            x, y = w.x
+            ux, uy = w["u"]
+            return np.array([1.0 + 0 * x, ux, uy, (-y * ux + x * uy) / (x * x + y * y)])
 
-        return float(one.assemble(fb))
+        length, *integrals = means.assemble(facet_basis, u=facet_basis.interpolate(u))
+        return (float(length), *(float(v) / length for v in integrals))
 
     def energy(self, u: np.ndarray) -> float:
         """Strain energy 1/2 u^T K u [J]."""

@@ -20,7 +20,7 @@ import numpy as np
 from meshing.fe_mesh import FEMesh
 from meshing.ring_gear import RingGear
 
-from .elasticity import PlaneModel, plane_model, solve
+from .elasticity import plane_model, solve
 from .material import Material
 
 
@@ -51,28 +51,6 @@ class RingStiffness:
     seconds: dict
 
 
-def _mean_rotation(model: PlaneModel, groups: list[str], u: np.ndarray) -> float:
-    """Mean rotation [rad] (counter-clockwise positive) of the named boundaries:
-    integral of u_theta / r over their length divided by the length."""
-    import skfem
-
-    fe = model.basis.mesh
-    facets = np.concatenate([fe.boundaries[g] for g in groups])
-    fb = skfem.FacetBasis(fe, model.basis.elem, facets=facets, intorder=2 * model.mesh.order)
-
-    @skfem.Functional
-    def turn(w):
-        x, y = w.x
-        r2 = x * x + y * y
-        return (-y * w["u"][0] + x * w["u"][1]) / r2
-
-    @skfem.Functional
-    def length(w):
-        return 1.0 + 0 * w.x[0]
-
-    return float(turn.assemble(fb, u=fb.interpolate(u)) / length.assemble(fb))
-
-
 def ring_stiffness(ring: RingGear, mesh: FEMesh, material: Material = Material(),
                    n_planets: int = 3, carrier_teeth=None) -> RingStiffness:
     """c_ru at each carrier position (default: every tooth over one planet pitch) and c_r."""
@@ -90,57 +68,34 @@ def ring_stiffness(ring: RingGear, mesh: FEMesh, material: Material = Material()
     carrier_teeth = np.asarray(carrier_teeth, dtype=int)
     t0 = time.perf_counter()
     model = plane_model(mesh, material, ring.gear.face_width, "stress")
-    patch = {k: model.group_length(f"tooth{k}_load") for k in range(z)}
     t1 = time.perf_counter()
-
-    def tooth_force(k, direction):
-        traction = np.asarray(direction) / (patch[k] * model.thickness)
-        return model.traction_load(f"tooth{k}_load", traction)
+    # per tooth: the load vectors of a unit force along x and along y spread over its patch
+    unit_force = []
+    for k in range(z):
+        patch = model.facet_basis([f"tooth{k}_load"])
+        length = model.boundary_means(patch, np.zeros(model.ndofs))[0]
+        unit_force.append(model.unit_traction_loads(patch) / (length * model.thickness))
 
     torque_loads, loaded = [], []
     for s in carrier_teeth:
         teeth = [(int(s) + round(i * z / n_planets)) % z for i in range(n_planets)]
         loaded.append(teeth)
-        torque_loads.append(sum(tooth_force(k, ring.load_point(k)[1]) for k in teeth))
-    translation = [sum(tooth_force(k, e) for k in range(z)) / z
-                   for e in (np.array([1.0, 0.0]), np.array([0.0, 1.0]))]
+        torque_loads.append(sum(ring.load_point(k)[1] @ unit_force[k] for k in teeth))
+    translation = [sum(f[axis] for f in unit_force) / z for axis in (0, 1)]
     loads = np.column_stack(torque_loads + translation)
     t2 = time.perf_counter()
     solution = solve(model, loads, ["supports"])
     t3 = time.perf_counter()
     rb = ring.gear.base_diameter / 2
+    torque = n_planets * 1.0 * rb
     c_ru = []
     for column, teeth in enumerate(loaded):
-        theta = -_mean_rotation(model, [f"tooth{k}_root" for k in teeth], solution.u[:, column])
-        torque = n_planets * 1.0 * rb
+        roots = model.facet_basis([f"tooth{k}_root" for k in teeth])
+        theta = -model.boundary_means(roots, solution.u[:, column])[3]  # clockwise positive
         c_ru.append(torque / theta / rb ** 2)
-    c_r = []
-    for column, axis in ((-2, 0), (-1, 1)):
-        mean = _mean_displacement(model, [f"tooth{k}_root" for k in range(z)],
-                                  solution.u[:, column])
-        c_r.append(1.0 / mean[axis])
+    all_roots = model.facet_basis([f"tooth{k}_root" for k in range(z)])
+    c_r = [1.0 / model.boundary_means(all_roots, solution.u[:, column])[1 + axis]
+           for column, axis in ((-2, 0), (-1, 1))]
     c_ru = np.array(c_ru)
     return RingStiffness(float(c_ru.mean()), c_ru, carrier_teeth, float(np.mean(c_r)),
                          model.ndofs, {"assembly": t1 - t0, "loads": t2 - t1, "solve": t3 - t2})
-
-
-def _mean_displacement(model: PlaneModel, groups: list[str], u: np.ndarray) -> np.ndarray:
-    """Mean displacement (2,) [m] over the named boundaries (boundary integral / length)."""
-    import skfem
-
-    fe = model.basis.mesh
-    facets = np.concatenate([fe.boundaries[g] for g in groups])
-    fb = skfem.FacetBasis(fe, model.basis.elem, facets=facets, intorder=2 * model.mesh.order)
-    uh = fb.interpolate(u)
-    means = []
-    for i in range(2):
-        @skfem.Functional
-        def component(w, i=i):
-            return w["u"][i]
-        means.append(component.assemble(fb, u=uh))
-
-    @skfem.Functional
-    def length(w):
-        return 1.0 + 0 * w.x[0]
-
-    return np.array(means) / length.assemble(fb)

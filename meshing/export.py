@@ -72,18 +72,26 @@ def write_png(mesh: FEMesh, path: Path, centre=None, half_width: float | None = 
     if centre is None and len(path_points):
         centre = path_points.mean(axis=0)
         half_width = half_width or 1.5 * np.ptp(path_points, axis=0).max() + 2e-3
+    if mesh.dim != 2:
+        raise ValueError(f"write_png draws plane meshes only, got {mesh.cell_type}")
     fig, ax = plt.subplots(figsize=(7, 7))
-    edges = mesh.cells[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2) if mesh.dim == 2 else None
+    edges = mesh.cells[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     if centre is not None:
         centre = np.asarray(centre, dtype=float)
         inside = np.all(np.abs(xy[edges].mean(axis=1) - centre) < 1.2 * half_width, axis=1)
         edges = edges[inside]
     ax.add_collection(LineCollection(xy[edges], colors="0.35", linewidths=0.3))
-    for prefix, colour in (("crack_", "red"), ("support_", "tab:blue"), ("_load", "tab:green")):
-        for name, elements in mesh.boundaries.items():
-            if (name.startswith(prefix) or name.endswith(prefix)) and len(elements):
-                ax.add_collection(LineCollection(xy[elements[:, :2]], colors=colour,
-                                                 linewidths=1.5))
+    def colour_of(name):
+        if name.startswith("crack_"):
+            return "red"
+        if name.startswith("support_"):
+            return "tab:blue"
+        return "tab:green" if name.endswith("_load") else None
+
+    for name, elements in mesh.boundaries.items():
+        colour = colour_of(name)
+        if colour and len(elements):
+            ax.add_collection(LineCollection(xy[elements[:, :2]], colors=colour, linewidths=1.5))
     if centre is not None:
         ax.set_xlim(centre[0] - half_width, centre[0] + half_width)
         ax.set_ylim(centre[1] - half_width, centre[1] + half_width)

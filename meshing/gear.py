@@ -157,6 +157,17 @@ class SpurGear:
         psi = self.half_tooth_angle(r)
         return np.column_stack([r * np.cos(psi), r * np.sin(psi)])
 
+    def flank_normal(self, radius: float) -> np.ndarray:
+        """Unit normal of the ``flank`` at ``radius`` pointing into the space [-].
+
+        The normal is tangent to the base circle (line of action); the base
+        tangent point lies at polar angle psi - a_r (external) or psi + a_r (internal).
+        """
+        p = self.flank([radius])[0]
+        a_r = math.acos(min(self.base_diameter / (2 * radius), 1.0))
+        theta = math.atan2(p[1], p[0]) + (a_r if self.internal else -a_r)
+        return np.array([-math.sin(theta), math.cos(theta)])
+
     def span_measurement(self, k: int) -> float:
         """Base tangent length W_k over k teeth (external) or k spaces (internal) [m].
 

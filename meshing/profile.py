@@ -144,11 +144,8 @@ class _Shaper(_Generator):
         rb0 = tool.base_diameter / 2
 
         def round_centre(r):  # centre of a circle of radius rho touching the flank at r
-            p = tool.flank([r])[0]
-            psi = math.atan2(p[1], p[0])
-            theta = psi - math.acos(min(rb0 / r, 1.0))
-            into_space = np.array([-math.sin(theta), math.cos(theta)])
-            return p - self.rho * into_space, into_space
+            into_space = tool.flank_normal(r)
+            return tool.flank([r])[0] - self.rho * into_space, into_space
 
         try:
             r_touch = brentq(lambda r: np.hypot(*round_centre(r)[0]) - (r_a0 - self.rho),
@@ -164,8 +161,7 @@ class _Shaper(_Generator):
         self.c_local = np.array([c_local[1], c_local[0]])
         self.n_tangent = np.array([n_tangent[1], n_tangent[0]])
         self.gamma = math.atan2(c_local[1], c_local[0])
-        self.ratio = z0 / z2
-        self.dphi = self.ratio
+        self.dphi = z0 / z2
         self.pitch_point = np.array([0.0, self.centre_distance * z2 / (z2 - z0)])
         self.origin = np.array([0.0, self.centre_distance])
         c_root = self.origin + np.array([0.0, r_a0 - self.rho])
@@ -225,7 +221,7 @@ class ToothProfile:
             rho = self.circular_radius
             if not (math.isfinite(rho) and rho > 0):
                 raise GearGeometryError(f"fillet_radius = {rho!r}, but it must be > 0 [m]")
-            self._circle()  # raises if the arc does not fit
+            self._circle  # raises if the arc does not fit
 
     @functools.cached_property
     def _generator(self) -> _Generator:
@@ -254,23 +250,21 @@ class ToothProfile:
     # fillet -----------------------------------------------------------
     def fillet_points(self, t) -> np.ndarray:
         """Fillet points for t in [0, 1], from the root end (0) to the form point (1) [m]."""
-        if self.fillet == "trochoid":
-            return self._generator.fillet(t)[0]
-        centre, start, end, rho = self._circle()
-        a0, a1 = math.atan2(*(start - centre)[::-1]), math.atan2(*(end - centre)[::-1])
-        sweep = (a1 - a0 + math.pi) % (2 * math.pi) - math.pi
-        angles = a0 + sweep * np.atleast_1d(np.asarray(t, dtype=float))
-        return centre + rho * np.column_stack([np.cos(angles), np.sin(angles)])
+        return self._fillet(t)[0]
 
     def fillet_tangents(self, t) -> np.ndarray:
         """d(point)/dt along the fillet [m]."""
+        return self._fillet(t)[1]
+
+    def _fillet(self, t) -> tuple[np.ndarray, np.ndarray]:
         if self.fillet == "trochoid":
-            return self._generator.fillet(t)[1]
-        centre, start, end, rho = self._circle()
-        p = self.fillet_points(t) - centre
+            return self._generator.fillet(t)
+        centre, start, end, rho = self._circle
         a0, a1 = math.atan2(*(start - centre)[::-1]), math.atan2(*(end - centre)[::-1])
         sweep = (a1 - a0 + math.pi) % (2 * math.pi) - math.pi
-        return sweep * np.column_stack([-p[:, 1], p[:, 0]])
+        angles = a0 + sweep * np.atleast_1d(np.asarray(t, dtype=float))
+        radial = np.column_stack([np.cos(angles), np.sin(angles)])
+        return centre + rho * radial, sweep * rho * np.column_stack([-radial[:, 1], radial[:, 0]])
 
     @property
     def form_radius(self) -> float:
@@ -283,10 +277,7 @@ class ToothProfile:
         p = self.fillet_points(0.0)[0]
         return math.atan2(p[1], p[0])
 
-    def involute_points(self, n: int) -> np.ndarray:
-        """n points of the involute from the form radius to the tip [m]."""
-        return self.gear.flank(np.linspace(self.form_radius, self.tip_radius, n))
-
+    @functools.cached_property
     def _circle(self):
         """Centre, root tangent point, involute tangent point and radius of the circular fillet."""
         g, rho = self.gear, self.circular_radius
@@ -296,12 +287,7 @@ class ToothProfile:
 
         def centre(r):
             p = g.flank([r])[0]
-            psi = math.atan2(p[1], p[0])
-            a_r = math.acos(min(rb / r, 1.0))
-            # unit normal of the flank pointing into the space
-            theta = psi + a_r if g.internal else psi - a_r  # base-circle tangent point
-            n = np.array([-math.sin(theta), math.cos(theta)])
-            return p + rho * n, p
+            return p + rho * g.flank_normal(r), p
 
         def gap(r):
             return np.hypot(*centre(r)[0]) - target
@@ -335,11 +321,11 @@ class ToothProfile:
             tangent_angle = math.radians(60.0 if self.gear.internal else 30.0)
 
         def mismatch(t):
-            d = self.fillet_tangents(t)[0]
-            return math.atan2(abs(d[1]), abs(d[0])) - tangent_angle
+            d = self.fillet_tangents(t)
+            return np.arctan2(np.abs(d[:, 1]), np.abs(d[:, 0])) - tangent_angle
 
         t = np.linspace(0, 1, 401)
-        values = np.array([mismatch(v) for v in t])
+        values = mismatch(t)
         sign_change = np.nonzero(np.diff(np.sign(values)))[0]
         if len(sign_change) == 0:
             raise GearGeometryError(
@@ -347,4 +333,4 @@ class ToothProfile:
                 f"fillet (its tangent spans {math.degrees(values.min() + tangent_angle):.3g}.."
                 f"{math.degrees(values.max() + tangent_angle):.3g} deg)")
         i = sign_change[0]
-        return brentq(mismatch, t[i], t[i + 1], xtol=1e-14)
+        return brentq(lambda v: float(mismatch(v)[0]), t[i], t[i + 1], xtol=1e-14)

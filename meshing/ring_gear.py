@@ -5,6 +5,7 @@ Angles: tooth k is centred on the polar angle ``2 pi k / z``; its flank at
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -104,7 +105,7 @@ class RingGear:
                 f"r = {self.load_radius:.6g} m, beyond the involute (form radius "
                 f"{self.profile.form_radius:.6g} m)")
 
-    @property
+    @functools.cached_property
     def profile(self) -> ToothProfile:
         return ToothProfile(self.gear, self.fillet, self.fillet_radius, self.cutter)
 
@@ -142,11 +143,8 @@ class RingGear:
         normal, tangent to the base circle), pushing into the tooth; its moment arm
         about the ring centre is the base radius exactly.
         """
-        rb = self.gear.base_diameter / 2
         p = self.gear.flank([self.load_radius])[0]
-        psi = math.atan2(p[1], p[0])
-        theta = psi + math.acos(rb / self.load_radius)
-        into_tooth = np.array([math.sin(theta), -math.cos(theta)])
+        into_tooth = -self.gear.flank_normal(self.load_radius)
         rot = rotation(self.tooth_angle(k))
         return rot @ p, rot @ into_tooth
 
@@ -164,8 +162,10 @@ class RingGear:
         psi_tip = float(g.half_tooth_angle(r_a))
         tip_arc = 0.5 * r_a ** 2 * psi_tip
         involute = ((prof.form_radius ** 2 - rb ** 2) ** 1.5 - (r_a ** 2 - rb ** 2) ** 1.5) / (6 * rb)
+
         def integrand(t):
-            (x, y), (dx, dy) = prof.fillet_points(t)[0], prof.fillet_tangents(t)[0]
+            points, tangents = prof._fillet(t)
+            (x, y), (dx, dy) = points[0], tangents[0]
             return -0.5 * (x * dy - y * dx)
 
         fillet = quad(integrand, 0.0, 1.0, epsabs=0, epsrel=1e-13, limit=200)[0]

@@ -113,7 +113,7 @@ def ring_mesh(ring: RingGear, crack: Crack | None = None,
     info.update(seconds=time.perf_counter() - started, ring=_describe(ring), options=asdict(options),
                 crack=None if crack is None else asdict(crack),
                 crack_path=None if crack_path is None else crack_path.tolist(),
-                exact_area=ring.area(), face_width=ring.gear.face_width, density=ring.density)
+                exact_area=ring.area(), density=ring.density)
     return FEMesh(mesh.points, mesh.cells, mesh.cell_type, mesh.boundaries, mesh.points_of, info)
 
 
@@ -155,10 +155,8 @@ class _RingBuilder:
         t_crit = prof.critical_parameter() if root_crack_tooth is not None else None
 
         # half profile (+psi side), pieces from the tip towards the space centre
-        radii = sorted([prof.tip_radius, ring.load_radius - opt.load_patch / 2,
-                        ring.load_radius + opt.load_patch / 2, prof.form_radius])
-        if ring.gear.internal is False:
-            radii = radii[::-1]
+        radii = [prof.tip_radius, ring.load_radius - opt.load_patch / 2,
+                 ring.load_radius + opt.load_patch / 2, prof.form_radius]
         involute_pieces = [ring.gear.flank(np.linspace(a, b, INVOLUTE_POINTS))
                            for a, b in zip(radii[:-1], radii[1:])]
         load_piece = 1

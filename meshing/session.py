@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import contextlib
 import itertools
+import os
 
 _counter = itertools.count()
 
@@ -27,8 +28,9 @@ def gmsh_model(name: str = "hubvib"):
         gmsh.initialize(readConfigFiles=False, interruptible=False)
     model = f"{name}-{next(_counter)}"
     try:
-        gmsh.option.setNumber("General.Terminal", int(__import__("os").environ.get("HUBVIB_GMSH_LOG", "0")))
-        gmsh.option.setNumber("General.Verbosity", 5 if __import__("os").environ.get("HUBVIB_GMSH_LOG") else 0)
+        log = bool(os.environ.get("HUBVIB_GMSH_LOG"))  # set to see gmsh's own messages
+        gmsh.option.setNumber("General.Terminal", int(log))
+        gmsh.option.setNumber("General.Verbosity", 5 if log else 0)
         gmsh.option.setNumber("General.NumThreads", 1)
         gmsh.option.setNumber("Mesh.MaxNumThreads2D", 1)
         gmsh.option.setNumber("Mesh.MaxNumThreads3D", 1)

@@ -85,7 +85,7 @@ def test_circular_fillet_touches_root_and_flank():
     gear = raba118.planet()
     prof = ToothProfile(gear, "circular")  # radius rho_fP* m
     pts = prof.fillet_points(np.linspace(0, 1, 20))
-    centre, _, end, rho = prof._circle()
+    centre, _, end, rho = prof._circle
     assert np.allclose(np.hypot(*(pts - centre).T), rho, atol=1e-15)
     assert np.hypot(*pts[0]) == pytest.approx(prof.root_radius, abs=1e-12)
     assert np.linalg.norm(end - gear.flank([np.hypot(*end)])[0]) < 1e-12
