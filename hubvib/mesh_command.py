@@ -11,8 +11,9 @@ RING_PRESETS = ("raba118",)
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("mesh", help="gmsh mesh of the ring gear (VTU + PNG + counts)")
-    p.add_argument("part", choices=["ring"])
+    p = sub.add_parser("mesh", help="gmsh mesh of a gear body (VTU + PNG + counts)")
+    p.add_argument("part", choices=["ring", "sun", "planet"],
+                   help="the ring (may be cracked), or the sun or planet on its bore")
     p.add_argument("--preset", default="raba118", choices=RING_PRESETS)
     p.add_argument("--crack-depth", type=float, default=0.0, metavar="D",
                    help="crack length along its path [m]; 0 = intact")
@@ -21,10 +22,16 @@ def add_parser(sub) -> None:
                    help="crack direction from the radial [deg]")
     p.add_argument("--crack-start", choices=["root", "rim"], default="root")
     p.add_argument("--order", type=int, choices=[1, 2], default=2)
-    p.add_argument("--dim", type=int, choices=[2], default=2,
-                   help="2 (plane); 3D extrusion is not available yet")
-    p.add_argument("--size", type=float, default=2e-3, help="bulk element size [m]")
-    p.add_argument("--tip-size", type=float, default=5e-5, help="element size at the crack tip [m]")
+    p.add_argument("--dim", type=int, choices=[2, 3], default=2,
+                   help="2 (plane section) or 3 (solid, ring only; coarser default sizes)")
+    p.add_argument("--crack-front", choices=["through", "semi_elliptic"], default="through",
+                   help="3D: crack through the face width, or a semi-elliptic surface crack")
+    p.add_argument("--crack-half-length", type=float, default=5e-3, metavar="C",
+                   help="3D semi-elliptic crack: half its length along the width [m]")
+    p.add_argument("--size", type=float, default=None,
+                   help="bulk element size [m] (default 2e-3 in 2D, 6e-3 in 3D)")
+    p.add_argument("--tip-size", type=float, default=None,
+                   help="element size at the crack tip [m] (default 5e-5 in 2D, 5e-4 in 3D)")
     p.add_argument("--out", type=Path, default=Path("hubvib-out/mesh"))
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
@@ -32,23 +39,47 @@ def add_parser(sub) -> None:
 
 def build(args):
     from meshing import raba118
-    from meshing.crack import Crack
+    from meshing.crack import Crack, CrackFront
+    from meshing.gear import GearGeometryError
     from meshing.ring_mesh import MeshOptions, ring_mesh
 
-    ring = raba118.ring_gear()
     crack = Crack(args.crack_tooth, args.crack_depth, math.radians(args.crack_angle),
                   args.crack_start)
-    options = MeshOptions(size=args.size, tip_size=args.tip_size, order=args.order)
-    return ring, ring_mesh(ring, crack, options)
+    if args.part != "ring":
+        if args.crack_depth or args.dim == 3:
+            raise GearGeometryError(f"{args.part}: cracks and --dim 3 are for the ring only")
+        body = raba118.gear_body(args.part)
+        return body, ring_mesh(body, None, _options(MeshOptions(), args))
+    ring = raba118.ring_gear()
+    if args.dim == 3:
+        from meshing.ring_mesh_3d import SOLID_OPTIONS, ring_mesh_3d
+
+        front = CrackFront(args.crack_front, half_length=args.crack_half_length)
+        return ring, ring_mesh_3d(ring, crack, front, _options(SOLID_OPTIONS, args))
+    return ring, ring_mesh(ring, crack, _options(MeshOptions(), args))
+
+
+def _options(defaults, args):
+    from dataclasses import replace
+
+    changes = {"order": args.order}
+    if args.size is not None:
+        changes["size"] = args.size
+    if args.tip_size is not None:
+        changes["tip_size"] = args.tip_size
+    return replace(defaults, **changes)
 
 
 def summary(ring, mesh) -> dict:
     from meshing import measure
 
-    area, exact = measure.area(mesh), mesh.info["exact_area"]
+    if mesh.dim == 3:
+        size = {"volume_m3": measure.volume(mesh), "exact_volume_m3": mesh.info["exact_volume"]}
+    else:
+        size = {"area_m2": measure.area(mesh), "exact_area_m2": mesh.info["exact_area"]}
+    measured, exact = size.values()
     return {"nodes": mesh.info["nodes"], "elements": mesh.info["elements"],
-            "cell_type": mesh.cell_type, "area_m2": area, "exact_area_m2": exact,
-            "area_relative_error": area / exact - 1,
+            "cell_type": mesh.cell_type, **size, "relative_error": measured / exact - 1,
             "mass_kg": measure.mass(mesh, ring.gear.face_width, ring.density),
             "min_quality_sicn": mesh.info["min_quality"],
             "mean_quality_sicn": mesh.info["mean_quality"],
@@ -61,10 +92,11 @@ def run(args) -> int:
 
     ring, mesh = build(args)
     info = summary(ring, mesh)
-    name = "ring" if args.crack_depth == 0 else f"ring_crack_{args.crack_depth:g}m"
+    name = args.part + ("" if args.crack_depth == 0 else f"_crack_{args.crack_depth:g}m") + (
+        "_3d" if args.dim == 3 else "")
     files = [write_vtu(mesh, args.out / f"{name}.vtu")]
     tooth = ring.tooth_angle(args.crack_tooth)
-    centre = None if args.crack_depth else ring.load_radius * 1.04 * np.array(
+    centre = None if args.crack_depth else ring.load_radius * np.array(
         [math.cos(tooth), math.sin(tooth)])
     files.append(write_png(mesh, args.out / f"{name}.png", centre=centre,
                            half_width=None if args.crack_depth else 0.02))
@@ -74,8 +106,13 @@ def run(args) -> int:
         return 0
     print(f"{info['nodes']} nodes, {info['elements']} {info['cell_type']} elements, "
           f"meshed in {info['seconds']:.2f} s")
-    print(f"area {info['area_m2']:.9e} m^2 (exact {info['exact_area_m2']:.9e}, relative error "
-          f"{info['area_relative_error']:.1e}); mass {info['mass_kg']:.4f} kg")
+    what, unit = ("volume", "m^3") if mesh.dim == 3 else ("area", "m^2")
+    print(f"{what} {info[f'{what}_{unit[0]}{unit[-1]}']:.9e} {unit} (exact "
+          f"{info[f'exact_{what}_{unit[0]}{unit[-1]}']:.9e}, relative error "
+          f"{info['relative_error']:.1e}); mass {info['mass_kg']:.4f} kg")
+    if mesh.info.get("straightened"):
+        print(f"{mesh.info['straightened']} curved tetrahedra had their surface edges straightened "
+              "(they would have been inverted)")
     print(f"element quality (gmsh minSICN): min {info['min_quality_sicn']:.3f}, "
           f"mean {info['mean_quality_sicn']:.3f}")
     print(f"written: {', '.join(info['files'])}")

@@ -16,19 +16,25 @@ def add_parser(sub) -> None:
     p.set_defaults(handler=run)
 
 
-def estimate(ring, crack) -> dict:
-    """c_ru and c_r on the default mesh and on one twice as coarse.
+def scaled_options(scale: float):
+    """The default plane mesh with every element size times ``scale``."""
+    from meshing.ring_mesh import MeshOptions
+
+    default = MeshOptions()
+    return MeshOptions(size=scale * default.size, tooth_size=scale * default.tooth_size,
+                       tip_size=scale * default.tip_size, load_size=scale * default.load_size)
+
+
+def estimate(ring, crack, scale: float = 1.0) -> dict:
+    """c_ru and c_r on the default mesh (sizes times ``scale``) and on one twice as coarse.
 
     The estimated error is the difference between the two (an upper bound when
     the convergence is monotone with rate >= 1; see the annulus study).
     """
     from fem.ring_stiffness import ring_stiffness
-    from meshing.ring_mesh import MeshOptions, ring_mesh
+    from meshing.ring_mesh import ring_mesh
 
-    fine_options = MeshOptions()
-    coarse_options = MeshOptions(size=2 * fine_options.size, tooth_size=2 * fine_options.tooth_size,
-                                 tip_size=2 * fine_options.tip_size,
-                                 load_size=2 * fine_options.load_size)
+    fine_options, coarse_options = scaled_options(scale), scaled_options(2 * scale)
     results = {}
     for name, options in (("coarse", coarse_options), ("fine", fine_options)):
         started = time.perf_counter()

@@ -9,13 +9,17 @@ from pathlib import Path
 
 from .fe_mesh import FEMesh
 
-VERSION = 1  # bump when the mesher changes what a given parameter set produces
+VERSION = 2  # bump when the mesher changes what a given parameter set produces
+
+
+def root_folder() -> Path:
+    """``$HUBVIB_CACHE`` or ``~/.cache/hubvib``: every stage keeps its results below it."""
+    root = os.environ.get("HUBVIB_CACHE")
+    return Path(root) if root else Path.home() / ".cache" / "hubvib"
 
 
 def default_folder() -> Path:
-    """``$HUBVIB_CACHE`` or ``~/.cache/hubvib/meshes``."""
-    root = os.environ.get("HUBVIB_CACHE")
-    return Path(root) / "meshes" if root else Path.home() / ".cache" / "hubvib" / "meshes"
+    return root_folder() / "meshes"
 
 
 def key(*parts) -> str:

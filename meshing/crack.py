@@ -166,3 +166,63 @@ def _ray_to_circle(origin, direction, radius) -> float:
     b = float(origin @ direction)
     c = float(origin @ origin) - radius ** 2
     return -b + math.sqrt(b * b - c)
+
+
+FRONT_SHAPES = ("through", "semi_elliptic")
+MIN_LIGAMENT = 0.5e-3  # [m] uncracked width kept between a part-width crack and a face
+
+
+@dataclass(frozen=True)
+class CrackFront:
+    """How a crack runs across the face width (3D meshes only; z from one face).
+
+    Parameters
+    ----------
+    shape : str
+        ``"through"``: ``Crack.depth`` over the whole face width, the front a
+        straight line.  ``"semi_elliptic"``: a part-width crack whose depth is
+        ``Crack.depth * sqrt(1 - ((z - z_c) / half_length)^2)``, its front half
+        an ellipse, its mouth ``2 half_length`` long on the surface it starts from.
+    centre : float
+        z_c, the deepest point, as a fraction of the face width, (0, 1).
+    half_length : float
+        Half the mouth length along the width [m] (semi-elliptic only).
+    """
+
+    shape: str = "through"
+    centre: float = 0.5
+    half_length: float = 5e-3
+
+    def __post_init__(self):
+        if self.shape not in FRONT_SHAPES:
+            raise GearGeometryError(
+                f"crack.front = {self.shape!r}, allowed: {', '.join(FRONT_SHAPES)}")
+        for name in ("centre", "half_length"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(
+                    value):
+                raise GearGeometryError(f"crack.front_{name} = {value!r} must be a finite number")
+        if not 0 < self.centre < 1:
+            raise GearGeometryError(f"crack.front_centre = {self.centre!r}, allowed (0, 1)")
+        if self.half_length <= 0:
+            raise GearGeometryError(f"crack.front_half_length = {self.half_length!r} m, "
+                                    "allowed > 0")
+
+    def span(self, face_width: float) -> tuple[float, float]:
+        """z range of a semi-elliptic crack's mouth [m], checked against the face width."""
+        z_c = self.centre * face_width
+        low, high = z_c - self.half_length, z_c + self.half_length
+        if low < MIN_LIGAMENT or high > face_width - MIN_LIGAMENT:
+            allowed = min(z_c, face_width - z_c) - MIN_LIGAMENT
+            raise GearGeometryError(
+                f"crack.front_half_length = {self.half_length:.6g} m does not fit in the face "
+                f"width {face_width:.6g} m around z = {z_c:.6g} m: allowed 0..{allowed:.6g} m")
+        return low, high
+
+    def depth_at(self, crack: Crack, z, face_width: float) -> np.ndarray:
+        """Crack depth at height z [m] (0 outside the mouth)."""
+        z = np.asarray(z, dtype=float)
+        if self.shape == "through":
+            return np.full(z.shape, crack.depth)
+        s = (z - self.centre * face_width) / self.half_length
+        return crack.depth * np.sqrt(np.clip(1 - s * s, 0.0, None))

@@ -13,6 +13,10 @@ ELEMENT_TYPES = {
     2: ("triangle", 2, 3), 9: ("triangle6", 2, 3),
     4: ("tetra", 3, 4), 11: ("tetra10", 3, 4),
 }
+#: mid-edge nodes of a gmsh tetra10, in its node order 4..9
+TETRA10_EDGES = ((0, 1), (1, 2), (0, 2), (0, 3), (2, 3), (1, 3))
+#: gmsh tetra10 -> VTK / meshio / scikit-fem order (mid-nodes 13 and 23 swap)
+GMSH_TO_VTK_TETRA10 = [0, 1, 2, 3, 4, 5, 6, 7, 9, 8]
 
 
 @dataclass(frozen=True, eq=False)

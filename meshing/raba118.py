@@ -62,3 +62,22 @@ def ring_gear(supports: Supports = RING_SUPPORTS, fillet: str = "trochoid") -> R
     gear = ring()
     return RingGear(gear, outer_diameter_for_mass(gear, RING_MASS, fillet=fillet), supports,
                     fillet=fillet, working_pressure_angle=WORKING_PRESSURE_ANGLE)
+
+
+# external gear bodies (tooth stiffness) -------------------------------------
+#: ASSUMED: bores of the sun's shaft seat and the planet's bearing seat [m].
+BORES = {"sun": 30e-3, "planet": 36e-3}
+
+
+def gear_body(name: str):
+    """Sun or planet body with its bore (``name`` = ``"sun"`` or ``"planet"``).
+
+    ASSUMED (not in the paper): the bores (sun 30 mm on its shaft, planet 36 mm
+    on its needle bearing, whole bore held), the ISO 53 rack fillet, face width 40 mm.
+    """
+    from .gear_body import GearBody
+
+    gears = {"sun": sun, "planet": planet}
+    if name not in gears:
+        raise ValueError(f"gear body {name!r}, allowed: {', '.join(gears)}")
+    return GearBody(gears[name](), BORES[name], working_pressure_angle=WORKING_PRESSURE_ANGLE)

@@ -55,8 +55,83 @@ class Supports:
                 for j in range(self.count)]
 
 
+class ToothedBody:
+    """What every meshed gear body shares: teeth, load points, exact measures.
+
+    Subclasses are frozen dataclasses with ``gear``, ``fillet``, ``fillet_radius``,
+    ``cutter``, ``working_pressure_angle`` and ``density``, and give ``area()``
+    and ``held_radius`` (the circle their supports hold).
+    """
+
+    @functools.cached_property
+    def profile(self) -> ToothProfile:
+        return ToothProfile(self.gear, self.fillet, self.fillet_radius, self.cutter)
+
+    @property
+    def teeth(self) -> int:
+        return self.gear.teeth
+
+    @property
+    def load_pressure_angle(self) -> float:
+        return (self.gear.pressure_angle if self.working_pressure_angle is None
+                else self.working_pressure_angle)
+
+    @property
+    def load_radius(self) -> float:
+        """Working pitch radius, where the planets' mesh force is applied [m]."""
+        return self.gear.base_diameter / 2 / math.cos(self.load_pressure_angle)
+
+    def tooth_angle(self, k: int) -> float:
+        """Polar angle of the centre line of tooth k [rad]."""
+        return 2 * math.pi * k / self.teeth
+
+    def load_point(self, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """Point on tooth k's +psi flank at the load radius and the unit force direction there.
+
+        The force of a planet on the ring acts along the line of action (the flank
+        normal, tangent to the base circle), pushing into the tooth; its moment arm
+        about the ring centre is the base radius exactly.
+        """
+        p = self.gear.flank([self.load_radius])[0]
+        into_tooth = -self.gear.flank_normal(self.load_radius)
+        rot = rotation(self.tooth_angle(k))
+        return rot @ p, rot @ into_tooth
+
+    # exact measures ----------------------------------------------------
+    def tooth_space_area(self) -> float:
+        """Area enclosed by the toothed inner boundary, per tooth pitch [m^2].
+
+        Green's theorem, 1/2 int r^2 dpsi, on the exact pieces: tip arc and root
+        land in closed form, the involute in closed form
+        (``(r^2 - r_b^2)^{3/2} / (6 r_b)``), the fillet by adaptive quadrature
+        (rtol 1e-13).  No mesh is involved.
+        """
+        prof, g = self.profile, self.gear
+        r_a, r_f, rb = prof.tip_radius, prof.root_radius, g.base_diameter / 2
+        psi_tip = float(g.half_tooth_angle(r_a))
+        tip_arc = 0.5 * r_a ** 2 * psi_tip
+        involute = ((prof.form_radius ** 2 - rb ** 2) ** 1.5 - (r_a ** 2 - rb ** 2) ** 1.5) / (6 * rb)
+        if not g.internal:  # psi grows towards the root on an external tooth
+            involute = -involute
+
+        def integrand(t):
+            points, tangents = prof._fillet(t)
+            (x, y), (dx, dy) = points[0], tangents[0]
+            return -0.5 * (x * dy - y * dx)
+
+        fillet = quad(integrand, 0.0, 1.0, epsabs=0, epsrel=1e-13, limit=200)[0]
+        land = 0.5 * r_f ** 2 * (prof.space_angle - prof.root_land_angle)
+        return 2 * (tip_arc + involute + fillet + land)
+
+    def mass(self) -> float:
+        """Exact mass [kg] (area x face width x density)."""
+        return self.area() * self.gear.face_width * self.density
+
+
+
+
 @dataclass(frozen=True)
-class RingGear:
+class RingGear(ToothedBody):
     """Internal spur gear with its rim.
 
     Parameters
@@ -105,14 +180,6 @@ class RingGear:
                 f"r = {self.load_radius:.6g} m, beyond the involute (form radius "
                 f"{self.profile.form_radius:.6g} m)")
 
-    @functools.cached_property
-    def profile(self) -> ToothProfile:
-        return ToothProfile(self.gear, self.fillet, self.fillet_radius, self.cutter)
-
-    @property
-    def teeth(self) -> int:
-        return self.gear.teeth
-
     @property
     def outer_radius(self) -> float:
         return self.outer_diameter / 2
@@ -123,62 +190,13 @@ class RingGear:
         return self.outer_radius - self.profile.root_radius
 
     @property
-    def load_pressure_angle(self) -> float:
-        return (self.gear.pressure_angle if self.working_pressure_angle is None
-                else self.working_pressure_angle)
-
-    @property
-    def load_radius(self) -> float:
-        """Working pitch radius, where the planets' mesh force is applied [m]."""
-        return self.gear.base_diameter / 2 / math.cos(self.load_pressure_angle)
-
-    def tooth_angle(self, k: int) -> float:
-        """Polar angle of the centre line of tooth k [rad]."""
-        return 2 * math.pi * k / self.teeth
-
-    def load_point(self, k: int) -> tuple[np.ndarray, np.ndarray]:
-        """Point on tooth k's +psi flank at the load radius and the unit force direction there.
-
-        The force of a planet on the ring acts along the line of action (the flank
-        normal, tangent to the base circle), pushing into the tooth; its moment arm
-        about the ring centre is the base radius exactly.
-        """
-        p = self.gear.flank([self.load_radius])[0]
-        into_tooth = -self.gear.flank_normal(self.load_radius)
-        rot = rotation(self.tooth_angle(k))
-        return rot @ p, rot @ into_tooth
-
-    # exact measures ----------------------------------------------------
-    def tooth_space_area(self) -> float:
-        """Area enclosed by the toothed inner boundary, per tooth pitch [m^2].
-
-        Green's theorem, 1/2 int r^2 dpsi, on the exact pieces: tip arc and root
-        land in closed form, the involute in closed form
-        (``(r^2 - r_b^2)^{3/2} / (6 r_b)``), the fillet by adaptive quadrature
-        (rtol 1e-13).  No mesh is involved.
-        """
-        prof, g = self.profile, self.gear
-        r_a, r_f, rb = prof.tip_radius, prof.root_radius, g.base_diameter / 2
-        psi_tip = float(g.half_tooth_angle(r_a))
-        tip_arc = 0.5 * r_a ** 2 * psi_tip
-        involute = ((prof.form_radius ** 2 - rb ** 2) ** 1.5 - (r_a ** 2 - rb ** 2) ** 1.5) / (6 * rb)
-
-        def integrand(t):
-            points, tangents = prof._fillet(t)
-            (x, y), (dx, dy) = points[0], tangents[0]
-            return -0.5 * (x * dy - y * dx)
-
-        fillet = quad(integrand, 0.0, 1.0, epsabs=0, epsrel=1e-13, limit=200)[0]
-        land = 0.5 * r_f ** 2 * (prof.space_angle - prof.root_land_angle)
-        return 2 * (tip_arc + involute + fillet + land)
+    def held_radius(self) -> float:
+        """The rim's outer surface, where the supports hold the ring [m]."""
+        return self.outer_radius
 
     def area(self) -> float:
         """Exact area of the ring's cross-section [m^2]."""
         return math.pi * self.outer_radius ** 2 - self.teeth * self.tooth_space_area()
-
-    def mass(self) -> float:
-        """Exact mass [kg] (area x face width x density)."""
-        return self.area() * self.gear.face_width * self.density
 
 
 def outer_diameter_for_mass(gear: SpurGear, mass: float, density: float = STEEL_DENSITY,

@@ -29,7 +29,7 @@ import numpy as np
 from .crack import Crack
 from .fe_mesh import FEMesh
 from .gear import GearGeometryError, rotation
-from .ring_gear import RingGear
+from .ring_gear import RingGear, ToothedBody
 from .extract import extract_plane
 from .session import MeshingError, gmsh_model
 
@@ -80,50 +80,63 @@ INVOLUTE_POINTS = 32  # spline points per involute piece
 FILLET_POINTS = 48    # spline points per fillet piece
 
 
-def ring_mesh(ring: RingGear, crack: Crack | None = None,
+def ring_mesh(ring: ToothedBody, crack: Crack | None = None,
               options: MeshOptions = MeshOptions()) -> FEMesh:
-    """Mesh the ring's cross-section with gmsh (plane, triangles).
+    """Mesh the cross-section of a ring (or of an external ``GearBody``) with gmsh.
 
-    A crack of zero depth (or ``None``) gives the intact mesh.
+    Plane, triangles.  A crack of zero depth (or ``None``) gives the intact mesh;
+    cracks are modelled in ring gears only.
     """
     if crack is not None and crack.depth == 0:
         crack = None
+    if crack is not None and not isinstance(ring, RingGear):
+        raise GearGeometryError("crack: only ring gears (RingGear) take a crack")
     crack_path = crack.path(ring) if crack is not None else None
-    patch_low = ring.load_radius - options.load_patch / 2
-    patch_high = ring.load_radius + options.load_patch / 2
-    prof = ring.profile
-    if not (prof.tip_radius < patch_low and patch_high < prof.form_radius):
-        raise GearGeometryError(
-            f"mesh.load_patch = {options.load_patch} m does not fit on the involute between "
-            f"r = {prof.tip_radius:.6g} and {prof.form_radius:.6g} m around the load radius "
-            f"{ring.load_radius:.6g} m")
+    _check_load_patch(ring, options)
     started = time.perf_counter()
     with gmsh_model("ring") as gmsh:
-        builder = _RingBuilder(gmsh, ring, crack, crack_path, options)
-        builder.geometry()
-        try:
-            builder.mesh()
-        except Exception as error:  # gmsh raises bare Exceptions with its log text
-            raise MeshingError(
-                f"gmsh failed to mesh the ring (size={options.size}, tooth_size="
-                f"{options.tooth_size}, tip_size={options.tip_size}, crack={crack}): "
-                f"{str(error).splitlines()[0] if str(error) else type(error).__name__}") from None
-        mesh = builder.extract()
+        mesh = run_builder(_RingBuilder(gmsh, ring, crack, crack_path, options),
+                           f"the ring section (options={options}, crack={crack})")
+    return with_info(mesh, started, ring, options, crack, crack_path, exact_area=ring.area())
+
+
+def run_builder(builder, what: str) -> FEMesh:
+    """Geometry, mesh and extraction; gmsh's failures become a ``MeshingError``."""
+    builder.geometry()
+    try:
+        builder.mesh()
+    except Exception as error:  # gmsh raises bare Exceptions with its log text
+        first = str(error).splitlines()[0] if str(error) else type(error).__name__
+        raise MeshingError(f"gmsh failed to mesh {what}: {first}") from None
+    return builder.extract()
+
+
+def with_info(mesh: FEMesh, started: float, ring, options, crack, crack_path, **extra) -> FEMesh:
+    """The mesh with its parameters, exact measures and time in ``info`` (JSON-ready)."""
     info = dict(mesh.info)
     info.update(seconds=time.perf_counter() - started, ring=_describe(ring), options=asdict(options),
                 crack=None if crack is None else asdict(crack),
                 crack_path=None if crack_path is None else crack_path.tolist(),
-                exact_area=ring.area(), density=ring.density)
+                density=ring.density, **extra)
     return FEMesh(mesh.points, mesh.cells, mesh.cell_type, mesh.boundaries, mesh.points_of, info)
 
 
-def _describe(ring: RingGear) -> dict:
-    g = ring.gear
+def _check_load_patch(body: ToothedBody, options: MeshOptions) -> None:
+    prof = body.profile
+    low, high = sorted((prof.tip_radius, prof.form_radius))
+    if not (low < body.load_radius - options.load_patch / 2
+            and body.load_radius + options.load_patch / 2 < high):
+        raise GearGeometryError(
+            f"mesh.load_patch = {options.load_patch} m does not fit on the involute between "
+            f"r = {low:.6g} and {high:.6g} m around the load radius {body.load_radius:.6g} m")
+
+
+def _describe(body: ToothedBody) -> dict:
+    g = body.gear
     return dict(teeth=g.teeth, module=g.module, pressure_angle=g.pressure_angle,
-                profile_shift=g.profile_shift, face_width=g.face_width,
-                outer_diameter=ring.outer_diameter, rim_thickness=ring.rim_thickness,
-                fillet=ring.fillet, supports=asdict(ring.supports),
-                load_radius=ring.load_radius)
+                profile_shift=g.profile_shift, face_width=g.face_width, internal=g.internal,
+                held_diameter=2 * body.held_radius, fillet=body.fillet,
+                supports=asdict(body.supports), load_radius=body.load_radius)
 
 
 class _RingBuilder:
@@ -148,6 +161,17 @@ class _RingBuilder:
         return self.geo.addCircleArc(start, self.centre, end)
 
     def geometry(self):
+        self.section(crack_lines=True)
+        self.geo.synchronize()
+        if self.crack_lines:
+            self.gmsh.model.mesh.embed(1, self.crack_lines, 2, self.surface)
+        model = self.gmsh.model
+        model.addPhysicalGroup(2, [self.surface], name="ring")
+        for name, curves in self.groups.items():
+            model.addPhysicalGroup(1, curves, name=name)
+
+    def section(self, crack_lines: bool):
+        """The cross-section at z = 0: curves, named curve lists and the plane surface."""
         ring, prof, opt = self.ring, self.ring.profile, self.opt
         self.centre = self.geo.addPoint(0, 0, 0)
         z = ring.teeth
@@ -155,8 +179,9 @@ class _RingBuilder:
         t_crit = prof.critical_parameter() if root_crack_tooth is not None else None
 
         # half profile (+psi side), pieces from the tip towards the space centre
-        radii = [prof.tip_radius, ring.load_radius - opt.load_patch / 2,
-                 ring.load_radius + opt.load_patch / 2, prof.form_radius]
+        half = math.copysign(opt.load_patch / 2, prof.form_radius - prof.tip_radius)
+        radii = [prof.tip_radius, ring.load_radius - half, ring.load_radius + half,
+                 prof.form_radius]
         involute_pieces = [ring.gear.flank(np.linspace(a, b, INVOLUTE_POINTS))
                            for a, b in zip(radii[:-1], radii[1:])]
         load_piece = 1
@@ -181,7 +206,7 @@ class _RingBuilder:
             land_end = self.point(rot @ neg_pieces[0][0], opt.tooth_size)
             neg = [self.arc(start, land_end)]
             current = land_end
-            for piece in neg_pieces:
+            for index, piece in enumerate(neg_pieces):
                 nxt = self.point(rot @ piece[-1], opt.tooth_size)
                 neg.append(self.spline(current, [rot @ p for p in piece], nxt))
                 current = nxt
@@ -202,18 +227,12 @@ class _RingBuilder:
             self.groups[f"tooth{k}_load"] = [pos[load_piece]]
             self.groups[f"tooth{k}_root"] = [neg[0], pos[-1]]
             self.load_curves.append(pos[load_piece])
-        inner_loop = self.geo.addCurveLoop(self.inner_curves)
-        outer_loop = self.geo.addCurveLoop(self.outer_boundary())
-        self.surface = self.geo.addPlaneSurface([outer_loop, inner_loop])
+        toothed = self.geo.addCurveLoop(self.inner_curves)
+        held = self.geo.addCurveLoop(self.outer_boundary())
+        loops = [held, toothed] if ring.gear.internal else [toothed, held]
+        self.surface = self.geo.addPlaneSurface(loops)
         if self.path is not None:
-            self.crack_geometry()
-        self.geo.synchronize()
-        if self.crack_lines:
-            self.gmsh.model.mesh.embed(1, self.crack_lines, 2, self.surface)
-        model = self.gmsh.model
-        model.addPhysicalGroup(2, [self.surface], name="ring")
-        for name, curves in self.groups.items():
-            model.addPhysicalGroup(1, curves, name=name)
+            self.crack_geometry(lines=crack_lines)
 
     def outer_boundary(self) -> list[int]:
         ring = self.ring
@@ -232,7 +251,7 @@ class _RingBuilder:
             if gaps[widest] < 0.6 * math.pi:
                 break
             angles.insert(widest + 1, angles[widest] + gaps[widest] / 2)
-        r = ring.outer_radius
+        r = ring.held_radius
         points = []
         for a in angles:
             points.append(self.point(r * np.array([math.cos(a), math.sin(a)]), self.opt.size))
@@ -258,7 +277,8 @@ class _RingBuilder:
             self.groups["outer_free"] = free
         return curves
 
-    def crack_geometry(self):
+    def crack_geometry(self, lines: bool = True):
+        """Crack points (``mouth``, ``tip``, ``outer_end``) and, if ``lines``, its lines."""
         path, crack = self.path, self.crack
         if crack.start == "root":
             first = self.crack_points["mouth"]
@@ -273,7 +293,9 @@ class _RingBuilder:
             else:
                 tags.append(self.point(p, self.opt.tip_size if last else self.opt.tooth_size))
         self.crack_points["tip"] = tags[-1]
-        self.crack_lines = [self.geo.addLine(a, b) for a, b in zip(tags[:-1], tags[1:])]
+        self.crack_tags = tags
+        if lines:
+            self.crack_lines = [self.geo.addLine(a, b) for a, b in zip(tags[:-1], tags[1:])]
 
     # mesh --------------------------------------------------------------
     def threshold(self, size, *, points=(), curves=(), sampling=20):
@@ -306,7 +328,8 @@ class _RingBuilder:
         field.setAsBackgroundMesh(smallest)
         for name, value in (("Mesh.MeshSizeExtendFromBoundary", 0),
                             ("Mesh.MeshSizeFromPoints", 0), ("Mesh.MeshSizeFromCurvature", 0),
-                            ("Mesh.Algorithm", 6), ("Mesh.ElementOrder", 1)):
+                            ("Mesh.Algorithm", 6), ("Mesh.ElementOrder", 1),
+                            ("Mesh.LcIntegrationPrecision", 1e-3)):
             gmsh.option.setNumber(name, value)
         gmsh.model.mesh.generate(2)
         if opt.order == 2:

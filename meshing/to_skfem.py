@@ -3,11 +3,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from .fe_mesh import FEMesh
+from .fe_mesh import GMSH_TO_VTK_TETRA10, FEMesh
 
 
 def to_skfem(mesh: FEMesh):
-    """scikit-fem mesh (MeshTri1 or curved MeshTri2) with ``boundaries``.
+    """scikit-fem mesh (MeshTri1/MeshTet1 or curved MeshTri2/MeshTet2) with ``boundaries``.
 
     Curved second-order meshes keep their mid-edge nodes on the exact
     boundary.  Boundary names map to facet indices of the returned mesh.
@@ -18,23 +18,23 @@ def to_skfem(mesh: FEMesh):
     """
     import skfem
 
-    if mesh.dim != 2:
-        raise ValueError(f"to_skfem handles plane meshes only, got {mesh.cell_type}")
-    vertices = np.unique(mesh.cells[:, :3])
+    vertices = mesh.vertices()
     vertex_of = np.full(len(mesh.points), -1, dtype=np.int64)
     vertex_of[vertices] = np.arange(len(vertices))
+    linear, curved = (skfem.MeshTri1, skfem.MeshTri2) if mesh.dim == 2 else (skfem.MeshTet1,
+                                                                           skfem.MeshTet2)
     if mesh.order == 1:
-        fe = skfem.MeshTri1(np.ascontiguousarray(mesh.points[vertices].T),
-                            np.ascontiguousarray(vertex_of[mesh.cells].T))
+        fe = linear(np.ascontiguousarray(mesh.points[vertices].T),
+                    np.ascontiguousarray(vertex_of[mesh.cells].T))
     else:
         # gmsh triangle6 order (vertices, then edges 01, 12, 20) is skfem's; skfem
         # renumbers the vertices in sorted node order, as vertex_of does
-        fe = skfem.MeshTri2(np.ascontiguousarray(mesh.points.T),
-                            np.ascontiguousarray(mesh.cells.T))
-    lookup = {tuple(row): i for i, row in enumerate(fe.facets.T)}
+        cells = mesh.cells if mesh.dim == 2 else mesh.cells[:, GMSH_TO_VTK_TETRA10]
+        fe = curved(np.ascontiguousarray(mesh.points.T), np.ascontiguousarray(cells.T))
+    lookup = {tuple(row): i for i, row in enumerate(np.sort(fe.facets, axis=0).T)}
     boundaries = {}
     for name, elements in mesh.boundaries.items():
-        keys = np.sort(vertex_of[elements[:, :2]], axis=1)
+        keys = np.sort(vertex_of[elements[:, :mesh.dim]], axis=1)
         try:
             boundaries[name] = np.array([lookup[tuple(k)] for k in keys], dtype=np.int64)
         except KeyError:

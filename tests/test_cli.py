@@ -77,3 +77,31 @@ def test_import_lumped_stays_light():
             "print(sorted(heavy))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_mesh_planet_json(capsys, tmp_path):
+    pytest.importorskip("gmsh")
+    data = _json(capsys, ["mesh", "planet", "--out", str(tmp_path), "--json"])
+    # exact area of the planet body (closed forms, tests/test_meshing.py), P2 within 1e-5
+    assert abs(data["relative_error"]) < 1e-5 and data["min_quality_sicn"] > 0.5
+    assert {"supports", "tooth0_load"} <= set(data["groups"])
+    assert all((tmp_path / f"planet.{ext}").stat().st_size > 0 for ext in ("vtu", "png"))
+
+
+def test_mesh_rejects_a_cracked_planet(capsys, tmp_path):
+    pytest.importorskip("gmsh")
+    assert main(["mesh", "planet", "--crack-depth", "1e-3", "--out", str(tmp_path)]) == 2
+    assert "ring only" in capsys.readouterr().err
+    assert not list(tmp_path.iterdir())
+
+
+@pytest.mark.slow
+def test_mesh_ring_3d_semi_elliptic(capsys, tmp_path):
+    pytest.importorskip("gmsh")
+    data = _json(capsys, ["mesh", "ring", "--dim", "3", "--crack-depth", "6e-3",
+                          "--crack-front", "semi_elliptic", "--crack-half-length", "8e-3",
+                          "--size", "12e-3", "--out", str(tmp_path), "--json"])
+    # exact volume = exact area x face width; straightened fillet edges cost ~1e-5 here
+    assert abs(data["relative_error"]) < 3e-5
+    assert data["cell_type"] == "tetra10" and data["min_quality_sicn"] > 0
+    assert {"crack_a", "crack_b", "face_0", "face_1"} <= set(data["groups"])

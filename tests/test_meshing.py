@@ -283,3 +283,38 @@ def test_cache_reuses_meshes(tmp_path):
     assert (hit1, hit2, len(calls)) == (False, True, 1)
     assert np.array_equal(first.points, second.points)
     assert second.boundaries.keys() == first.boundaries.keys()
+
+
+@pytest.mark.parametrize("name", ["sun", "planet"])
+def test_external_gear_body_mesh(name):
+    # exact area: the same closed forms as the ring, external sign of the involute
+    # term, minus the bore; a 2e5-point polygon of the tooth checks the closed forms
+    body = raba118.gear_body(name)
+    mesh = ring_mesh(body)
+    assert abs(measure.area(mesh) / body.area() - 1) < 1e-5
+    assert mesh.info["min_quality"] > 0.5
+    r = np.hypot(*mesh.points[np.unique(mesh.boundaries["supports"])].T)
+    assert np.allclose(r, body.held_radius, rtol=1e-12)
+    load = mesh.points[np.unique(mesh.boundaries["tooth0_load"])]
+    assert np.abs(np.hypot(*load.T) - body.load_radius).max() <= MeshOptions().load_patch / 2 + 1e-12
+    t = np.linspace(0, 1, 200001)
+    prof, g = body.profile, body.gear
+    flank = g.flank(np.linspace(prof.tip_radius, prof.form_radius, 200001))
+    def arc(radius, a, b):
+        angles = np.linspace(a, b, 20001)
+        return radius * np.column_stack([np.cos(angles), np.sin(angles)])
+
+    fillet = prof.fillet_points(t[::-1])
+    half = np.vstack([arc(prof.tip_radius, 0.0, math.atan2(*flank[0][::-1])), flank, fillet,
+                      arc(prof.root_radius, math.atan2(*fillet[-1][::-1]), prof.space_angle)])
+    x, y = half.T
+    polygon = 0.5 * abs(np.sum(x[:-1] * y[1:] - x[1:] * y[:-1]))  # fan from the centre
+    assert 2 * polygon == pytest.approx(body.tooth_space_area(), rel=1e-9)
+
+
+def test_external_gear_body_rejects_bad_input():
+    with pytest.raises(GearGeometryError, match="bore_diameter"):
+        from meshing.gear_body import GearBody
+        GearBody(raba118.planet(), 0.07)
+    with pytest.raises(GearGeometryError, match="crack"):
+        ring_mesh(raba118.gear_body("sun"), Crack(0, 1e-3))
