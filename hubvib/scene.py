@@ -13,9 +13,25 @@ A scene is TOML with these tables (all keys shown; SI units)::
     detection_threshold_percent = 1.0
     method = "jacobi"             # eigensolver, see lumped.METHODS
 
+    [crack]                       # optional: a ring-crack sweep through the FE stage
+    depths = [0.0, 0.005, 0.01]   # [m] along the crack path, ascending, from 0 (intact)
+    through_rim = true            # also the depth that cuts through the rim
+    tooth = 0
+    start = "root"                # or "rim"
+    angle_deg = 0.0               # from the radial, |angle| <= 60
+    apply = "ratio"               # FE ratio on the preset's c_ru, c_r; or "direct" (FE values)
+    accuracy = "default"          # or "fast" (element sizes doubled)
+    workers = 2                   # worker processes for the FE cases
+
     [output]
     folder = "hubvib-out"         # relative to the current directory
     plots = true
+    renders = false               # pyvista PNG of each lumped mode shape (crack studies)
+    gif = false                   # ... and an animated GIF per mode
+    vtm = false                   # ... and a VTK multiblock per mode for ParaView
+
+With ``[crack]`` the study is the crack sweep and ``[study]`` needs no
+``parameter``/``values``.
 """
 from __future__ import annotations
 
@@ -27,13 +43,16 @@ from pathlib import Path
 
 from lumped import METHODS, ParameterError, PlanetaryParameters, field_names
 
+from .crack_sweep import ACCURACY, APPLY, STARTS, CrackSweep
 from .params_input import load_parameters
 
 ALLOWED = {
-    "": {"reducer", "study", "output"},
+    "": {"reducer", "study", "crack", "output"},
     "reducer": {"preset", "parameters"},
     "study": {"parameter", "values", "detection_threshold_percent", "method"},
-    "output": {"folder", "plots"},
+    "crack": {"depths", "through_rim", "tooth", "start", "angle_deg", "apply", "accuracy",
+              "workers"},
+    "output": {"folder", "plots", "renders", "gif", "vtm"},
 }
 
 
@@ -52,6 +71,10 @@ class Scene:
     folder: Path
     plots: bool
     source: dict = field(repr=False, compare=False, default_factory=dict)
+    crack: CrackSweep | None = None
+    renders: bool = False
+    gif: bool = False
+    vtm: bool = False
 
 
 def default_scene_text() -> str:
@@ -92,14 +115,14 @@ def parse_scene(text: str, name: str) -> Scene:
     except ParameterError as exc:
         raise SceneError(f"[reducer]: {exc}") from None
 
+    crack = _crack(data["crack"]) if "crack" in data else None
     parameter = _string(study, "study", "parameter", "c_ru")
     numeric = [f for f in field_names() if f != "theta"]
     if parameter not in numeric:
         raise SceneError(f"[study] parameter = {parameter!r}; allowed: {', '.join(numeric)}")
-    values = study.get("values")
-    if not isinstance(values, list) or not values or not all(
-        isinstance(v, (int, float)) and not isinstance(v, bool) for v in values
-    ):
+    values = study.get("values", [] if crack else None)
+    if not isinstance(values, list) or (crack is None and not values) or not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) for v in values):
         raise SceneError(f"[study] values = {values!r}, but it must be a non-empty list of numbers")
     for i, v in enumerate(values):
         try:
@@ -119,9 +142,84 @@ def parse_scene(text: str, name: str) -> Scene:
     plots = output.get("plots", True)
     if not isinstance(plots, bool):
         raise SceneError(f"[output] plots = {plots!r}, but it must be true or false")
+    flags = {}
+    for key in ("renders", "gif", "vtm"):
+        flags[key] = output.get(key, False)
+        if not isinstance(flags[key], bool):
+            raise SceneError(f"[output] {key} = {flags[key]!r}, but it must be true or false")
+    if (flags["gif"] or flags["vtm"]) and not flags["renders"]:
+        raise SceneError("[output] gif and vtm need renders = true")
+    if flags["renders"] and crack is None:
+        raise SceneError("[output] renders = true needs a [crack] study (it renders its modes)")
     folder = Path(_string(output, "output", "folder", "hubvib-out"))
     return Scene(name, params, parameter, tuple(float(v) for v in values), float(threshold),
-                 method, folder, plots, data)
+                 method, folder, plots, data, crack, **flags)
+
+
+def _crack(table) -> CrackSweep:
+    if not isinstance(table, dict):
+        raise SceneError(f"[crack] must be a table, got {table!r}")
+    _check_keys(table, "crack")
+    depths = table.get("depths", [0.0])
+    if not isinstance(depths, list) or not depths or not all(
+            isinstance(d, (int, float)) and not isinstance(d, bool) and math.isfinite(d)
+            for d in depths):
+        raise SceneError(f"[crack] depths = {depths!r}, but it must be a non-empty list of "
+                         "numbers [m]")
+    if depths[0] != 0 or any(b <= a for a, b in zip(depths[:-1], depths[1:])):
+        raise SceneError(f"[crack] depths = {depths!r}: allowed ascending values from 0 "
+                         "(the intact ring) [m]")
+    start = _string(table, "crack", "start", "root")
+    if start not in STARTS:
+        raise SceneError(f"[crack] start = {start!r}; allowed: {', '.join(STARTS)}")
+    apply = _string(table, "crack", "apply", "ratio")
+    if apply not in APPLY:
+        raise SceneError(f"[crack] apply = {apply!r}; allowed: {', '.join(APPLY)}")
+    accuracy = _string(table, "crack", "accuracy", "default")
+    if accuracy not in ACCURACY:
+        raise SceneError(f"[crack] accuracy = {accuracy!r}; allowed: {', '.join(ACCURACY)}")
+    integers = {}
+    for key, default, low, high in (("tooth", 0, 0, None), ("workers", 2, 1, 64)):
+        value = table.get(key, default)
+        if isinstance(value, bool) or not isinstance(value, int) or value < low or (
+                high is not None and value > high):
+            raise SceneError(f"[crack] {key} = {value!r}; allowed integers {low}.."
+                             f"{high if high is not None else ''}")
+        integers[key] = value
+    angle = table.get("angle_deg", 0.0)
+    if isinstance(angle, bool) or not isinstance(angle, (int, float)) or not abs(angle) <= 60:
+        raise SceneError(f"[crack] angle_deg = {angle!r}; allowed -60..60")
+    through = table.get("through_rim", False)
+    if not isinstance(through, bool):
+        raise SceneError(f"[crack] through_rim = {through!r}, but it must be true or false")
+    sweep = CrackSweep(tuple(float(d) for d in depths), integers["tooth"], start,
+                       math.radians(angle), apply, accuracy, integers["workers"])
+    return _checked_depths(sweep, through)
+
+
+def _checked_depths(sweep: CrackSweep, through: bool) -> CrackSweep:
+    """Validate every depth against the Raba ring (no meshing) and add the through depth."""
+    from dataclasses import replace
+
+    from meshing import raba118
+    from meshing.gear import GearGeometryError
+
+    from .crack_sweep import crack_of, through_depth
+
+    ring = raba118.ring_gear()
+    try:
+        limit = through_depth(sweep)
+    except GearGeometryError as exc:
+        raise SceneError(f"[crack]: {exc}") from None
+    depths = list(sweep.depths)
+    if through and sweep.start == "root" and depths[-1] < limit:
+        depths.append(limit)
+    for i, depth in enumerate(depths):
+        try:
+            crack_of(sweep, depth).path(ring)
+        except GearGeometryError as exc:
+            raise SceneError(f"[crack] depths[{i}]: {exc}") from None
+    return replace(sweep, depths=tuple(depths))
 
 
 def _table(data, key):

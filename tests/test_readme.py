@@ -20,7 +20,7 @@ def test_python_blocks_run_and_quoted_numbers_hold(capsys):
 
 def test_setup_commands_are_the_ones_ci_runs():
     commands = re.findall(r"```bash\n(.*?)\n```", README, re.S)
-    assert commands[:2] == ['pip install ".[report]" && hubvib run',
+    assert commands[:2] == ['pip install ".[report,fem,render]" && hubvib run',
                             'pip install -e ".[test]" && python -m pytest']
     ci = (Path(__file__).parents[1] / ".ci" / "run").read_text()
     assert 'pip install -e ".[test]" && python -m pytest' in ci

@@ -6,31 +6,42 @@ from hubvib.cli import main
 from hubvib.scene import SceneError, default_scene_text, load_scene, parse_scene
 
 SCENES = sorted((Path(__file__).parents[1] / "scenes").glob("*.toml"))
+FE_SCENES = [s for s in SCENES if "[crack]" in s.read_text()]
 
 
 def test_scene_folder_is_not_empty():
-    assert len(SCENES) >= 2
+    assert len(SCENES) >= 3 and FE_SCENES
 
 
-@pytest.mark.parametrize("scene", SCENES, ids=[s.stem for s in SCENES])
-def test_every_scene_runs(scene, tmp_path, capsys):
-    assert main(["run", str(scene), "--out", str(tmp_path)]) == 0
-    report = (tmp_path / "report.md").read_text()
-    assert "## Baseline spectrum" in report and "## Detection" in report
-    for name in ("baseline_spectrum.csv", "shifts.csv", "detection.csv", "results.json"):
-        assert (tmp_path / name).stat().st_size > 0
+@pytest.mark.parametrize("scene", [pytest.param(s, marks=pytest.mark.slow) if s in FE_SCENES
+                                   else s for s in SCENES], ids=[s.stem for s in SCENES])
+def test_every_scene_runs(scene, tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path / "cache"))
+    out = tmp_path / "out"
+    assert main(["run", str(scene), "--out", str(out)]) == 0
+    report = (out / "report.md").read_text()
+    if scene in FE_SCENES:
+        assert "## FE stiffness against crack depth" in report and "## Modes" in report
+        names = ("stiffness_vs_depth.csv", "frequency_vs_depth.csv", "modes.csv", "results.json")
+    else:
+        assert "## Baseline spectrum" in report and "## Detection" in report
+        names = ("baseline_spectrum.csv", "shifts.csv", "detection.csv", "results.json")
+    for name in names:
+        assert (out / name).stat().st_size > 0
 
 
-def test_default_scene_is_the_shipped_raba_scene():
-    shipped = Path(__file__).parents[1] / "scenes" / "raba118_c_ru.toml"
+def test_default_scene_is_the_shipped_crack_scene():
+    shipped = Path(__file__).parents[1] / "scenes" / "raba118_crack.toml"
     assert default_scene_text() == shipped.read_text()
+    assert load_scene(None).crack.depths[-1] > 0.024  # through the rim
 
 
-def test_default_run_detects_the_crack_in_rotational_modes_only(tmp_path, capsys):
-    assert main(["run", "--out", str(tmp_path)]) == 0
+def test_fig4_scene_detects_the_crack_in_rotational_modes_only(tmp_path, capsys):
+    fig4 = Path(__file__).parents[1] / "scenes" / "raba118_c_ru.toml"
+    assert main(["run", str(fig4), "--out", str(tmp_path)]) == 0
     from hubvib.study import run_study
 
-    result = run_study(load_scene(None))
+    result = run_study(load_scene(fig4))
     detected = {r["kind"] for r in result.detection() if r["detectable_at"] is not None}
     assert detected == {"rotational"}
     assert (tmp_path / "frequency_vs_parameter.png").stat().st_size > 10_000
@@ -48,6 +59,14 @@ def test_default_run_detects_the_crack_in_rotational_modes_only(tmp_path, capsys
     ("[reducer.parameters]\nc_ru = 'soft'\n[study]\nvalues = [1e5]\n", "c_ru = 'soft'"),
     ("[output]\nplots = 'yes'\n[study]\nvalues = [1e5]\n", "plots = 'yes'"),
     ("study = [\n", "not valid TOML"),
+    ("[crack]\ndepths = [0.0, 0.5]\n", r"depths\[1\]: crack.depth = 0.5 m is deeper than"),
+    ("[crack]\ndepths = [0.002, 0.001]\n", "allowed ascending values from 0"),
+    ("[crack]\napply = 'both'\n", "apply = 'both'; allowed: ratio, direct"),
+    ("[crack]\nworkers = 0\n", r"workers = 0; allowed integers 1..64"),
+    ("[crack]\ntooth = 64\n", r"crack.tooth = 64, but the ring has 64 teeth"),
+    ("[crack]\nangle_deg = 75\n", "angle_deg = 75; allowed -60..60"),
+    ("[crack]\ncolour = 1\n", r"unknown key\(s\) \['colour'\] at \[crack\]"),
+    ("[output]\nrenders = true\n[study]\nvalues = [1e5]\n", "renders = true needs a"),
 ])
 def test_scene_errors_name_the_key(text, message):
     with pytest.raises(SceneError, match=message):
@@ -66,3 +85,33 @@ def test_bad_scene_writes_nothing(tmp_path, capsys):
 def test_missing_scene_file(tmp_path, capsys):
     assert main(["run", str(tmp_path / "none.toml")]) == 2
     assert "cannot read scene" in capsys.readouterr().err
+
+
+def test_unwritable_output_folder(tmp_path, capsys):
+    import os
+
+    locked = tmp_path / "locked"
+    locked.mkdir()
+    locked.chmod(0o500)
+    if os.access(locked, os.W_OK):  # root ignores permissions
+        pytest.skip("running as root: permissions are not enforced")
+    assert main(["run", "--out", str(locked / "out")]) == 2
+    assert "cannot write the output folder" in capsys.readouterr().err
+
+
+def test_output_folder_that_is_a_file(tmp_path, capsys):
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    assert main(["run", "--out", str(blocker / "out")]) == 2
+    assert "cannot write the output folder" in capsys.readouterr().err
+
+
+def test_fe_scene_without_fe_extras(tmp_path, capsys, monkeypatch):
+    import importlib.util
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec",
+                        lambda name, *a: None if name == "gmsh" else real(name, *a))
+    assert main(["run", "--out", str(tmp_path / "out")]) == 2
+    assert "pip install 'hubvib[fem]'" in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()

@@ -1,0 +1,131 @@
+"""FE stage of a crack sweep: c_ru and c_r of the cracked ring, one case per depth (SI).
+
+Every case is cached as JSON under ``$HUBVIB_CACHE/stiffness`` by a hash of
+what defines it (ring, crack, mesh accuracy, mesher version), written
+atomically when it finishes.  A sweep killed at any point resumes without
+losing or recomputing a finished case.  Cases run in worker processes.
+"""
+from __future__ import annotations
+
+import json
+import math
+import sys
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import asdict, dataclass
+from multiprocessing import get_context
+from pathlib import Path
+
+from .output import write_json
+
+STARTS = ("root", "rim")
+APPLY = ("ratio", "direct")
+#: mesh size multiplier of each accuracy setting (1.0: c_ru to ~0.3 %, see README)
+ACCURACY = {"default": 1.0, "fast": 2.0}
+
+
+@dataclass(frozen=True)
+class CrackSweep:
+    """Crack depths to analyse in the ring gear of the reducer.
+
+    Parameters
+    ----------
+    depths : tuple of float
+        Crack depths [m] along the path, ascending, starting at 0 (the intact ring).
+    tooth, start, angle
+        Tooth index, ``"root"`` or ``"rim"``, direction from the radial [rad].
+    apply : str
+        How FE enters the lumped model: ``"ratio"`` scales the preset's ``c_ru`` and
+        ``c_r`` by FE(depth) / FE(0); ``"direct"`` uses the FE values themselves.
+    accuracy : str
+        ``"default"`` or ``"fast"`` (element sizes doubled).
+    workers : int
+        Worker processes for the FE cases (1 = in this process).
+    """
+
+    depths: tuple[float, ...]
+    tooth: int = 0
+    start: str = "root"
+    angle: float = 0.0
+    apply: str = "ratio"
+    accuracy: str = "default"
+    workers: int = 2
+
+
+def case_key(sweep: CrackSweep, depth: float) -> str:
+    from meshing import cache, raba118
+
+    return cache.key("ring-stiffness", raba118.ring_gear(), crack_of(sweep, depth),
+                     ACCURACY[sweep.accuracy])
+
+
+def crack_of(sweep: CrackSweep, depth: float):
+    from meshing.crack import Crack
+
+    return Crack(sweep.tooth, float(depth), sweep.angle, sweep.start)
+
+
+def through_depth(sweep: CrackSweep) -> float:
+    """Depth at which a root crack with this direction cuts through the rim [m]."""
+    from meshing import raba118
+
+    ring = raba118.ring_gear()
+    return crack_of(sweep, 0.0).through_depth(ring) if sweep.start == "root" else \
+        crack_of(sweep, 0.0).rim_limit(ring)
+
+
+def fe_case(sweep: CrackSweep, depth: float) -> dict:
+    """c_ru, c_r with error estimate and timing for one depth (runs in a worker)."""
+    from meshing import raba118
+
+    from .stiffness_command import estimate
+
+    return dict(estimate(raba118.ring_gear(), crack_of(sweep, depth), ACCURACY[sweep.accuracy]),
+                depth_m=float(depth))
+
+
+def cache_folder() -> Path:
+    from meshing.cache import root_folder
+
+    return root_folder() / "stiffness"
+
+
+def run_fe_cases(sweep: CrackSweep, progress: bool = True) -> tuple[list[dict], int]:
+    """Every depth's FE result, from the cache or computed; returns them and how many ran."""
+    folder = cache_folder()
+    paths = {d: folder / f"{case_key(sweep, d)}.json" for d in sweep.depths}
+    todo = [d for d, p in paths.items() if not _readable(p)]
+    bar = _progress(len(sweep.depths), len(sweep.depths) - len(todo), progress)
+    try:
+        if sweep.workers == 1 or len(todo) <= 1:
+            for depth in todo:
+                _store(paths[depth], sweep, fe_case(sweep, depth))
+                bar.update(1)
+        else:
+            with ProcessPoolExecutor(min(sweep.workers, len(todo)),
+                                     mp_context=get_context("spawn")) as pool:
+                futures = {pool.submit(fe_case, sweep, d): d for d in todo}
+                for future in as_completed(futures):
+                    _store(paths[futures[future]], sweep, future.result())
+                    bar.update(1)
+    finally:
+        bar.close()
+    return [json.loads(paths[d].read_text()) for d in sweep.depths], len(todo)
+
+
+def _store(path: Path, sweep: CrackSweep, result: dict) -> None:
+    write_json(path, dict(result, sweep=asdict(sweep) | {"depths": None}))
+
+
+def _readable(path: Path) -> bool:
+    try:
+        data = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return False
+    return math.isfinite(data.get("c_ru_N_m", math.nan))
+
+
+def _progress(total: int, done: int, enabled: bool):
+    from tqdm import tqdm
+
+    return tqdm(total=total, initial=done, desc="FE crack cases", unit="case",
+                disable=not enabled or not sys.stderr.isatty(), file=sys.stderr)
