@@ -52,8 +52,7 @@ class GearBody(ToothedBody):
             raise GearGeometryError(
                 f"bore_diameter = {self.bore_diameter!r} m, allowed 0..{root:.6g} m (the root "
                 "diameter)")
-        if not (math.isfinite(self.density) and self.density > 0):
-            raise GearGeometryError(f"density = {self.density!r}, but it must be > 0 [kg/m^3]")
+        self._check_density()
         if not self.profile.form_radius < self.load_radius < self.profile.tip_radius:
             raise GearGeometryError(
                 f"working_pressure_angle puts the load point at r = {self.load_radius:.6g} m, "

@@ -123,6 +123,10 @@ class ToothedBody:
         land = 0.5 * r_f ** 2 * (prof.space_angle - prof.root_land_angle)
         return 2 * (tip_arc + involute + fillet + land)
 
+    def _check_density(self):
+        if not (math.isfinite(self.density) and self.density > 0):
+            raise GearGeometryError(f"density = {self.density!r}, but it must be > 0 [kg/m^3]")
+
     def mass(self) -> float:
         """Exact mass [kg] (area x face width x density)."""
         return self.area() * self.gear.face_width * self.density
@@ -168,8 +172,7 @@ class RingGear(ToothedBody):
             raise GearGeometryError(
                 f"outer_diameter = {self.outer_diameter!r} m, but it must exceed the root "
                 f"diameter {2 * self.profile.root_radius:.6g} m (rim thickness > 0)")
-        if not (math.isfinite(self.density) and self.density > 0):
-            raise GearGeometryError(f"density = {self.density!r}, but it must be > 0 [kg/m^3]")
+        self._check_density()
         alpha = self.load_pressure_angle
         if not (math.radians(10) <= alpha <= math.radians(40)):
             raise GearGeometryError(
