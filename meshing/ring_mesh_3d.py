@@ -27,7 +27,7 @@ from .ring_gear import RingGear
 from .ring_mesh import MeshOptions, _check_load_patch, _RingBuilder, run_builder, with_info
 from .session import MeshingError, gmsh_model
 
-#: Default sizes for solid meshes: as fine as the plane defaults would be ~50x the elements.
+#: Default sizes for solid meshes (the plane defaults would need ~50x the elements in 3D).
 SOLID_OPTIONS = MeshOptions(size=6e-3, tooth_size=2e-3, tip_size=0.5e-3, load_size=1e-3,
                             load_patch=2e-3, grading=0.3, order=2)
 _EPS = 1e-6  # [m] bounding-box tolerance for finding entities (OCC pads boxes by 1e-7)
