@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -121,7 +121,7 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
              write_csv(folder / "modes.csv", result.mode_rows()),
              write_json(folder / "results.json", {
                  "scene": scene.name, "parameters": scene.params.to_dict(),
-                 "crack": {k: v for k, v in vars(scene.crack).items()},
+                 "crack": asdict(scene.crack),
                  "threshold_percent": scene.threshold_percent,
                  "stiffness": result.stiffness_rows(), "modes": result.mode_rows(),
                  "frequencies": result.frequency_rows()})]

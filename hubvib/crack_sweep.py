@@ -64,15 +64,6 @@ def crack_of(sweep: CrackSweep, depth: float):
     return Crack(sweep.tooth, float(depth), sweep.angle, sweep.start)
 
 
-def through_depth(sweep: CrackSweep) -> float:
-    """Depth at which a root crack with this direction cuts through the rim [m]."""
-    from meshing import raba118
-
-    ring = raba118.ring_gear()
-    return crack_of(sweep, 0.0).through_depth(ring) if sweep.start == "root" else \
-        crack_of(sweep, 0.0).rim_limit(ring)
-
-
 def fe_case(sweep: CrackSweep, depth: float) -> dict:
     """c_ru, c_r with error estimate and timing for one depth (runs in a worker)."""
     from meshing import raba118

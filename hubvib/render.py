@@ -82,7 +82,7 @@ def _carrier(centres: list[np.ndarray], width: float):
     return arms[0].merge(arms[1:]) if len(arms) > 1 else arms[0]
 
 
-def _motion(params, shape: np.ndarray, member: str, centre: np.ndarray, r_c: float):
+def _motion(params, shape: np.ndarray, member: str, r_c: float):
     """(dx, dy, angle) of a member for the mode ``shape`` (network coordinate order)."""
     if member == "sun":
         return shape[0], shape[1], shape[6] / (params.d_s / 2)
@@ -107,8 +107,7 @@ def deformed_bodies(params, shape: np.ndarray, phase: float = 1.0) -> dict:
     centres = [c for name, (_, c, _) in bodies.items() if name.startswith("planet")]
     bodies["carrier"] = (_carrier(centres, 0.06 * r_c), np.zeros(2), r_c)
     ring_radius = params.d_r / 2
-    motions = {name: _motion(params, shape, name, centre, r_c)
-               for name, (_, centre, _) in bodies.items()}
+    motions = {name: _motion(params, shape, name, r_c) for name in bodies}
     largest = max(max(abs(dx), abs(dy), abs(a) * r) for (dx, dy, a), (_, _, r) in
                   zip(motions.values(), bodies.values()))
     scale = phase * AMPLITUDE * ring_radius / largest if largest > 0 else 0.0
@@ -135,7 +134,7 @@ def _plotter():
 
 
 def _draw(plotter, meshes: dict, reference: dict, label: str):
-    for name, mesh in reference.items():
+    for mesh in reference.values():
         plotter.add_mesh(mesh.extract_feature_edges(), color="#bbbbbb", line_width=1)
     for name, mesh in meshes.items():
         plotter.add_mesh(mesh, color=COLOURS.get(name, "#1b9e77"), smooth_shading=False)

@@ -204,16 +204,17 @@ def _checked_depths(sweep: CrackSweep, through: bool) -> CrackSweep:
     from meshing import raba118
     from meshing.gear import GearGeometryError
 
-    from .crack_sweep import crack_of, through_depth
+    from .crack_sweep import crack_of
 
     ring = raba118.ring_gear()
-    try:
-        limit = through_depth(sweep)
-    except GearGeometryError as exc:
-        raise SceneError(f"[crack]: {exc}") from None
     depths = list(sweep.depths)
-    if through and sweep.start == "root" and depths[-1] < limit:
-        depths.append(limit)
+    if through and sweep.start == "root":
+        try:
+            limit = crack_of(sweep, 0.0).through_depth(ring)
+        except GearGeometryError as exc:
+            raise SceneError(f"[crack]: {exc}") from None
+        if depths[-1] < limit:
+            depths.append(limit)
     for i, depth in enumerate(depths):
         try:
             crack_of(sweep, depth).path(ring)

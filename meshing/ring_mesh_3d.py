@@ -88,7 +88,7 @@ class _SolidBuilder(_RingBuilder):
                                                                oriented=False)]
         centroids = np.array([self.geo.getCenterOfMass(1, c)[:2] for c in section_curves])
         out = self.geo.extrude([(2, self.surface)], 0, 0, width)
-        self.volumes = [out[1][1]]
+        self.volume = out[1][1]
         if self.crack is not None and self.part_width:
             self.part_width_crack()
         self.geo.synchronize()
@@ -114,7 +114,7 @@ class _SolidBuilder(_RingBuilder):
         if self.crack is not None and not self.part_width:
             self.through_crack(width)
             self.geo.synchronize()
-            model.mesh.embed(2, self.crack_surfaces, 3, self.volumes[0])
+            model.mesh.embed(2, self.crack_surfaces, 3, self.volume)
 
     def vertical_line(self, xy, z0, z1) -> int:
         found = self.find(1, (xy[0], xy[1], z0), (xy[0], xy[1], z1))
@@ -173,10 +173,10 @@ class _SolidBuilder(_RingBuilder):
         second = geo.addEllipseArc(deepest, centre, major, high)
         mouth_line = geo.addLine(low, high)
         face = geo.addPlaneSurface([geo.addCurveLoop([mouth_line, -second, -first])])
-        _, pieces = geo.fragment([(3, self.volumes[0])], [(2, face)])
+        _, pieces = geo.fragment([(3, self.volume)], [(2, face)])
         geo.remove([(0, centre)])
         geo.synchronize()
-        self.volumes = [t for d, t in pieces[0] if d == 3]
+        self.volume = pieces[0][0][1]
         self.crack_surfaces = [t for d, t in pieces[1] if d == 2]
         self.open_curves = [self.vertical_line(mouth, z_low, z_high)]
         self.front_curves = [abs(t) for _, t in model.getBoundary(
