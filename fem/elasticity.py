@@ -45,6 +45,14 @@ class PlaneModel:
     thickness: float
     plane: str
     timings: dict = field(default_factory=dict)
+    vertex_of: np.ndarray | None = None
+
+    def node_dofs(self, nodes, component: int) -> np.ndarray:
+        """DOF indices of displacement ``component`` (0: x, 1: y) at mesh corner ``nodes``."""
+        vertices = self.vertex_of[np.asarray(nodes)]
+        if np.any(vertices < 0):
+            raise ValueError("node_dofs: mid-edge nodes carry no vertex DOFs")
+        return self.basis.nodal_dofs[component, vertices]
 
     @property
     def ndofs(self) -> int:
@@ -88,6 +96,32 @@ class PlaneModel:
         length, *integrals = means.assemble(facet_basis, u=facet_basis.interpolate(u))
         return (float(length), *(float(v) / length for v in integrals))
 
+    def probes(self, points: np.ndarray):
+        """Sparse matrix (2 n, ndofs) giving u_x at the n ``points`` [m], then u_y.
+
+        scikit-fem's own ``probes`` has no element finder for curved meshes:
+        the cell is found on the straight-sided mesh of the corner nodes, then
+        the isoparametric map is inverted by Newton.  Points within the
+        sagitta of a curved boundary edge may be missed: keep them ~10 um inside.
+        """
+        import skfem
+        from scipy.sparse import coo_matrix
+
+        fe, basis = self.basis.mesh, self.basis
+        points = np.asarray(points, dtype=float).reshape(-1, 2).T
+        finder = skfem.MeshTri1(fe.p, fe.t[:3]).element_finder()
+        try:
+            cells = finder(*points)
+        except ValueError:
+            raise ValueError("a probe point lies outside the mesh") from None
+        local = basis.mapping.invF(points[:, :, None], tind=cells)
+        values = np.array([basis.elem.gbasis(basis.mapping, local, k, tind=cells)[0]
+                           for k in range(basis.Nbfun)]).flatten()
+        n = points.shape[1]
+        rows = np.tile(np.arange(2 * n), basis.Nbfun)
+        cols = basis.element_dofs[:, np.tile(cells, 2)].flatten()
+        return coo_matrix((values, (rows, cols)), shape=(2 * n, basis.N)).tocsr()
+
     def energy(self, u: np.ndarray) -> float:
         """Strain energy 1/2 u^T K u [J]."""
         return 0.5 * float(u @ (self.K @ u))
@@ -105,7 +139,7 @@ def plane_model(mesh: FEMesh, material: Material = Material(), thickness: float 
         raise MaterialError(f"thickness = {thickness!r}, allowed > 0 [m]")
     lam, mu = material.lame(plane)
     t0 = time.perf_counter()
-    fe, _ = to_skfem(mesh)
+    fe, vertex_of = to_skfem(mesh)
     t1 = time.perf_counter()
     element = skfem.ElementVector(skfem.ElementTriP2() if mesh.order == 2 else skfem.ElementTriP1())
     basis = skfem.Basis(fe, element, intorder=2 * mesh.order)
@@ -113,7 +147,7 @@ def plane_model(mesh: FEMesh, material: Material = Material(), thickness: float 
     K = thickness * linear_elasticity(lam, mu).assemble(basis)
     t3 = time.perf_counter()
     return PlaneModel(mesh, basis, K.tocsr(), material, thickness, plane,
-                      {"to_skfem": t1 - t0, "basis": t2 - t1, "assembly": t3 - t2})
+                      {"to_skfem": t1 - t0, "basis": t2 - t1, "assembly": t3 - t2}, vertex_of)
 
 
 @dataclass(frozen=True)
@@ -124,8 +158,10 @@ class Solution:
     seconds: float
 
 
-def solve(model: PlaneModel, loads: np.ndarray, fixed_groups: list[str]) -> Solution:
-    """Solve K u = f with zero displacement on ``fixed_groups`` (both components).
+def solve(model: PlaneModel, loads: np.ndarray, fixed_groups: list[str],
+          fixed_dofs=()) -> Solution:
+    """Solve K u = f with zero displacement on ``fixed_groups`` (both components)
+    and at ``fixed_dofs`` (DOF indices, e.g. from ``PlaneModel.node_dofs``).
 
     ``loads`` is (ndofs,) or (ndofs, k); one sparse LU factorisation serves all
     columns.  Raises SingularSystemError when nothing is fixed or the
@@ -133,11 +169,12 @@ def solve(model: PlaneModel, loads: np.ndarray, fixed_groups: list[str]) -> Solu
     """
     fe = model.basis.mesh
     missing = [g for g in fixed_groups if g not in fe.boundaries or len(fe.boundaries[g]) == 0]
-    if missing or not fixed_groups:
+    if missing or not (len(fixed_groups) or len(fixed_dofs)):
         raise SingularSystemError(
             f"no support: fixed groups {fixed_groups} ({'missing: ' + ', '.join(missing) if missing else 'none given'}); "
             "an unsupported body has rigid-body modes and K is singular")
-    fixed = np.unique(np.concatenate([model.basis.get_dofs(g).flatten() for g in fixed_groups]))
+    fixed = np.unique(np.concatenate([model.basis.get_dofs(g).flatten() for g in fixed_groups]
+                                     + [np.asarray(fixed_dofs, dtype=np.int64)]))
     free = np.setdiff1d(np.arange(model.ndofs), fixed)
     f = np.asarray(loads, dtype=float)
     single = f.ndim == 1

@@ -11,7 +11,7 @@ from pathlib import Path
 from lumped import METHODS, PRESETS, ParameterError, field_names
 from meshing.session import MeshingError
 
-from . import mesh_command, stiffness_command
+from . import convergence_command, mesh_command, stiffness_command
 from .params_input import CONVENIENCE_KEYS, load_parameters, parse_set
 
 PARAMETER_HELP = (
@@ -74,6 +74,7 @@ def _parser() -> argparse.ArgumentParser:
 
     mesh_command.add_parser(sub)
     stiffness_command.add_parser(sub)
+    convergence_command.add_parser(sub)
 
     p = sub.add_parser("run", help="run a scene (default: the embedded Raba 118/76 study)")
     p.add_argument("scene", nargs="?", type=Path, help="scene TOML file (see scenes/)")

@@ -1,14 +1,11 @@
-"""``hubvib stiffness``: FE stiffnesses of the ring gear with error estimate and run time."""
+"""``hubvib stiffness``: every stiffness of the lumped model with its error estimate and run time."""
 from __future__ import annotations
 
 import json
 import time
 
-NOT_YET = ("c_sp", "c_rp", "c_p", "c_c")
-
-
 def add_parser(sub) -> None:
-    p = sub.add_parser("stiffness", help="FE ring stiffness c_ru, c_r (intact and cracked)")
+    p = sub.add_parser("stiffness", help="every stiffness of the lumped model: FE c_ru, c_r, c_sp, c_rp; bearing c_p, c_c")
     p.add_argument("--preset", default="raba118", choices=["raba118"])
     p.add_argument("--crack-depth", type=float, default=0.0, metavar="D",
                    help="root crack length at tooth 0 [m]; 0 = intact only")
@@ -54,6 +51,48 @@ def estimate(ring, crack, scale: float = 1.0) -> dict:
     }
 
 
+def estimate_mesh(crack, scale: float = 1.0) -> dict:
+    """c_sp and c_rp (FE mean over the mesh cycle) on the default mesh (sizes times
+    ``scale``) and on one twice as coarse; analytical and ISO 6336-1 values beside them."""
+    from fem.tooth_stiffness import reducer_mesh_stiffness
+    from meshing import raba118
+
+    bodies = raba118.gear_body("sun"), raba118.gear_body("planet"), raba118.ring_gear()
+    results = {}
+    for name, level in (("coarse", 2 * scale), ("fine", scale)):
+        started = time.perf_counter()
+        results[name] = (reducer_mesh_stiffness(*bodies, scaled_options(level), crack),
+                         time.perf_counter() - started)
+    out = {}
+    for key, fine in results["fine"][0].items():
+        coarse = results["coarse"][0][key]
+        row = {"value_N_m": fine.value, "error_N_m": abs(fine.value - coarse.value),
+               "min_N_m": float(fine.fe.stiffness.min()), "max_N_m": float(fine.fe.stiffness.max()),
+               "single_pair_max_N_m": fine.fe.single_pair_max,
+               "contact_ratio": fine.pair.contact_ratio,
+               "analytic_N_m": fine.analytic.mean, "iso_c_gamma_N_m": fine.iso_mesh,
+               "iso_c_single_N_m": fine.iso_single, "iso_in_range": fine.iso_in_range,
+               "seconds_total": sum(r[1] for r in results.values())}
+        if fine.cracked is not None:
+            intact = fine.cracked_reference
+            row.update(engaged_N_m=fine.cracked.mean, engaged_intact_N_m=intact.mean,
+                       engaged_min_N_m=float(fine.cracked.stiffness.min()),
+                       engaged_intact_min_N_m=float(intact.stiffness.min()))
+        out[key] = row
+    return out
+
+
+def bearings() -> dict:
+    from fem.raba118 import SUN_TORQUE, bearing_stiffness
+
+    started = time.perf_counter()
+    rows = bearing_stiffness()
+    for row in rows.values():
+        row.update(value_N_m=row["tangent_N_m"], seconds_total=time.perf_counter() - started,
+                   sun_torque_N_m=SUN_TORQUE)
+    return rows
+
+
 def run(args) -> int:
     from meshing import raba118
     from meshing.crack import Crack
@@ -64,19 +103,57 @@ def run(args) -> int:
         crack = Crack(0, args.crack_depth)
         crack.path(ring)  # validate before any meshing
         cases[f"crack {args.crack_depth:g} m"] = crack
-    out = {name: estimate(ring, crack) for name, crack in cases.items()}
+    out = {}
+    for name, crack in cases.items():
+        ring_rows = estimate(ring, crack)
+        rows = {
+            "c_ru": {"value_N_m": ring_rows["c_ru_N_m"], "error_N_m": ring_rows["c_ru_error_N_m"],
+                     "min_N_m": ring_rows["c_ru_min_N_m"], "max_N_m": ring_rows["c_ru_max_N_m"],
+                     "seconds_total": ring_rows["seconds_total"], "dofs": ring_rows["dofs"]},
+            "c_r": {"value_N_m": ring_rows["c_r_N_m"], "error_N_m": ring_rows["c_r_error_N_m"],
+                    "seconds_total": ring_rows["seconds_total"], "dofs": ring_rows["dofs"]},
+        }
+        rows.update(estimate_mesh(crack))
+        rows.update(bearings())
+        out[name] = rows
     if args.json:
-        print(json.dumps({"cases": out, "not_available": list(NOT_YET)}, indent=2))
+        print(json.dumps({"cases": out}, indent=2))
         return 0
-    print(f"{'case':<18} {'c_ru [N/m]':>12} {'+-':>9} {'min..max over carrier':>25} "
-          f"{'c_r [N/m]':>11} {'+-':>9} {'DOFs':>8} {'time [s]':>9}")
-    for name, r in out.items():
-        print(f"{name:<18} {r['c_ru_N_m']:>12.5e} {r['c_ru_error_N_m']:>9.1e} "
-              f"{r['c_ru_min_N_m']:>12.4e}..{r['c_ru_max_N_m']:<11.4e} {r['c_r_N_m']:>11.4e} "
-              f"{r['c_r_error_N_m']:>9.1e} {r['dofs']:>8} {r['seconds_total']:>9.1f}")
+    for name, rows in out.items():
+        print(f"== {name} ==")
+        print(f"{'':6} {'value [N/m]':>12} {'+-':>9} {'min':>11} {'max':>11} {'time [s]':>9}  "
+              "independent checks")
+        for key, r in rows.items():
+            error = f"{r['error_N_m']:9.1e}" if "error_N_m" in r else f"{'formula':>9}"
+            span = (f"{r['min_N_m']:11.4e} {r['max_N_m']:11.4e}" if "min_N_m" in r
+                    else f"{'':11} {'':11}")
+            print(f"{key:6} {r['value_N_m']:12.5e} {error} {span} {r['seconds_total']:9.1f}  "
+                  + _checks(key, r))
+        if "c_rp" in rows and "engaged_N_m" in rows["c_rp"]:
+            r = rows["c_rp"]
+            print(f"c_rp while the cracked tooth is engaged: mean {r['engaged_N_m']:.5e} "
+                  f"(intact {r['engaged_intact_N_m']:.5e}, "
+                  f"{100 * (r['engaged_N_m'] / r['engaged_intact_N_m'] - 1):+.2f} %), min "
+                  f"{r['engaged_min_N_m']:.5e} ({100 * (r['engaged_min_N_m'] / r['engaged_intact_min_N_m'] - 1):+.2f} %)")
     if len(out) == 2:
         intact, cracked = out.values()
-        print(f"crack lowers c_ru by {100 * (1 - cracked['c_ru_N_m'] / intact['c_ru_N_m']):.2f} %")
-    print("plane stress, steel E 210 GPa, nu 0.3; supports clamped; c_sp, c_rp, c_p, c_c: "
-          "not computed by FE yet (use the preset values)")
+        print("crack changes: " + ", ".join(
+            f"{k} {100 * (cracked[k]['value_N_m'] / intact[k]['value_N_m'] - 1):+.2f} %"
+            for k in ("c_ru", "c_r")))
+    print("plane stress, steel E 210 GPa, nu 0.3, face width 40 mm (ASSUMED); ring supports "
+          "clamped; +- = fine minus twice-coarser mesh; c_p/c_c: Palmgren line contact, tangent "
+          "stiffness at the ASSUMED operating load (sun torque 1000 N m), bearing data ASSUMED")
     return 0
+
+
+def _checks(key: str, r: dict) -> str:
+    if key in ("c_sp", "c_rp"):
+        return (f"eps {r['contact_ratio']:.3f}; analytical {r['analytic_N_m']:.4e} "
+                f"({100 * (r['value_N_m'] / r['analytic_N_m'] - 1):+.1f} %); ISO 6336-1 "
+                f"c_gamma b {r['iso_c_gamma_N_m']:.4e} "
+                f"({100 * (r['value_N_m'] / r['iso_c_gamma_N_m'] - 1):+.1f} %"
+                f"{'' if r['iso_in_range'] else ', shifts outside ISO range'})")
+    if key in ("c_p", "c_c"):
+        return (f"secant {r['secant_N_m']:.4e} at {r['load_N'] / 1e3:.1f} kN; "
+                f"{r['rollers']} rollers x {1e3 * r['roller_length_m']:.0f} mm")
+    return f"{r['dofs']} DOFs"

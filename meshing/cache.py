@@ -9,7 +9,7 @@ from pathlib import Path
 
 from .fe_mesh import FEMesh
 
-VERSION = 2  # bump when the mesher changes what a given parameter set produces
+VERSION = 3  # bump when the mesher changes what a given parameter set produces
 
 
 def root_folder() -> Path:

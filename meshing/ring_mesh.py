@@ -144,6 +144,7 @@ class _RingBuilder:
         self.gmsh, self.ring, self.crack, self.path, self.opt = gmsh, ring, crack, crack_path, options
         self.geo = gmsh.model.geo
         self.groups: dict[str, list[int]] = {}
+        self.support_ends: list[int] = []  # where a clamped arc ends: a stress singularity
         self.load_curves: list[int] = []
         self.inner_curves: list[int] = []
         self.crack_lines: list[int] = []
@@ -253,10 +254,13 @@ class _RingBuilder:
             angles.insert(widest + 1, angles[widest] + gaps[widest] / 2)
         r = ring.held_radius
         points = []
+        support_ends = {round(a % (2 * math.pi), 15) for arc in supports for a in arc}
         for a in angles:
             points.append(self.point(r * np.array([math.cos(a), math.sin(a)]), self.opt.size))
             if any(abs(a - s) < 1e-14 for s in special):
                 self.crack_points["outer_end"] = points[-1]
+            if a in support_ends:
+                self.support_ends.append(points[-1])
         curves, free = [], []
         support_groups = {f"support_{j}": [] for j in range(len(supports))}
         for i, a in enumerate(angles):
@@ -319,6 +323,8 @@ class _RingBuilder:
         gmsh, opt = self.gmsh, self.opt
         fields = [self.threshold(opt.tooth_size, curves=self.inner_curves, sampling=8),
                   self.threshold(opt.load_size, curves=self.load_curves, sampling=4)]
+        if self.support_ends:
+            fields.append(self.threshold(opt.tip_size, points=self.support_ends))
         if self.crack_lines:
             fields.append(self.threshold(opt.tooth_size, curves=self.crack_lines))
             fields.append(self.threshold(opt.tip_size, points=[self.crack_points["tip"]]))

@@ -105,3 +105,37 @@ def test_mesh_ring_3d_semi_elliptic(capsys, tmp_path):
     assert abs(data["relative_error"]) < 3e-5
     assert data["cell_type"] == "tetra10" and data["min_quality_sicn"] > 0
     assert {"crack_a", "crack_b", "face_0", "face_1"} <= set(data["groups"])
+
+
+def test_convergence_writes_csv_plot_and_resumes(capsys, tmp_path):
+    """The annulus study: exact reference, error falls at every level (curved P2), CSV and
+    plot written; a rerun computes nothing (every level is read back)."""
+    pytest.importorskip("skfem")
+    import csv
+
+    assert main(["convergence", "annulus", "--out", str(tmp_path)]) == 0
+    rows = list(csv.DictReader(open(tmp_path / "convergence_annulus.csv")))
+    errors = [float(r["relative_error"]) for r in rows]
+    assert len(rows) == 5 and all(b < a for a, b in zip(errors, errors[1:]))
+    assert errors[-1] < 1e-6
+    assert (tmp_path / "convergence_annulus.png").stat().st_size > 0
+    capsys.readouterr()
+    assert main(["convergence", "annulus", "--out", str(tmp_path)]) == 0
+    assert "annulus: scale" not in capsys.readouterr().out
+
+
+@pytest.mark.slow
+def test_stiffness_prints_every_stiffness_intact_and_cracked(capsys):
+    """Issue 4's done-when: c_ru, c_r, c_rp, c_sp, c_p (and c_c) intact and cracked, each with
+    an error estimate and a run time; the crack lowers c_ru and c_r, and c_rp while engaged."""
+    out = _json(capsys, ["stiffness", "--crack-depth", "5e-3", "--json"])["cases"]
+    intact, cracked = out["intact"], out["crack 0.005 m"]
+    for case in (intact, cracked):
+        for key in ("c_ru", "c_r", "c_sp", "c_rp"):
+            assert 0 < case[key]["error_N_m"] < 0.02 * case[key]["value_N_m"]
+            assert case[key]["seconds_total"] > 0
+        for key in ("c_p", "c_c"):
+            assert case[key]["tangent_N_m"] > case[key]["secant_N_m"] > 0
+    assert cracked["c_ru"]["value_N_m"] < intact["c_ru"]["value_N_m"]
+    assert cracked["c_r"]["value_N_m"] < intact["c_r"]["value_N_m"]
+    assert cracked["c_rp"]["engaged_N_m"] < cracked["c_rp"]["engaged_intact_N_m"]

@@ -1,0 +1,157 @@
+"""Mesh stiffnesses c_sp (sun-planet) and c_rp (ring-planet) from FE tooth compliance (SI).
+
+Each gear's tooth compliance is computed by FE (``tooth_fe``) at Chebyshev
+radii spanning its contact radii and interpolated in radius; Hertzian contact
+is added analytically; the pairs in contact share the load (``mesh_cycle``).
+The mean over a mesh cycle feeds the lumped model; min and max are the
+variation.  A root crack on ring tooth 0 raises that tooth's compliance, and
+``c_rp`` is also reported over the engagement of the cracked tooth.
+
+Every FE number comes with its counterpart by the analytical potential-energy
+method (``tooth_beam``) and by ISO 6336-1 (``iso6336``).
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.polynomial import chebyshev
+
+from meshing.ring_gear import ToothedBody
+
+from .iso6336 import iso_stiffness
+from .material import Material
+from .mesh_cycle import GearPair, MeshCycle, mesh_cycle
+from .tooth_beam import beam_compliance, hertz_compliance
+from .tooth_fe import fe_tooth_compliance
+
+NODES = 9  # Chebyshev radii per tooth
+
+
+def chebyshev_radii(low: float, high: float, n: int = NODES) -> np.ndarray:
+    k = np.arange(n)
+    return 0.5 * (low + high) + 0.5 * (high - low) * np.cos((2 * k + 1) * np.pi / (2 * n))[::-1]
+
+
+@dataclass(frozen=True)
+class ToothCurve:
+    """Tooth compliance [m/N] as a function of the contact radius [m] (interpolated)."""
+
+    radii: np.ndarray
+    compliance: np.ndarray
+    dofs: int = 0
+    seconds: dict = field(default_factory=dict)
+
+    def __call__(self, r):
+        low, high = self.radii.min(), self.radii.max()
+        span = high - low
+        r = np.asarray(r, dtype=float)
+        if np.any((r < low - 0.05 * span) | (r > high + 0.05 * span)):
+            raise ValueError(f"contact radius outside the computed range {low:.6g}..{high:.6g} m")
+        fit = chebyshev.Chebyshev.fit(self.radii, self.compliance, len(self.radii) - 1,
+                                      domain=[low, high])
+        return fit(r)
+
+
+def contact_radii(body: ToothedBody, pairs: list[GearPair]) -> tuple[float, float]:
+    """Smallest and largest contact radius of ``body`` over the pairs it belongs to [m]."""
+    radii = []
+    for pair in pairs:
+        r1, r2 = pair.radii(np.array(pair.path))
+        radii.extend(r1 if pair.first is body else r2)
+    return float(min(radii)), float(max(radii))
+
+
+def fe_curve(body: ToothedBody, radii_range, material: Material, options, crack=None
+             ) -> ToothCurve:
+    """FE tooth compliance of tooth 0 at Chebyshev radii of ``radii_range``."""
+    from meshing.ring_mesh import ring_mesh
+
+    radii = chebyshev_radii(*radii_range)
+    started = time.perf_counter()
+    mesh = ring_mesh(body, crack, options)
+    meshed = time.perf_counter() - started
+    result = fe_tooth_compliance(body, mesh, radii, material)
+    seconds = {"mesh": meshed, "assembly": result.seconds["assembly"],
+               "solve": result.seconds["solve"] + result.seconds["measure"]}
+    return ToothCurve(radii, result.compliance, result.dofs, seconds)
+
+
+def beam_curve(body: ToothedBody, radii_range, material: Material) -> ToothCurve:
+    radii = chebyshev_radii(*radii_range)
+    return ToothCurve(radii, np.array([beam_compliance(body, r, material).total for r in radii]))
+
+
+@dataclass(frozen=True)
+class PairStiffness:
+    """Mesh stiffness of one pair [N/m] by FE, by the analytical method and by ISO 6336-1.
+
+    ``cracked`` (when a cracked ring tooth was given) is the cycle over that
+    tooth's engagement, ``cracked_reference`` the same window intact.
+    """
+
+    pair: GearPair
+    fe: MeshCycle
+    analytic: MeshCycle
+    iso_single: float
+    iso_mesh: float
+    iso_in_range: bool
+    cracked: MeshCycle | None = None
+    cracked_reference: MeshCycle | None = None
+    seconds: dict = field(default_factory=dict)
+    dofs: int = 0
+
+    @property
+    def value(self) -> float:
+        """Mean FE mesh stiffness over the cycle: the lumped model's c_sp / c_rp [N/m]."""
+        return self.fe.mean
+
+
+def pair_stiffness(pair: GearPair, first: ToothCurve, second: ToothCurve,
+                   first_beam: ToothCurve, second_beam: ToothCurve, material: Material,
+                   cracked_second: ToothCurve | None = None) -> PairStiffness:
+    b = min(pair.first.gear.face_width, pair.second.gear.face_width)
+    q_h = hertz_compliance(b, material)
+    fe = mesh_cycle(pair, first, second, q_h)
+    analytic = mesh_cycle(pair, first_beam, second_beam, q_h)
+    cracked = reference = None
+    if cracked_second is not None:
+        cracked = mesh_cycle(pair, first, second, q_h, marked_pair_compliance=cracked_second)
+        reference = mesh_cycle(pair, first, second, q_h, marked_pair_compliance=second)
+    gears = sorted((pair.first.gear, pair.second.gear), key=lambda g: (g.internal, g.teeth))
+    iso = iso_stiffness(gears[0], gears[1], pair.contact_ratio)
+    single, mesh = iso.per_face_width(b)
+    curves = [first, second] + ([cracked_second] if cracked_second is not None else [])
+    seconds = {k: sum(c.seconds.get(k, 0.0) for c in curves) for k in ("mesh", "assembly", "solve")}
+    return PairStiffness(pair, fe, analytic, single, mesh, iso.in_range, cracked, reference,
+                         seconds, sum(c.dofs for c in curves))
+
+
+def reducer_mesh_stiffness(sun: ToothedBody, planet: ToothedBody, ring: ToothedBody,
+                           options=None, crack=None, material: Material = Material(),
+                           ) -> dict[str, PairStiffness]:
+    """``{"c_sp": ..., "c_rp": ...}`` of a planetary stage; ``crack`` on ring tooth 0."""
+    from meshing.ring_mesh import MeshOptions
+
+    options = MeshOptions() if options is None else options
+    if crack is not None and crack.tooth != 0:
+        raise ValueError(f"crack.tooth = {crack.tooth}: the tooth-stiffness model loads tooth 0")
+    sun_pair, ring_pair = GearPair(planet, sun), GearPair(planet, ring)
+    pairs = {"sun": [sun_pair], "planet": [sun_pair, ring_pair], "ring": [ring_pair]}
+    bodies = {"sun": sun, "planet": planet, "ring": ring}
+    fe, beam = {}, {}
+    for name, body in bodies.items():
+        span = contact_radii(body, pairs[name])
+        fe[name] = fe_curve(body, span, material, options)
+        beam[name] = beam_curve(body, span, material)
+    cracked = None
+    if crack is not None and crack.depth > 0:
+        span = contact_radii(ring, [ring_pair])
+        cracked = fe_curve(ring, span, material, options, crack)
+    return {
+        "c_sp": pair_stiffness(sun_pair, fe["planet"], fe["sun"], beam["planet"], beam["sun"],
+                               material),
+        "c_rp": pair_stiffness(ring_pair, fe["planet"], fe["ring"], beam["planet"], beam["ring"],
+                               material, cracked),
+    }
