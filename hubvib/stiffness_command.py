@@ -4,8 +4,10 @@ from __future__ import annotations
 import json
 import time
 
+
 def add_parser(sub) -> None:
-    p = sub.add_parser("stiffness", help="every stiffness of the lumped model: FE c_ru, c_r, c_sp, c_rp; bearing c_p, c_c")
+    p = sub.add_parser("stiffness", help="every stiffness of the lumped model: FE c_ru, c_r, "
+                       "c_sp, c_rp; bearing c_p, c_c")
     p.add_argument("--preset", default="raba118", choices=["raba118"])
     p.add_argument("--crack-depth", type=float, default=0.0, metavar="D",
                    help="root crack length at tooth 0 [m]; 0 = intact only")
