@@ -6,6 +6,7 @@ find the DOFs of a boundary (``basis.get_dofs(name)``) and
 """
 from __future__ import annotations
 
+import functools
 import time
 from dataclasses import dataclass, field
 
@@ -104,14 +105,12 @@ class PlaneModel:
         the isoparametric map is inverted by Newton.  Points within the
         sagitta of a curved boundary edge may be missed: keep them ~10 um inside.
         """
-        import skfem
         from scipy.sparse import coo_matrix
 
-        fe, basis = self.basis.mesh, self.basis
+        basis = self.basis
         points = np.asarray(points, dtype=float).reshape(-1, 2).T
-        finder = skfem.MeshTri1(fe.p, fe.t[:3]).element_finder()
         try:
-            cells = finder(*points)
+            cells = self._element_finder(*points)
         except ValueError:
             raise ValueError("a probe point lies outside the mesh") from None
         local = basis.mapping.invF(points[:, :, None], tind=cells)
@@ -121,6 +120,13 @@ class PlaneModel:
         rows = np.tile(np.arange(2 * n), basis.Nbfun)
         cols = basis.element_dofs[:, np.tile(cells, 2)].flatten()
         return coo_matrix((values, (rows, cols)), shape=(2 * n, basis.N)).tocsr()
+
+    @functools.cached_property
+    def _element_finder(self):
+        import skfem
+
+        fe = self.basis.mesh
+        return skfem.MeshTri1(fe.p, fe.t[:3]).element_finder()
 
     def energy(self, u: np.ndarray) -> float:
         """Strain energy 1/2 u^T K u [J]."""

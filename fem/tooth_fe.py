@@ -73,15 +73,18 @@ def fe_tooth_compliance(body: ToothedBody, mesh: FEMesh, radii,
     t0 = time.perf_counter()
     model = plane_model(mesh, material, body.gear.face_width, "stress")
     t1 = time.perf_counter()
-    loads, probes = [], []
+    points, forces, probes = [], [], []
     for r in radii:
         p, d = load_point(body, r)
-        # sliding the force along its own line of action changes no moment
-        loads.append(model.probes(p + INSIDE * d).T @ d)
+        points.append(p + INSIDE * d)  # sliding a force along its line of action moves no moment
+        forces.append(d)
         centre = np.array([p[0], 0.0])
         offset = np.array([0.0, p[1] / 2])
         probes.append((p, d, np.array([centre, centre + offset, centre - offset])))
-    solution = solve(model, np.column_stack(loads), ["supports"])
+    n, forces = len(radii), np.array(forces)
+    at_loads = model.probes(np.array(points))  # rows: u_x at each point, then u_y
+    loads = at_loads[:n].multiply(forces[:, :1]) + at_loads[n:].multiply(forces[:, 1:])
+    solution = solve(model, loads.T.toarray(), ["supports"])
     t2 = time.perf_counter()
     land = _root_land_points(body) if isinstance(body, RingGear) else None
     land_probe = model.probes(land) if land is not None else None

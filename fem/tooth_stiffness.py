@@ -12,6 +12,7 @@ method (``tooth_beam``) and by ISO 6336-1 (``iso6336``).
 """
 from __future__ import annotations
 
+import functools
 import time
 from dataclasses import dataclass, field
 
@@ -43,15 +44,18 @@ class ToothCurve:
     dofs: int = 0
     seconds: dict = field(default_factory=dict)
 
+    @functools.cached_property
+    def _interpolant(self):
+        return chebyshev.Chebyshev.fit(self.radii, self.compliance, len(self.radii) - 1,
+                                       domain=[self.radii.min(), self.radii.max()])
+
     def __call__(self, r):
         low, high = self.radii.min(), self.radii.max()
         span = high - low
         r = np.asarray(r, dtype=float)
         if np.any((r < low - 0.05 * span) | (r > high + 0.05 * span)):
             raise ValueError(f"contact radius outside the computed range {low:.6g}..{high:.6g} m")
-        fit = chebyshev.Chebyshev.fit(self.radii, self.compliance, len(self.radii) - 1,
-                                      domain=[low, high])
-        return fit(r)
+        return self._interpolant(r)
 
 
 def contact_radii(body: ToothedBody, pairs: list[GearPair]) -> tuple[float, float]:
@@ -108,7 +112,7 @@ class PairStiffness:
         return self.fe.mean
 
 
-def pair_stiffness(pair: GearPair, first: ToothCurve, second: ToothCurve,
+def pair_result(pair: GearPair, first: ToothCurve, second: ToothCurve,
                    first_beam: ToothCurve, second_beam: ToothCurve, material: Material,
                    cracked_second: ToothCurve | None = None) -> PairStiffness:
     b = min(pair.first.gear.face_width, pair.second.gear.face_width)
@@ -150,8 +154,8 @@ def reducer_mesh_stiffness(sun: ToothedBody, planet: ToothedBody, ring: ToothedB
         span = contact_radii(ring, [ring_pair])
         cracked = fe_curve(ring, span, material, options, crack)
     return {
-        "c_sp": pair_stiffness(sun_pair, fe["planet"], fe["sun"], beam["planet"], beam["sun"],
+        "c_sp": pair_result(sun_pair, fe["planet"], fe["sun"], beam["planet"], beam["sun"],
                                material),
-        "c_rp": pair_stiffness(ring_pair, fe["planet"], fe["ring"], beam["planet"], beam["ring"],
+        "c_rp": pair_result(ring_pair, fe["planet"], fe["ring"], beam["planet"], beam["ring"],
                                material, cracked),
     }

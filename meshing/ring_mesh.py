@@ -31,7 +31,7 @@ from .fe_mesh import FEMesh
 from .gear import GearGeometryError, rotation
 from .ring_gear import RingGear, ToothedBody
 from .extract import extract_plane
-from .session import MeshingError, gmsh_model
+from .session import MeshingError, gmsh_model, split_crack
 
 
 @dataclass(frozen=True)
@@ -341,17 +341,10 @@ class _RingBuilder:
         if opt.order == 2:
             gmsh.model.mesh.setOrder(2)
         if self.crack_lines:
-            model = gmsh.model
-            crack_group = model.addPhysicalGroup(1, self.crack_lines, name="crack")
             open_points = [self.crack_points["mouth"]]
             if self.crack.is_through(self.ring):
                 open_points.append(self.crack_points["tip"])
-            self.before_crack = {tag for _, tag in model.getEntities(1)}
-            open_group = model.addPhysicalGroup(0, open_points, name="crack_open")
-            gmsh.plugin.setNumber("Crack", "Dimension", 1)
-            gmsh.plugin.setNumber("Crack", "PhysicalGroup", crack_group)
-            gmsh.plugin.setNumber("Crack", "OpenBoundaryPhysicalGroup", open_group)
-            gmsh.plugin.run("Crack")
+            self.crack_b = split_crack(gmsh, 1, self.crack_lines, open_points)
 
     # extraction --------------------------------------------------------
     def extract(self) -> FEMesh:
@@ -359,7 +352,7 @@ class _RingBuilder:
         groups = dict(self.groups)
         if self.crack_lines:
             groups["crack_a"] = self.crack_lines
-            groups["crack_b"] = sorted({t for _, t in model.getEntities(1)} - self.before_crack)
+            groups["crack_b"] = self.crack_b
         mesh, index = extract_plane(self.gmsh, groups)
         points_of = {}
         if self.crack_lines:

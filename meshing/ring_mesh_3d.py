@@ -25,7 +25,7 @@ from .extract import extract
 from .gear import GearGeometryError
 from .ring_gear import RingGear
 from .ring_mesh import MeshOptions, _check_load_patch, _RingBuilder, run_builder, with_info
-from .session import MeshingError, gmsh_model
+from .session import MeshingError, gmsh_model, split_crack
 
 #: Default sizes for solid meshes (the plane defaults would need ~50x the elements in 3D).
 SOLID_OPTIONS = MeshOptions(size=6e-3, tooth_size=2e-3, tip_size=0.5e-3, load_size=1e-3,
@@ -212,14 +212,7 @@ class _SolidBuilder(_RingBuilder):
             gmsh.model.mesh.setOrder(2)
             self.straightened = _straighten_inverted(gmsh, self.front_curves)
         if self.crack_surfaces:
-            model = gmsh.model
-            crack_group = model.addPhysicalGroup(2, self.crack_surfaces, name="crack")
-            open_group = model.addPhysicalGroup(1, self.open_curves, name="crack_open")
-            self.before_crack = {tag for _, tag in model.getEntities(2)}
-            gmsh.plugin.setNumber("Crack", "Dimension", 2)
-            gmsh.plugin.setNumber("Crack", "PhysicalGroup", crack_group)
-            gmsh.plugin.setNumber("Crack", "OpenBoundaryPhysicalGroup", open_group)
-            gmsh.plugin.run("Crack")
+            self.crack_b = split_crack(gmsh, 2, self.crack_surfaces, self.open_curves)
 
     def groups_of(self, suffix) -> list[int]:
         return [s for name, surfaces in self.groups.items() if name.endswith(suffix)
@@ -249,7 +242,7 @@ class _SolidBuilder(_RingBuilder):
         groups = dict(self.groups)
         if self.crack_surfaces:
             groups["crack_a"] = self.crack_surfaces
-            groups["crack_b"] = sorted({t for _, t in model.getEntities(2)} - self.before_crack)
+            groups["crack_b"] = self.crack_b
         mesh, index = extract(self.gmsh, groups, 3)
         points, cells, boundaries = mesh.points, mesh.cells, mesh.boundaries
         points_of = {}

@@ -42,3 +42,21 @@ def gmsh_model(name: str = "hubvib"):
             gmsh.model.remove()
         if owner:
             gmsh.finalize()
+
+
+def split_crack(gmsh, dim: int, faces: list[int], open_boundary: list[int]) -> list[int]:
+    """Duplicate the nodes of the ``dim`` entities ``faces`` with gmsh's Crack plugin.
+
+    ``open_boundary`` (entities of dimension ``dim - 1``) are where the crack
+    meets a free surface: without them the crack stays sealed there.  Returns
+    the new entities, the second face (the first keeps the tags ``faces``).
+    """
+    model = gmsh.model
+    crack_group = model.addPhysicalGroup(dim, faces, name="crack")
+    open_group = model.addPhysicalGroup(dim - 1, open_boundary, name="crack_open")
+    before = {tag for _, tag in model.getEntities(dim)}
+    gmsh.plugin.setNumber("Crack", "Dimension", dim)
+    gmsh.plugin.setNumber("Crack", "PhysicalGroup", crack_group)
+    gmsh.plugin.setNumber("Crack", "OpenBoundaryPhysicalGroup", open_group)
+    gmsh.plugin.run("Crack")
+    return sorted({tag for _, tag in model.getEntities(dim)} - before)

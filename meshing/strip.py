@@ -11,7 +11,7 @@ from __future__ import annotations
 from .extract import extract_plane
 from .fe_mesh import FEMesh
 from .gear import GearGeometryError
-from .session import gmsh_model
+from .session import gmsh_model, split_crack
 
 
 def edge_crack_strip(width: float, half_length: float, depth: float, size: float,
@@ -58,15 +58,8 @@ def edge_crack_strip(width: float, half_length: float, depth: float, size: float
         if order == 2:
             model.mesh.setOrder(2)
         if crack is not None:
-            before = {t for _, t in model.getEntities(1)}
-            crack_group = model.addPhysicalGroup(1, [crack], name="crack")
-            mouth = model.addPhysicalGroup(0, [corners[1]], name="crack_open")
-            gmsh.plugin.setNumber("Crack", "Dimension", 1)
-            gmsh.plugin.setNumber("Crack", "PhysicalGroup", crack_group)
-            gmsh.plugin.setNumber("Crack", "OpenBoundaryPhysicalGroup", mouth)
-            gmsh.plugin.run("Crack")
             groups["crack_a"] = [crack]
-            groups["crack_b"] = sorted({t for _, t in model.getEntities(1)} - before)
+            groups["crack_b"] = split_crack(gmsh, 1, [crack], [corners[1]])
         mesh, index = extract_plane(gmsh, groups)
         points_of = {name: index[model.mesh.getNodes(0, corners[i])[0]]
                      for name, i in (("pin", 4), ("roller", 3))}

@@ -108,8 +108,8 @@ def richardson(values, ratio: float) -> tuple[float, float]:
 def with_errors(rows: list[dict]) -> tuple[list[dict], float | None]:
     """Rows with ``reference`` and errors filled; the observed Richardson order (or None)."""
     order = None
-    if rows and rows[0].get("reference") not in (None, ""):
-        reference = [float(r["reference"]) for r in rows]
+    if rows and "reference" in rows[0]:
+        reference = [r["reference"] for r in rows]
     else:
         limit, order = richardson([r["value"] for r in rows], math.sqrt(2)) if len(rows) >= 3 \
             else (float("nan"), None)
@@ -136,12 +136,8 @@ def run_study(quantity: str, folder: Path, scales=SCALES, progress=print) -> Pat
         done.append(row)
         progress(f"{quantity}: scale {scale:.3f}, {row['dofs']} DOFs, "
                  f"{row['seconds_total']:.2f} s, value {row['value']:.8e}")
-    rows = sorted((dict(r, **{k: float(r[k]) for k in r if k != "reference" and r[k] != ""})
-                   for r in done), key=lambda r: -r["scale"])
-    for r in rows:
-        if r.get("reference") not in (None, ""):
-            r["reference"] = float(r["reference"])
-    rows, order = with_errors(rows)
+    numbers = [{k: float(v) for k, v in r.items() if v not in ("", None)} for r in done]
+    rows, order = with_errors(sorted(numbers, key=lambda r: -r["scale"]))
     table = folder / f"convergence_{quantity}.csv"
     with open(table, "w", newline="") as handle:
         writer = csv.DictWriter(handle, COLUMNS)
