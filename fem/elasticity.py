@@ -11,16 +11,15 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.sparse.linalg as spla
 
 from meshing.fe_mesh import FEMesh
 from meshing.to_skfem import to_skfem
 
 from .material import Material, MaterialError
+from .solvers import SingularSystemError, pick, solve_spd
 
-
-class SingularSystemError(ValueError):
-    """The stiffness matrix is singular with the given supports (rigid-body motion left)."""
+__all__ = ["PlaneModel", "plane_model", "Solution", "solve", "rigid_body_modes",
+           "SingularSystemError"]
 
 
 @dataclass(eq=False)
@@ -158,20 +157,46 @@ def plane_model(mesh: FEMesh, material: Material = Material(), thickness: float 
 
 @dataclass(frozen=True)
 class Solution:
-    """Displacements [m] for each load column, with the solve time [s]."""
+    """Displacements [m] for each load column, the solve time [s] and the solver used."""
 
     u: np.ndarray
     seconds: float
+    solver: str = "superlu"
 
 
-def solve(model: PlaneModel, loads: np.ndarray, fixed_groups: list[str],
-          fixed_dofs=()) -> Solution:
-    """Solve K u = f with zero displacement on ``fixed_groups`` (both components)
+def dof_components(basis) -> np.ndarray:
+    """Displacement component (0: x, 1: y, 2: z) of every DOF of a vector basis."""
+    dim = basis.mesh.dim()
+    component = np.full(basis.N, -1)
+    for name in ("nodal_dofs", "edge_dofs", "facet_dofs", "interior_dofs"):
+        dofs = getattr(basis, name)
+        if dofs.size:
+            for c in range(dim):
+                component[dofs[c::dim]] = c
+    return component
+
+
+def rigid_body_modes(basis) -> np.ndarray:
+    """(ndofs, 3 or 6): translations, then rotations about the axes, as DOF vectors
+    (exact for isoparametric P1/P2, which reproduce linear fields)."""
+    component = dof_components(basis)
+    x = basis.doflocs
+    dim = x.shape[0]
+    modes = [(component == c).astype(float) for c in range(dim)]
+    axes = [(0, 1)] if dim == 2 else [(0, 1), (1, 2), (2, 0)]
+    for a, b in axes:  # rotation in the (a, b) plane: u_a = -x_b, u_b = x_a
+        modes.append(np.where(component == a, -x[b], 0.0) + np.where(component == b, x[a], 0.0))
+    return np.column_stack(modes)
+
+
+def solve(model, loads: np.ndarray, fixed_groups: list[str], fixed_dofs=(),
+          solver: str = "auto") -> Solution:
+    """Solve K u = f with zero displacement on ``fixed_groups`` (every component)
     and at ``fixed_dofs`` (DOF indices, e.g. from ``PlaneModel.node_dofs``).
 
-    ``loads`` is (ndofs,) or (ndofs, k); one sparse LU factorisation serves all
-    columns.  Raises SingularSystemError when nothing is fixed or the
-    factorisation finds the reduced matrix singular.
+    ``loads`` is (ndofs,) or (ndofs, k).  ``solver``: one of ``fem.solvers.SOLVERS``;
+    ``"auto"`` picks by size and dimension.  Raises SingularSystemError when
+    nothing is fixed or the solver finds the reduced matrix singular.
     """
     fe = model.basis.mesh
     missing = [g for g in fixed_groups if g not in fe.boundaries or len(fe.boundaries[g]) == 0]
@@ -186,17 +211,8 @@ def solve(model: PlaneModel, loads: np.ndarray, fixed_groups: list[str],
     single = f.ndim == 1
     f = f.reshape(model.ndofs, -1)
     t0 = time.perf_counter()
-    Kff = model.K[free][:, free].tocsc()
-    try:
-        lu = spla.splu(Kff, permc_spec="COLAMD")
-    except RuntimeError as error:
-        raise SingularSystemError(f"the supported stiffness matrix is singular: {error}") from None
+    method = pick(solver, len(free), fe.dim())
+    near_null = rigid_body_modes(model.basis)[free] if method == "amg" else None
     u = np.zeros_like(f)
-    u[free] = lu.solve(f[free])
-    # a nearly singular factor shows as a huge residual or pivot ratio
-    diag = np.abs(lu.U.diagonal())
-    if diag.min() <= 1e-13 * diag.max():
-        raise SingularSystemError(
-            f"the supported stiffness matrix is singular to working precision (pivot ratio "
-            f"{diag.min() / diag.max():.1e}): check the supports")
-    return Solution(u[:, 0] if single else u, time.perf_counter() - t0)
+    u[free] = solve_spd(model.K[free][:, free], f[free], method, near_null)
+    return Solution(u[:, 0] if single else u, time.perf_counter() - t0, method)

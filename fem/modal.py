@@ -7,6 +7,7 @@ body has rigid-body modes at omega = 0; the shift must then be negative so
 that ``K - sigma M`` stays positive definite (fe_facts: sigma = -1e4 rad^2/s^2
 returns them converged).  Each mode is checked: its Rayleigh quotient equals
 its eigenvalue, and a clearly negative eigenvalue (an indefinite K) raises.
+Each shape is mass-normalised with its largest entry positive.
 """
 from __future__ import annotations
 
@@ -73,7 +74,8 @@ def lowest_modes(model: PlaneModel, count: int = 6, fixed_groups: list[str] | No
     order = np.argsort(values)
     values, vectors = values[order], vectors[:, order]
     scale = np.sqrt(np.abs(np.diag(vectors.T @ (Mf @ vectors))))
-    vectors = vectors / scale
+    largest = vectors[np.argmax(np.abs(vectors), axis=0), np.arange(count)]
+    vectors = vectors / (scale * np.sign(largest))  # sign fixed: largest entry positive
     rayleigh = np.array([(v @ (Kf @ v)) / (v @ (Mf @ v)) for v in vectors.T])
     reference = max(abs(values).max(), 1.0)
     error = float(np.max(np.abs(rayleigh - values)) / reference)

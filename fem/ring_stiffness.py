@@ -22,6 +22,7 @@ from meshing.ring_gear import RingGear
 
 from .elasticity import plane_model, solve
 from .material import Material
+from .solid import solid_model
 
 
 @dataclass(frozen=True)
@@ -40,7 +41,7 @@ class RingStiffness:
         Support (translational) stiffness, mean of x and y [N/m].
     dofs : int
     seconds : dict
-        mesh/assembly/solve wall times [s].
+        assembly/loads/solve wall times [s], and the solver used.
     """
 
     c_ru: float
@@ -51,9 +52,38 @@ class RingStiffness:
     seconds: dict
 
 
+def tooth_unit_forces(model, teeth) -> list[np.ndarray]:
+    """Per tooth: load vectors (2, ndofs) of 1 N along x and along y spread uniformly
+    over its load patch (group ``tooth{k}_load``)."""
+    forces = []
+    for k in teeth:
+        patch = model.facet_basis([f"tooth{k}_load"])
+        length = model.boundary_means(patch, np.zeros(model.ndofs))[0]
+        forces.append(model.unit_traction_loads(patch) / (length * model.thickness))
+    return forces
+
+
+def planet_teeth(ring: RingGear, carrier_tooth: int, n_planets: int) -> list[int]:
+    """Ring teeth loaded by N equally spaced planets when planet 1 is at ``carrier_tooth``."""
+    z = ring.teeth
+    return [(carrier_tooth + round(i * z / n_planets)) % z for i in range(n_planets)]
+
+
+def mesh_force_load(model, ring: RingGear, teeth: list[int], force: float) -> np.ndarray:
+    """Load vector [N] of ``force`` [N] along the line of action on each of ``teeth``."""
+    unit = tooth_unit_forces(model, teeth)
+    return force * sum(ring.load_point(k)[1] @ f for k, f in zip(teeth, unit))
+
+
 def ring_stiffness(ring: RingGear, mesh: FEMesh, material: Material = Material(),
-                   n_planets: int = 3, carrier_teeth=None) -> RingStiffness:
-    """c_ru at each carrier position (default: every tooth over one planet pitch) and c_r."""
+                   n_planets: int = 3, carrier_teeth=None, solver: str = "auto"
+                   ) -> RingStiffness:
+    """c_ru at each carrier position (default: every tooth over one planet pitch) and c_r.
+
+    A plane mesh is solved in plane stress over the face width; a solid mesh
+    in 3D, with the loads spread over the tooth's load surface across the face.
+    ``solver``: see ``fem.solvers``.
+    """
     if isinstance(n_planets, bool) or not isinstance(n_planets, int) or not 1 <= n_planets <= 12:
         raise ValueError(f"n_planets = {n_planets!r}, allowed integers 1..12")
     needed = {"supports"} | {f"tooth{k}_{part}" for k in range(ring.teeth)
@@ -67,24 +97,21 @@ def ring_stiffness(ring: RingGear, mesh: FEMesh, material: Material = Material()
         carrier_teeth = np.arange(int(math.ceil(z / n_planets)))
     carrier_teeth = np.asarray(carrier_teeth, dtype=int)
     t0 = time.perf_counter()
-    model = plane_model(mesh, material, ring.gear.face_width, "stress")
+    if mesh.dim == 2:
+        model = plane_model(mesh, material, ring.gear.face_width, "stress")
+    else:
+        model = solid_model(mesh, material)
     t1 = time.perf_counter()
-    # per tooth: the load vectors of a unit force along x and along y spread over its patch
-    unit_force = []
-    for k in range(z):
-        patch = model.facet_basis([f"tooth{k}_load"])
-        length = model.boundary_means(patch, np.zeros(model.ndofs))[0]
-        unit_force.append(model.unit_traction_loads(patch) / (length * model.thickness))
-
+    unit_force = tooth_unit_forces(model, range(z))
     torque_loads, loaded = [], []
     for s in carrier_teeth:
-        teeth = [(int(s) + round(i * z / n_planets)) % z for i in range(n_planets)]
+        teeth = planet_teeth(ring, int(s), n_planets)
         loaded.append(teeth)
         torque_loads.append(sum(ring.load_point(k)[1] @ unit_force[k] for k in teeth))
     translation = [sum(f[axis] for f in unit_force) / z for axis in (0, 1)]
     loads = np.column_stack(torque_loads + translation)
     t2 = time.perf_counter()
-    solution = solve(model, loads, ["supports"])
+    solution = solve(model, loads, ["supports"], solver=solver)
     t3 = time.perf_counter()
     rb = ring.gear.base_diameter / 2
     torque = n_planets * 1.0 * rb
@@ -98,4 +125,5 @@ def ring_stiffness(ring: RingGear, mesh: FEMesh, material: Material = Material()
            for column, axis in ((-2, 0), (-1, 1))]
     c_ru = np.array(c_ru)
     return RingStiffness(float(c_ru.mean()), c_ru, carrier_teeth, float(np.mean(c_r)),
-                         model.ndofs, {"assembly": t1 - t0, "loads": t2 - t1, "solve": t3 - t2})
+                         model.ndofs, {"assembly": t1 - t0, "loads": t2 - t1, "solve": t3 - t2,
+                                       "solver": solution.solver})

@@ -132,6 +132,48 @@ def pair_result(pair: GearPair, first: ToothCurve, second: ToothCurve,
                          seconds, sum(c.dofs for c in curves))
 
 
+@dataclass(frozen=True)
+class EngagedMesh:
+    """Ring-planet mesh over the engagement of a cracked ring tooth, cracked and intact."""
+
+    cracked: MeshCycle
+    intact: MeshCycle
+
+    @property
+    def mean_ratio(self) -> float:
+        """Cracked / intact mean stiffness over the engagement [-]."""
+        return self.cracked.mean / self.intact.mean
+
+    @property
+    def min_ratio(self) -> float:
+        return float(self.cracked.stiffness.min() / self.intact.stiffness.min())
+
+
+@functools.lru_cache(maxsize=8)
+def _intact_curve(body, span, material, options) -> ToothCurve:
+    return fe_curve(body, span, material, options)
+
+
+def engaged_ring_mesh(planet: ToothedBody, ring: ToothedBody, crack, options=None,
+                      material: Material = Material()) -> EngagedMesh:
+    """c_rp over the engagement of ring tooth 0 carrying ``crack`` (depth > 0).
+
+    The intact tooth curves are kept between calls (a crack sweep reuses them).
+    """
+    from meshing.ring_mesh import MeshOptions
+
+    options = MeshOptions() if options is None else options
+    pair = GearPair(planet, ring)
+    planet_curve = _intact_curve(planet, contact_radii(planet, [pair]), material, options)
+    span = contact_radii(ring, [pair])
+    ring_curve = _intact_curve(ring, span, material, options)
+    cracked = fe_curve(ring, span, material, options, crack)
+    q_h = hertz_compliance(min(planet.gear.face_width, ring.gear.face_width), material)
+    return EngagedMesh(
+        mesh_cycle(pair, planet_curve, ring_curve, q_h, marked_pair_compliance=cracked),
+        mesh_cycle(pair, planet_curve, ring_curve, q_h, marked_pair_compliance=ring_curve))
+
+
 def reducer_mesh_stiffness(sun: ToothedBody, planet: ToothedBody, ring: ToothedBody,
                            options=None, crack=None, material: Material = Material(),
                            ) -> dict[str, PairStiffness]:

@@ -1,4 +1,10 @@
-"""The crack-sensitivity study: ring crack depth -> FE c_ru, c_r -> lumped spectrum (SI)."""
+"""The crack-sensitivity study: ring crack depth -> FE c_ru, c_r, c_rp -> lumped spectrum (SI).
+
+The spectrum is the one at the instant planet 1 meshes with the cracked
+tooth: its ring mesh gets the FE ratio of c_rp over that engagement (the
+other planets keep the preset c_rp), so the crack breaks the cyclic symmetry
+and splits the repeated frequencies.
+"""
 from __future__ import annotations
 
 import math
@@ -16,6 +22,8 @@ from .scene import Scene
 
 #: a mode "follows" a stiffness when its relative sensitivity exceeds this
 SENSITIVE = 0.01
+#: the stiffnesses a ring crack changes (c_rp: all planets' ring meshes together)
+STIFFNESSES = ("c_ru", "c_r", "c_rp")
 
 
 @dataclass
@@ -29,6 +37,7 @@ class CrackStudyResult:
     fe: list[dict]
     c_ru: np.ndarray
     c_r: np.ndarray
+    c_rp_factor: np.ndarray
     spectra: list[Spectrum]
     omega: np.ndarray
     computed: int
@@ -51,9 +60,13 @@ class CrackStudyResult:
                  "fe_c_ru_error_N_m": f["c_ru_error_N_m"],
                  "fe_c_ru_min_N_m": f["c_ru_min_N_m"], "fe_c_ru_max_N_m": f["c_ru_max_N_m"],
                  "fe_c_r_N_m": f["c_r_N_m"], "fe_c_r_error_N_m": f["c_r_error_N_m"],
+                 "fe_c_rp_engaged_ratio": f["c_rp_engaged_ratio"],
+                 "fe_c_rp_engaged_ratio_error": f["c_rp_engaged_ratio_error"],
+                 "fe_c_rp_engaged_min_ratio": f["c_rp_engaged_min_ratio"],
                  "lumped_c_ru_N_m": float(cu), "lumped_c_r_N_m": float(cr),
+                 "lumped_c_rp_planet1_N_m": float(self.scene.params.c_rp * fp),
                  "fe_seconds": f["seconds_total"]}
-                for f, cu, cr in zip(self.fe, self.c_ru, self.c_r)]
+                for f, cu, cr, fp in zip(self.fe, self.c_ru, self.c_r, self.c_rp_factor)]
 
     def frequency_rows(self) -> list[dict]:
         rows = []
@@ -67,22 +80,22 @@ class CrackStudyResult:
         return rows
 
     def mode_rows(self) -> list[dict]:
-        """Per mode: what it follows (c_ru, c_r), its largest shift, the smallest detectable crack."""
+        """Per mode: what it follows (c_ru, c_r, c_rp), its largest shift, the smallest
+        detectable crack."""
         params = self.scene.params
         base = self.spectra[0]
         rel = {name: frequency_sensitivity(params, name, self.scene.method, base).relative
-               for name in ("c_ru", "c_r")}
+               for name in STIFFNESSES}
         rows = []
         for i, kind in enumerate(self.kind):
             hits = np.flatnonzero(np.abs(self.percent[:, i]) >= self.scene.threshold_percent)
-            follows = [n for n in ("c_ru", "c_r") if abs(rel[n][i]) > SENSITIVE] or ["neither"]
+            follows = [n for n in STIFFNESSES if abs(rel[n][i]) > SENSITIVE] or ["none"]
             rows.append({"mode": i + 1, "kind": kind,
                          "frequency_intact_hz": float(self.omega[0, i] / (2 * math.pi)),
                          "shift_at_deepest_hz": float((self.omega[-1, i] - self.omega[0, i])
                                                       / (2 * math.pi)),
                          "shift_at_deepest_percent": float(self.percent[-1, i]),
-                         "sensitivity_c_ru": float(rel["c_ru"][i]),
-                         "sensitivity_c_r": float(rel["c_r"][i]),
+                         **{f"sensitivity_{n}": float(rel[n][i]) for n in STIFFNESSES},
                          "follows": "+".join(follows),
                          "smallest_detectable_depth_mm":
                              float(1e3 * self.depths[hits[0]]) if len(hits) else None})
@@ -99,8 +112,11 @@ def run_crack_study(scene: Scene, progress: bool = True) -> CrackStudyResult:
     else:
         c_ru = np.array([f["c_ru_N_m"] for f in fe])
         c_r = np.array([f["c_r_N_m"] for f in fe])
-    spectra = [natural_modes(params.replace(c_ru=float(cu), c_r=float(cr)), scene.method)
-               for cu, cr in zip(c_ru, c_r)]
+    c_rp_factor = np.array([f["c_rp_engaged_ratio"] for f in fe])
+    others = (1.0,) * (params.n_planets - 1)
+    spectra = [natural_modes(params.replace(c_ru=float(cu), c_r=float(cr),
+                                            c_rp_factors=(float(fp),) + others), scene.method)
+               for cu, cr, fp in zip(c_ru, c_r, c_rp_factor)]
     n = spectra[0].omega.size
     omega = np.empty((len(spectra), n))
     omega[0] = spectra[0].omega
@@ -109,7 +125,7 @@ def run_crack_study(scene: Scene, progress: bool = True) -> CrackStudyResult:
         step, _ = match(spectra[k - 1], spectra[k])
         order = step[order]
         omega[k] = spectra[k].omega[order]
-    return CrackStudyResult(scene, fe, c_ru, c_r, spectra, omega, computed)
+    return CrackStudyResult(scene, fe, c_ru, c_r, c_rp_factor, spectra, omega, computed)
 
 
 def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResult:
@@ -129,25 +145,56 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
     if scene.plots:
         plots = [save_figure(_frequency_figure(result), folder / "frequency_vs_depth.png"),
                  save_figure(_shift_figure(result), folder / "shift_vs_depth.png")]
-    renders = []
+    renders, fe_renders = [], []
     if scene.renders:
         from .render import render_modes
 
         renders = render_modes(scene.params, result.spectra[0], folder / "renders",
                                gif=scene.gif, vtm=scene.vtm)
-    files += plots + renders
+        fe_renders = _render_fe(scene, folder / "renders")
+    files += plots + renders + fe_renders
+
+    def pictures(paths):
+        return [p.relative_to(folder).as_posix() for p in paths if p.suffix == ".png"]
+
     files.append(write_text(folder / "report.md", crack_report(
-        result, [p.name for p in plots], [r.relative_to(folder).as_posix() for r in renders
-                                          if r.suffix == ".png"])))
+        result, [p.name for p in plots], pictures(renders), pictures(fe_renders))))
     result.files = files
     return result
 
 
-def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str]) -> str:
+def rendered_depth(sweep) -> float:
+    """The deepest crack of the sweep that still has a tip (not through the rim) [m]."""
+    from meshing import raba118
+
+    from .crack_sweep import crack_of
+
+    ring = raba118.ring_gear()
+    open_ended = [d for d in sweep.depths if d > 0 and not crack_of(sweep, d).is_through(ring)]
+    return max(open_ended, default=max(sweep.depths))
+
+
+def _render_fe(scene: Scene, folder: Path) -> list[Path]:
+    from meshing import raba118
+
+    from .crack_sweep import ACCURACY, crack_of
+    from .fe_render import render_fe, ring_fields
+    from .stiffness_command import scaled_options
+
+    depth = rendered_depth(scene.crack)
+    crack = crack_of(scene.crack, depth) if depth > 0 else None
+    fields = ring_fields(raba118.ring_gear(), crack, scaled_options(ACCURACY[scene.crack.accuracy]))
+    return render_fe(fields, folder, vtu=scene.vtm)
+
+
+def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
+                 fe_renders: list[str] = ()) -> str:
     scene, sweep = result.scene, result.scene.crack
     intact = result.fe[0]
     how = ("the preset's c_ru and c_r scaled by FE(depth)/FE(intact)" if sweep.apply == "ratio"
            else "the FE values themselves")
+    how += ("; planet 1's ring mesh c_rp scaled by the FE ratio over the cracked tooth's "
+            "engagement (the spectrum at the instant planet 1 meshes with it)")
     lines = [
         f"# hubvib crack-sensitivity study: {scene.name}", "",
         f"Ring crack at tooth {sweep.tooth} ({sweep.start}, {math.degrees(sweep.angle):g} deg "
@@ -162,7 +209,11 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str])
         f"{intact['c_ru_N_m']:.4g} N/m, four orders stiffer: the paper's value describes the "
         "elastic mounting, so the default applies the FE *ratio* to the paper's baseline; "
         "`apply = \"direct\"` uses the FE values.",
-        "- A crack changes c_ru and c_r only; c_rp (tooth mesh) is not yet FE-derived.", "",
+        "- c_rp: FE tooth compliance of planet and ring tooth (crack moved to tooth 0) with "
+        "Hertz contact added analytically and the load shared over the path of contact; the "
+        "ratio cracked/intact is the mean over the cracked tooth's engagement (its minimum is "
+        "in `fe_c_rp_engaged_min_ratio`). Only planet 1's ring mesh changes, so the crack "
+        "splits the repeated (translational) frequencies.", "",
         "## Validation status", "",
         "- FE c_ru: annulus against the exact k_theta (curved P2 to 1e-7), error of each "
         "value estimated against a mesh twice as coarse (column `fe_c_ru_error_N_m`).",
@@ -171,27 +222,37 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str])
         f"FE cases: {len(result.fe)} ({result.computed} computed now, "
         f"{len(result.fe) - result.computed} from the cache).", "",
         "## FE stiffness against crack depth", "",
-        "| depth [mm] | FE c_ru [N/m] | ± | FE c_r [N/m] | ± | lumped c_ru | lumped c_r |",
-        "|---:|---:|---:|---:|---:|---:|---:|"]
+        "| depth [mm] | FE c_ru [N/m] | ± | FE c_r [N/m] | ± | FE c_rp ratio | ± "
+        "| lumped c_ru | lumped c_r | lumped c_rp planet 1 |",
+        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for r in result.stiffness_rows():
         lines.append(f"| {r['depth_mm']:.3g} | {r['fe_c_ru_N_m']:.5e} | "
                      f"{r['fe_c_ru_error_N_m']:.1e} | {r['fe_c_r_N_m']:.5e} | "
-                     f"{r['fe_c_r_error_N_m']:.1e} | {r['lumped_c_ru_N_m']:.5g} | "
-                     f"{r['lumped_c_r_N_m']:.5g} |")
+                     f"{r['fe_c_r_error_N_m']:.1e} | {r['fe_c_rp_engaged_ratio']:.4f} | "
+                     f"{r['fe_c_rp_engaged_ratio_error']:.1e} | {r['lumped_c_ru_N_m']:.5g} | "
+                     f"{r['lumped_c_r_N_m']:.5g} | {r['lumped_c_rp_planet1_N_m']:.5g} |")
     lines += ["", f"## Modes: sensitivity and detection at {scene.threshold_percent:g} %", "",
               "| mode | type | f intact [Hz] | shift at deepest [Hz] | [%] | (dω/ω)/(dc_ru/c_ru) "
-              "| (dω/ω)/(dc_r/c_r) | follows | smallest detectable depth [mm] |",
-              "|---:|---|---:|---:|---:|---:|---:|---|---:|"]
+              "| (dω/ω)/(dc_r/c_r) | (dω/ω)/(dc_rp/c_rp) | follows "
+              "| smallest detectable depth [mm] |",
+              "|---:|---|---:|---:|---:|---:|---:|---:|---|---:|"]
     for r in result.mode_rows():
         depth = r["smallest_detectable_depth_mm"]
         lines.append(f"| {r['mode']} | {r['kind']} | {r['frequency_intact_hz']:.3f} | "
                      f"{r['shift_at_deepest_hz']:+.4f} | {r['shift_at_deepest_percent']:+.3f} | "
                      f"{r['sensitivity_c_ru']:.3g} | {r['sensitivity_c_r']:.3g} | "
+                     f"{r['sensitivity_c_rp']:.3g} | "
                      f"{r['follows']} | {'not reached' if depth is None else f'{depth:.3g}'} |")
     if plots:
         lines += ["", "## Plots", ""] + [f"![{n}]({n})" for n in plots]
     if renders:
         lines += ["", "## Mode shapes (intact)", ""] + [f"![{n}]({n})" for n in renders]
+    if fe_renders:
+        lines += ["", f"## FE ring with the {1e3 * rendered_depth(sweep):.3g} mm crack", "",
+                  "Under the three planet mesh forces of the ASSUMED 1000 N m sun torque "
+                  "(planet 1 on the cracked tooth), von Mises stress; then its lowest modes "
+                  "on the clamped supports (plane stress, deformation magnified).", ""]
+        lines += [f"![{n}]({n})" for n in fe_renders]
     return "\n".join(lines) + "\n"
 
 

@@ -1,4 +1,9 @@
-"""FE stage of a crack sweep: c_ru and c_r of the cracked ring, one case per depth (SI).
+"""FE stage of a crack sweep: c_ru, c_r and c_rp of the cracked ring, one case per depth (SI).
+
+``c_rp`` is the ring-planet mesh stiffness averaged over the engagement of
+the cracked tooth, as a ratio to the same window intact; the tooth model
+loads tooth 0, so the crack is moved there (the tooth's compliance relative
+to its root lands does not depend on where the supports are).
 
 Every case is cached as JSON under ``$HUBVIB_CACHE/stiffness`` by a hash of
 what defines it (ring, crack, mesh accuracy, mesher version), written
@@ -55,7 +60,7 @@ def case_key(sweep: CrackSweep, depth: float) -> str:
     from meshing import cache, raba118
 
     return cache.key("ring-stiffness", raba118.ring_gear(), crack_of(sweep, depth),
-                     ACCURACY[sweep.accuracy])
+                     ACCURACY[sweep.accuracy], "c_rp engaged")
 
 
 def crack_of(sweep: CrackSweep, depth: float):
@@ -65,13 +70,34 @@ def crack_of(sweep: CrackSweep, depth: float):
 
 
 def fe_case(sweep: CrackSweep, depth: float) -> dict:
-    """c_ru, c_r with error estimate and timing for one depth (runs in a worker)."""
+    """c_ru, c_r, c_rp with error estimate and timing for one depth (runs in a worker)."""
+    import time
+
     from meshing import raba118
 
     from .stiffness_command import estimate
 
-    return dict(estimate(raba118.ring_gear(), crack_of(sweep, depth), ACCURACY[sweep.accuracy]),
-                depth_m=float(depth))
+    started = time.perf_counter()
+    scale = ACCURACY[sweep.accuracy]
+    result = dict(estimate(raba118.ring_gear(), crack_of(sweep, depth), scale),
+                  depth_m=float(depth))
+    engaged = {"c_rp_engaged_ratio": 1.0, "c_rp_engaged_ratio_error": 0.0,
+               "c_rp_engaged_min_ratio": 1.0}
+    if depth > 0:
+        from dataclasses import replace
+
+        from fem.tooth_stiffness import engaged_ring_mesh
+
+        from .stiffness_command import scaled_options
+
+        crack = replace(crack_of(sweep, depth), tooth=0)
+        planet, ring = raba118.gear_body("planet"), raba118.ring_gear()
+        fine = engaged_ring_mesh(planet, ring, crack, scaled_options(scale))
+        coarse = engaged_ring_mesh(planet, ring, crack, scaled_options(2 * scale))
+        engaged = {"c_rp_engaged_ratio": fine.mean_ratio,
+                   "c_rp_engaged_ratio_error": abs(fine.mean_ratio - coarse.mean_ratio),
+                   "c_rp_engaged_min_ratio": fine.min_ratio}
+    return result | engaged | {"seconds_total": time.perf_counter() - started}
 
 
 def cache_folder() -> Path:
@@ -112,7 +138,8 @@ def _readable(path: Path) -> bool:
         data = json.loads(path.read_text())
     except (OSError, ValueError):
         return False
-    return math.isfinite(data.get("c_ru_N_m", math.nan))
+    return all(math.isfinite(data.get(key, math.nan))
+               for key in ("c_ru_N_m", "c_rp_engaged_ratio"))
 
 
 def _progress(total: int, done: int, enabled: bool):

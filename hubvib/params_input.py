@@ -16,6 +16,7 @@ from pathlib import Path
 from lumped import ParameterError, PlanetaryParameters, equally_spaced_angles, field_names, preset
 
 CONVENIENCE_KEYS = ("n_planets", "theta_deg", "alpha_w_deg")
+TUPLE_KEYS = ("theta", "theta_deg", "c_rp_factors")
 
 
 def apply_overrides(params: PlanetaryParameters, overrides: dict) -> PlanetaryParameters:
@@ -32,8 +33,8 @@ def apply_overrides(params: PlanetaryParameters, overrides: dict) -> PlanetaryPa
         elif key == "alpha_w_deg":
             alpha = math.radians(_number(key, value))
             changes["alpha_s"] = changes["alpha_r"] = alpha
-        elif key == "theta":
-            changes["theta"] = tuple(value) if isinstance(value, (list, tuple)) else (value,)
+        elif key in ("theta", "c_rp_factors"):
+            changes[key] = tuple(value) if isinstance(value, (list, tuple)) else (value,)
         elif key in field_names():
             changes[key] = _number(key, value)
         else:
@@ -51,7 +52,7 @@ def parse_set(items: list[str]) -> dict:
         if not sep or not key:
             raise ParameterError(f"--set {item!r}: expected KEY=VALUE, e.g. c_ru=1e5")
         parts = [_parse_number(key, p) for p in text.split(",")]
-        result[key.strip()] = parts if len(parts) > 1 or key.strip() in ("theta", "theta_deg") else parts[0]
+        result[key.strip()] = parts if len(parts) > 1 or key.strip() in TUPLE_KEYS else parts[0]
     return result
 
 

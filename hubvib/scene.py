@@ -26,9 +26,11 @@ A scene is TOML with these tables (all keys shown; SI units)::
     [output]
     folder = "hubvib-out"         # relative to the current directory
     plots = true
-    renders = false               # pyvista PNG of each lumped mode shape (crack studies)
-    gif = false                   # ... and an animated GIF per mode
-    vtm = false                   # ... and a VTK multiblock per mode for ParaView
+    renders = false               # pyvista PNG of each lumped mode shape and of the FE
+                                  # ring: loaded (von Mises), crack tip, lowest modes
+    gif = false                   # ... and an animated GIF per lumped mode
+    vtm = false                   # ... and VTK files for ParaView: a multiblock per
+                                  # lumped mode, the FE ring's fields as .vtu
 
 With ``[crack]`` the study is the crack sweep and ``[study]`` needs no
 ``parameter``/``values``.
@@ -117,7 +119,7 @@ def parse_scene(text: str, name: str) -> Scene:
 
     crack = _crack(data["crack"]) if "crack" in data else None
     parameter = _string(study, "study", "parameter", "c_ru")
-    numeric = [f for f in field_names() if f != "theta"]
+    numeric = [f for f in field_names() if f not in ("theta", "c_rp_factors")]
     if parameter not in numeric:
         raise SceneError(f"[study] parameter = {parameter!r}; allowed: {', '.join(numeric)}")
     values = study.get("values", [] if crack else None)

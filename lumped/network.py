@@ -62,12 +62,12 @@ def spring_network(params: PlanetaryParameters) -> SpringNetwork:
     n = params.n_dof
     rows, ks, names, labels = [], [], [], []
 
-    def spring(coefficients: dict[int, float], parameter: str, label: str):
+    def spring(coefficients: dict[int, float], parameter: str, label: str, factor=1.0):
         g = np.zeros(n)
         for index, value in coefficients.items():
             g[index] += value
         rows.append(g)
-        ks.append(getattr(params, parameter))
+        ks.append(factor * getattr(params, parameter))
         names.append(parameter)
         labels.append(label)
 
@@ -80,6 +80,7 @@ def spring_network(params: PlanetaryParameters) -> SpringNetwork:
     spring({8: 1.0}, "c_ru", "ring torsion")
 
     a_s, a_r = params.alpha_s, params.alpha_r
+    rp_factors = params.c_rp_factors or (1.0,) * params.n_planets
     for i, th in enumerate(params.theta):
         tau, eta, u = 9 + 3 * i, 10 + 3 * i, 11 + 3 * i
         s, c = math.sin(th), math.cos(th)
@@ -93,7 +94,7 @@ def spring_network(params: PlanetaryParameters) -> SpringNetwork:
         spring(
             {4: math.sin(th + a_r), 5: -math.cos(th + a_r), u: 1.0, 8: -1.0,
              tau: math.cos(a_r), eta: -math.sin(a_r)},
-            "c_rp", f"ring-planet {i + 1} mesh",
+            "c_rp", f"ring-planet {i + 1} mesh", rp_factors[i],
         )
     return SpringNetwork(np.array(rows), np.array(ks, dtype=float), tuple(names), tuple(labels))
 

@@ -43,6 +43,10 @@ class PlanetaryParameters:
     theta : tuple of float
         Angular position of each planet centre from the x axis [rad]; its
         length is the number of planets N >= 1.
+    c_rp_factors : tuple of float
+        Factor on ``c_rp`` for each planet's ring mesh (one per planet, > 0),
+        e.g. below 1 for the planet in mesh with a cracked ring tooth; empty
+        (the default) means 1 for every planet.
     """
 
     m_s: float
@@ -69,6 +73,7 @@ class PlanetaryParameters:
     alpha_r: float
     theta: tuple[float, ...]
     c_s: float = 0.0
+    c_rp_factors: tuple[float, ...] = ()
 
     def __post_init__(self):
         for name in STIFFNESS_FIELDS:
@@ -82,6 +87,8 @@ class PlanetaryParameters:
                 raise ParameterError(f"{name} = {value!r} rad, but it must lie in (0, pi/2)")
         _check_planet_angles(self.theta)
         object.__setattr__(self, "theta", tuple(float(t) for t in self.theta))
+        _check_factors(self.c_rp_factors, len(self.theta))
+        object.__setattr__(self, "c_rp_factors", tuple(float(f) for f in self.c_rp_factors))
 
     @property
     def n_planets(self) -> int:
@@ -109,9 +116,10 @@ class PlanetaryParameters:
         return all(abs(_wrap(a - b)) <= tolerance for a, b in zip(self.theta, ideal))
 
     def to_dict(self) -> dict:
-        """Plain dict (theta as a list) for JSON/TOML output."""
+        """Plain dict (tuples as lists) for JSON/TOML output."""
         data = dataclasses.asdict(self)
         data["theta"] = list(self.theta)
+        data["c_rp_factors"] = list(self.c_rp_factors)
         return data
 
 
@@ -139,6 +147,14 @@ def _check_number(name, value, lower, closed):
     if value < lower or (value == lower and not closed):
         bound = f">= {lower}" if closed else f"> {lower}"
         raise ParameterError(f"{name} = {value!r}, but it must be {bound}")
+
+
+def _check_factors(factors, n_planets):
+    if not isinstance(factors, (tuple, list)) or len(factors) not in (0, n_planets):
+        raise ParameterError(f"c_rp_factors = {factors!r}, but it must be empty or hold one "
+                             f"factor per planet ({n_planets})")
+    for i, f in enumerate(factors):
+        _check_number(f"c_rp_factors[{i}]", f, lower=0.0, closed=False)
 
 
 def _check_planet_angles(theta):

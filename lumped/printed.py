@@ -29,6 +29,9 @@ def printed_stiffness_matrix(params: PlanetaryParameters) -> np.ndarray:
         )
     if params.c_s != 0:
         raise ParameterError(f"the printed matrix has a floating sun, got c_s = {params.c_s} N/m")
+    if any(f != 1 for f in params.c_rp_factors):
+        raise ParameterError(f"the printed matrix has one c_rp for all planets, got "
+                             f"c_rp_factors = {params.c_rp_factors}")
     p = params
     sw, kw = math.sin(p.alpha_r), math.cos(p.alpha_r)
     C = np.zeros((18, 18))

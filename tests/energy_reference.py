@@ -18,7 +18,8 @@ def potential(q, p, sin, cos):
                               + (yc * cos(th) - xc * sin(th) - tau + uc) ** 2)
         energy += p["c_sp"] * (xs * sin(th - a_s) - ys * cos(th - a_s) - us - u
                                + tau * cos(a_s) + eta * sin(a_s)) ** 2
-        energy += p["c_rp"] * (xr * sin(th + a_r) - yr * cos(th + a_r) + u - ur
+        factor = p["c_rp_factors"][i] if p["c_rp_factors"] else 1
+        energy += factor * p["c_rp"] * (xr * sin(th + a_r) - yr * cos(th + a_r) + u - ur
                                + tau * cos(a_r) - eta * sin(a_r)) ** 2
     return energy / 2
 
@@ -28,7 +29,7 @@ def stiffness_by_polarisation(params, number=float, sin=None, cos=None):
 
     sin = sin or math.sin
     cos = cos or math.cos
-    p = {k: (tuple(number(t) for t in v) if k == "theta" else number(v))
+    p = {k: (tuple(number(t) for t in v) if isinstance(v, list) else number(v))
          for k, v in params.to_dict().items()}
     n = 9 + 3 * len(p["theta"])
     zero = number(0)

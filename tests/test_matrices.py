@@ -14,6 +14,7 @@ def _variants():
         theta=(0.1, 1.9, 4.0, 5.2), c_s=2e7, alpha_s=math.radians(21.0), c_sp=2.5e8)
     yield "N = 1", p.replace(theta=(0.7,))
     yield "N = 7", p.replace(theta=lumped.equally_spaced_angles(7, 0.2))
+    yield "cracked ring tooth at planet 1", p.replace(c_rp_factors=(0.94, 1.0, 1.0))
 
 
 @pytest.mark.parametrize("name, params", list(_variants()))
@@ -56,3 +57,15 @@ def test_printed_matrix_refuses_other_layouts():
 def test_dof_names_follow_paper_eq5():
     assert lumped.dof_names(2)[:12] == (
         "x_s", "y_s", "x_c", "y_c", "x_r", "y_r", "u_s", "u_c", "u_r", "tau_1", "eta_1", "u_1")
+
+
+def test_unit_ring_mesh_factors_change_nothing():
+    p = lumped.raba118()
+    np.testing.assert_array_equal(lumped.stiffness_matrix(p.replace(c_rp_factors=(1.0,) * 3)),
+                                  lumped.stiffness_matrix(p))
+
+
+@pytest.mark.parametrize("factors", [(0.9, 1.0), (1.0, 0.0, 1.0), (1.0, float("nan"), 1.0)])
+def test_ring_mesh_factors_checked(factors):
+    with pytest.raises(lumped.ParameterError, match="c_rp_factors"):
+        lumped.raba118().replace(c_rp_factors=factors)

@@ -1,4 +1,5 @@
-"""Off-screen renders of lumped mode shapes: real images, distinct per mode, repeatable."""
+"""Off-screen renders of lumped and FE mode shapes and of the loaded FE ring: real images,
+distinct per mode, repeatable."""
 import numpy as np
 import pytest
 
@@ -37,3 +38,64 @@ def test_gif_and_multiblock_on_request(tmp_path):
     assert {"sun", "ring", "carrier", "planet 1"} <= set(blocks.keys())
     # the ring is translated by the mode (translational mode 3): its centre moved
     assert np.hypot(*blocks["ring"].center[:2]) > 1e-4
+
+
+@pytest.fixture(scope="module")
+def cracked_ring_fields():
+    pytest.importorskip("gmsh")
+    pytest.importorskip("skfem")
+    from hubvib.fe_render import ring_fields
+    from hubvib.stiffness_command import scaled_options
+    from meshing import raba118
+    from meshing.crack import Crack
+
+    return ring_fields(raba118.ring_gear(), Crack(0, 0.012), scaled_options(4.0), modes=2)
+
+
+def test_fe_renders_are_real_distinct_and_repeatable(tmp_path, cracked_ring_fields):
+    from hubvib.fe_render import render_fe
+
+    fields = cracked_ring_fields
+    files = render_fe(fields, tmp_path / "a", vtu=True)
+    assert [f.name for f in files] == ["fe_ring_loaded.png", "fe_crack_tip.png",
+                                       "fe_ring_mode_01.png", "fe_ring_mode_02.png",
+                                       "fe_ring.vtu"]
+    loaded, tip, mode1, mode2 = (_image(f) for f in files[:4])
+    for image in (loaded, tip, mode1, mode2):
+        assert image.shape[:2] == (900, 900) and image.std() > 20
+    assert np.abs(mode1 - mode2).mean() > 1.0 and np.abs(loaded - mode1).mean() > 1.0
+    np.testing.assert_array_equal(_image(render_fe(fields, tmp_path / "b")[2]), mode1)
+    grid = pv.read(files[-1])
+    np.testing.assert_allclose(grid.point_data["von Mises [Pa]"], fields.von_mises)
+    assert grid.point_data["displacement [m]"].shape == (len(fields.points), 3)
+
+
+def test_fe_ring_fields_physics(cracked_ring_fields):
+    from hubvib.fe_render import ring_fields
+    from hubvib.stiffness_command import scaled_options
+    from meshing import raba118
+
+    fields = cracked_ring_fields
+    intact = ring_fields(raba118.ring_gear(), None, scaled_options(4.0), modes=1)
+    # LEFM: the stress is singular at the crack tip; intact, the rim there is barely loaded
+    near = lambda f: f.von_mises[np.hypot(*(f.points - fields.crack_tip).T) < 3e-3].max()
+    assert near(fields) > 5 * near(intact)
+    # an open crack: the ring is softer, the same torque turns it further
+    assert np.abs(fields.displacement).max() > np.abs(intact.displacement).max()
+    assert fields.mode_hz[0] < intact.mode_hz[0]
+    assert np.isfinite(fields.von_mises).all() and fields.von_mises.min() >= 0
+    assert np.all(np.diff(fields.mode_hz) > 0) and fields.mode_hz[0] > 1e3
+
+
+def test_fe_modes_sign_fixed():
+    """Two solves of the same model return the same shapes, largest entry positive."""
+    pytest.importorskip("skfem")
+    from fem.elasticity import plane_model
+    from fem.modal import lowest_modes
+    from meshing.annulus import annulus_mesh
+
+    model = plane_model(annulus_mesh(0.08, 0.1, 8e-3, 2), thickness=0.01)
+    a, b = (lowest_modes(model, 3, ["inner"]) for _ in range(2))
+    np.testing.assert_array_equal(a.shapes, b.shapes)
+    for shape in a.shapes.T:
+        assert shape[np.argmax(np.abs(shape))] > 0
