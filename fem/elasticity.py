@@ -15,6 +15,7 @@ import numpy as np
 from meshing.fe_mesh import FEMesh
 from meshing.to_skfem import to_skfem
 
+from .fast_assembly import elasticity_matrix
 from .material import Material, MaterialError
 from .solvers import SingularSystemError, pick, solve_spd
 
@@ -136,7 +137,6 @@ def plane_model(mesh: FEMesh, material: Material = Material(), thickness: float 
                 plane: str = "stress") -> PlaneModel:
     """Assemble K for a plane mesh; P1 or P2 follows the mesh order."""
     import skfem
-    from skfem.models.elasticity import linear_elasticity
 
     if mesh.dim != 2:
         raise ValueError(f"plane_model needs a plane mesh, got {mesh.cell_type}")
@@ -149,7 +149,7 @@ def plane_model(mesh: FEMesh, material: Material = Material(), thickness: float 
     element = skfem.ElementVector(skfem.ElementTriP2() if mesh.order == 2 else skfem.ElementTriP1())
     basis = skfem.Basis(fe, element, intorder=2 * mesh.order)
     t2 = time.perf_counter()
-    K = thickness * linear_elasticity(lam, mu).assemble(basis)
+    K = thickness * elasticity_matrix(basis, lam, mu)
     t3 = time.perf_counter()
     return PlaneModel(mesh, basis, K.tocsr(), material, thickness, plane,
                       {"to_skfem": t1 - t0, "basis": t2 - t1, "assembly": t3 - t2}, vertex_of)
@@ -211,8 +211,14 @@ def solve(model, loads: np.ndarray, fixed_groups: list[str], fixed_dofs=(),
     single = f.ndim == 1
     f = f.reshape(model.ndofs, -1)
     t0 = time.perf_counter()
+    rigid = rigid_body_modes(model.basis)
+    held = np.linalg.matrix_rank(rigid[fixed]) if len(fixed) else 0
+    if held < rigid.shape[1]:
+        raise SingularSystemError(
+            f"the supports leave {rigid.shape[1] - held} rigid-body motion(s) free (fixed "
+            f"groups {fixed_groups}, {len(fixed_dofs)} single DOFs): K is singular")
     method = pick(solver, len(free), fe.dim())
-    near_null = rigid_body_modes(model.basis)[free] if method == "amg" else None
+    near_null = rigid[free] if method == "amg" else None
     u = np.zeros_like(f)
     u[free] = solve_spd(model.K[free][:, free], f[free], method, near_null)
     return Solution(u[:, 0] if single else u, time.perf_counter() - t0, method)

@@ -54,12 +54,38 @@ class RingStiffness:
 
 def tooth_unit_forces(model, teeth) -> list[np.ndarray]:
     """Per tooth: load vectors (2, ndofs) of 1 N along x and along y spread uniformly
-    over its load patch (group ``tooth{k}_load``)."""
+    over its load patch (group ``tooth{k}_load``).
+
+    Two facet assemblies serve every tooth: the load of a traction that is
+    constant on each facet is ``B_x t_x + B_y t_y``, ``B`` holding one column per facet.
+    """
+    import scipy.sparse as sp
+    import skfem
+
+    groups = [f"tooth{k}_load" for k in teeth]
+    patch = model.facet_basis(groups)
+    owner = np.repeat(np.arange(len(groups)),
+                      [len(model.basis.mesh.boundaries[g]) for g in groups])
+
+    @skfem.Functional
+    def size(w):
+        return 1.0 + 0.0 * w.x[0]
+
+    patch_size = np.bincount(owner, size.elemental(patch)) * model.thickness  # [m^2]
+    per_facet = []
+    for i in range(2):
+        @skfem.LinearForm
+        def traction(v, w, i=i):
+            return model.thickness * v[i]
+
+        coo = traction.coo_data(patch)
+        facet = np.tile(np.arange(patch.nelems), patch.Nbfun)
+        per_facet.append(sp.csr_matrix((coo.data, (coo.indices[0], facet)),
+                                       shape=(model.ndofs, patch.nelems)))
     forces = []
-    for k in teeth:
-        patch = model.facet_basis([f"tooth{k}_load"])
-        length = model.boundary_means(patch, np.zeros(model.ndofs))[0]
-        forces.append(model.unit_traction_loads(patch) / (length * model.thickness))
+    for j in range(len(groups)):
+        on_tooth = (owner == j) / patch_size[j]
+        forces.append(np.array([b @ on_tooth for b in per_facet]))
     return forces
 
 

@@ -4,6 +4,13 @@ from __future__ import annotations
 import json
 import time
 
+from fem.solvers import SOLVERS
+
+#: solid mesh levels for c_ru in 3D: rim, tooth and load-patch element sizes [m]; the
+#: last is the default, the one before it gives the error estimate
+SOLID_LEVELS = ((10e-3, 5e-3, 4e-3), (7e-3, 4e-3, 3e-3), (5e-3, 3e-3, 2e-3))
+SOLID_REFERENCE = (4e-3, 2.2e-3, 1.5e-3)  # the benchmark's reference level (~1e6 DOFs)
+
 
 def add_parser(sub) -> None:
     p = sub.add_parser("stiffness", help="every stiffness of the lumped model: FE c_ru, c_r, "
@@ -11,6 +18,11 @@ def add_parser(sub) -> None:
     p.add_argument("--preset", default="raba118", choices=["raba118"])
     p.add_argument("--crack-depth", type=float, default=0.0, metavar="D",
                    help="root crack length at tooth 0 [m]; 0 = intact only")
+    p.add_argument("--solid", action="store_true",
+                   help="also c_ru and c_r of the solid (3D) ring, ~1 min per case")
+    p.add_argument("--solver", default="auto", choices=SOLVERS,
+                   help="sparse solver of c_ru, c_r; auto: SuperLU in 2D and below 6e4 DOFs, else "
+                   "PARDISO if installed, else AMG-CG")
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
 
@@ -24,22 +36,40 @@ def scaled_options(scale: float):
                        tip_size=scale * default.tip_size, load_size=scale * default.load_size)
 
 
-def estimate(ring, crack, scale: float = 1.0) -> dict:
+def solid_options(rim: float, tooth: float, load: float):
+    """Solid-mesh options with these rim, tooth and load-patch element sizes [m]."""
+    from dataclasses import replace
+
+    from meshing.ring_mesh_3d import SOLID_OPTIONS
+
+    return replace(SOLID_OPTIONS, size=rim, tooth_size=tooth, load_size=load,
+                   tip_size=min(load, SOLID_OPTIONS.tip_size))
+
+
+def estimate(ring, crack, scale: float = 1.0, solver: str = "auto", solid: bool = False
+             ) -> dict:
     """c_ru and c_r on the default mesh (sizes times ``scale``) and on one twice as coarse.
 
     The estimated error is the difference between the two (an upper bound when
-    the convergence is monotone with rate >= 1; see the annulus study).
+    the convergence is monotone with rate >= 1; see the annulus study).  With
+    ``solid``: the solid ring on the last two ``SOLID_LEVELS``, planet 1 on tooth 0 only.
     """
     from fem.ring_stiffness import ring_stiffness
     from meshing.ring_mesh import ring_mesh
+    from meshing.ring_mesh_3d import ring_mesh_3d
 
-    fine_options, coarse_options = scaled_options(scale), scaled_options(2 * scale)
+    if solid:
+        levels = {"coarse": solid_options(*SOLID_LEVELS[-2]),
+                  "fine": solid_options(*SOLID_LEVELS[-1])}
+    else:
+        levels = {"coarse": scaled_options(2 * scale), "fine": scaled_options(scale)}
     results = {}
-    for name, options in (("coarse", coarse_options), ("fine", fine_options)):
+    for name, options in levels.items():
         started = time.perf_counter()
-        mesh = ring_mesh(ring, crack, options)
+        mesh = (ring_mesh_3d(ring, crack, options=options) if solid
+                else ring_mesh(ring, crack, options))
         meshed = time.perf_counter()
-        result = ring_stiffness(ring, mesh)
+        result = ring_stiffness(ring, mesh, carrier_teeth=[0] if solid else None, solver=solver)
         results[name] = (result, meshed - started, time.perf_counter() - meshed)
     fine, coarse = results["fine"][0], results["coarse"][0]
     return {
@@ -47,7 +77,7 @@ def estimate(ring, crack, scale: float = 1.0) -> dict:
         "c_ru_min_N_m": float(fine.c_ru_positions.min()),
         "c_ru_max_N_m": float(fine.c_ru_positions.max()),
         "c_r_N_m": fine.c_r, "c_r_error_N_m": abs(fine.c_r - coarse.c_r),
-        "dofs": fine.dofs, "seconds_mesh": results["fine"][1],
+        "dofs": fine.dofs, "solver": fine.seconds["solver"], "seconds_mesh": results["fine"][1],
         "seconds_fe": results["fine"][2],
         "seconds_total": sum(r[1] + r[2] for r in results.values()),
     }
@@ -113,14 +143,9 @@ def run(args) -> int:
     bearing_rows = bearings()
     out = {}
     for name, crack in cases.items():
-        ring_rows = estimate(ring, crack)
-        rows = {
-            "c_ru": {"value_N_m": ring_rows["c_ru_N_m"], "error_N_m": ring_rows["c_ru_error_N_m"],
-                     "min_N_m": ring_rows["c_ru_min_N_m"], "max_N_m": ring_rows["c_ru_max_N_m"],
-                     "seconds_total": ring_rows["seconds_total"], "dofs": ring_rows["dofs"]},
-            "c_r": {"value_N_m": ring_rows["c_r_N_m"], "error_N_m": ring_rows["c_r_error_N_m"],
-                    "seconds_total": ring_rows["seconds_total"], "dofs": ring_rows["dofs"]},
-        }
+        rows = _ring_rows(estimate(ring, crack, solver=args.solver), "")
+        if args.solid:
+            rows.update(_ring_rows(estimate(ring, crack, solver=args.solver, solid=True), " 3D"))
         rows.update(intact_mesh_rows if crack is None else mesh_rows)
         rows.update(bearing_rows)
         out[name] = rows
@@ -129,13 +154,13 @@ def run(args) -> int:
         return 0
     for name, rows in out.items():
         print(f"== {name} ==")
-        print(f"{'':6} {'value [N/m]':>12} {'+-':>9} {'min':>11} {'max':>11} {'time [s]':>9}  "
+        print(f"{'':8} {'value [N/m]':>12} {'+-':>9} {'min':>11} {'max':>11} {'time [s]':>9}  "
               "independent checks")
         for key, r in rows.items():
             error = f"{r['error_N_m']:9.1e}" if "error_N_m" in r else f"{'formula':>9}"
             span = (f"{r['min_N_m']:11.4e} {r['max_N_m']:11.4e}" if "min_N_m" in r
                     else f"{'':11} {'':11}")
-            print(f"{key:6} {r['value_N_m']:12.5e} {error} {span} {r['seconds_total']:9.1f}  "
+            print(f"{key:8} {r['value_N_m']:12.5e} {error} {span} {r['seconds_total']:9.1f}  "
                   + _checks(key, r))
         if "c_rp" in rows and "engaged_N_m" in rows["c_rp"]:
             r = rows["c_rp"]
@@ -154,6 +179,15 @@ def run(args) -> int:
     return 0
 
 
+def _ring_rows(r: dict, suffix: str) -> dict:
+    common = {"seconds_total": r["seconds_total"], "dofs": r["dofs"], "solver": r["solver"]}
+    return {f"c_ru{suffix}": {"value_N_m": r["c_ru_N_m"], "error_N_m": r["c_ru_error_N_m"],
+                              "min_N_m": r["c_ru_min_N_m"], "max_N_m": r["c_ru_max_N_m"],
+                              **common},
+            f"c_r{suffix}": {"value_N_m": r["c_r_N_m"], "error_N_m": r["c_r_error_N_m"],
+                             **common}}
+
+
 def _checks(key: str, r: dict) -> str:
     if key in ("c_sp", "c_rp"):
         return (f"eps {r['contact_ratio']:.3f}; analytical {r['analytic_N_m']:.4e} "
@@ -164,4 +198,5 @@ def _checks(key: str, r: dict) -> str:
     if key in ("c_p", "c_c"):
         return (f"secant {r['secant_N_m']:.4e} at {r['load_N'] / 1e3:.1f} kN; "
                 f"{r['rollers']} rollers x {1e3 * r['roller_length_m']:.0f} mm")
-    return f"{r['dofs']} DOFs"
+    where = "solid, planet 1 on tooth 0" if key.endswith("3D") else "plane stress"
+    return f"{r['dofs']} DOFs, {r['solver']}, {where}"
