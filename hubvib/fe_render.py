@@ -8,7 +8,6 @@ deformation is magnified, by the factor printed on the image.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
 

@@ -103,7 +103,6 @@ def solid_race(options=None, crack=None, folder=None, mesh=None, calculix=True) 
 
     from fem.elasticity import solve
     from fem.ring_stiffness import mesh_force_load, planet_teeth
-    from hubvib.stiffness_command import SOLID_LEVELS, solid_options
     from fem.solid import solid_model
     from meshing import raba118
     from meshing.ring_mesh_3d import ring_mesh_3d
