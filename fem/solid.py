@@ -15,6 +15,7 @@ import numpy as np
 from meshing.fe_mesh import FEMesh
 from meshing.to_skfem import to_skfem
 
+from .elasticity import PlaneModel
 from .fast_assembly import elasticity_matrix
 from .material import Material
 
@@ -34,28 +35,9 @@ class SolidModel:
     def ndofs(self) -> int:
         return self.K.shape[0]
 
-    def facet_basis(self, groups: list[str]):
-        """skfem FacetBasis on the union of named surfaces."""
-        import skfem
-
-        fe = self.basis.mesh
-        missing = [g for g in groups if g not in fe.boundaries or len(fe.boundaries[g]) == 0]
-        if missing:
-            raise KeyError(f"the mesh has no boundary group {', '.join(map(repr, missing))}")
-        facets = np.concatenate([fe.boundaries[g] for g in groups])
-        return skfem.FacetBasis(fe, self.basis.elem, facets=facets, intorder=2 * self.mesh.order)
-
-    def unit_traction_loads(self, facet_basis) -> np.ndarray:
-        """Load vectors (2, ndofs) of a uniform 1 Pa traction along x and along y [N]."""
-        import skfem
-
-        loads = []
-        for i in range(2):
-            @skfem.LinearForm
-            def load(v, w, i=i):
-                return v[i]
-            loads.append(load.assemble(facet_basis))
-        return np.array(loads)
+    # with thickness 1 the plane model's surface integrals hold in 3D
+    facet_basis = PlaneModel.facet_basis
+    unit_traction_loads = PlaneModel.unit_traction_loads
 
     @staticmethod
     def boundary_means(facet_basis, u: np.ndarray) -> tuple[float, float, float, float]:
