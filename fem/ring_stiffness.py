@@ -101,6 +101,16 @@ def mesh_force_load(model, ring: RingGear, teeth: list[int], force: float) -> np
     return force * sum(ring.load_point(k)[1] @ f for k, f in zip(teeth, unit))
 
 
+def reduced_torsional_stiffness(model, ring: RingGear, teeth: list[int], u: np.ndarray
+                                ) -> float:
+    """c_ru = T / theta / r_b^2 [N/m] from the displacement ``u`` under 1 N along the line
+    of action on each of ``teeth``; theta is the mean rotation of their root lands."""
+    rb = ring.gear.base_diameter / 2
+    roots = model.facet_basis([f"tooth{k}_root" for k in teeth])
+    theta = -model.boundary_means(roots, u)[3]  # clockwise positive
+    return len(teeth) * rb / theta / rb ** 2
+
+
 def ring_stiffness(ring: RingGear, mesh: FEMesh, material: Material = Material(),
                    n_planets: int = 3, carrier_teeth=None, solver: str = "auto"
                    ) -> RingStiffness:
@@ -139,13 +149,8 @@ def ring_stiffness(ring: RingGear, mesh: FEMesh, material: Material = Material()
     t2 = time.perf_counter()
     solution = solve(model, loads, ["supports"], solver=solver)
     t3 = time.perf_counter()
-    rb = ring.gear.base_diameter / 2
-    torque = n_planets * 1.0 * rb
-    c_ru = []
-    for column, teeth in enumerate(loaded):
-        roots = model.facet_basis([f"tooth{k}_root" for k in teeth])
-        theta = -model.boundary_means(roots, solution.u[:, column])[3]  # clockwise positive
-        c_ru.append(torque / theta / rb ** 2)
+    c_ru = [reduced_torsional_stiffness(model, ring, teeth, solution.u[:, column])
+            for column, teeth in enumerate(loaded)]
     all_roots = model.facet_basis([f"tooth{k}_root" for k in range(z)])
     c_r = [1.0 / model.boundary_means(all_roots, solution.u[:, column])[1 + axis]
            for column, axis in ((-2, 0), (-1, 1))]

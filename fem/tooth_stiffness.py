@@ -67,14 +67,15 @@ def contact_radii(body: ToothedBody, pairs: list[GearPair]) -> tuple[float, floa
     return float(min(radii)), float(max(radii))
 
 
-def fe_curve(body: ToothedBody, radii_range, material: Material, options, crack=None
-             ) -> ToothCurve:
-    """FE tooth compliance of tooth 0 at Chebyshev radii of ``radii_range``."""
+def fe_curve(body: ToothedBody, radii_range, material: Material, options, crack=None,
+             mesher=None) -> ToothCurve:
+    """FE tooth compliance of tooth 0 at Chebyshev radii of ``radii_range``;
+    ``mesher(body, crack, options)`` replaces ``ring_mesh`` (to share meshes)."""
     from meshing.ring_mesh import ring_mesh
 
     radii = chebyshev_radii(*radii_range)
     started = time.perf_counter()
-    mesh = ring_mesh(body, crack, options)
+    mesh = (mesher or ring_mesh)(body, crack, options)
     meshed = time.perf_counter() - started
     result = fe_tooth_compliance(body, mesh, radii, material)
     seconds = {"mesh": meshed, "assembly": result.seconds["assembly"],
@@ -155,10 +156,11 @@ def _intact_curve(body, span, material, options) -> ToothCurve:
 
 
 def engaged_ring_mesh(planet: ToothedBody, ring: ToothedBody, crack, options=None,
-                      material: Material = Material()) -> EngagedMesh:
+                      material: Material = Material(), mesher=None) -> EngagedMesh:
     """c_rp over the engagement of ring tooth 0 carrying ``crack`` (depth > 0).
 
-    The intact tooth curves are kept between calls (a crack sweep reuses them).
+    The intact tooth curves are kept between calls (a crack sweep reuses them);
+    ``mesher`` meshes the cracked ring (see ``fe_curve``).
     """
     from meshing.ring_mesh import MeshOptions
 
@@ -167,7 +169,7 @@ def engaged_ring_mesh(planet: ToothedBody, ring: ToothedBody, crack, options=Non
     planet_curve = _intact_curve(planet, contact_radii(planet, [pair]), material, options)
     span = contact_radii(ring, [pair])
     ring_curve = _intact_curve(ring, span, material, options)
-    cracked = fe_curve(ring, span, material, options, crack)
+    cracked = fe_curve(ring, span, material, options, crack, mesher)
     q_h = hertz_compliance(min(planet.gear.face_width, ring.gear.face_width), material)
     return EngagedMesh(
         mesh_cycle(pair, planet_curve, ring_curve, q_h, marked_pair_compliance=cracked),

@@ -46,18 +46,20 @@ def solid_options(rim: float, tooth: float, load: float):
                    tip_size=min(load, SOLID_OPTIONS.tip_size))
 
 
-def estimate(ring, crack, scale: float = 1.0, solver: str = "auto", solid: bool = False
-             ) -> dict:
+def estimate(ring, crack, scale: float = 1.0, solver: str = "auto", solid: bool = False,
+             mesher=None) -> dict:
     """c_ru and c_r on the default mesh (sizes times ``scale``) and on one twice as coarse.
 
     The estimated error is the difference between the two (an upper bound when
     the convergence is monotone with rate >= 1; see the annulus study).  With
     ``solid``: the solid ring on the last two ``SOLID_LEVELS``, planet 1 on tooth 0 only.
+    ``mesher(ring, crack, options)`` replaces the plane mesher (to share meshes).
     """
     from fem.ring_stiffness import ring_stiffness
     from meshing.ring_mesh import ring_mesh
     from meshing.ring_mesh_3d import ring_mesh_3d
 
+    mesher = mesher or ring_mesh
     if solid:
         levels = {"coarse": solid_options(*SOLID_LEVELS[-2]),
                   "fine": solid_options(*SOLID_LEVELS[-1])}
@@ -67,7 +69,7 @@ def estimate(ring, crack, scale: float = 1.0, solver: str = "auto", solid: bool 
     for name, options in levels.items():
         started = time.perf_counter()
         mesh = (ring_mesh_3d(ring, crack, options=options) if solid
-                else ring_mesh(ring, crack, options))
+                else mesher(ring, crack, options))
         meshed = time.perf_counter()
         result = ring_stiffness(ring, mesh, carrier_teeth=[0] if solid else None, solver=solver)
         results[name] = (result, meshed - started, time.perf_counter() - meshed)

@@ -102,7 +102,7 @@ def solid_race(options=None, crack=None, folder=None, mesh=None, calculix=True) 
     from pathlib import Path
 
     from fem.elasticity import solve
-    from fem.ring_stiffness import mesh_force_load, planet_teeth
+    from fem.ring_stiffness import mesh_force_load, planet_teeth, reduced_torsional_stiffness
     from fem.solid import solid_model
     from meshing import raba118
     from meshing.ring_mesh_3d import ring_mesh_3d
@@ -119,11 +119,9 @@ def solid_race(options=None, crack=None, folder=None, mesh=None, calculix=True) 
     f = mesh_force_load(model, ring, teeth, 1.0)
     solution = solve(model, f, ["supports"])
     solved = time.perf_counter()
-    rb = ring.gear.base_diameter / 2
-    roots = model.facet_basis([f"tooth{k}_root" for k in teeth])
 
     def c_ru(u):
-        return len(teeth) * rb / -model.boundary_means(roots, u)[3] / rb ** 2
+        return reduced_torsional_stiffness(model, ring, teeth, u)
 
     row = {"dofs": model.ndofs, "c_ru": c_ru(solution.u), "mesh_s": meshed - started,
            "assembly_s": assembled - meshed, "solve_s": solved - assembled,
