@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from meshing.annulus import annulus_mesh
+from hubvib.meshing.annulus import annulus_mesh
 
 from .elasticity import plane_model, solve
 from .material import Material

@@ -19,7 +19,7 @@ import math
 import numpy as np
 from scipy.integrate import quad
 
-from meshing.strip import edge_crack_strip
+from hubvib.meshing.strip import edge_crack_strip
 
 from .elasticity import plane_model, solve
 from .material import Material

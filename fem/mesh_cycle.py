@@ -15,8 +15,8 @@ from typing import Callable
 
 import numpy as np
 
-from meshing.gear import GearGeometryError, centre_distance, working_pressure_angle
-from meshing.ring_gear import ToothedBody
+from hubvib.meshing.gear import GearGeometryError, centre_distance, working_pressure_angle
+from hubvib.meshing.ring_gear import ToothedBody
 
 CYCLE_POINTS = 400  # contact positions per base pitch
 

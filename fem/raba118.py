@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 
-from meshing import raba118 as geometry
+from hubvib.meshing import raba118 as geometry
 
 from .bearing import RollerBearing
 

@@ -17,8 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from meshing.fe_mesh import FEMesh
-from meshing.ring_gear import RingGear
+from hubvib.meshing.fe_mesh import FEMesh
+from hubvib.meshing.ring_gear import RingGear
 
 from .elasticity import plane_model, solve
 from .material import Material

@@ -12,8 +12,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from meshing.fe_mesh import FEMesh
-from meshing.to_skfem import to_skfem
+from hubvib.meshing.fe_mesh import FEMesh
+from hubvib.meshing.to_skfem import to_skfem
 
 from .elasticity import PlaneModel
 from .fast_assembly import elasticity_matrix

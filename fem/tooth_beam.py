@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import simpson
 
-from meshing.ring_gear import RingGear, ToothedBody
+from hubvib.meshing.ring_gear import RingGear, ToothedBody
 
 from .material import Material
 

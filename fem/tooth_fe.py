@@ -22,8 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from meshing.fe_mesh import FEMesh
-from meshing.ring_gear import RingGear, ToothedBody
+from hubvib.meshing.fe_mesh import FEMesh
+from hubvib.meshing.ring_gear import RingGear, ToothedBody
 
 from .elasticity import plane_model, solve
 from .material import Material

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.polynomial import chebyshev
 
-from meshing.ring_gear import ToothedBody
+from hubvib.meshing.ring_gear import ToothedBody
 
 from .iso6336 import iso_stiffness
 from .material import Material
@@ -71,7 +71,7 @@ def fe_curve(body: ToothedBody, radii_range, material: Material, options, crack=
              mesher=None) -> ToothCurve:
     """FE tooth compliance of tooth 0 at Chebyshev radii of ``radii_range``;
     ``mesher(body, crack, options)`` replaces ``ring_mesh`` (to share meshes)."""
-    from meshing.ring_mesh import ring_mesh
+    from hubvib.meshing.ring_mesh import ring_mesh
 
     radii = chebyshev_radii(*radii_range)
     started = time.perf_counter()
@@ -162,7 +162,7 @@ def engaged_ring_mesh(planet: ToothedBody, ring: ToothedBody, crack, options=Non
     The intact tooth curves are kept between calls (a crack sweep reuses them);
     ``mesher`` meshes the cracked ring (see ``fe_curve``).
     """
-    from meshing.ring_mesh import MeshOptions
+    from hubvib.meshing.ring_mesh import MeshOptions
 
     options = MeshOptions() if options is None else options
     pair = GearPair(planet, ring)
@@ -180,7 +180,7 @@ def reducer_mesh_stiffness(sun: ToothedBody, planet: ToothedBody, ring: ToothedB
                            options=None, crack=None, material: Material = Material(),
                            ) -> dict[str, PairStiffness]:
     """``{"c_sp": ..., "c_rp": ...}`` of a planetary stage; ``crack`` on ring tooth 0."""
-    from meshing.ring_mesh import MeshOptions
+    from hubvib.meshing.ring_mesh import MeshOptions
 
     options = MeshOptions() if options is None else options
     if crack is not None and crack.tooth != 0:

@@ -13,8 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
-from lumped import Spectrum, frequency_sensitivity, natural_modes
-from lumped.tracking import match
+from hubvib.lumped import Spectrum, frequency_sensitivity, natural_modes
+from hubvib.lumped.tracking import match
 
 from .crack_sweep import run_fe_cases
 from .output import save_figure, write_csv, write_json, write_text
@@ -165,7 +165,7 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
 
 def rendered_depth(sweep) -> float:
     """The deepest crack of the sweep that still has a tip (not through the rim) [m]."""
-    from meshing import raba118
+    from hubvib.meshing import raba118
 
     from .crack_sweep import crack_of
 
@@ -175,11 +175,11 @@ def rendered_depth(sweep) -> float:
 
 
 def _render_fe(scene: Scene, folder: Path) -> list[Path]:
-    from meshing import raba118
+    from hubvib.meshing import raba118
 
     from .crack_sweep import ACCURACY, crack_of
     from .fe_render import render_fe, ring_fields
-    from .stiffness_command import scaled_options
+    from hubvib.meshing.levels import scaled_options
 
     depth = rendered_depth(scene.crack)
     crack = crack_of(scene.crack, depth) if depth > 0 else None

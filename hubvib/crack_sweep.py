@@ -57,14 +57,14 @@ class CrackSweep:
 
 
 def case_key(sweep: CrackSweep, depth: float) -> str:
-    from meshing import cache, raba118
+    from hubvib.meshing import cache, raba118
 
     return cache.key("ring-stiffness", raba118.ring_gear(), crack_of(sweep, depth),
                      ACCURACY[sweep.accuracy], "c_rp engaged")
 
 
 def crack_of(sweep: CrackSweep, depth: float):
-    from meshing.crack import Crack
+    from hubvib.meshing.crack import Crack
 
     return Crack(sweep.tooth, float(depth), sweep.angle, sweep.start)
 
@@ -76,24 +76,25 @@ def fe_case(sweep: CrackSweep, depth: float) -> dict:
     import functools
     import time
 
-    from meshing import raba118
-    from meshing.ring_mesh import ring_mesh
+    from hubvib.meshing import raba118
+    from hubvib.meshing.ring_mesh import ring_mesh
 
-    from .stiffness_command import estimate
+    from hubvib.fem.estimate import estimate_ring
 
     started = time.perf_counter()
     scale = ACCURACY[sweep.accuracy]
     mesher = functools.lru_cache(maxsize=2)(ring_mesh)
-    result = dict(estimate(raba118.ring_gear(), crack_of(sweep, depth), scale, mesher=mesher),
+    result = dict(estimate_ring(raba118.ring_gear(), crack_of(sweep, depth), scale,
+                                mesher=mesher).to_dict(),
                   depth_m=float(depth))
     engaged = {"c_rp_engaged_ratio": 1.0, "c_rp_engaged_ratio_error": 0.0,
                "c_rp_engaged_min_ratio": 1.0}
     if depth > 0:
         from dataclasses import replace
 
-        from fem.tooth_stiffness import engaged_ring_mesh
+        from hubvib.fem.tooth_stiffness import engaged_ring_mesh
 
-        from .stiffness_command import scaled_options
+        from hubvib.meshing.levels import scaled_options
 
         crack = replace(crack_of(sweep, depth), tooth=0)
         planet, ring = raba118.gear_body("planet"), raba118.ring_gear()
@@ -107,7 +108,7 @@ def fe_case(sweep: CrackSweep, depth: float) -> dict:
 
 
 def cache_folder() -> Path:
-    from meshing.cache import root_folder
+    from hubvib.meshing.cache import root_folder
 
     return root_folder() / "stiffness"
 

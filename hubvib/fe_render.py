@@ -37,12 +37,12 @@ class RingFields:
 
 def ring_fields(ring, crack=None, options=None, modes: int = MODES) -> RingFields:
     """Solve the Raba ring under its planet mesh forces and for its lowest ``modes``."""
-    from fem import raba118 as loads
-    from fem.elasticity import plane_model, solve
-    from fem.modal import lowest_modes
-    from fem.ring_stiffness import mesh_force_load, planet_teeth
-    from fem.stress import von_mises
-    from meshing.ring_mesh import MeshOptions, ring_mesh
+    from hubvib.fem import raba118 as loads
+    from hubvib.fem.elasticity import plane_model, solve
+    from hubvib.fem.modal import lowest_modes
+    from hubvib.fem.ring_stiffness import mesh_force_load, planet_teeth
+    from hubvib.fem.stress import von_mises
+    from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
 
     mesh = ring_mesh(ring, crack, options or MeshOptions())
     model = plane_model(mesh, thickness=ring.gear.face_width)

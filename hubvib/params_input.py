@@ -13,7 +13,7 @@ import math
 import tomllib
 from pathlib import Path
 
-from lumped import ParameterError, PlanetaryParameters, equally_spaced_angles, field_names, preset
+from hubvib.lumped import ParameterError, PlanetaryParameters, equally_spaced_angles, field_names, preset
 
 CONVENIENCE_KEYS = ("n_planets", "theta_deg", "alpha_w_deg")
 TUPLE_KEYS = ("theta", "theta_deg", "c_rp_factors")

@@ -43,7 +43,7 @@ from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 
-from lumped import METHODS, ParameterError, PlanetaryParameters, field_names
+from hubvib.lumped import METHODS, ParameterError, PlanetaryParameters, field_names
 
 from .crack_sweep import ACCURACY, APPLY, STARTS, CrackSweep
 from .params_input import load_parameters
@@ -79,16 +79,41 @@ class Scene:
     vtm: bool = False
 
 
+#: the shipped scene ``hubvib run`` runs without an argument
+DEFAULT_SCENE = "raba118_crack"
+
+
+def shipped_scenes() -> dict[str, str]:
+    """Every shipped scene: name -> its first comment line (what it studies)."""
+    out = {}
+    for entry in sorted(resources.files("hubvib.scenes").iterdir(), key=lambda e: e.name):
+        if entry.name.endswith(".toml"):
+            first = entry.read_text(encoding="utf-8").splitlines()[0]
+            out[entry.name[:-5]] = first.lstrip("# ").strip()
+    return out
+
+
+def shipped_scene_text(name: str) -> str:
+    """The text of a shipped scene."""
+    if name not in shipped_scenes():
+        raise SceneError(f"no scene file {name!r} and no shipped scene of that name; shipped: "
+                         f"{', '.join(shipped_scenes())}")
+    return resources.files("hubvib.scenes").joinpath(f"{name}.toml").read_text(encoding="utf-8")
+
+
 def default_scene_text() -> str:
-    """The embedded default scene (Raba 118/76, ring stiffness lowered by a crack)."""
-    return resources.files("hubvib.scenes").joinpath("default.toml").read_text(encoding="utf-8")
+    """The embedded default scene (Raba 118/76 crack-sensitivity study)."""
+    return shipped_scene_text(DEFAULT_SCENE)
 
 
-def load_scene(path: Path | None = None) -> Scene:
-    """Parse and validate a scene file; ``None`` gives the embedded default."""
+def load_scene(path: Path | str | None = None) -> Scene:
+    """Parse and validate a scene: a TOML file, a shipped scene's name, or ``None`` for
+    the default."""
     if path is None:
-        return parse_scene(default_scene_text(), "default")
+        return parse_scene(default_scene_text(), DEFAULT_SCENE)
     path = Path(path)
+    if not path.exists() and path.suffix != ".toml" and path.parent == Path("."):
+        return parse_scene(shipped_scene_text(path.name), path.name)
     try:
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
@@ -203,8 +228,8 @@ def _checked_depths(sweep: CrackSweep, through: bool) -> CrackSweep:
     """Validate every depth against the Raba ring (no meshing) and add the through depth."""
     from dataclasses import replace
 
-    from meshing import raba118
-    from meshing.gear import GearGeometryError
+    from hubvib.meshing import raba118
+    from hubvib.meshing.gear import GearGeometryError
 
     from .crack_sweep import crack_of
 

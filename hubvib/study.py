@@ -7,8 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
-from lumped import FrequencyShift, Spectrum, frequency_sensitivity, frequency_shift, natural_modes
-from lumped.sensitivity import Sensitivity
+from hubvib.lumped import FrequencyShift, Spectrum, frequency_sensitivity, frequency_shift, natural_modes
+from hubvib.lumped.sensitivity import Sensitivity
 
 from .output import save_figure, write_csv, write_json, write_text
 from .scene import Scene

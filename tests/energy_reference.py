@@ -50,7 +50,7 @@ def stiffness_by_polarisation(params, number=float, sin=None, cos=None):
 
 def mp_frequencies(params, dps=50):
     """Natural frequencies [rad/s] from the polarised energy in ``dps`` digits."""
-    from lumped.network import mass_diagonal
+    from hubvib.lumped.network import mass_diagonal
 
     with mp.workdps(dps):
         K = stiffness_by_polarisation(params, mp.mpf, mp.sin, mp.cos)

@@ -7,15 +7,15 @@ import pytest
 pytest.importorskip("gmsh")
 skfem = pytest.importorskip("skfem")
 
-from fem.annulus import fe_k_theta  # noqa: E402
-from fem.elasticity import SingularSystemError, plane_model, solve  # noqa: E402
-from fem.material import Material, MaterialError  # noqa: E402
-from fem.ring_stiffness import ring_stiffness  # noqa: E402
-from meshing import raba118  # noqa: E402
-from meshing.annulus import annulus_mesh  # noqa: E402
-from meshing.crack import Crack  # noqa: E402
-from meshing.ring_gear import Supports  # noqa: E402
-from meshing.ring_mesh import MeshOptions, ring_mesh  # noqa: E402
+from hubvib.fem.annulus import fe_k_theta  # noqa: E402
+from hubvib.fem.elasticity import SingularSystemError, plane_model, solve  # noqa: E402
+from hubvib.fem.material import Material, MaterialError  # noqa: E402
+from hubvib.fem.ring_stiffness import ring_stiffness  # noqa: E402
+from hubvib.meshing import raba118  # noqa: E402
+from hubvib.meshing.annulus import annulus_mesh  # noqa: E402
+from hubvib.meshing.crack import Crack  # noqa: E402
+from hubvib.meshing.ring_gear import Supports  # noqa: E402
+from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh  # noqa: E402
 
 A, B, T = 0.08, 0.10, 0.01  # annulus radii and thickness [m]
 STEEL = Material()

@@ -3,8 +3,8 @@ import math
 import numpy as np
 import pytest
 
-from meshing import raba118
-from meshing.gear import (GearGeometryError, SpurGear, centre_distance, involute,
+from hubvib.meshing import raba118
+from hubvib.meshing.gear import (GearGeometryError, SpurGear, centre_distance, involute,
                           inverse_involute, working_pressure_angle)
 
 DEG = math.pi / 180

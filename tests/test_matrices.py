@@ -3,7 +3,7 @@ import math
 import numpy as np
 import pytest
 
-import lumped
+from hubvib import lumped
 from energy_reference import stiffness_by_polarisation
 
 

@@ -4,14 +4,14 @@ import math
 import numpy as np
 import pytest
 
-from meshing import measure, raba118
-from meshing.crack import Crack
-from meshing.gear import GearGeometryError, SpurGear
-from meshing.profile import ShaperCutter, ToothProfile
-from meshing.ring_gear import RingGear, Supports
+from hubvib.meshing import measure, raba118
+from hubvib.meshing.crack import Crack
+from hubvib.meshing.gear import GearGeometryError, SpurGear
+from hubvib.meshing.profile import ShaperCutter, ToothProfile
+from hubvib.meshing.ring_gear import RingGear, Supports
 
 pytest.importorskip("gmsh")
-from meshing.ring_mesh import MeshOptions, ring_mesh  # noqa: E402
+from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh  # noqa: E402
 
 RING = raba118.ring_gear()
 COARSE = MeshOptions(size=4e-3, tooth_size=1e-3, tip_size=1e-4, load_size=2e-4)
@@ -72,7 +72,7 @@ def test_fillet_tangent_is_the_derivative():
 
 def test_internal_root_circle_is_cut_by_the_shaper():
     """ISO 21771: d_f2 = 2 a_0 + d_a0 with inv a_w0 = inv a + 2 tan a (x2 - x0)/(z2 - z0)."""
-    from meshing.gear import inverse_involute, involute
+    from hubvib.meshing.gear import inverse_involute, involute
     g, cut = raba118.ring(), ShaperCutter()
     a = g.pressure_angle
     aw = inverse_involute(float(involute(a)) + 2 * math.tan(a) * g.profile_shift / (64 - 25))
@@ -234,7 +234,7 @@ def test_mesh_is_deterministic(intact):
 
 def test_skfem_sees_the_groups(cracked):
     skfem = pytest.importorskip("skfem")
-    from meshing.to_skfem import to_skfem
+    from hubvib.meshing.to_skfem import to_skfem
     fe, _ = to_skfem(cracked)
     assert isinstance(fe, skfem.MeshTri2)
     facets = fe.boundaries["crack_a"]
@@ -271,7 +271,7 @@ def test_bad_ring_and_options():
 
 
 def test_cache_reuses_meshes(tmp_path):
-    from meshing.cache import cached
+    from hubvib.meshing.cache import cached
     calls = []
 
     def build():
@@ -314,7 +314,7 @@ def test_external_gear_body_mesh(name):
 
 def test_external_gear_body_rejects_bad_input():
     with pytest.raises(GearGeometryError, match="bore_diameter"):
-        from meshing.gear_body import GearBody
+        from hubvib.meshing.gear_body import GearBody
         GearBody(raba118.planet(), 0.07)
     with pytest.raises(GearGeometryError, match="crack"):
         ring_mesh(raba118.gear_body("sun"), Crack(0, 1e-3))

@@ -4,14 +4,14 @@ import math
 import numpy as np
 import pytest
 
-from meshing import measure
-from meshing.crack import Crack, CrackFront
-from meshing.gear import GearGeometryError, SpurGear
-from meshing.ring_gear import RingGear, Supports
+from hubvib.meshing import measure
+from hubvib.meshing.crack import Crack, CrackFront
+from hubvib.meshing.gear import GearGeometryError, SpurGear
+from hubvib.meshing.ring_gear import RingGear, Supports
 
 pytest.importorskip("gmsh")
-from meshing.ring_mesh import MeshOptions  # noqa: E402
-from meshing.ring_mesh_3d import ring_mesh_3d  # noqa: E402
+from hubvib.meshing.ring_mesh import MeshOptions  # noqa: E402
+from hubvib.meshing.ring_mesh_3d import ring_mesh_3d  # noqa: E402
 
 # A small ring (40 teeth, 8 mm wide) keeps the solid meshes to a few seconds.
 GEAR = SpurGear(40, 3.25e-3, math.radians(20), 0.3, face_width=8e-3, internal=True)
@@ -106,7 +106,7 @@ def test_zero_depth_crack_gives_the_intact_mesh(intact):
 
 def test_skfem_sees_solid_groups_and_volume(semi):
     skfem = pytest.importorskip("skfem")
-    from meshing.to_skfem import to_skfem
+    from hubvib.meshing.to_skfem import to_skfem
 
     fe, _ = to_skfem(semi)
     basis = skfem.Basis(fe, fe.elem())
@@ -139,7 +139,7 @@ def test_bad_front(kwargs, message):
 
 def test_vtu_has_vtk_tetra10_order(semi, tmp_path):
     meshio = pytest.importorskip("meshio")
-    from meshing.export import write_png, write_vtu
+    from hubvib.meshing.export import write_png, write_vtu
 
     back = meshio.read(write_vtu(semi, tmp_path / "semi.vtu"))
     cells = back.cells_dict["tetra10"]

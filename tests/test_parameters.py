@@ -2,8 +2,8 @@ import math
 
 import pytest
 
-import lumped
-from lumped import ParameterError
+from hubvib import lumped
+from hubvib.lumped import ParameterError
 
 
 def test_raba118_preset_matches_paper_table():

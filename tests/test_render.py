@@ -7,8 +7,8 @@ pv = pytest.importorskip("pyvista")
 imageio = pytest.importorskip("imageio")
 
 from hubvib.render import render_mode  # noqa: E402
-from lumped import natural_modes  # noqa: E402
-from lumped.presets import raba118  # noqa: E402
+from hubvib.lumped import natural_modes  # noqa: E402
+from hubvib.lumped.presets import raba118  # noqa: E402
 
 PARAMS = raba118()
 SPECTRUM = natural_modes(PARAMS)
@@ -45,9 +45,9 @@ def cracked_ring_fields():
     pytest.importorskip("gmsh")
     pytest.importorskip("skfem")
     from hubvib.fe_render import ring_fields
-    from hubvib.stiffness_command import scaled_options
-    from meshing import raba118
-    from meshing.crack import Crack
+    from hubvib.meshing.levels import scaled_options
+    from hubvib.meshing import raba118
+    from hubvib.meshing.crack import Crack
 
     return ring_fields(raba118.ring_gear(), Crack(0, 0.012), scaled_options(4.0), modes=2)
 
@@ -72,8 +72,8 @@ def test_fe_renders_are_real_distinct_and_repeatable(tmp_path, cracked_ring_fiel
 
 def test_fe_ring_fields_physics(cracked_ring_fields):
     from hubvib.fe_render import ring_fields
-    from hubvib.stiffness_command import scaled_options
-    from meshing import raba118
+    from hubvib.meshing.levels import scaled_options
+    from hubvib.meshing import raba118
 
     fields = cracked_ring_fields
     intact = ring_fields(raba118.ring_gear(), None, scaled_options(4.0), modes=1)
@@ -90,9 +90,9 @@ def test_fe_ring_fields_physics(cracked_ring_fields):
 def test_fe_modes_sign_fixed():
     """Two solves of the same model return the same shapes, largest entry positive."""
     pytest.importorskip("skfem")
-    from fem.elasticity import plane_model
-    from fem.modal import lowest_modes
-    from meshing.annulus import annulus_mesh
+    from hubvib.fem.elasticity import plane_model
+    from hubvib.fem.modal import lowest_modes
+    from hubvib.meshing.annulus import annulus_mesh
 
     model = plane_model(annulus_mesh(0.08, 0.1, 8e-3, 2), thickness=0.01)
     a, b = (lowest_modes(model, 3, ["inner"]) for _ in range(2))

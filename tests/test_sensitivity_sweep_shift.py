@@ -3,7 +3,7 @@ import math
 import numpy as np
 import pytest
 
-import lumped
+from hubvib import lumped
 
 
 def _central_difference(params, parameter, h=1e-5):

@@ -7,9 +7,9 @@ import pytest
 
 skfem = pytest.importorskip("skfem")
 
-from fem.elasticity import SingularSystemError, rigid_body_modes, solve  # noqa: E402
-from fem.fast_assembly import elasticity_matrix  # noqa: E402
-from fem.solvers import pick  # noqa: E402
+from hubvib.fem.elasticity import SingularSystemError, rigid_body_modes, solve  # noqa: E402
+from hubvib.fem.fast_assembly import elasticity_matrix  # noqa: E402
+from hubvib.fem.solvers import pick  # noqa: E402
 from skfem.models.elasticity import linear_elasticity  # noqa: E402
 
 
@@ -89,9 +89,9 @@ def test_solver_choice_by_size_and_name():
 @pytest.fixture(scope="module")
 def coarse_solid_ring():
     pytest.importorskip("gmsh")
-    from meshing import raba118
-    from meshing.ring_mesh_3d import ring_mesh_3d
-    from hubvib.stiffness_command import solid_options
+    from hubvib.meshing import raba118
+    from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
+    from hubvib.meshing.levels import solid_options
 
     return ring_mesh_3d(raba118.ring_gear(), None, options=solid_options(16e-3, 8e-3, 6e-3))
 
@@ -100,9 +100,9 @@ def coarse_solid_ring():
 def test_solid_c_ru_between_plane_stress_and_plane_strain(coarse_solid_ring):
     """A 40 mm wide ring in 3D is stiffer than in plane stress and softer than in plane
     strain, whose bending stiffness is 1 / (1 - nu^2) = 1.099 times higher."""
-    from fem.ring_stiffness import ring_stiffness
-    from meshing import raba118
-    from meshing.ring_mesh import ring_mesh
+    from hubvib.fem.ring_stiffness import ring_stiffness
+    from hubvib.meshing import raba118
+    from hubvib.meshing.ring_mesh import ring_mesh
 
     ring = raba118.ring_gear()
     solid = ring_stiffness(ring, coarse_solid_ring, carrier_teeth=[0])
@@ -116,7 +116,7 @@ def test_solid_c_ru_between_plane_stress_and_plane_strain(coarse_solid_ring):
 def test_calculix_solves_the_same_problem(tmp_path, coarse_solid_ring):
     """Second code: CalculiX on our mesh and nodal loads gives the same displacements
     to its print precision (7 digits) and the same c_ru (1e-6)."""
-    from validation.benchmark import solid_race
+    from hubvib.validation.benchmark import solid_race
 
     row = solid_race(mesh=coarse_solid_ring, folder=tmp_path)
     assert row["max_rel_difference"] < 1e-6

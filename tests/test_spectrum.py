@@ -1,10 +1,10 @@
 import numpy as np
 import pytest
 
-import lumped
-from lumped.eigensolve import solve_assembled
-from lumped.network import mass_diagonal
-from validation.raba118 import PUBLISHED_RAD_S
+from hubvib import lumped
+from hubvib.lumped.eigensolve import solve_assembled
+from hubvib.lumped.network import mass_diagonal
+from hubvib.validation.raba118 import PUBLISHED_RAD_S
 
 
 def test_printed_matrix_reproduces_published_spectrum():
@@ -63,7 +63,7 @@ def test_repeatable_bitwise():
 @pytest.mark.parametrize("n", range(3, 13))
 def test_multiplicities_lin_parker(n):
     """Lin & Parker (1999): 6 rotational x1, 6 translational x2, 3 planet x(N-3)."""
-    from validation.theory import expected_pattern, multiplicity_pattern
+    from hubvib.validation.theory import expected_pattern, multiplicity_pattern
 
     params = lumped.raba118().replace(theta=lumped.equally_spaced_angles(n, 0.4))
     assert multiplicity_pattern(params) == expected_pattern(n)

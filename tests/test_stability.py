@@ -6,9 +6,9 @@ The reference is built here from the paper's energy by polarisation in mpmath
 import numpy as np
 import pytest
 
-import lumped
+from hubvib import lumped
 from energy_reference import mp_frequencies
-from validation import stability
+from hubvib.validation import stability
 
 CASES = stability.cases()
 

@@ -10,20 +10,20 @@ import pytest
 pytest.importorskip("gmsh")
 pytest.importorskip("skfem")
 
-from fem.bearing import BearingError, RollerBearing  # noqa: E402
-from fem.edge_crack import fe_rotation_compliance, handbook_added_compliance  # noqa: E402
-from fem.elasticity import plane_model  # noqa: E402
-from fem.iso6336 import C_M, iso_stiffness  # noqa: E402
-from fem.material import Material  # noqa: E402
-from fem.mesh_cycle import GearPair, mesh_cycle  # noqa: E402
-from fem.modal import lowest_modes  # noqa: E402
-from fem.tooth_beam import beam_compliance, hertz_compliance  # noqa: E402
-from fem.tooth_fe import fe_tooth_compliance  # noqa: E402
-from fem.tooth_stiffness import reducer_mesh_stiffness  # noqa: E402
-from meshing import raba118  # noqa: E402
-from meshing.annulus import annulus_mesh  # noqa: E402
-from meshing.crack import Crack  # noqa: E402
-from meshing.ring_mesh import MeshOptions, ring_mesh  # noqa: E402
+from hubvib.fem.bearing import BearingError, RollerBearing  # noqa: E402
+from hubvib.fem.edge_crack import fe_rotation_compliance, handbook_added_compliance  # noqa: E402
+from hubvib.fem.elasticity import plane_model  # noqa: E402
+from hubvib.fem.iso6336 import C_M, iso_stiffness  # noqa: E402
+from hubvib.fem.material import Material  # noqa: E402
+from hubvib.fem.mesh_cycle import GearPair, mesh_cycle  # noqa: E402
+from hubvib.fem.modal import lowest_modes  # noqa: E402
+from hubvib.fem.tooth_beam import beam_compliance, hertz_compliance  # noqa: E402
+from hubvib.fem.tooth_fe import fe_tooth_compliance  # noqa: E402
+from hubvib.fem.tooth_stiffness import reducer_mesh_stiffness  # noqa: E402
+from hubvib.meshing import raba118  # noqa: E402
+from hubvib.meshing.annulus import annulus_mesh  # noqa: E402
+from hubvib.meshing.crack import Crack  # noqa: E402
+from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh  # noqa: E402
 
 SUN, PLANET, RING = raba118.gear_body("sun"), raba118.gear_body("planet"), raba118.ring_gear()
 STEEL = Material()
@@ -45,7 +45,7 @@ def test_contact_ratio_is_the_iso_21771_formula(second):
     """eps_alpha = (sqrt(ra1^2 - rb1^2) +- sqrt(ra2^2 - rb2^2) -+ a_w sin a_w) / p_b (ISO 21771
     eq. for external/internal pairs), to 1e-12; the cycle has eps - 1 of its time in double
     contact (to one sample)."""
-    from meshing.gear import centre_distance
+    from hubvib.meshing.gear import centre_distance
 
     pair = GearPair(PLANET, second)
     g1, g2 = PLANET.gear, second.gear
@@ -64,8 +64,8 @@ def test_contact_ratio_is_the_iso_21771_formula(second):
 
 def test_tip_interference_is_refused():
     """A ring whose tip circle reaches below the planet's form circle cannot mesh with it."""
-    from meshing.gear import GearGeometryError, SpurGear
-    from meshing.ring_gear import RingGear
+    from hubvib.meshing.gear import GearGeometryError, SpurGear
+    from hubvib.meshing.ring_gear import RingGear
 
     g = RING.gear
     deep = SpurGear(g.teeth, g.module, g.pressure_angle, g.profile_shift - 0.9,
@@ -120,7 +120,7 @@ def test_sun_planet_mesh_stiffness_against_iso_6336_and_analytical(raba_pairs):
 def test_iso_stiffness_of_a_standard_pair():
     """ISO 6336-1 for x = 0, z1 = z2 -> infinity: q' = C1 = 0.04723 mm um/N, so
     c' = 0.8 x 0.975 / 0.04723 = 16.51 N/(mm um) (C_B = 0.975 for h_fP = 1.25 m)."""
-    from meshing.gear import SpurGear
+    from hubvib.meshing.gear import SpurGear
 
     big = SpurGear(100000, 1e-3)
     iso = iso_stiffness(big, big, contact_ratio=1.0)

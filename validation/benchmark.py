@@ -1,6 +1,6 @@
 """Benchmark of the FE chain: prints tables of error / size against run time.
 
-    python -m validation.benchmark
+    python -m hubvib.validation.benchmark
 
 Timings are measured here, never asserted in tests.
 """
@@ -13,9 +13,9 @@ import numpy as np
 
 def mesh_table() -> list[dict]:
     """2D Raba ring meshing time against element count, intact and cracked."""
-    from meshing import raba118
-    from meshing.crack import Crack
-    from meshing.ring_mesh import MeshOptions, ring_mesh
+    from hubvib.meshing import raba118
+    from hubvib.meshing.crack import Crack
+    from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
 
     ring = raba118.ring_gear()
     rows = []
@@ -34,9 +34,9 @@ def solid_mesh_table() -> list[dict]:
     """3D Raba ring (P2 tetrahedra) meshing time against element count, with and without cracks."""
     from dataclasses import replace
 
-    from meshing import measure, raba118
-    from meshing.crack import Crack, CrackFront
-    from meshing.ring_mesh_3d import SOLID_OPTIONS, ring_mesh_3d
+    from hubvib.meshing import measure, raba118
+    from hubvib.meshing.crack import Crack, CrackFront
+    from hubvib.meshing.ring_mesh_3d import SOLID_OPTIONS, ring_mesh_3d
 
     ring = raba118.ring_gear()
     cases = (("intact", None, CrackFront()),
@@ -60,8 +60,8 @@ def solid_mesh_table() -> list[dict]:
 
 def annulus_table() -> list[dict]:
     """Annulus in torsion: relative error of k_theta against the exact value, and time."""
-    from fem.annulus import exact_k_theta, fe_k_theta
-    from fem.material import Material
+    from hubvib.fem.annulus import exact_k_theta, fe_k_theta
+    from hubvib.fem.material import Material
 
     a, b, t, steel = 0.08, 0.1, 0.01, Material()
     exact = exact_k_theta(a, b, t, steel)
@@ -79,14 +79,14 @@ def annulus_table() -> list[dict]:
 def ring_table() -> list[dict]:
     """c_ru and c_r of the Raba ring, intact and with a 10 mm root crack, on the default
     mesh with the error estimated against a mesh twice as coarse (``hubvib stiffness``)."""
-    from hubvib.stiffness_command import estimate
-    from meshing import raba118
-    from meshing.crack import Crack
+    from hubvib.fem.estimate import estimate_ring
+    from hubvib.meshing import raba118
+    from hubvib.meshing.crack import Crack
 
     ring = raba118.ring_gear()
     rows = []
     for name, crack in (("intact", None), ("root crack 10 mm", Crack(0, 10e-3))):
-        r = estimate(ring, crack)
+        r = estimate_ring(ring, crack).to_dict()
         rows.append({"case": name, "dofs": r["dofs"], "c_ru": r["c_ru_N_m"],
                      "c_ru_rel_error": r["c_ru_error_N_m"] / r["c_ru_N_m"],
                      "c_r": r["c_r_N_m"], "c_r_rel_error": r["c_r_error_N_m"] / r["c_r_N_m"],
@@ -101,11 +101,11 @@ def solid_race(options=None, crack=None, folder=None, mesh=None, calculix=True) 
     import tempfile
     from pathlib import Path
 
-    from fem.elasticity import solve
-    from fem.ring_stiffness import mesh_force_load, planet_teeth, reduced_torsional_stiffness
-    from fem.solid import solid_model
-    from meshing import raba118
-    from meshing.ring_mesh_3d import ring_mesh_3d
+    from hubvib.fem.elasticity import solve
+    from hubvib.fem.ring_stiffness import mesh_force_load, planet_teeth, reduced_torsional_stiffness
+    from hubvib.fem.solid import solid_model
+    from hubvib.meshing import raba118
+    from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
 
     from . import calculix as ccx
 
@@ -149,7 +149,7 @@ def solid_table() -> list[dict]:
     a finer reference level (Richardson is unreliable here: the levels refine rim, teeth
     and load patches by different factors, and the differences do not shrink
     geometrically)."""
-    from hubvib.stiffness_command import SOLID_LEVELS, SOLID_REFERENCE, solid_options
+    from hubvib.meshing.levels import SOLID_LEVELS, SOLID_REFERENCE, solid_options
 
     rows = [dict(level=i, **solid_race(solid_options(*sizes)))
             for i, sizes in enumerate(SOLID_LEVELS)]

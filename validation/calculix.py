@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from meshing.fe_mesh import GMSH_TO_VTK_TETRA10, FEMesh
+from hubvib.meshing.fe_mesh import GMSH_TO_VTK_TETRA10, FEMesh
 
 #: C3D10 node order is VTK's (edges 12, 23, 31, 14, 24, 34)
 ELEMENT = {"tetra10": ("C3D10", GMSH_TO_VTK_TETRA10), "tetra": ("C3D4", slice(None))}
@@ -35,7 +35,7 @@ def node_of_dof(mesh: FEMesh, basis) -> tuple[np.ndarray, np.ndarray]:
     """For every DOF of a vector basis on ``mesh``: its mesh node and component."""
     from scipy.spatial import cKDTree
 
-    from fem.elasticity import dof_components
+    from hubvib.fem.elasticity import dof_components
 
     distance, node = cKDTree(mesh.points).query(basis.doflocs.T)
     if distance.max() > 1e-9:

@@ -26,10 +26,10 @@ UNITS = {"c_ru": "N/m", "c_r": "N/m", "c_sp": "N/m", "c_rp": "N/m", "annulus": "
 
 
 def _ring_level(scale: float, which: str) -> dict:
-    from fem.ring_stiffness import ring_stiffness
-    from hubvib.stiffness_command import scaled_options
-    from meshing import raba118
-    from meshing.ring_mesh import ring_mesh
+    from hubvib.fem.ring_stiffness import ring_stiffness
+    from hubvib.meshing.levels import scaled_options
+    from hubvib.meshing import raba118
+    from hubvib.meshing.ring_mesh import ring_mesh
 
     ring = raba118.ring_gear()
     mesh = ring_mesh(ring, None, scaled_options(scale))
@@ -40,9 +40,9 @@ def _ring_level(scale: float, which: str) -> dict:
 
 
 def _mesh_level(scale: float, which: str) -> dict:
-    from fem.tooth_stiffness import reducer_mesh_stiffness
-    from hubvib.stiffness_command import scaled_options
-    from meshing import raba118
+    from hubvib.fem.tooth_stiffness import reducer_mesh_stiffness
+    from hubvib.meshing.levels import scaled_options
+    from hubvib.meshing import raba118
 
     result = reducer_mesh_stiffness(raba118.gear_body("sun"), raba118.gear_body("planet"),
                                     raba118.ring_gear(), scaled_options(scale))[which]
@@ -55,8 +55,8 @@ STRIP = (0.01, 0.001, 0.4)  # width, thickness [m], a/W
 
 
 def _annulus_level(scale: float) -> dict:
-    from fem.annulus import exact_k_theta, fe_k_theta
-    from fem.material import Material
+    from hubvib.fem.annulus import exact_k_theta, fe_k_theta
+    from hubvib.fem.material import Material
 
     a, b, t = ANNULUS
     started = time.perf_counter()
@@ -66,7 +66,7 @@ def _annulus_level(scale: float) -> dict:
 
 
 def _strip_level(scale: float) -> dict:
-    from fem.edge_crack import fe_rotation_compliance, handbook_added_compliance
+    from hubvib.fem.edge_crack import fe_rotation_compliance, handbook_added_compliance
 
     W, t, ratio = STRIP
     started = time.perf_counter()

@@ -9,9 +9,9 @@ from pathlib import Path
 
 import numpy as np
 
-from lumped.presets import raba118
-from lumped.spectrum import natural_modes, printed_modes
-from lumped.sweep import sweep
+from hubvib.lumped.presets import raba118
+from hubvib.lumped.spectrum import natural_modes, printed_modes
+from hubvib.lumped.sweep import sweep
 
 from . import theory
 

@@ -9,8 +9,8 @@ from __future__ import annotations
 import mpmath as mp
 import numpy as np
 
-from lumped.network import mass_diagonal, spring_network
-from lumped.parameters import PlanetaryParameters
+from hubvib.lumped.network import mass_diagonal, spring_network
+from hubvib.lumped.parameters import PlanetaryParameters
 
 
 def reference_eigenvalues(params: PlanetaryParameters, dps: int = 50) -> np.ndarray:

@@ -13,12 +13,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lumped.eigensolve import METHODS, IndefiniteStiffnessError, solve_assembled
-from lumped.network import mass_diagonal
-from lumped.parameters import PlanetaryParameters, equally_spaced_angles
-from lumped.presets import raba118
-from lumped.printed import printed_stiffness_matrix
-from lumped.spectrum import natural_modes
+from hubvib.lumped.eigensolve import METHODS, IndefiniteStiffnessError, solve_assembled
+from hubvib.lumped.network import mass_diagonal
+from hubvib.lumped.parameters import PlanetaryParameters, equally_spaced_angles
+from hubvib.lumped.presets import raba118
+from hubvib.lumped.printed import printed_stiffness_matrix
+from hubvib.lumped.spectrum import natural_modes
 
 from .reference import reference_eigenvalues
 

@@ -12,9 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lumped.network import stiffness_matrix
-from lumped.parameters import PlanetaryParameters, equally_spaced_angles
-from lumped.spectrum import natural_modes
+from hubvib.lumped.network import stiffness_matrix
+from hubvib.lumped.parameters import PlanetaryParameters, equally_spaced_angles
+from hubvib.lumped.spectrum import natural_modes
 
 
 @dataclass(frozen=True)

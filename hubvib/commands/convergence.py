@@ -5,7 +5,7 @@ from pathlib import Path
 
 
 def add_parser(sub) -> None:
-    from validation.convergence import QUANTITIES
+    from hubvib.validation.convergence import QUANTITIES
 
     p = sub.add_parser("convergence", help="error vs run time of one FE quantity over mesh levels")
     p.add_argument("quantity", choices=QUANTITIES,
@@ -15,7 +15,7 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from validation.convergence import run_study
+    from hubvib.validation.convergence import run_study
 
     table = run_study(args.quantity, args.out)
     print(table.read_text(), end="")

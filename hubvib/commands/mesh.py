@@ -38,10 +38,10 @@ def add_parser(sub) -> None:
 
 
 def build(args):
-    from meshing import raba118
-    from meshing.crack import Crack, CrackFront
-    from meshing.gear import GearGeometryError
-    from meshing.ring_mesh import MeshOptions, ring_mesh
+    from hubvib.meshing import raba118
+    from hubvib.meshing.crack import Crack, CrackFront
+    from hubvib.meshing.gear import GearGeometryError
+    from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
 
     crack = Crack(args.crack_tooth, args.crack_depth, math.radians(args.crack_angle),
                   args.crack_start)
@@ -52,7 +52,7 @@ def build(args):
         return body, ring_mesh(body, None, _options(MeshOptions(), args))
     ring = raba118.ring_gear()
     if args.dim == 3:
-        from meshing.ring_mesh_3d import SOLID_OPTIONS, ring_mesh_3d
+        from hubvib.meshing.ring_mesh_3d import SOLID_OPTIONS, ring_mesh_3d
 
         front = CrackFront(args.crack_front, half_length=args.crack_half_length)
         return ring, ring_mesh_3d(ring, crack, front, _options(SOLID_OPTIONS, args))
@@ -71,7 +71,7 @@ def _options(defaults, args):
 
 
 def summary(ring, mesh) -> dict:
-    from meshing import measure
+    from hubvib.meshing import measure
 
     if mesh.dim == 3:
         size = {"volume_m3": measure.volume(mesh), "exact_volume_m3": mesh.info["exact_volume"]}
@@ -88,7 +88,7 @@ def summary(ring, mesh) -> dict:
 
 
 def run(args) -> int:
-    from meshing.export import write_png, write_vtu
+    from hubvib.meshing.export import write_png, write_vtu
 
     ring, mesh = build(args)
     info = summary(ring, mesh)

@@ -1,0 +1,174 @@
+"""FE stiffnesses with their error estimate: the default mesh against one twice as coarse (SI).
+
+The estimated error is the difference between the two levels (an upper bound
+when the convergence is monotone with rate >= 1; see the annulus study).
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import asdict, dataclass
+
+
+@dataclass(frozen=True)
+class RingEstimate:
+    """The ring body's stiffnesses on the default mesh, with error estimates.
+
+    Attributes
+    ----------
+    c_ru, c_ru_error : float
+        Reduced torsional stiffness, mean over carrier positions, and its error [N/m].
+    c_ru_min, c_ru_max : float
+        Lowest and highest c_ru over the carrier positions [N/m].
+    c_r, c_r_error : float
+        Radial (support) stiffness and its error [N/m].
+    dofs : int
+        Degrees of freedom of the fine level.
+    solver : str
+        Sparse solver used.
+    seconds_mesh, seconds_fe, seconds_total : float
+        Wall times [s]: fine mesh, fine FE, both levels in all.
+    """
+
+    c_ru: float
+    c_ru_error: float
+    c_ru_min: float
+    c_ru_max: float
+    c_r: float
+    c_r_error: float
+    dofs: int
+    solver: str
+    seconds_mesh: float
+    seconds_fe: float
+    seconds_total: float
+
+    def to_dict(self) -> dict:
+        """Keys with units (``c_ru_N_m`` ...), as in the JSON output and the cache."""
+        units = {"c_ru": "c_ru_N_m", "c_ru_error": "c_ru_error_N_m",
+                 "c_ru_min": "c_ru_min_N_m", "c_ru_max": "c_ru_max_N_m", "c_r": "c_r_N_m",
+                 "c_r_error": "c_r_error_N_m"}
+        return {units.get(k, k): v for k, v in asdict(self).items()}
+
+
+def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
+                  solid: bool = False, mesher=None) -> RingEstimate:
+    """c_ru and c_r on the default mesh (sizes times ``scale``) and on one twice as coarse.
+
+    With ``solid``: the solid ring on the last two ``SOLID_LEVELS``, planet 1 on
+    tooth 0 only.  ``mesher(ring, crack, options)`` replaces the plane mesher
+    (to share meshes).
+    """
+    from hubvib.meshing.levels import SOLID_LEVELS, scaled_options, solid_options
+    from hubvib.meshing.ring_mesh import ring_mesh
+    from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
+
+    from .ring_stiffness import ring_stiffness
+
+    mesher = mesher or ring_mesh
+    if solid:
+        levels = {"coarse": solid_options(*SOLID_LEVELS[-2]),
+                  "fine": solid_options(*SOLID_LEVELS[-1])}
+    else:
+        levels = {"coarse": scaled_options(2 * scale), "fine": scaled_options(scale)}
+    results = {}
+    for name, options in levels.items():
+        started = time.perf_counter()
+        mesh = (ring_mesh_3d(ring, crack, options=options) if solid
+                else mesher(ring, crack, options))
+        meshed = time.perf_counter()
+        result = ring_stiffness(ring, mesh, carrier_teeth=[0] if solid else None, solver=solver)
+        results[name] = (result, meshed - started, time.perf_counter() - meshed)
+    fine, coarse = results["fine"][0], results["coarse"][0]
+    return RingEstimate(
+        c_ru=fine.c_ru, c_ru_error=abs(fine.c_ru - coarse.c_ru),
+        c_ru_min=float(fine.c_ru_positions.min()), c_ru_max=float(fine.c_ru_positions.max()),
+        c_r=fine.c_r, c_r_error=abs(fine.c_r - coarse.c_r), dofs=fine.dofs,
+        solver=fine.seconds["solver"], seconds_mesh=results["fine"][1],
+        seconds_fe=results["fine"][2],
+        seconds_total=sum(r[1] + r[2] for r in results.values()))
+
+
+@dataclass(frozen=True)
+class MeshEstimate:
+    """One gear mesh's stiffness over the mesh cycle, with its checks.
+
+    Attributes
+    ----------
+    value, error : float
+        FE mean over the mesh cycle and its error estimate [N/m].
+    min, max, single_pair_max : float
+        Lowest, highest over the cycle, and highest single-pair value [N/m].
+    contact_ratio : float
+        Transverse contact ratio [-].
+    analytic, iso_c_gamma, iso_c_single : float
+        Potential-energy model and ISO 6336-1 c_gamma_alpha b, c' b [N/m].
+    iso_in_range : bool
+        Whether the profile shifts lie in ISO 6336-1's fitted range.
+    seconds_total : float
+        Both levels [s].
+    engaged, engaged_intact, engaged_min, engaged_intact_min : float or None
+        With a cracked ring tooth: mean and minimum over its engagement, cracked
+        and intact [N/m].
+    """
+
+    value: float
+    error: float
+    min: float
+    max: float
+    single_pair_max: float
+    contact_ratio: float
+    analytic: float
+    iso_c_gamma: float
+    iso_c_single: float
+    iso_in_range: bool
+    seconds_total: float
+    engaged: float | None = None
+    engaged_intact: float | None = None
+    engaged_min: float | None = None
+    engaged_intact_min: float | None = None
+
+    def to_dict(self, engaged: bool = True) -> dict:
+        """Keys with units (``value_N_m`` ...), as in ``hubvib stiffness --json``."""
+        out = {}
+        for key, value in asdict(self).items():
+            if key.startswith("engaged") and (value is None or not engaged):
+                continue
+            if key in ("contact_ratio", "iso_in_range", "seconds_total"):
+                out[key] = value
+            else:
+                out[f"{key}_N_m"] = value
+        return out
+
+
+def estimate_mesh(sun, planet, ring, crack=None, scale: float = 1.0) -> dict[str, MeshEstimate]:
+    """c_sp and c_rp (FE mean over the mesh cycle) on the default mesh (sizes times
+    ``scale``) and on one twice as coarse; analytical and ISO 6336-1 values beside them.
+
+    ``sun``, ``planet`` are gear bodies, ``ring`` the ring gear; with ``crack`` the
+    ring-planet mesh is also given over the cracked tooth's engagement.
+    """
+    from hubvib.meshing.levels import scaled_options
+
+    from .tooth_stiffness import reducer_mesh_stiffness
+
+    results = {}
+    for name, level in (("coarse", 2 * scale), ("fine", scale)):
+        started = time.perf_counter()
+        results[name] = (reducer_mesh_stiffness(sun, planet, ring, scaled_options(level), crack),
+                         time.perf_counter() - started)
+    seconds = sum(r[1] for r in results.values())
+    out = {}
+    for key, fine in results["fine"][0].items():
+        coarse = results["coarse"][0][key]
+        engaged = {}
+        if fine.cracked is not None:
+            intact = fine.cracked_reference
+            engaged = dict(engaged=fine.cracked.mean, engaged_intact=intact.mean,
+                           engaged_min=float(fine.cracked.stiffness.min()),
+                           engaged_intact_min=float(intact.stiffness.min()))
+        out[key] = MeshEstimate(
+            value=fine.value, error=abs(fine.value - coarse.value),
+            min=float(fine.fe.stiffness.min()), max=float(fine.fe.stiffness.max()),
+            single_pair_max=fine.fe.single_pair_max, contact_ratio=fine.pair.contact_ratio,
+            analytic=fine.analytic.mean, iso_c_gamma=fine.iso_mesh, iso_c_single=fine.iso_single,
+            iso_in_range=fine.iso_in_range, seconds_total=seconds, **engaged)
+    return out

@@ -1,0 +1,95 @@
+"""``hubvib run [SCENE]``: run a scene file or a shipped scene by name."""
+from __future__ import annotations
+
+import importlib.util
+import json
+import sys
+import tempfile
+from pathlib import Path
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("run", help="run a scene (default: the embedded Raba 118/76 study)")
+    p.add_argument("scene", nargs="?", help="scene TOML file, or the name of a shipped scene "
+                   "(hubvib scenes lists them)")
+    p.add_argument("--out", type=Path, help="output folder (overrides the scene's)")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(handler=run)
+
+
+def _missing_extras(scene) -> str | None:
+    """What the scene needs that is not installed, as an error message."""
+    needs = [("plots = true", "matplotlib", "report", scene.plots)]
+    if scene.crack is not None:
+        needs += [("[crack] (FE stage)", module, "fem", True)
+                  for module in ("gmsh", "skfem")] + [("[crack]", "tqdm", "report", True)]
+    needs += [("renders = true", module, "render", scene.renders)
+              for module in ("pyvista", "imageio")]
+    for what, module, extra, wanted in needs:
+        if wanted and importlib.util.find_spec(module) is None:
+            return (f"scene asks for {what} but {module} is not installed: "
+                    f"pip install 'hubvib[{extra}]'")
+    return None
+
+
+def run(args) -> int:
+    from hubvib.scene import load_scene
+
+    scene = load_scene(args.scene)
+    missing = _missing_extras(scene)
+    if missing:
+        print(f"hubvib: error: {missing}", file=sys.stderr)
+        return 2
+    folder = Path(args.out or scene.folder)
+    try:  # before any work: a run that cannot write its report must not start
+        folder.mkdir(parents=True, exist_ok=True)
+        tempfile.TemporaryFile(dir=folder).close()
+    except OSError as exc:
+        print(f"hubvib: error: cannot write the output folder {str(folder)!r}: {exc.strerror}",
+              file=sys.stderr)
+        return 2
+    if scene.crack is not None:
+        return _run_crack(scene, folder, args.json)
+    from hubvib.study import run_study, write_study
+
+    result = write_study(run_study(scene), folder)
+    if args.json:
+        print(json.dumps({"scene": scene.name, "folder": str(folder),
+                          "files": [str(f) for f in result.files],
+                          "detection": result.detection()}, indent=2))
+        return 0
+    print(f"scene {scene.name!r}: {scene.parameter} {result.base_value:.6g} -> "
+          f"{', '.join(f'{v:.3g}' for v in scene.values)}")
+    print(f"{'mode':>4} {'type':<13} {'base [rad/s]':>13} {'shift at last value [%]':>24}  "
+          f"first value shifting >= {scene.threshold_percent:g} %")
+    last = result.shifts[-1]
+    for r in result.detection():
+        first = "not reached" if r["detectable_at"] is None else f"{r['detectable_at']:.4g}"
+        print(f"{r['mode']:>4} {r['kind']:<13} {r['omega_base_rad_s']:>13.3f} "
+              f"{last.percent[r['mode'] - 1]:>24.3f}  {first}")
+    print(f"\nreport: {folder / 'report.md'}")
+    return 0
+
+
+def _run_crack(scene, folder, as_json: bool) -> int:
+    from hubvib.crack_study import run_crack_study, write_crack_study
+
+    result = write_crack_study(run_crack_study(scene), folder)
+    if as_json:
+        print(json.dumps({"scene": scene.name, "folder": str(folder),
+                          "files": [str(f) for f in result.files],
+                          "fe_cases_computed": result.computed,
+                          "modes": result.mode_rows()}, indent=2))
+        return 0
+    print(f"scene {scene.name!r}: ring crack depths "
+          f"{', '.join(f'{1e3 * d:.3g}' for d in result.depths)} mm "
+          f"({result.computed} FE cases computed, {len(result.fe) - result.computed} cached)")
+    print(f"{'mode':>4} {'type':<13} {'f intact [Hz]':>13} {'shift at deepest [%]':>21} "
+          f"{'follows':>10}  smallest crack shifting >= {scene.threshold_percent:g} %")
+    for r in result.mode_rows():
+        depth = r["smallest_detectable_depth_mm"]
+        print(f"{r['mode']:>4} {r['kind']:<13} {r['frequency_intact_hz']:>13.3f} "
+              f"{r['shift_at_deepest_percent']:>21.3f} {r['follows']:>10}  "
+              f"{'not reached' if depth is None else f'{depth:.3g} mm'}")
+    print(f"\nreport: {folder / 'report.md'}")
+    return 0

@@ -1,0 +1,36 @@
+"""``hubvib shift --to KEY VALUE``: per-mode frequency shift when one parameter changes."""
+from __future__ import annotations
+
+import json
+
+from hubvib.params_input import parse_set
+
+from ._parameters import PARAMETER_HELP, add_parameter_options, parameters
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("shift", help="per-mode frequency shift when one parameter changes")
+    add_parameter_options(p)
+    p.add_argument("--to", nargs=2, required=True, metavar=("KEY", "VALUE"),
+                   help="the modified parameter and its new value, e.g. --to c_ru 1e5")
+    p.set_defaults(handler=run)
+
+
+def run(args) -> int:
+    from hubvib.lumped import frequency_shift
+
+    key, text = args.to
+    value = parse_set([f"{key}={text}"])[key]
+    shift = frequency_shift(parameters(args), key, value, method=args.method)
+    if args.json:
+        print(json.dumps({"parameter": key, "base": shift.base_value, "modified": value,
+                          "modes": shift.rows()}, indent=2))
+        return 0
+    print(f"{key}: {shift.base_value:.6g} -> {value:.6g}")
+    print(f"{'mode':>4} {'type':<13} {'base [rad/s]':>13} {'new [rad/s]':>12} "
+          f"{'d [rad/s]':>10} {'d [Hz]':>9} {'d [%]':>8}")
+    for r in shift.rows():
+        print(f"{r['mode']:>4} {r['kind']:<13} {r['omega_base_rad_s']:>13.3f} "
+              f"{r['omega_modified_rad_s']:>12.3f} {r['delta_rad_s']:>10.3f} "
+              f"{r['delta_hz']:>9.3f} {r['percent']:>8.3f}")
+    return 0
