@@ -23,7 +23,7 @@ from pathlib import Path
 from .output import write_json
 
 STARTS = ("root", "rim")
-APPLY = ("ratio", "direct")
+APPLY = ("series", "ratio", "direct")
 #: mesh size multiplier of each accuracy setting (1.0: c_ru to ~0.3 %, see README)
 ACCURACY = {"default": 1.0, "fast": 2.0}
 
@@ -39,8 +39,14 @@ class CrackSweep:
     tooth, start, angle
         Tooth index, ``"root"`` or ``"rim"``, direction from the radial [rad].
     apply : str
-        How FE enters the lumped model: ``"ratio"`` scales the preset's ``c_ru`` and
-        ``c_r`` by FE(depth) / FE(0); ``"direct"`` uses the FE values themselves.
+        How FE enters the lumped model: ``"series"`` puts the ring mounting in series
+        with the FE ring body, ``1/c = 1/c_mount + 1/c_body(depth)``; ``"ratio"`` scales
+        the preset's ``c_ru`` and ``c_r`` by FE(depth) / FE(0) (the paper's hypothesis:
+        the whole compliance is the ring body, an upper bound of the effect);
+        ``"direct"`` uses the FE values themselves (a rigid mounting).
+    c_ru_mount, c_r_mount : float or None
+        With ``"series"``: the mounting's torsional and radial stiffness [N/m]; ``None``
+        identifies it so that the intact total equals the preset's ``c_ru`` / ``c_r``.
     accuracy : str
         ``"default"`` or ``"fast"`` (element sizes doubled).
     workers : int
@@ -51,9 +57,11 @@ class CrackSweep:
     tooth: int = 0
     start: str = "root"
     angle: float = 0.0
-    apply: str = "ratio"
+    apply: str = "series"
     accuracy: str = "default"
     workers: int = 2
+    c_ru_mount: float | None = None
+    c_r_mount: float | None = None
 
 
 def case_key(sweep: CrackSweep, depth: float) -> str:
@@ -137,7 +145,8 @@ def run_fe_cases(sweep: CrackSweep, progress: bool = True) -> tuple[list[dict], 
 
 
 def _store(path: Path, sweep: CrackSweep, result: dict) -> None:
-    write_json(path, dict(result, sweep=asdict(sweep) | {"depths": None}))
+    write_json(path, dict(result, sweep=asdict(sweep) | {"depths": None, "c_ru_mount": None,
+                                                         "c_r_mount": None}))
 
 
 def _readable(path: Path) -> bool:

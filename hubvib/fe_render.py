@@ -35,20 +35,22 @@ class RingFields:
     label: str
 
 
-def ring_fields(ring, crack=None, options=None, modes: int = MODES) -> RingFields:
-    """Solve the Raba ring under its planet mesh forces and for its lowest ``modes``."""
-    from hubvib.fem import raba118 as loads
+def ring_fields(design, crack=None, options=None, modes: int = MODES) -> RingFields:
+    """Solve the design's ring under its planet mesh forces (at the design's sun torque)
+    and for its lowest ``modes``."""
+    from hubvib.design.build import material, mesh_force, ring_gear
     from hubvib.fem.elasticity import plane_model, solve
     from hubvib.fem.modal import lowest_modes
     from hubvib.fem.ring_stiffness import mesh_force_load, planet_teeth
     from hubvib.fem.stress import von_mises
     from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
 
+    ring = ring_gear(design)
     mesh = ring_mesh(ring, crack, options or MeshOptions())
-    model = plane_model(mesh, thickness=ring.gear.face_width)
-    force = loads.mesh_force()
+    model = plane_model(mesh, material(design), thickness=ring.gear.face_width)
+    force = mesh_force(design)
     tooth = 0 if crack is None else crack.tooth
-    teeth = planet_teeth(ring, tooth, loads.PLANETS)
+    teeth = planet_teeth(ring, tooth, design.n_planets)
     u = solve(model, mesh_force_load(model, ring, teeth, force), ["supports"]).u
     stress = von_mises(model, u)
     fe = model.basis.mesh
@@ -64,12 +66,12 @@ def ring_fields(ring, crack=None, options=None, modes: int = MODES) -> RingField
     tip = None
     if crack is not None and len(mesh.points_of.get("crack_tip", [])):
         tip = mesh.points[mesh.points_of["crack_tip"]].reshape(-1, 2).mean(axis=0)
-    torque = loads.PLANETS * force * ring.gear.base_diameter / 2
+    torque = design.n_planets * force * ring.gear.base_diameter / 2
     what = "intact" if crack is None else (f"{crack.start} crack {1e3 * crack.depth:.3g} mm "
                                            f"at tooth {crack.tooth}")
     return RingFields(fe.p[:, corners].T, index[fe.t.T], at_corners(u), stress[corners],
                       np.array([at_corners(s) for s in vibration.shapes.T]), vibration.hertz,
-                      tip, torque, f"Raba ring, {what}")
+                      tip, torque, f"{design.name} ring, {what}")
 
 
 def _grid(fields: RingFields, displacement: np.ndarray, scale: float, scalars: dict):

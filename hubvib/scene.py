@@ -19,7 +19,11 @@ A scene is TOML with these tables (all keys shown; SI units)::
     tooth = 0
     start = "root"                # or "rim"
     angle_deg = 0.0               # from the radial, |angle| <= 60
-    apply = "ratio"               # FE ratio on the preset's c_ru, c_r; or "direct" (FE values)
+    apply = "series"              # mounting in series with the FE ring body (default);
+                                  # "ratio": FE ratio on the preset's c_ru, c_r (the paper's
+                                  # hypothesis, an upper bound); "direct": FE values alone
+    c_ru_mount = 1e6              # [N/m] with "series"; absent: identified so that the
+    c_r_mount = 1e8               # intact total equals the preset's c_ru / c_r
     accuracy = "default"          # or "fast" (element sizes doubled)
     workers = 2                   # worker processes for the FE cases
 
@@ -48,12 +52,21 @@ from hubvib.lumped import METHODS, ParameterError, PlanetaryParameters, field_na
 from .crack_sweep import ACCURACY, APPLY, STARTS, CrackSweep
 from .params_input import load_parameters
 
+#: optional tables parsed by the module that uses them: table -> "module:function".
+#: The function takes the table (a dict) and returns a frozen options object, raising
+#: SceneError that names the key and the allowed range; the object is in
+#: ``Scene.tables[name]``.  A new table = its parser + one line here.
+EXTENSION_TABLES = {
+    "signal": "hubvib.signal.options:parse_signal_table",
+    "detection": "hubvib.detection.options:parse_detection_table",
+}
+
 ALLOWED = {
-    "": {"reducer", "study", "crack", "output"},
+    "": {"reducer", "study", "crack", "output", *EXTENSION_TABLES},
     "reducer": {"preset", "parameters"},
     "study": {"parameter", "values", "detection_threshold_percent", "method"},
     "crack": {"depths", "through_rim", "tooth", "start", "angle_deg", "apply", "accuracy",
-              "workers"},
+              "workers", "c_ru_mount", "c_r_mount"},
     "output": {"folder", "plots", "renders", "gif", "vtm"},
 }
 
@@ -77,6 +90,7 @@ class Scene:
     renders: bool = False
     gif: bool = False
     vtm: bool = False
+    tables: dict = field(default_factory=dict, compare=False)
 
 
 #: the shipped scene ``hubvib run`` runs without an argument
@@ -179,8 +193,18 @@ def parse_scene(text: str, name: str) -> Scene:
     if flags["renders"] and crack is None:
         raise SceneError("[output] renders = true needs a [crack] study (it renders its modes)")
     folder = Path(_string(output, "output", "folder", "hubvib-out"))
+    tables = {key: _extension(key, data[key]) for key in EXTENSION_TABLES if key in data}
     return Scene(name, params, parameter, tuple(float(v) for v in values), float(threshold),
-                 method, folder, plots, data, crack, **flags)
+                 method, folder, plots, data, crack, **flags, tables=tables)
+
+
+def _extension(key: str, table):
+    import importlib
+
+    if not isinstance(table, dict):
+        raise SceneError(f"[{key}] must be a table, got {table!r}")
+    module, _, function = EXTENSION_TABLES[key].partition(":")
+    return getattr(importlib.import_module(module), function)(table)
 
 
 def _crack(table) -> CrackSweep:
@@ -199,7 +223,7 @@ def _crack(table) -> CrackSweep:
     start = _string(table, "crack", "start", "root")
     if start not in STARTS:
         raise SceneError(f"[crack] start = {start!r}; allowed: {', '.join(STARTS)}")
-    apply = _string(table, "crack", "apply", "ratio")
+    apply = _string(table, "crack", "apply", "series")
     if apply not in APPLY:
         raise SceneError(f"[crack] apply = {apply!r}; allowed: {', '.join(APPLY)}")
     accuracy = _string(table, "crack", "accuracy", "default")
@@ -219,8 +243,18 @@ def _crack(table) -> CrackSweep:
     through = table.get("through_rim", False)
     if not isinstance(through, bool):
         raise SceneError(f"[crack] through_rim = {through!r}, but it must be true or false")
+    mounts = {}
+    for key in ("c_ru_mount", "c_r_mount"):
+        value = table.get(key)
+        if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))
+                                  or not (math.isfinite(value) and value > 0)):
+            raise SceneError(f"[crack] {key} = {value!r}; allowed: a finite stiffness > 0 [N/m]")
+        if value is not None and apply != "series":
+            raise SceneError(f"[crack] {key} is given, but it applies only with apply = "
+                             f"\"series\" (apply = {apply!r})")
+        mounts[key] = None if value is None else float(value)
     sweep = CrackSweep(tuple(float(d) for d in depths), integers["tooth"], start,
-                       math.radians(angle), apply, accuracy, integers["workers"])
+                       math.radians(angle), apply, accuracy, integers["workers"], **mounts)
     return _checked_depths(sweep, through)
 
 

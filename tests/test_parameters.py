@@ -55,7 +55,7 @@ def test_bad_pressure_angle(value):
 def test_unknown_field_and_preset():
     with pytest.raises(ParameterError, match="unknown parameter"):
         lumped.raba118().replace(c_xx=1.0)
-    with pytest.raises(ParameterError, match="available: \\['raba118'\\]"):
+    with pytest.raises(ParameterError, match="available: .*'raba118'"):
         lumped.preset("raba119")
 
 

@@ -21,14 +21,14 @@ def add_parser(sub) -> None:
     p.set_defaults(handler=run)
 
 
-def bearings() -> dict:
-    from hubvib.fem.raba118 import SUN_TORQUE, bearing_stiffness
+def bearings(design) -> dict:
+    from hubvib.design.build import bearing_stiffness
 
     started = time.perf_counter()
-    rows = bearing_stiffness()
+    rows = bearing_stiffness(design)
     for row in rows.values():
         row.update(value_N_m=row["tangent_N_m"], seconds_total=time.perf_counter() - started,
-                   sun_torque_N_m=SUN_TORQUE)
+                   sun_torque_N_m=design.sun_torque)
     return rows
 
 
