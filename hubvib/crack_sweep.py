@@ -5,27 +5,30 @@ the cracked tooth, as a ratio to the same window intact; the tooth model
 loads tooth 0, so the crack is moved there (the tooth's compliance relative
 to its root lands does not depend on where the supports are).
 
-Every case is cached as JSON under ``$HUBVIB_CACHE/stiffness`` by a hash of
-what defines it (ring, crack, mesh accuracy, mesher version), written
-atomically when it finishes.  A sweep killed at any point resumes without
-losing or recomputing a finished case.  Cases run in worker processes.
+Every case is cached (``hubvib.fe_cache``: keyed on the design, the crack, the
+mesh level and the FE stage's source; checked before it is used), written
+atomically by the calling process when it finishes.  A sweep killed at any point
+resumes without losing or recomputing a finished case.  Cases run in worker
+processes or on a Dask cluster (``hubvib.engines``).
 """
 from __future__ import annotations
 
-import json
 import math
 import sys
-from concurrent.futures import ProcessPoolExecutor, as_completed
-from dataclasses import asdict, dataclass
-from multiprocessing import get_context
-from pathlib import Path
+from dataclasses import asdict, dataclass, replace
 
-from .output import write_json
+from .engines import Execution, run_cases
+from .fe_cache import CacheEntryError, case_lock, entry_key, finite_positive, read_entry, write_entry
 
 STARTS = ("root", "rim")
 APPLY = ("series", "ratio", "direct")
 #: mesh size multiplier of each accuracy setting (1.0: c_ru to ~0.3 %, see README)
 ACCURACY = {"default": 1.0, "fast": 2.0}
+#: at most this many depths in one sweep
+MAX_DEPTHS = 64
+#: every value of a case's result that must be a finite number > 0
+POSITIVE_KEYS = ("c_ru_N_m", "c_r_N_m", "c_ru_min_N_m", "c_ru_max_N_m", "c_rp_engaged_ratio",
+                 "c_rp_engaged_min_ratio")
 
 
 @dataclass(frozen=True)
@@ -44,13 +47,15 @@ class CrackSweep:
         the preset's ``c_ru`` and ``c_r`` by FE(depth) / FE(0) (the paper's hypothesis:
         the whole compliance is the ring body, an upper bound of the effect);
         ``"direct"`` uses the FE values themselves (a rigid mounting).
-    c_ru_mount, c_r_mount : float or None
-        With ``"series"``: the mounting's torsional and radial stiffness [N/m]; ``None``
-        identifies it so that the intact total equals the preset's ``c_ru`` / ``c_r``.
     accuracy : str
         ``"default"`` or ``"fast"`` (element sizes doubled).
     workers : int
         Worker processes for the FE cases (1 = in this process).
+    c_ru_mount, c_r_mount : float or None
+        With ``"series"``: the mounting's torsional and radial stiffness [N/m]; ``None``
+        identifies it so that the intact total equals the preset's ``c_ru`` / ``c_r``.
+    design : ReducerDesign or None
+        The reducer whose ring is cracked; ``None`` = Raba 118/76.
     """
 
     depths: tuple[float, ...]
@@ -62,19 +67,28 @@ class CrackSweep:
     workers: int = 2
     c_ru_mount: float | None = None
     c_r_mount: float | None = None
+    design: object = None
 
+    @property
+    def reducer(self):
+        """The design (Raba 118/76 when none is given)."""
+        if self.design is not None:
+            return self.design
+        from hubvib.meshing.raba118 import design
 
-def case_key(sweep: CrackSweep, depth: float) -> str:
-    from hubvib.meshing import cache, raba118
-
-    return cache.key("ring-stiffness", raba118.ring_gear(), crack_of(sweep, depth),
-                     ACCURACY[sweep.accuracy], "c_rp engaged")
+        return design()
 
 
 def crack_of(sweep: CrackSweep, depth: float):
     from hubvib.meshing.crack import Crack
 
     return Crack(sweep.tooth, float(depth), sweep.angle, sweep.start)
+
+
+def case_inputs(sweep: CrackSweep, depth: float) -> dict:
+    """Everything that decides one case's FE values, as plain data."""
+    return {"design": sweep.reducer.fingerprint(), "crack": asdict(crack_of(sweep, depth)),
+            "scale": ACCURACY[sweep.accuracy], "quantities": "c_ru c_r c_rp_engaged"}
 
 
 def fe_case(sweep: CrackSweep, depth: float) -> dict:
@@ -84,82 +98,146 @@ def fe_case(sweep: CrackSweep, depth: float) -> dict:
     import functools
     import time
 
-    from hubvib.meshing import raba118
+    from hubvib.design.build import gear_body, material, ring_gear
+    from hubvib.fem.estimate import estimate_ring
+    from hubvib.meshing.levels import scaled_options
     from hubvib.meshing.ring_mesh import ring_mesh
 
-    from hubvib.fem.estimate import estimate_ring
-
     started = time.perf_counter()
+    design = sweep.reducer
     scale = ACCURACY[sweep.accuracy]
     mesher = functools.lru_cache(maxsize=2)(ring_mesh)
-    result = dict(estimate_ring(raba118.ring_gear(), crack_of(sweep, depth), scale,
-                                mesher=mesher).to_dict(),
-                  depth_m=float(depth))
+    ring = ring_gear(design)
+    result = dict(estimate_ring(ring, crack_of(sweep, depth), scale, mesher=mesher,
+                                material=material(design),
+                                n_planets=design.n_planets).to_dict(), depth_m=float(depth))
     engaged = {"c_rp_engaged_ratio": 1.0, "c_rp_engaged_ratio_error": 0.0,
                "c_rp_engaged_min_ratio": 1.0}
     if depth > 0:
-        from dataclasses import replace
-
         from hubvib.fem.tooth_stiffness import engaged_ring_mesh
 
-        from hubvib.meshing.levels import scaled_options
-
         crack = replace(crack_of(sweep, depth), tooth=0)
-        planet, ring = raba118.gear_body("planet"), raba118.ring_gear()
-        fine = engaged_ring_mesh(planet, ring, crack, scaled_options(scale), mesher=mesher)
-        coarse = engaged_ring_mesh(planet, ring, crack, scaled_options(2 * scale),
-                                   mesher=mesher)
+        planet = gear_body(design, "planet")
+        fine, coarse = (engaged_ring_mesh(planet, ring, crack, scaled_options(s),
+                                          material=material(design), mesher=mesher)
+                        for s in (scale, 2 * scale))
         engaged = {"c_rp_engaged_ratio": fine.mean_ratio,
                    "c_rp_engaged_ratio_error": abs(fine.mean_ratio - coarse.mean_ratio),
                    "c_rp_engaged_min_ratio": fine.min_ratio}
     return result | engaged | {"seconds_total": time.perf_counter() - started}
 
 
-def cache_folder() -> Path:
+def cache_folder():
     from hubvib.meshing.cache import root_folder
 
     return root_folder() / "stiffness"
 
 
-def run_fe_cases(sweep: CrackSweep, progress: bool = True) -> tuple[list[dict], int]:
+def check_case(depth: float):
+    """The plausibility check of a cached case at ``depth`` [m]."""
+    def check(result: dict) -> None:
+        finite_positive(result, POSITIVE_KEYS)
+        if result.get("depth_m") != depth:
+            raise CacheEntryError(f"depth_m = {result.get('depth_m')!r}, the case is {depth!r}")
+        if not result["c_ru_min_N_m"] <= result["c_ru_N_m"] <= result["c_ru_max_N_m"]:
+            raise CacheEntryError("c_ru outside its own min..max over carrier positions")
+        for key in ("c_rp_engaged_ratio", "c_rp_engaged_min_ratio"):
+            if not result[key] <= 1 + 1e-6 or (depth == 0 and result[key] != 1.0):
+                raise CacheEntryError(f"{key} = {result[key]!r}: a crack cannot stiffen the tooth")
+    return check
+
+
+def run_fe_cases(sweep: CrackSweep, progress: bool = True,
+                 execution: Execution = Execution()) -> tuple[list[dict], int]:
     """Every depth's FE result, from the cache or computed; returns them and how many ran."""
+    if sweep.design is not None and not sweep.reducer.equally_spaced:
+        raise ValueError(f"design {sweep.reducer.name!r}: the FE ring model loads equally spaced "
+                         "planets only; unequal planet_angles_deg work in the lumped model but "
+                         "not in the crack study")
     folder = cache_folder()
-    paths = {d: folder / f"{case_key(sweep, d)}.json" for d in sweep.depths}
-    todo = [d for d, p in paths.items() if not _readable(p)]
+    inputs = {d: case_inputs(sweep, d) for d in sweep.depths}
+    paths = {d: folder / f"{entry_key(inputs[d])}.json" for d in sweep.depths}
+    results = {}
+
+    def cached(depth, notice):
+        try:
+            results[depth] = read_entry(paths[depth], inputs[depth], check_case(depth))
+            return True
+        except CacheEntryError as exc:
+            if notice and str(exc) != "missing":
+                print(f"hubvib: cache entry {paths[depth].name} for depth {depth:g} m: {exc}; "
+                      "recomputing", file=sys.stderr)
+            return False
+
+    todo = [d for d in sweep.depths if not cached(d, notice=True)]
     bar = _progress(len(sweep.depths), len(sweep.depths) - len(todo), progress)
+
+    def store(depth, result):
+        write_entry(paths[depth], inputs[depth], result)
+        results[depth] = result
+        bar.update(1)
+        if not bar_is_tty(progress):
+            print(f"FE case {len(results)}/{len(sweep.depths)}: depth {1e3 * depth:.4g} mm, "
+                  f"{result['seconds_total']:.1f} s", file=sys.stderr, flush=True)
+
+    computed = 0
     try:
-        if sweep.workers == 1 or len(todo) <= 1:
-            for depth in todo:
-                _store(paths[depth], sweep, fe_case(sweep, depth))
-                bar.update(1)
-        else:
-            with ProcessPoolExecutor(min(sweep.workers, len(todo)),
-                                     mp_context=get_context("spawn")) as pool:
-                futures = {pool.submit(fe_case, sweep, d): d for d in todo}
-                for future in as_completed(futures):
-                    _store(paths[futures[future]], sweep, future.result())
-                    bar.update(1)
+        for attempt in ("others may hold", "wait"):
+            mine, busy = [], []
+            with _locks(paths, todo, wait=attempt == "wait") as held:
+                for depth in todo:
+                    if depth in held and not cached(depth, notice=False):
+                        mine.append(depth)
+                    elif depth not in held:
+                        busy.append(depth)
+                    else:
+                        bar.update(1)
+                run_cases(_Case(sweep), mine, store, execution, sweep.workers)
+                computed += len(mine)
+            todo = [d for d in busy if not cached(d, notice=False)]
+            if not todo:
+                break
     finally:
         bar.close()
-    return [json.loads(paths[d].read_text()) for d in sweep.depths], len(todo)
+    return [results[d] for d in sweep.depths], computed
 
 
-def _store(path: Path, sweep: CrackSweep, result: dict) -> None:
-    write_json(path, dict(result, sweep=asdict(sweep) | {"depths": None, "c_ru_mount": None,
-                                                         "c_r_mount": None}))
+@dataclass(frozen=True)
+class _Case:
+    """``fe_case`` bound to its sweep: one picklable callable of the depth."""
+
+    sweep: CrackSweep
+
+    def __call__(self, depth: float) -> dict:
+        return fe_case(self.sweep, depth)
 
 
-def _readable(path: Path) -> bool:
-    try:
-        data = json.loads(path.read_text())
-    except (OSError, ValueError):
-        return False
-    return all(math.isfinite(data.get(key, math.nan))
-               for key in ("c_ru_N_m", "c_rp_engaged_ratio"))
+class _locks:
+    """Lock each entry of ``depths``; ``held`` is the set locked by this process."""
+
+    def __init__(self, paths, depths, wait):
+        self.stack, self.paths, self.depths, self.wait = None, paths, depths, wait
+
+    def __enter__(self):
+        from contextlib import ExitStack
+
+        self.stack = ExitStack()
+        held = set()
+        for depth in self.depths:
+            if self.stack.enter_context(case_lock(self.paths[depth], self.wait)):
+                held.add(depth)
+        return held
+
+    def __exit__(self, *exc):
+        self.stack.close()
+
+
+def bar_is_tty(enabled: bool) -> bool:
+    return enabled and sys.stderr.isatty()
 
 
 def _progress(total: int, done: int, enabled: bool):
     from tqdm import tqdm
 
     return tqdm(total=total, initial=done, desc="FE crack cases", unit="case",
-                disable=not enabled or not sys.stderr.isatty(), file=sys.stderr)
+                disable=not bar_is_tty(enabled), file=sys.stderr)

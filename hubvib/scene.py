@@ -3,7 +3,11 @@
 A scene is TOML with these tables (all keys shown; SI units)::
 
     [reducer]
-    preset = "raba118"            # see lumped.PRESETS
+    preset = "raba118"            # a shipped design: raba118, hub4
+    [design]                      # optional, instead of the preset: a design table
+    file = "my_reducer.toml"      # (the keys of a design file, see hubvib.design.parse),
+                                  # or file = a design file (relative to the scene),
+                                  # or preset = "hub4"
     [reducer.parameters]          # optional overrides, keys as for --set
     c_ru = 1e6
 
@@ -49,7 +53,9 @@ from pathlib import Path
 
 from hubvib.lumped import METHODS, ParameterError, PlanetaryParameters, field_names
 
-from .crack_sweep import ACCURACY, APPLY, STARTS, CrackSweep
+PARAMETER_NAMES = field_names()
+
+from .crack_sweep import ACCURACY, APPLY, MAX_DEPTHS, STARTS, CrackSweep
 from .params_input import load_parameters
 
 #: optional tables parsed by the module that uses them: table -> "module:function".
@@ -59,10 +65,11 @@ from .params_input import load_parameters
 EXTENSION_TABLES = {
     "signal": "hubvib.signal.options:parse_signal_table",
     "detection": "hubvib.detection.options:parse_detection_table",
+    "execution": "hubvib.engines:parse_execution_table",
 }
 
 ALLOWED = {
-    "": {"reducer", "study", "crack", "output", *EXTENSION_TABLES},
+    "": {"reducer", "design", "study", "crack", "output", *EXTENSION_TABLES},
     "reducer": {"preset", "parameters"},
     "study": {"parameter", "values", "detection_threshold_percent", "method"},
     "crack": {"depths", "through_rim", "tooth", "start", "angle_deg", "apply", "accuracy",
@@ -90,6 +97,7 @@ class Scene:
     renders: bool = False
     gif: bool = False
     vtm: bool = False
+    design: object = None
     tables: dict = field(default_factory=dict, compare=False)
 
 
@@ -132,10 +140,11 @@ def load_scene(path: Path | str | None = None) -> Scene:
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise SceneError(f"cannot read scene {str(path)!r}: {exc.strerror}") from None
-    return parse_scene(text, path.stem)
+    return parse_scene(text, path.stem, path.parent)
 
 
-def parse_scene(text: str, name: str) -> Scene:
+def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
+    """Parse and check a scene's text; ``base`` is the folder of relative paths in it."""
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -151,12 +160,23 @@ def parse_scene(text: str, name: str) -> Scene:
     overrides = reducer.get("parameters", {})
     if not isinstance(overrides, dict):
         raise SceneError(f"[reducer] parameters = {overrides!r}, but it must be a table")
+    design = _design(data, reducer, base)
     try:
-        params = load_parameters(_string(reducer, "reducer", "preset", "raba118"), overrides=overrides)
-    except ParameterError as exc:
-        raise SceneError(f"[reducer]: {exc}") from None
+        if "design" in data:
+            from hubvib.design.build import lumped_parameters
 
-    crack = _crack(data["crack"]) if "crack" in data else None
+            from .params_input import apply_overrides
+
+            params = apply_overrides(lumped_parameters(design), overrides)
+        else:
+            params = load_parameters(_string(reducer, "reducer", "preset", "raba118"),
+                                     overrides=overrides)
+    except (ParameterError, ValueError) as exc:
+        raise SceneError(f"[reducer]: {exc}") from None
+    if "crack" in data or "design" in data:
+        _check_consistent(design, params)
+
+    crack = _crack(data["crack"], design) if "crack" in data else None
     parameter = _string(study, "study", "parameter", "c_ru")
     numeric = [f for f in field_names() if f not in ("theta", "c_rp_factors")]
     if parameter not in numeric:
@@ -195,7 +215,61 @@ def parse_scene(text: str, name: str) -> Scene:
     folder = Path(_string(output, "output", "folder", "hubvib-out"))
     tables = {key: _extension(key, data[key]) for key in EXTENSION_TABLES if key in data}
     return Scene(name, params, parameter, tuple(float(v) for v in values), float(threshold),
-                 method, folder, plots, data, crack, **flags, tables=tables)
+                 method, folder, plots, data, crack, **flags, design=design, tables=tables)
+
+
+def _design(data, reducer, base: Path | None):
+    """The scene's design: its [design] table, else the [reducer] preset's design."""
+    from hubvib.design import DesignError, PRESETS, load_design, parse_design, preset_design
+
+    preset = _string(reducer, "reducer", "preset", "raba118")
+    try:
+        if "design" not in data:
+            return preset_design(preset) if preset in PRESETS else None
+        if "preset" in reducer:
+            raise SceneError("give either [reducer] preset or [design], not both")
+        table = data["design"]
+        if not isinstance(table, dict):
+            raise SceneError(f"[design] must be a table, got {table!r}")
+        if set(table) == {"file"}:
+            path = Path(table["file"]) if isinstance(table["file"], str) else None
+            if path is None:
+                raise SceneError(f"[design] file = {table['file']!r}; allowed: a path (string)")
+            return load_design(path if path.is_absolute() or base is None else base / path)
+        if set(table) == {"preset"}:
+            return preset_design(table["preset"])
+        return parse_design(table, default_name="design")
+    except DesignError as exc:
+        raise SceneError(f"[design]: {exc}") from None
+
+
+def _check_consistent(design, params) -> None:
+    """Refuse lumped parameters that contradict the design (N, angles, diameters)."""
+    from hubvib.design.build import derived_lumped_fields
+
+    if design is None:
+        return
+    n = len(params.theta)
+    if n != design.n_planets:
+        raise SceneError(f"[reducer.parameters] give {n} planets, but the design "
+                         f"{design.name!r} has n_planets = {design.n_planets}")
+    for i, (a, b) in enumerate(zip(params.theta, design.angles)):
+        if abs(math.remainder(a - b, 2 * math.pi)) > 1e-9:
+            raise SceneError(f"[reducer.parameters] planet {i + 1} at {math.degrees(a):.6g} deg, "
+                             f"but the design {design.name!r} puts it at "
+                             f"{math.degrees(b):.6g} deg")
+    given = design.lumped_fields
+    derived = derived_lumped_fields(design, skip=set(PARAMETER_NAMES) - set(GEOMETRIC))
+    for key in GEOMETRIC:
+        expected = given.get(key, derived.get(key))
+        value = getattr(params, key)
+        if expected is not None and abs(value - expected) > 1e-9 * abs(expected):
+            raise SceneError(f"[reducer.parameters] {key} = {value:.9g}, but the design "
+                             f"{design.name!r} gives {key} = {expected:.9g}")
+
+
+#: lumped fields that follow from the design's geometry
+GEOMETRIC = ("d_s", "d_c", "d_r", "d_p", "alpha_s", "alpha_r")
 
 
 def _extension(key: str, table):
@@ -207,11 +281,13 @@ def _extension(key: str, table):
     return getattr(importlib.import_module(module), function)(table)
 
 
-def _crack(table) -> CrackSweep:
+def _crack(table, design) -> CrackSweep:
     if not isinstance(table, dict):
         raise SceneError(f"[crack] must be a table, got {table!r}")
     _check_keys(table, "crack")
     depths = table.get("depths", [0.0])
+    if isinstance(depths, list) and len(depths) > MAX_DEPTHS:
+        raise SceneError(f"[crack] depths: {len(depths)} values; allowed at most {MAX_DEPTHS}")
     if not isinstance(depths, list) or not depths or not all(
             isinstance(d, (int, float)) and not isinstance(d, bool) and math.isfinite(d)
             for d in depths):
@@ -254,20 +330,24 @@ def _crack(table) -> CrackSweep:
                              f"\"series\" (apply = {apply!r})")
         mounts[key] = None if value is None else float(value)
     sweep = CrackSweep(tuple(float(d) for d in depths), integers["tooth"], start,
-                       math.radians(angle), apply, accuracy, integers["workers"], **mounts)
+                       math.radians(angle), apply, accuracy, integers["workers"], **mounts,
+                       design=design)
     return _checked_depths(sweep, through)
 
 
 def _checked_depths(sweep: CrackSweep, through: bool) -> CrackSweep:
-    """Validate every depth against the Raba ring (no meshing) and add the through depth."""
+    """Validate every depth against the design's ring (no meshing) and add the through depth."""
     from dataclasses import replace
 
-    from hubvib.meshing import raba118
+    from hubvib.design.build import ring_gear
     from hubvib.meshing.gear import GearGeometryError
 
     from .crack_sweep import crack_of
 
-    ring = raba118.ring_gear()
+    if sweep.tooth >= sweep.reducer.ring.teeth:
+        raise SceneError(f"[crack] tooth = {sweep.tooth}; allowed 0..{sweep.reducer.ring.teeth - 1} "
+                         f"(the ring of {sweep.reducer.name!r} has {sweep.reducer.ring.teeth} teeth)")
+    ring = ring_gear(sweep.reducer)
     depths = list(sweep.depths)
     if through and sweep.start == "root":
         try:

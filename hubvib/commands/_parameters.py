@@ -18,6 +18,8 @@ PARAMETER_HELP = (
 
 def add_parameter_options(p) -> None:
     p.add_argument("--preset", default="raba118", choices=sorted(PRESETS))
+    p.add_argument("--design", metavar="FILE.toml",
+                   help="a reducer design file (or a preset design's name): its lumped model")
     p.add_argument("--params", type=Path, metavar="FILE.toml",
                    help="TOML file of parameter keys (may name its own preset)")
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
@@ -27,5 +29,15 @@ def add_parameter_options(p) -> None:
 
 
 def parameters(args):
-    """The lumped parameters the options describe."""
-    return load_parameters(args.preset, args.params, parse_set(args.set))
+    """The lumped parameters the options describe (``--design`` replaces ``--preset``)."""
+    if args.design is None:
+        return load_parameters(args.preset, args.params, parse_set(args.set))
+    from hubvib.design.build import lumped_parameters
+    from hubvib.params_input import apply_overrides
+
+    from .design import design_from_argument
+
+    if args.params is not None:
+        raise ValueError("--design and --params both give the reducer; use one")
+    return apply_overrides(lumped_parameters(design_from_argument(args.design)),
+                           parse_set(args.set))

@@ -9,7 +9,9 @@ from hubvib.fem.solvers import SOLVERS
 def add_parser(sub) -> None:
     p = sub.add_parser("stiffness", help="every stiffness of the lumped model: FE c_ru, c_r, "
                        "c_sp, c_rp; bearing c_p, c_c")
-    p.add_argument("--preset", default="raba118", choices=["raba118"])
+    p.add_argument("--preset", default="raba118", choices=["raba118", "hub4"])
+    p.add_argument("--design", metavar="FILE.toml",
+                   help="a reducer design file (replaces --preset)")
     p.add_argument("--crack-depth", type=float, default=0.0, metavar="D",
                    help="root crack length at tooth 0 [m]; 0 = intact only")
     p.add_argument("--solid", action="store_true",
@@ -33,11 +35,22 @@ def bearings(design) -> dict:
 
 
 def run(args) -> int:
+    import math
+
+    from hubvib.design.build import gear_body, material, ring_gear
     from hubvib.fem.estimate import estimate_mesh, estimate_ring
-    from hubvib.meshing import raba118
     from hubvib.meshing.crack import Crack
 
-    ring = raba118.ring_gear()
+    from .design import design_from_argument
+
+    design = design_from_argument(args.design or args.preset)
+    if not design.equally_spaced:
+        raise ValueError(f"design {design.name!r}: the FE ring model loads equally spaced planets "
+                         "only")
+    if not (math.isfinite(args.crack_depth) and args.crack_depth >= 0):
+        raise ValueError(f"--crack-depth = {args.crack_depth!r}; allowed: a finite depth >= 0 [m] "
+                         "(0 = intact only)")
+    ring, steel = ring_gear(design), material(design)
     cases = {"intact": None}
     if args.crack_depth > 0:
         crack = Crack(0, args.crack_depth)
@@ -45,17 +58,18 @@ def run(args) -> int:
         cases[f"crack {args.crack_depth:g} m"] = crack
     # c_sp, c_rp are intact means in both cases; the cracked run adds the cracked tooth's
     # engagement to c_rp, so one run serves both
-    estimates = estimate_mesh(raba118.gear_body("sun"), raba118.gear_body("planet"), ring,
-                              list(cases.values())[-1])
+    estimates = estimate_mesh(gear_body(design, "sun"), gear_body(design, "planet"), ring,
+                              list(cases.values())[-1], material=steel)
     mesh_rows = {key: e.to_dict() for key, e in estimates.items()}
     intact_mesh_rows = {key: e.to_dict(engaged=False) for key, e in estimates.items()}
-    bearing_rows = bearings()
+    bearing_rows = bearings(design)
     out = {}
     for name, crack in cases.items():
-        rows = _ring_rows(estimate_ring(ring, crack, solver=args.solver).to_dict(), "")
+        ring_options = dict(solver=args.solver, material=steel, n_planets=design.n_planets)
+        rows = _ring_rows(estimate_ring(ring, crack, **ring_options).to_dict(), "")
         if args.solid:
-            rows.update(_ring_rows(estimate_ring(ring, crack, solver=args.solver,
-                                                 solid=True).to_dict(), " 3D"))
+            rows.update(_ring_rows(estimate_ring(ring, crack, solid=True,
+                                                 **ring_options).to_dict(), " 3D"))
         rows.update(intact_mesh_rows if crack is None else mesh_rows)
         rows.update(bearing_rows)
         out[name] = rows
@@ -83,9 +97,13 @@ def run(args) -> int:
         print("crack changes: " + ", ".join(
             f"{k} {100 * (cracked[k]['value_N_m'] / intact[k]['value_N_m'] - 1):+.2f} %"
             for k in ("c_ru", "c_r")))
-    print("plane stress, steel E 210 GPa, nu 0.3, face width 40 mm (ASSUMED); ring supports "
-          "clamped; +- = fine minus twice-coarser mesh; c_p/c_c: Palmgren line contact, tangent "
-          "stiffness at the ASSUMED operating load (sun torque 1000 N m), bearing data ASSUMED")
+    m = design.material
+    print(f"design {design.name!r}: plane stress, E {m.E / 1e9:g} GPa, nu {m.nu:g}, face width "
+          f"{1e3 * design.face_width:g} mm; ring supports clamped; +- = fine minus twice-coarser "
+          "mesh; c_p/c_c: Palmgren line contact, tangent stiffness at the operating load (sun "
+          f"torque {design.sun_torque:g} N m)")
+    for note in design.notes:
+        print(f"note: {note}")
     if args.solid:
         print("3D: P2 tetrahedra, +- = difference to the next coarser solid level (the "
               "benchmark's reference level agrees to ~0.3 %, README)")
