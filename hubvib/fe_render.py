@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .render import _atomic, _plotter
+from .render import write_atomically, offscreen_plotter
 
 MODES = 4
 MAGNIFIED = 0.03  # largest drawn displacement as a fraction of the ring's outer radius
@@ -98,7 +98,7 @@ def _outline(fields: RingFields):
 def _picture(path: Path, draw, centre=None) -> Path:
     """Draw, look along -z (at ``centre`` with a ``TIP_VIEW`` window if given), save."""
     def write(tmp):
-        plotter = _plotter()
+        plotter = offscreen_plotter()
         draw(plotter)
         plotter.view_xy()
         plotter.enable_parallel_projection()
@@ -109,7 +109,7 @@ def _picture(path: Path, draw, centre=None) -> Path:
         plotter.screenshot(str(tmp))
         plotter.close()
 
-    return _atomic(path, write)
+    return write_atomically(path, write)
 
 
 def render_fe(fields: RingFields, folder: Path, vtu: bool = False) -> list[Path]:
@@ -164,5 +164,5 @@ def render_fe(fields: RingFields, folder: Path, vtu: bool = False) -> list[Path]
             data[f"mode {k + 1} ({fields.mode_hz[k]:.1f} Hz)"] = np.column_stack(
                 [shape, np.zeros(len(shape))])
         grid = _grid(fields, fields.displacement, 0.0, data)
-        files.append(_atomic(folder / "fe_ring.vtu", lambda tmp: grid.save(str(tmp))))
+        files.append(write_atomically(folder / "fe_ring.vtu", lambda tmp: grid.save(str(tmp))))
     return files

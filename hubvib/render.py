@@ -123,7 +123,7 @@ def deformed_bodies(params, shape: np.ndarray, phase: float = 1.0) -> dict:
 COLOURS = {"sun": "#d95f02", "ring": "#7570b3", "carrier": "#666666"}
 
 
-def _plotter():
+def offscreen_plotter():
     os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
     import pyvista as pv
 
@@ -144,7 +144,7 @@ def _draw(plotter, meshes: dict, reference: dict, label: str):
     plotter.camera.zoom(1.25)
 
 
-def _atomic(path: Path, write) -> Path:
+def write_atomically(path: Path, write) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.stem}.part{path.suffix}")
     try:
@@ -170,15 +170,15 @@ def render_mode(params, spectrum, index: int, folder: Path, gif: bool = False,
     files = []
 
     def png(tmp):
-        plotter = _plotter()
+        plotter = offscreen_plotter()
         _draw(plotter, deformed_bodies(params, shape), reference, label)
         plotter.screenshot(str(tmp))
         plotter.close()
 
-    files.append(_atomic(folder / f"{stem}.png", png))
+    files.append(write_atomically(folder / f"{stem}.png", png))
     if gif:
         def animation(tmp):
-            plotter = _plotter()
+            plotter = offscreen_plotter()
             plotter.open_gif(str(tmp), fps=12)
             for phase in np.sin(np.linspace(0, 2 * math.pi, 24, endpoint=False)):
                 plotter.clear()
@@ -186,7 +186,7 @@ def render_mode(params, spectrum, index: int, folder: Path, gif: bool = False,
                 plotter.write_frame()
             plotter.close()
 
-        files.append(_atomic(folder / f"{stem}.gif", animation))
+        files.append(write_atomically(folder / f"{stem}.gif", animation))
     if vtm:
         blocks = pv.MultiBlock(deformed_bodies(params, shape))
         stem_path = folder / f"{stem}.vtm"

@@ -92,10 +92,10 @@ def ring_mesh(ring: ToothedBody, crack: Crack | None = None,
     if crack is not None and not isinstance(ring, RingGear):
         raise GearGeometryError("crack: only ring gears (RingGear) take a crack")
     crack_path = crack.path(ring) if crack is not None else None
-    _check_load_patch(ring, options)
+    check_load_patch(ring, options)
     started = time.perf_counter()
     with gmsh_model("ring") as gmsh:
-        mesh = run_builder(_RingBuilder(gmsh, ring, crack, crack_path, options),
+        mesh = run_builder(RingBuilder(gmsh, ring, crack, crack_path, options),
                            f"the ring section (options={options}, crack={crack})")
     return with_info(mesh, started, ring, options, crack, crack_path, exact_area=ring.area())
 
@@ -121,7 +121,7 @@ def with_info(mesh: FEMesh, started: float, ring, options, crack, crack_path, **
     return FEMesh(mesh.points, mesh.cells, mesh.cell_type, mesh.boundaries, mesh.points_of, info)
 
 
-def _check_load_patch(body: ToothedBody, options: MeshOptions) -> None:
+def check_load_patch(body: ToothedBody, options: MeshOptions) -> None:
     prof = body.profile
     low, high = sorted((prof.tip_radius, prof.form_radius))
     if not (low < body.load_radius - options.load_patch / 2
@@ -139,7 +139,7 @@ def _describe(body: ToothedBody) -> dict:
                 supports=asdict(body.supports), load_radius=body.load_radius)
 
 
-class _RingBuilder:
+class RingBuilder:
     def __init__(self, gmsh, ring, crack, crack_path, options):
         self.gmsh, self.ring, self.crack, self.path, self.opt = gmsh, ring, crack, crack_path, options
         self.geo = gmsh.model.geo

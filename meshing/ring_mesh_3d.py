@@ -24,7 +24,7 @@ from .fe_mesh import TETRA10_EDGES, FEMesh
 from .extract import extract
 from .gear import GearGeometryError
 from .ring_gear import RingGear
-from .ring_mesh import MeshOptions, _check_load_patch, _RingBuilder, run_builder, with_info
+from .ring_mesh import MeshOptions, check_load_patch, RingBuilder, run_builder, with_info
 from .session import MeshingError, gmsh_model, split_crack
 
 #: Default sizes for solid meshes (the plane defaults would need ~50x the elements in 3D).
@@ -50,7 +50,7 @@ def ring_mesh_3d(ring: RingGear, crack: Crack | None = None, front: CrackFront =
             raise GearGeometryError(
                 "crack.front = 'semi_elliptic' needs a straight crack that stays inside the rim: "
                 f"allowed crack.depth 0..{crack.through_depth(ring):.6g} m and kink_fraction = 1")
-    _check_load_patch(ring, options)
+    check_load_patch(ring, options)
     started = time.perf_counter()
     with gmsh_model("ring3d") as gmsh:
         mesh = run_builder(_SolidBuilder(gmsh, ring, crack, path, options, front),
@@ -60,7 +60,7 @@ def ring_mesh_3d(ring: RingGear, crack: Crack | None = None, front: CrackFront =
                      exact_volume=ring.area() * width)
 
 
-class _SolidBuilder(_RingBuilder):
+class _SolidBuilder(RingBuilder):
     def __init__(self, gmsh, ring, crack, path, options, front):
         super().__init__(gmsh, ring, crack, path, options)
         self.geo = gmsh.model.occ  # its extrusion is topological: 10x faster than geo's
