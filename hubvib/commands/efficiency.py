@@ -1,0 +1,112 @@
+"""``hubvib efficiency``: efficiency and optimal geometry of ball/roller planetary gears."""
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("efficiency", help="efficiency-optimal lift angle, R and A of "
+                                          "ball/roller planetary gears (seed 001)")
+    p.add_argument("--ratio", type=float, nargs="+", metavar="I",
+                   help="gear ratio(s) i = z2 + 1, whole numbers >= 2")
+    p.add_argument("--alpha1-deg", type=float, metavar="A",
+                   help="evaluate at this driving-track lift angle, in (0, 90) deg "
+                        "(default: the whole-degree optimum)")
+    p.add_argument("--satellite", choices=["ball", "roller", "both"], default="both",
+                   help="satellite type(s) whose R and A are reported (default both)")
+    p.add_argument("--ball-diameter-mm", type=float, default=15.0,
+                   help="ball diameter d_c [mm], > 0 (paper: 15)")
+    p.add_argument("--roller-diameter-mm", type=float, default=10.0,
+                   help="roller diameter d_c [mm], > 0 (paper: 10)")
+    p.add_argument("--f1", type=float, default=0.004,
+                   help="friction, rolling on the driving track, [0, 1) (paper: 0.004)")
+    p.add_argument("--f2", type=float, default=0.05,
+                   help="friction, rolling with sliding on the fixed track, [0, 1) (paper: 0.05)")
+    p.add_argument("--f3", type=float, default=0.1,
+                   help="friction, sliding in the carrier slots, [0, 1) (paper: 0.1)")
+    p.add_argument("--input-power-w", type=float, default=1500.0,
+                   help="input power W1 for the link losses [W] (paper: 1500)")
+    p.add_argument("--table", action="store_true",
+                   help="recompute the paper's table for i = 5..30 and compare it")
+    p.add_argument("--curve", action="store_true",
+                   help="also print the loss terms against alpha1 = 1..30 deg")
+    p.add_argument("--out", type=Path, metavar="DIR",
+                   help="write plots (PNG) and the alpha1 curves (CSV) here")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(handler=run)
+
+
+def run(args) -> int:
+    from hubvib.companion import efficiency_report as report
+    from hubvib.companion.efficiency import Friction
+    from hubvib.companion.efficiency_design import gear_design
+    from hubvib.companion.efficiency_table import PAPER_RATIOS, paper_table
+    from hubvib.companion.track_geometry import check_alpha1, check_diameter
+
+    friction = Friction(args.f1, args.f2, args.f3)
+    satellites = {name: check_diameter(name, getattr(args, f"{name}_diameter_mm") * 1e-3)
+                  for name in ("ball", "roller") if args.satellite in (name, "both")}
+    if args.table and args.alpha1_deg is not None:
+        raise ValueError("--alpha1-deg cannot be combined with --table (the table is at the "
+                         "optimal alpha1)")
+    if not args.table and not args.ratio:
+        raise ValueError("--ratio is required (whole numbers >= 2) unless --table is given")
+    ratios = tuple(args.ratio) if args.ratio else PAPER_RATIOS
+    alpha1 = None if args.alpha1_deg is None else check_alpha1(math.radians(args.alpha1_deg))
+    if args.table:
+        table = paper_table(ratios, friction, satellites)
+        designs = tuple(gear_design(i, friction, None, satellites, args.input_power_w)
+                        for i in ratios)
+    else:
+        designs = tuple(gear_design(i, friction, alpha1, satellites, args.input_power_w)
+                        for i in ratios)
+    files = _write(args.out, designs) if args.out else []
+    if args.json:
+        data = {"source": report.SOURCE, "designs": [_with_curve(d) for d in designs]}
+        if args.table:
+            data["table"] = [c.to_dict() for c in table.cells]
+        data["files"] = [str(f) for f in files]
+        print(json.dumps(data, indent=2, allow_nan=False))
+        return 0
+    if args.table:
+        print(report.format_table(table))
+    elif len(designs) == 1:
+        print(report.format_design(designs[0], curve=args.curve))
+    else:
+        print(report.format_designs(designs))
+        if args.curve:
+            for d in designs:
+                print("\n" + report.format_curve(d))
+    if files:
+        print(f"\nwritten: {', '.join(str(f) for f in files)}")
+    return 0
+
+
+def _with_curve(design) -> dict:
+    from hubvib.companion.efficiency import CURVE_DEGREES, loss_curve
+
+    rows = []
+    for c in loss_curve(design.ratio, CURVE_DEGREES, design.friction):
+        power = c.power(design.power.input_w)
+        rows.append({**c.to_dict(), "driving_w": power.driving_w, "fixed_w": power.fixed_w,
+                     "carrier_w": power.carrier_w, "total_loss_w": power.total_loss_w})
+    return {**design.to_dict(), "curve": rows}
+
+
+def _write(out: Path, designs) -> list[Path]:
+    from hubvib.companion.efficiency_plot import efficiency_figure, link_loss_figure
+    from hubvib.output import save_figure, write_csv
+
+    rows = [{"ratio": d.ratio, **{k: v for k, v in row.items()}}
+            for d in designs for row in _with_curve(d)["curve"]]
+    files = [write_csv(out / "efficiency_curves.csv", rows)]
+    friction, power = designs[0].friction, designs[0].power.input_w
+    for d in designs:
+        files.append(save_figure(link_loss_figure(d.ratio, friction, power),
+                                 out / f"efficiency_losses_i{d.ratio}.png"))
+    if len(designs) > 1:
+        files.append(save_figure(efficiency_figure([d.ratio for d in designs], friction),
+                                 out / "efficiency_eta.png"))
+    return files

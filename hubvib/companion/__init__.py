@@ -1,0 +1,1 @@
+"""Companion analyses of neighbouring planetary transmissions (the seed papers)."""
