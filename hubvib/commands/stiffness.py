@@ -97,6 +97,9 @@ def run(args) -> int:
         print("crack changes: " + ", ".join(
             f"{k} {100 * (cracked[k]['value_N_m'] / intact[k]['value_N_m'] - 1):+.2f} %"
             for k in ("c_ru", "c_r")))
+        print("the highest c_ru over carrier positions can rise with the crack: where a planet "
+              "loads the cracked tooth, the rotation read on its root land is cut by the crack "
+              "mouth (the tooth's own softening is in c_rp's engaged value); the mean falls")
     m = design.material
     print(f"design {design.name!r}: plane stress, E {m.E / 1e9:g} GPa, nu {m.nu:g}, face width "
           f"{1e3 * design.face_width:g} mm; ring supports clamped; +- = fine minus twice-coarser "
