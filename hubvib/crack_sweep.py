@@ -17,8 +17,10 @@ import math
 import sys
 from dataclasses import asdict, dataclass, replace
 
-from .engines import Execution, run_cases
-from .fe_cache import CacheEntryError, case_lock, entry_key, finite_positive, read_entry, write_entry
+from .engines import Execution, check_reachable, run_cases
+from . import fe_cache
+from .fe_cache import (CacheEntryError, case_lock, entry_key, finite_positive, read_entry,
+                       write_entry)
 
 STARTS = ("root", "rim")
 APPLY = ("series", "ratio", "direct")
@@ -170,6 +172,8 @@ def run_fe_cases(sweep: CrackSweep, progress: bool = True,
             return False
 
     todo = [d for d in sweep.depths if not cached(d, notice=True)]
+    if todo:
+        check_reachable(execution)
     bar = _progress(len(sweep.depths), len(sweep.depths) - len(todo), progress)
 
     def store(depth, result):
@@ -192,7 +196,7 @@ def run_fe_cases(sweep: CrackSweep, progress: bool = True,
                         busy.append(depth)
                     else:
                         bar.update(1)
-                run_cases(_Case(sweep), mine, store, execution, sweep.workers)
+                run_cases(_Case(sweep, fe_cache.fe_version()), mine, store, execution, sweep.workers)
                 computed += len(mine)
             todo = [d for d in busy if not cached(d, notice=False)]
             if not todo:
@@ -204,11 +208,18 @@ def run_fe_cases(sweep: CrackSweep, progress: bool = True,
 
 @dataclass(frozen=True)
 class _Case:
-    """``fe_case`` bound to its sweep: one picklable callable of the depth."""
+    """``fe_case`` bound to its sweep: one picklable callable of the depth.  It refuses to
+    run on a worker whose FE stage differs from the client's (its result would be cached
+    under the client's version)."""
 
     sweep: CrackSweep
+    fe_version: str
 
     def __call__(self, depth: float) -> dict:
+        if fe_cache.fe_version() != self.fe_version:
+            raise RuntimeError(f"this worker's FE stage is version {fe_cache.fe_version()}, "
+                               f"the client's "
+                               f"{self.fe_version}: install the same hubvib on every worker")
         return fe_case(self.sweep, depth)
 
 

@@ -8,11 +8,17 @@ Workers compute and return results; the calling process alone writes them
     engine = "local"              # or "dask"
     scheduler = "tcp://host:8786" # dask: a running scheduler; absent: a LocalCluster
     workers = 2                   # local pool / LocalCluster workers, 1..64
-    timeout_s = 10                # dask: how long to wait for the scheduler, 1..600
+    timeout_s = 10                # dask: how long to wait for the scheduler and for a
+                                  # worker to join it [s], 1..600
 """
 from __future__ import annotations
 
+import logging
 import math
+import os
+import threading
+import warnings
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 ENGINES = ("local", "dask")
@@ -68,7 +74,10 @@ def run_cases(function, items: list, on_result, execution: Execution, workers: i
     """``on_result(item, function(item))`` for every item, in completion order.
 
     A case that raises does not stop the others; afterwards one ``EngineError``
-    names every failed case and its message.
+    names every failed case and its message.  Pool and Dask workers run one BLAS
+    thread each (``SINGLE_THREADED``), so both engines give the same numbers to the
+    last digit; with one worker the local engine runs the cases in this process,
+    with its BLAS threads.
     """
     if not items:
         return
@@ -76,14 +85,74 @@ def run_cases(function, items: list, on_result, execution: Execution, workers: i
     if execution.engine == "dask":
         failures = _run_dask(function, items, on_result, execution, workers)
     elif workers == 1 or len(items) == 1:
-        failures = []
-        for item in items:
-            on_result(item, function(item))
+        failures = _run_here(function, items, on_result)
     else:
         failures = _run_pool(function, items, on_result, workers)
     if failures:
-        raise EngineError("; ".join(f"case {item!r} failed: {message}"
-                                    for item, message in failures))
+        raise EngineError(_failure_text(failures))
+
+
+def check_reachable(execution: Execution) -> None:
+    """``EngineError`` unless the scheduler (if any) accepts a TCP connection within the
+    timeout: checked before anything is written."""
+    import socket
+    from urllib.parse import urlsplit
+
+    if execution.engine != "dask" or execution.scheduler is None or not \
+            execution.scheduler.startswith(("tcp://", "tls://")):
+        return
+    address = urlsplit(execution.scheduler)
+    try:
+        with socket.create_connection((address.hostname, address.port or 8786),
+                                      timeout=execution.timeout):
+            pass
+    except (OSError, ValueError) as exc:
+        raise EngineError(f"[execution] scheduler = {execution.scheduler!r} did not answer "
+                          f"within {execution.timeout:g} s ({exc})") from None
+
+
+def _failure_text(failures: list) -> str:
+    """One line: each message once, with the cases it ended (a broken pool ends them all)."""
+    cases = {}
+    for item, message in failures:
+        cases.setdefault(message, []).append(item)
+    return "; ".join(f"case {items[0]!r} failed: {message}" if len(items) == 1 else
+                     f"cases {', '.join(repr(i) for i in items)} failed: {message}"
+                     for message, items in cases.items())
+
+
+def _run_here(function, items, on_result) -> list:
+    """In this process, one item after the other; a failure does not stop the others."""
+    failures = []
+    for item in items:
+        try:
+            result = function(item)
+        except Exception as exc:  # noqa: BLE001 - reported per case, as with a pool
+            failures.append((item, f"{type(exc).__name__}: {exc}"))
+            continue
+        on_result(item, result)
+    return failures
+
+
+#: set in every worker, as Dask's nanny does (``distributed.nanny.pre-spawn-environ``):
+#: one BLAS thread per worker process, so the local pool and a Dask cluster round alike
+#: (a multi-threaded BLAS changes the last digits of the FE values, and with the core count)
+SINGLE_THREADED = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+
+
+@contextmanager
+def _environment(values: dict):
+    """``os.environ`` updated with ``values`` inside the block (spawned children inherit it)."""
+    saved = {key: os.environ.get(key) for key in values}
+    os.environ.update(values)
+    try:
+        yield
+    finally:
+        for key, value in saved.items():
+            if value is None:
+                os.environ.pop(key, None)
+            else:
+                os.environ[key] = value
 
 
 def _run_pool(function, items, on_result, workers) -> list:
@@ -93,7 +162,8 @@ def _run_pool(function, items, on_result, workers) -> list:
 
     failures = []
     with worker_pool(min(workers, len(items))) as pool:
-        futures = {pool.submit(function, item): item for item in items}
+        with _environment(SINGLE_THREADED):  # the workers are spawned on submit
+            futures = {pool.submit(function, item): item for item in items}
         for future in as_completed(futures):
             try:
                 result = future.result()
@@ -102,6 +172,22 @@ def _run_pool(function, items, on_result, workers) -> list:
                 continue
             on_result(futures[future], result)
     return failures
+
+
+_ONE_AT_A_TIME = threading.Lock()
+
+
+@dataclass(frozen=True)
+class OneAtATime:
+    """``function`` under a per-process lock: a Dask worker started with several threads
+    still runs one case at a time (gmsh has one current model per process, so two
+    meshes built in two threads of one process would mix)."""
+
+    function: object
+
+    def __call__(self, item):
+        with _ONE_AT_A_TIME:
+            return self.function(item)
 
 
 def distributed_version_ok() -> tuple[bool, str]:
@@ -118,6 +204,18 @@ def distributed_version_ok() -> tuple[bool, str]:
     return version >= MIN_DISTRIBUTED, distributed.__version__
 
 
+def _wait_for_a_worker(client, execution: Execution) -> None:
+    """``EngineError`` unless a worker is (or joins) the scheduler within the timeout:
+    without one the cases would wait for ever."""
+    try:
+        client.wait_for_workers(1, timeout=execution.timeout)
+    except (OSError, TimeoutError):
+        raise EngineError(f"[execution] scheduler = {execution.scheduler!r} answers but has no "
+                          f"worker (none joined within {execution.timeout:g} s): start "
+                          f"`dask worker {execution.scheduler}` on the machines that compute"
+                          ) from None
+
+
 def _run_dask(function, items, on_result, execution: Execution, workers: int) -> list:
     ok, version = distributed_version_ok()
     if not ok:
@@ -129,8 +227,12 @@ def _run_dask(function, items, on_result, execution: Execution, workers: int) ->
     cluster = None
     try:
         if execution.scheduler is None:
-            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                   dashboard_address=None)
+            # quiet: a failed case is reported once, by EngineError, without a traceback;
+            # the scheduler's HTTP port moves on if 8787 is taken (a running `dask scheduler`)
+            with warnings.catch_warnings():
+                warnings.filterwarnings("ignore", message="Port .* is already in use")
+                cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                       dashboard_address=None, silence_logs=logging.CRITICAL)
             client = Client(cluster)
         else:
             try:
@@ -140,7 +242,9 @@ def _run_dask(function, items, on_result, execution: Execution, workers: int) ->
                                   f"answer within {execution.timeout:g} s ({exc})") from None
         failures = []
         with client:
-            futures = client.map(function, items, pure=False)
+            if execution.scheduler is not None:
+                _wait_for_a_worker(client, execution)
+            futures = client.map(OneAtATime(function), items, pure=False)
             item_of = {f.key: item for f, item in zip(futures, items)}
             for future in as_completed(futures):
                 item = item_of[future.key]

@@ -28,6 +28,11 @@ class CacheEntryError(ValueError):
     """A cache entry that cannot be trusted; the message says why."""
 
 
+class CacheFolderError(ValueError):
+    """The cache folder cannot be used (not a folder, not writable, an entry that is a
+    folder); raised before any case is computed where possible."""
+
+
 @lru_cache(maxsize=1)
 def fe_version() -> str:
     """Hash of the FE stage's source (``fem/`` and ``meshing/``)."""
@@ -58,41 +63,64 @@ def _checksum(inputs: dict, result: dict) -> str:
 
 
 def write_entry(path: Path, inputs: dict, result: dict) -> None:
-    """Store ``result`` for ``inputs`` atomically, with its checksum."""
+    """Store ``result`` for ``inputs`` atomically, with its checksum.
+
+    A result holding NaN or infinity is refused (``ValueError`` naming the keys), and
+    a folder that cannot be written raises ``CacheFolderError``: one line, no traceback.
+    """
     from .output import write_json
 
-    write_json(path, {"format": FORMAT, "version": FORMAT_VERSION, "fe_version": fe_version(),
-                      "inputs": inputs, "result": result,
-                      "checksum": _checksum(inputs, result)})
+    try:
+        checksum = _checksum(inputs, result)
+    except ValueError:
+        bad = sorted(k for k, v in result.items() if isinstance(v, float) and not math.isfinite(v))
+        raise ValueError(f"FE result not stored in the cache: non-finite {', '.join(bad) or 'value'} "
+                         f"for {inputs.get('crack', inputs)}") from None
+    try:
+        write_json(path, {"format": FORMAT, "version": FORMAT_VERSION, "fe_version": fe_version(),
+                          "inputs": inputs, "result": result, "checksum": checksum})
+    except OSError as exc:
+        raise CacheFolderError(f"cannot write the FE cache entry {path}: {exc.strerror or exc}") \
+            from None
 
 
 def read_entry(path: Path, inputs: dict, check=None) -> dict:
     """The stored result for ``inputs``; ``CacheEntryError`` says why it cannot be used.
 
     ``check(result)`` raises ``CacheEntryError`` for values that are not plausible.
+    A folder where the entry should be raises ``CacheFolderError`` (it cannot be
+    replaced, so computing the case would be lost work).
     """
     try:
         text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
+    except (FileNotFoundError, NotADirectoryError):  # a missing folder: case_lock reports it
         raise CacheEntryError("missing") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise CacheEntryError(f"unreadable ({exc})") from None
+    except IsADirectoryError:
+        raise CacheFolderError(f"the FE cache entry {path} is a folder; remove it") from None
+    except OSError as exc:
+        raise CacheEntryError(f"unreadable ({exc.strerror or exc})") from None
+    except UnicodeDecodeError:
+        raise CacheEntryError("unreadable (not UTF-8 text)") from None
     try:
         data = json.loads(text)
-    except ValueError:
+    except (ValueError, RecursionError):
         raise CacheEntryError("not valid JSON") from None
     if not isinstance(data, dict) or data.get("format") != FORMAT:
         raise CacheEntryError("not a hubvib FE cache entry")
     if data.get("version") != FORMAT_VERSION or data.get("fe_version") != fe_version():
         raise CacheEntryError("written by another version of the FE stage")
-    result = data.get("result")
-    if not isinstance(result, dict) or data.get("inputs") != inputs:
+    # stored inputs went through JSON (tuples read back as lists): compare like with like
+    if data.get("inputs") != json.loads(canonical(inputs)):
         raise CacheEntryError("its inputs are not those of this case")
+    result = data.get("result")
+    if not isinstance(result, dict):
+        raise CacheEntryError(f"its result is {type(result).__name__}, not a table")
     try:
-        if data.get("checksum") != _checksum(inputs, result):
-            raise CacheEntryError("checksum mismatch (edited or damaged)")
+        expected = _checksum(inputs, result)
     except ValueError:  # NaN or infinity in the result: canonical() refuses them
-        raise CacheEntryError("non-finite value") from None
+        raise CacheEntryError("non-finite value in its result") from None
+    if data.get("checksum") != expected:
+        raise CacheEntryError("checksum mismatch (edited or damaged)")
     if check is not None:
         check(result)
     return result
@@ -111,8 +139,13 @@ def finite_positive(result: dict, keys) -> None:
 def case_lock(path: Path, wait: bool):
     """Hold the lock of the entry at ``path``; yields False if ``wait`` is False and
     another process holds it."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with open(path.with_suffix(".lock"), "a") as handle:
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        handle = open(path.with_suffix(".lock"), "a")
+    except OSError as exc:
+        raise CacheFolderError(f"cannot use the FE cache folder {path.parent} (set HUBVIB_CACHE "
+                               f"to a writable folder): {exc.strerror or exc}") from None
+    with handle:
         try:
             fcntl.flock(handle, fcntl.LOCK_EX | (0 if wait else fcntl.LOCK_NB))
         except BlockingIOError:
