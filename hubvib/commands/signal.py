@@ -1,0 +1,54 @@
+"""``hubvib signal SCENE``: vibration signature of a cracked ring at a fixed sensor."""
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("signal", help="vibration signature of a ring crack: sensor signal "
+                                      "(CSV, WAV), order spectrum, spectrogram, indicators")
+    p.add_argument("scene", help="scene TOML file with [crack] and [signal] tables, or a "
+                   "shipped scene's name (raba118_signal)")
+    p.add_argument("--out", type=Path, help="output folder (default: the scene's folder)")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(handler=run)
+
+
+def run(args) -> int:
+    from hubvib.output import json_text, output_set
+    from hubvib.progress import stage
+    from hubvib.scene import load_scene
+    from hubvib.signal.report import write_signal_study
+    from hubvib.signal.study import run_signal_study
+
+    scene = load_scene(args.scene)
+    folder = Path(args.out or scene.folder)
+    started = time.perf_counter()
+    # every input error (the time step needs the model) is raised here, before any file
+    study = run_signal_study(scene, progress=lambda m: print(f"hubvib: {m}", file=sys.stderr))
+    stage(f"signals of {len(study.depths)} crack depth(s)", started)
+    with output_set(folder) as staged:
+        data = write_signal_study(study, staged, plots=scene.plots)
+    data = dict(data, folder=str(folder), files=[str(folder / f) for f in data["files"]])
+    for d in data["depths"]:
+        d["signal_csv"], d["signal_wav"] = (str(folder / d[k]) for k in ("signal_csv",
+                                                                          "signal_wav"))
+    if args.json:
+        print(json_text(data))
+        return 0
+    print(f"scene {scene.name!r}: carrier {study.carrier_hz:.4g} Hz, mesh {study.mesh_hz:.4g} "
+          f"Hz, {study.options.sample_rate_hz:g} samples/s, h = {study.step:.3g} s "
+          f"({study.steps_per_revolution} steps per revolution)")
+    names = ("rms", "kurtosis", "crest_factor", "fm0", "fm4", "na4", "ser")
+    print(f"{'depth [mm]':>10} " + " ".join(f"{n:>12}" for n in names))
+    for d in data["depths"]:
+        print(f"{d['depth_mm']:>10.3g} "
+              + " ".join(f"{d['indicators'][n]['mean']:>12.4g}" for n in names))
+    monotone = data["monotone_indicators"]
+    print("monotone with depth: " + (", ".join(f"{m['indicator']} ({m['direction']})"
+                                              for m in monotone) or "none"))
+    print(f"\nreport: {folder / 'report.md'}")
+    return 0
+

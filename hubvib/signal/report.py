@@ -1,0 +1,266 @@
+"""Files of the vibration-signature study: signals (CSV, WAV), spectra, indicators, plots, report."""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from hubvib.output import save_figure, write_csv, write_json, write_text
+
+from .indicators import INDICATORS
+from .sensor import write_signal_csv, write_wav
+from .spectral import angle_domain, record_spectrum, spectrogram
+from .study import SignalStudy
+
+ZOOM = 10  # planet-pass orders on either side of the mesh order in the zoomed spectrum
+
+
+def depth_name(depth: float) -> str:
+    return f"{1e3 * depth:.3g}mm".replace(".", "p")
+
+
+def indicator_rows(study: SignalStudy) -> list[dict]:
+    rows = []
+    for d in study.depths:
+        for seed, values in enumerate(d.values):
+            rows.append({"depth_mm": 1e3 * d.depth, "seed": seed, **values.to_dict()})
+    return rows
+
+
+def summary_rows(study: SignalStudy) -> list[dict]:
+    rows = []
+    intact = study.depths[0].summary()
+    for d in study.depths:
+        row = {"depth_mm": 1e3 * d.depth}
+        for name, s in d.summary().items():
+            spread = intact[name]["std"]
+            row |= {f"{name}_mean": s["mean"], f"{name}_std": s["std"],
+                    f"{name}_separation": (s["mean"] - intact[name]["mean"]) / spread
+                    if spread else None}
+        rows.append(row)
+    return rows
+
+
+def spectrum_rows(study: SignalStudy) -> list[dict]:
+    """Per carrier order: frequency, amplitude and phase at every depth (noise-free)."""
+    base = study.depths[0].spectrum
+    rows = []
+    for k in base.orders[1:]:
+        row = {"order": int(k), "frequency_hz": float(k * study.carrier_hz)}
+        for d in study.depths:
+            name = depth_name(d.depth)
+            row[f"amplitude_{name}_m_s2"] = float(d.spectrum.amplitude[k])
+            row[f"phase_{name}_deg"] = float(math.degrees(d.spectrum.phase[k]))
+        rows.append(row)
+    return rows
+
+
+def line_rows(study: SignalStudy) -> list[dict]:
+    return [{"depth_mm": 1e3 * d.depth, **line.to_dict(),
+             "frequency_hz": line.order * study.carrier_hz}
+            for d in study.depths for line in d.lines]
+
+
+def to_json(study: SignalStudy, files: dict) -> dict:
+    """The JSON of ``hubvib signal --json`` and ``results.json`` (paths as given)."""
+    summary = {1e3 * d.depth: d.summary() for d in study.depths}
+    return {
+        "scene": study.scene_name,
+        "sample_rate_hz": study.options.sample_rate_hz, "carrier_hz": study.carrier_hz,
+        "mesh_hz": study.mesh_hz, "n_planets": study.n_planets,
+        "time_step_s": study.step, "steps_per_revolution": study.steps_per_revolution,
+        "noise_rms_m_s2": study.noise_rms, "options": study.options.to_dict(),
+        "depths": [{"depth_mm": 1e3 * d.depth, "signal_csv": str(files["csv"][i]),
+                    "signal_wav": str(files["wav"][i]),
+                    "indicators": summary[1e3 * d.depth],
+                    "top_harmonics": [line.to_dict() for line in d.lines],
+                    "simulation_seconds": d.seconds}
+                   for i, d in enumerate(study.depths)],
+        "monotone_indicators": study.monotone(),
+        "checks": study.checks,
+        "files": [str(p) for p in files["all"]],
+    }
+
+
+def write_signal_study(study: SignalStudy, folder: Path, plots: bool = True) -> dict:
+    """Write everything into ``folder``; returns the JSON of ``results.json`` (file paths
+    relative to ``folder``)."""
+    folder = Path(folder)
+    fs = study.options.sample_rate_hz
+    csvs, wavs = [], []
+    for d in study.depths:
+        name = depth_name(d.depth)
+        csvs.append(write_signal_csv(folder / f"signal_{name}.csv", d.time, d.record))
+        wavs.append(write_wav(folder / f"signal_{name}.wav", d.record, fs))
+    files = csvs + wavs + [
+        write_csv(folder / "order_spectrum.csv", spectrum_rows(study)),
+        write_csv(folder / "harmonics.csv", line_rows(study)),
+        write_csv(folder / "indicators.csv", indicator_rows(study)),
+        write_csv(folder / "indicators_summary.csv", summary_rows(study))]
+    pictures = []
+    if plots:
+        pictures = [save_figure(_spectrum_figure(study), folder / "order_spectrum.png"),
+                    save_figure(_spectrogram_figure(study), folder / "spectrogram.png"),
+                    save_figure(_indicator_figure(study), folder / "indicators.png"),
+                    save_figure(_tsa_figure(study), folder / "tsa.png")]
+    files += pictures
+    files.append(write_text(folder / "report.md", report(study, [p.name for p in pictures])))
+    files.append(folder / "results.json")
+
+    def rel(paths):
+        return [p.relative_to(folder).as_posix() for p in paths]
+
+    data = to_json(study, {"csv": rel(csvs), "wav": rel(wavs), "all": rel(files)})
+    write_json(folder / "results.json", data)
+    return data
+
+
+def report(study: SignalStudy, pictures: list[str]) -> str:
+    o = study.options
+    deepest = study.depths[-1]
+    monotone = study.monotone()
+    lines = [
+        f"# hubvib vibration signature: {study.scene_name}", "",
+        "## Vibration signature", "",
+        f"Sun at {o.sun_speed_rpm:g} min^-1 and {o.sun_torque_N_m:g} N m; carrier "
+        f"{study.carrier_hz:.4g} Hz, ring mesh {study.mesh_hz:.4g} Hz (order "
+        f"{study.ring_teeth}), {study.n_planets} planets. Sensor on the ring at "
+        f"{o.sensor_angle_deg:g} deg, cracked ring tooth {study.crack_tooth}. "
+        f"{o.revolutions:g} carrier revolutions at {o.sample_rate_hz:g} Hz, white noise of "
+        f"{o.noise_level:g} x the intact RMS ({study.noise_rms:.4g} m/s^2), "
+        f"{o.noise_seeds} seeds per depth.", "",
+        "Model: the lumped 9 + 3N DOF model with every sun-planet and ring-planet mesh "
+        "stiffness varying in time along the FE mesh-cycle curves (intact; the cracked "
+        "tooth's curve while a planet meshes it), each mesh placed in its cycle by the gear "
+        "geometry (Parker & Lin 2004 phasing), mean curves scaled to the preset's c_sp, "
+        f"c_rp (`mesh_stiffness = \"{o.mesh_stiffness}\"`); modal damping "
+        f"{o.damping_ratio:g}; periodic steady state by the {o.integrator} scheme, "
+        f"{study.steps_per_revolution} steps per revolution (h = {study.step:.4g} s). "
+        "Sensor: each ring-mesh force through a Hann window of half-width one planet "
+        "spacing (McFadden & Smith 1985), divided by the ring mass"
+        + (f", plus {o.rigid_path:g} x the ring's radial acceleration" if o.rigid_path else "")
+        + ". ASSUMED: the crack changes only the cracked tooth's mesh stiffness (the rim "
+        "stiffness c_ru, c_r stays at the preset).", "",
+        "### Checks", ""]
+    checks = study.checks
+    if "cancellation_rule" in checks:
+        lines.append(f"- Planet phasing: {checks['cancellation_rule']}. Intact, the largest "
+                     f"line at an order that is not a multiple of N is "
+                     f"{checks['non_multiple_of_N_relative']:.2g} of the largest line.")
+    halving = checks.get("step_halving")
+    if halving:
+        lines.append(f"- Halving the time step changes the intact order amplitudes up to order "
+                     f"{halving['max_order']} (the analysed mesh harmonics and their sidebands) "
+                     f"by at most {halving['relative_change']:.2g} of the largest (tolerance "
+                     f"0.02); up to the Nyquist order {halving['full_order']}, where the highest "
+                     f"modes ring, by {halving['full_band_relative_change']:.2g}.")
+    lines += ["", "### Indicators against crack depth (mean over the noise seeds)", "",
+              "| depth [mm] | " + " | ".join(INDICATORS) + " |",
+              "|---:|" + "---:|" * len(INDICATORS)]
+    for d in study.depths:
+        s = d.summary()
+        lines.append(f"| {1e3 * d.depth:.3g} | "
+                     + " | ".join(f"{s[n]['mean']:.4g} ± {s[n]['std']:.2g}" for n in INDICATORS)
+                     + " |")
+    if monotone:
+        names = ", ".join(f"{m['indicator']} ({m['direction']}, deepest "
+                          f"{m['separation_at_deepest']:+.3g} intact standard deviations)"
+                          for m in monotone)
+        lines += ["", f"Monotone with depth: {names}."]
+    else:
+        lines += ["", "No indicator is monotone with depth in this scene."]
+    lines += ["", f"### Largest lines at {1e3 * deepest.depth:.3g} mm (noise-free)", "",
+              "| order | frequency [Hz] | amplitude [m/s^2] | label |", "|---:|---:|---:|---|"]
+    for line in deepest.lines:
+        lines.append(f"| {line.order:g} | {line.order * study.carrier_hz:.1f} | "
+                     f"{line.amplitude:.4g} | {line.label} |")
+    if pictures:
+        lines += ["", "### Plots", ""] + [f"![{p}]({p})" for p in pictures]
+    return "\n".join(lines) + "\n"
+
+
+def _axes(rows: int = 1):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt.subplots(rows, 1, figsize=(8, 3.2 * rows), squeeze=False)
+
+
+def _spectrum_figure(study: SignalStudy):
+    fig, axes = _axes(2)
+    intact, deepest = study.depths[0], study.depths[-1]
+    record_intact = record_spectrum(angle_domain(2 * math.pi * study.carrier_hz * intact.time,
+                                                 intact.record, study.points_per_revolution))
+    top = study.options.mesh_harmonics * study.ring_teeth + ZOOM * study.n_planets
+    keep = record_intact.orders <= top
+    axes[0, 0].semilogy(record_intact.orders[keep], record_intact.amplitude[keep], lw=0.5,
+                        color="0.6", label="intact record (noise)")
+    for d, style in ((intact, "o"), (deepest, "x")):
+        k = d.spectrum.orders[1:top + 1]
+        axes[0, 0].semilogy(k, d.spectrum.amplitude[1:top + 1], style, ms=3,
+                            label=f"{1e3 * d.depth:.3g} mm (steady state)")
+    low = study.ring_teeth - ZOOM * study.n_planets
+    high = study.ring_teeth + ZOOM * study.n_planets
+    for d, style in ((intact, "o-"), (deepest, "x--")):
+        axes[1, 0].plot(d.spectrum.orders[low:high + 1], d.spectrum.amplitude[low:high + 1],
+                        style, ms=4, lw=0.8, label=f"{1e3 * d.depth:.3g} mm")
+    axes[1, 0].axvline(study.ring_teeth, color="k", ls=":", lw=0.8)
+    axes[0, 0].set_ylim(bottom=1e-5 * max(d.spectrum.amplitude[1:].max() for d in study.depths))
+    axes[0, 0].set_ylabel("amplitude [m/s²]")
+    axes[1, 0].set_ylabel("amplitude [m/s²]")
+    axes[1, 0].set_xlabel("carrier order (× %.4g Hz)" % study.carrier_hz)
+    axes[1, 0].set_title(f"zoom around the mesh order z_r = {study.ring_teeth}", fontsize=9)
+    for ax in axes[:, 0]:
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+    return fig
+
+
+def _spectrogram_figure(study: SignalStudy):
+    fig, axes = _axes(1)
+    d = study.depths[-1]
+    fs = study.options.sample_rate_hz
+    segment = 2 ** int(round(math.log2(fs / (study.n_planets * study.carrier_hz))))
+    s = spectrogram(d.record, fs, min(segment, d.record.size))
+    mesh = axes[0, 0].pcolormesh(s.time_s, s.frequency_hz, 20 * np.log10(s.amplitude + 1e-12),
+                                 shading="auto")
+    fig.colorbar(mesh, ax=axes[0, 0], label="dB re 1 m/s²")
+    axes[0, 0].set_xlabel("time [s]")
+    axes[0, 0].set_ylabel("frequency [Hz]")
+    axes[0, 0].set_title(f"spectrogram, crack {1e3 * d.depth:.3g} mm", fontsize=9)
+    return fig
+
+
+def _indicator_figure(study: SignalStudy):
+    fig, axes = _axes(1)
+    ax = axes[0, 0]
+    depths = [1e3 * d.depth for d in study.depths]
+    for name in INDICATORS:
+        means = np.array([d.summary()[name]["mean"] for d in study.depths])
+        stds = np.array([d.summary()[name]["std"] for d in study.depths])
+        ref = means[0] if means[0] else 1.0
+        line, = ax.plot(depths, means / ref, marker="o", ms=3, label=name)
+        ax.fill_between(depths, (means - 2 * stds) / ref, (means + 2 * stds) / ref,
+                        color=line.get_color(), alpha=0.15)
+    ax.set_xlabel("crack depth [mm]")
+    ax.set_ylabel("indicator / intact mean (band: ± 2 std over seeds)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, ncol=4)
+    return fig
+
+
+def _tsa_figure(study: SignalStudy):
+    fig, axes = _axes(1)
+    ax = axes[0, 0]
+    for d in (study.depths[0], study.depths[-1]):
+        tsa = d.tsa[0]
+        ax.plot(360 * np.arange(tsa.size) / tsa.size, tsa, lw=0.6,
+                label=f"{1e3 * d.depth:.3g} mm")
+    ax.set_xlabel("carrier angle [deg]")
+    ax.set_ylabel("TSA [m/s²]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    return fig

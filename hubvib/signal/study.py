@@ -1,0 +1,246 @@
+"""The vibration-signature study of a crack scene: per depth, signal, spectrum, indicators.
+
+Per crack depth of the scene's ``[crack]`` table: FE mesh curves (cached), the
+periodic steady state of the lumped model over one carrier revolution, the
+sensor signal, its band-limited record at the sample rate plus noise (several
+seeds), the time-synchronous average and the condition indicators.  The mean
+of each indicator over the noise seeds is compared across depths; an indicator
+whose mean moves the same way at every step of depth is reported as monotone.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from hubvib.lumped import natural_modes
+
+from .indicators import INDICATORS, GearOrders, indicators, residual
+from .mesh_curves import MeshCurves
+from .mesh_phase import raba118_phasing, raba118_teeth
+from .options import SignalOptions
+from .sensor import add_noise, sampled, sensor_signal
+from .simulation import Simulation, carrier_speed, simulate, steps_per_revolution
+from .spectral import (HarmonicRule, OrderSpectrum, SidebandRule, angle_domain,
+                       order_spectrum, top_harmonics)
+
+#: labelled lines listed per depth
+TOP_LINES = 12
+#: planet-pass sidebands on either side of the last analysed mesh harmonic in the
+#: step-halving check
+SER_REACH = 6
+
+
+@dataclass
+class DepthSignal:
+    """One crack depth.
+
+    Attributes
+    ----------
+    depth : float
+        [m]
+    revolution : ndarray
+        Noise-free sensor signal over one carrier revolution on the step grid [m/s^2].
+    spectrum : OrderSpectrum
+        c_k, phi_k of ``revolution`` up to the Nyquist order of the sample rate.
+    time, record : ndarray
+        Sampled record with the noise of the first seed [s, m/s^2].
+    tsa : list of ndarray
+        Time-synchronous average of each seed's record [m/s^2].
+    values : list of Indicators
+        Per seed.
+    lines : list of LabelledHarmonic
+        The largest lines of ``spectrum`` with their labels.
+    seconds : float
+        Wall time of the simulation [s].
+    """
+
+    depth: float
+    revolution: np.ndarray
+    spectrum: OrderSpectrum
+    time: np.ndarray
+    record: np.ndarray
+    tsa: list = field(default_factory=list)
+    values: list = field(default_factory=list)
+    lines: list = field(default_factory=list)
+    seconds: float = 0.0
+
+    def summary(self) -> dict:
+        """Mean and standard deviation of each indicator over the seeds."""
+        table = np.array([[getattr(v, name) for name in INDICATORS] for v in self.values])
+        return {name: {"mean": float(table[:, i].mean()), "std": float(table[:, i].std())}
+                for i, name in enumerate(INDICATORS)}
+
+
+@dataclass
+class SignalStudy:
+    """The whole study (SI): the options, the kinematics and every depth."""
+
+    scene_name: str
+    options: SignalOptions
+    carrier_hz: float
+    mesh_hz: float
+    n_planets: int
+    step: float
+    steps_per_revolution: int
+    points_per_revolution: int
+    noise_rms: float
+    depths: list[DepthSignal]
+    checks: dict = field(default_factory=dict)
+    crack_tooth: int = 0
+
+    ring_teeth: int = 64
+
+    @property
+    def gear(self) -> GearOrders:
+        return GearOrders(self.ring_teeth, self.n_planets, self.options.mesh_harmonics)
+
+    def monotone(self) -> list[dict]:
+        """Indicators whose seed-mean moves the same way at every depth step."""
+        out = []
+        for name in INDICATORS:
+            means = np.array([d.summary()[name]["mean"] for d in self.depths])
+            steps = np.diff(means)
+            if steps.size and (np.all(steps > 0) or np.all(steps < 0)):
+                intact = self.depths[0].summary()[name]
+                spread = intact["std"] or math.inf
+                out.append({"indicator": name,
+                            "direction": "increasing" if steps[0] > 0 else "decreasing",
+                            "separation_at_deepest": float((means[-1] - means[0]) / spread)})
+        return out
+
+
+def harmonic_rules(n_planets: int) -> list[HarmonicRule]:
+    """Labels of carrier orders: mesh harmonics, planet-pass / cracked-tooth sidebands
+    (multiples of N around them), planet-pass orders, shaft orders; else unexplained."""
+    teeth = raba118_teeth()
+    z_r, z_s, z_p = teeth["ring"], teeth["sun"], teeth["planet"]
+    return [
+        HarmonicRule("z_r", z_r, meaning="ring mesh harmonic"),
+        SidebandRule("z_r", z_r, n_planets, "N",
+                     meaning="planet-pass / cracked-tooth sideband of a mesh harmonic"),
+        HarmonicRule("N", n_planets, meaning="planet-pass order"),
+        HarmonicRule("carrier", 1, 2, meaning="carrier shaft order"),
+        HarmonicRule("sun", (z_s + z_r) / z_s, 3, meaning="sun shaft order (relative)"),
+        HarmonicRule("planet", abs(1 - z_r / z_p), 3, meaning="planet spin order"),
+    ]
+
+
+def curves_for(scene, options: SignalOptions, progress=None) -> list[MeshCurves]:
+    """The mesh curves of every depth, scaled as ``options.mesh_stiffness`` says."""
+    from hubvib.crack_sweep import ACCURACY
+
+    from .mesh_curves import fe_mesh_curves
+
+    sweep = scene.crack
+    depths = sweep.depths if sweep is not None else (0.0,)
+    fe = fe_mesh_curves(depths, sweep.start if sweep else "root",
+                        sweep.angle if sweep else 0.0,
+                        ACCURACY[sweep.accuracy] if sweep else 1.0, progress)
+    if options.mesh_stiffness == "ratio":
+        return [c.to_preset(scene.params.c_sp, scene.params.c_rp) for c in fe]
+    return fe
+
+
+def run_signal_study(scene, curves: list[MeshCurves] | None = None,
+                     options: SignalOptions | None = None, progress=None) -> SignalStudy:
+    """Run the study of ``scene`` (its ``[signal]`` and ``[crack]`` tables).
+
+    ``curves`` (one per depth, already scaled) replace the FE curves, e.g. in tests.
+    Nothing is written here; every input error is raised before any output exists.
+    """
+    options = options or scene.tables.get("signal") or SignalOptions()
+    params = scene.params
+    teeth = raba118_teeth()
+    if options.mesh_stiffness == "ratio":  # the mean system is known: check h before any FE
+        omega = natural_modes(params.replace(c_rp_factors=())).omega.max()
+        speed = carrier_speed(options, teeth["ring"], teeth["sun"])
+        steps_per_revolution(float(omega), speed, teeth["ring"], options, params.n_planets)
+    if curves is None:
+        curves = curves_for(scene, options, progress)
+    phasing = raba118_phasing()
+    tooth = scene.crack.tooth if scene.crack is not None else 0
+    gear = GearOrders(teeth["ring"], params.n_planets, options.mesh_harmonics)
+    rules = harmonic_rules(params.n_planets)
+    depths, sims = [], []
+    for c in curves:
+        started = time.perf_counter()
+        sim = simulate(params, c, phasing, options, tooth, 1, teeth["sun"])
+        sims.append(sim)
+        revolution = sensor_signal(sim, options.sensor_angle, options.rigid_path)[:-1]
+        spectrum = _below_nyquist(order_spectrum(revolution), sim, options)
+        depths.append(DepthSignal(c.depth, revolution, spectrum, np.empty(0), np.empty(0),
+                                  lines=top_harmonics(spectrum, rules, TOP_LINES),
+                                  seconds=time.perf_counter() - started))
+    carrier_hz = sims[0].carrier_speed / (2 * math.pi)
+    duration = options.revolutions / carrier_hz
+    clean = [sampled(d.revolution, carrier_hz, options.sample_rate_hz, duration) for d in depths]
+    noise_rms = options.noise_level * float(np.sqrt(np.mean(clean[0][1] ** 2)))
+    points = 2 ** int(math.ceil(math.log2(options.sample_rate_hz / carrier_hz)))
+    variances = []
+    for d, (t, values) in zip(depths, clean):
+        records = [add_noise(values, noise_rms, seed) for seed in range(options.noise_seeds)]
+        d.time, d.record = t, records[0]
+        angle = 2 * math.pi * carrier_hz * t
+        d.tsa = [angle_domain(angle, r, points).synchronous_average() for r in records]
+        variances += [float(np.var(residual(tsa, gear))) for tsa in d.tsa]
+        d.values = [indicators(tsa, gear, variances) for tsa in d.tsa]
+    study = SignalStudy(scene.name, options, carrier_hz, carrier_hz * teeth["ring"],
+                        params.n_planets, sims[0].step, sims[0].steps_per_revolution, points,
+                        noise_rms, depths, crack_tooth=tooth, ring_teeth=teeth["ring"])
+    study.checks = _checks(study, params, curves[0], phasing, options)
+    return study
+
+
+def _below_nyquist(spectrum: OrderSpectrum, sim: Simulation,
+                   options: SignalOptions) -> OrderSpectrum:
+    carrier_hz = sim.carrier_speed / (2 * math.pi)
+    top = int(math.ceil(options.sample_rate_hz / 2 / carrier_hz)) - 1
+    top = min(top, spectrum.nyquist_order)
+    return OrderSpectrum(spectrum.orders[:top + 1], spectrum.amplitude[:top + 1],
+                         spectrum.phase[:top + 1])
+
+
+def step_halving_change(params, curves: MeshCurves, phasing, options: SignalOptions,
+                        max_order: int, full_order: int | None = None) -> dict:
+    """Largest change of the order amplitudes when the time step is halved, relative to the
+    largest amplitude [-]: orders <= ``max_order`` (the analysed band) and, with
+    ``full_order``, orders <= ``full_order`` (up to the Nyquist order of the record)."""
+    spectra = []
+    for factor in (1, 2):
+        halved = replace(options, steps_per_period=options.steps_per_period * factor,
+                         time_step_s=options.time_step_s / factor)
+        sim = simulate(params, curves, phasing, halved, None, 1, raba118_teeth()["sun"])
+        spectra.append(order_spectrum(sensor_signal(sim, options.sensor_angle,
+                                                    options.rigid_path)[:-1]))
+
+    def change(top):
+        a, b = (s.amplitude[1:top + 1] for s in spectra)
+        return float(np.max(np.abs(a - b)) / a.max())
+
+    out = {"max_order": max_order, "relative_change": change(max_order)}
+    if full_order is not None:
+        out |= {"full_order": full_order, "full_band_relative_change": change(full_order)}
+    return out
+
+
+def _checks(study: SignalStudy, params, intact: MeshCurves, phasing, options) -> dict:
+    """Cancellation rule on the intact spectrum and the step-halving change."""
+    spectrum = study.depths[0].spectrum
+    n = study.n_planets
+    amplitude = spectrum.amplitude[1:]
+    orders = spectrum.orders[1:]
+    off = orders % n != 0
+    top = options.mesh_harmonics * study.ring_teeth + SER_REACH * n
+    out = {"non_multiple_of_N_relative": float(amplitude[off].max() / amplitude.max())
+           if off.any() else 0.0}
+    if params.equally_spaced():
+        out["cancellation_rule"] = (
+            "equally spaced planets: only carrier orders that are multiples of N reach a "
+            "sensor fixed on the ring (McFadden & Smith 1985; Parker & Lin 2004)")
+    out["step_halving"] = step_halving_change(params, intact, phasing, options, top,
+                                              spectrum.nyquist_order)
+    return out
+

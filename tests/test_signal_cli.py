@@ -1,0 +1,136 @@
+"""``[signal]`` scene table, ``hubvib signal`` end to end, and every bad input of issue 14."""
+import csv
+import json
+
+import numpy as np
+import pytest
+
+from hubvib.cli import main
+from hubvib.scene import SceneError
+from hubvib.signal import study as signal_study
+from hubvib.signal.mesh_curves import synthetic_curves
+from hubvib.signal.options import SignalOptions, parse_signal_table
+
+SCENE = """
+[reducer]
+preset = "raba118"
+[crack]
+depths = {depths}
+accuracy = "fast"
+[signal]
+sun_speed_rpm = 6000.0
+noise_seeds = 2
+{extra}
+[output]
+plots = {plots}
+"""
+
+
+def test_defaults_and_a_valid_table():
+    assert parse_signal_table({}) == SignalOptions()
+    options = parse_signal_table({"sensor_angle_deg": -30, "damping_ratio": 0.0,
+                                  "integrator": "central"})
+    assert options.sensor_angle_deg == -30.0 and options.damping_ratio == 0.0
+
+
+@pytest.mark.parametrize("key, value, message", [
+    ("sun_speed_rpm", 0.0, "[signal] sun_speed_rpm = 0.0; allowed: a finite number in (0, inf)"),
+    ("sun_speed_rpm", -5, "sun_speed_rpm = -5"),
+    ("sun_speed_rpm", float("nan"), "sun_speed_rpm = nan"),
+    ("sun_torque_N_m", 0, "[signal] sun_torque_N_m = 0; allowed"),
+    ("sun_torque_N_m", float("nan"), "sun_torque_N_m = nan"),
+    ("revolutions", 0.5, "[signal] revolutions = 0.5; allowed: a finite number in [1, 10000]"),
+    ("sample_rate_hz", 2000.0, "[signal] sample_rate_hz = 2000; allowed: >= 2773.33 Hz"),
+    ("damping_ratio", 1.0, "[signal] damping_ratio = 1.0; allowed: a finite number in [0, 1)"),
+    ("damping_ratio", -0.01, "damping_ratio = -0.01"),
+    ("sensor_angle_deg", float("inf"), "[signal] sensor_angle_deg = inf; allowed: a finite"),
+    ("sensor_angle_deg", float("nan"), "sensor_angle_deg = nan"),
+    ("mesh_harmonics", 0, "[signal] mesh_harmonics = 0; allowed: an integer in 1..50"),
+    ("integrator", "euler", "[signal] integrator = 'euler'; allowed: newmark, central"),
+    ("colour", 1, "unknown key(s) ['colour'] at [signal]"),
+])
+def test_bad_table_values_name_the_key_and_range(key, value, message):
+    with pytest.raises(SceneError) as error:
+        parse_signal_table({key: value})
+    assert message in str(error.value)
+
+
+@pytest.fixture
+def fake_fe(monkeypatch):
+    """Synthetic mesh curves instead of the FE stage (constant tooth compliances)."""
+    def curves(scene, options, progress=None):
+        p = scene.params
+        return [synthetic_curves(crack_factor=1 + 40 * d, depth=d).to_preset(p.c_sp, p.c_rp)
+                for d in scene.crack.depths]
+    monkeypatch.setattr(signal_study, "curves_for", curves)
+
+
+def _scene(tmp_path, extra="revolutions = 3", plots="false", depths=(0.0, 0.012)):
+    path = tmp_path / "signal.toml"
+    path.write_text(SCENE.format(extra=extra, plots=plots, depths=list(depths)))
+    return path
+
+
+@pytest.mark.parametrize("extra, message", [
+    ("integrator = 'central'\ntime_step_s = 1e-4",
+     "[signal] time_step_s = 0.0001; allowed: < 4.3"),
+    ("time_step_s = 1e-3", "[signal] time_step_s = 0.001; allowed: <= 0.0002"),
+    ("sun_torque_N_m = -1.0", "[signal] sun_torque_N_m = -1.0"),
+    ("revolutions = 0.9", "[signal] revolutions = 0.9"),
+    ("sample_rate_hz = 5000.0", "[signal] sample_rate_hz = 5000; allowed: >= 11093.3 Hz"),
+], ids=["unstable-step", "step-over-half-mesh-period", "torque", "duration", "aliasing"])
+def test_bad_input_is_one_line_exit_2_and_nothing_written(tmp_path, capsys, fake_fe, extra,
+                                                          message):
+    out = tmp_path / "out"
+    assert main(["signal", str(_scene(tmp_path, extra)), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and message in err, err
+    assert not out.exists()
+
+
+def test_signal_command_writes_signal_spectrum_and_indicators(tmp_path, capsys, fake_fe):
+    out = tmp_path / "out"
+    assert main(["signal", str(_scene(tmp_path)), "--out", str(out), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert abs(data["carrier_hz"] - 6000 / 60 * 26 / 90) < 1e-12
+    assert abs(data["mesh_hz"] - 64 * data["carrier_hz"]) < 1e-9
+    assert data["sample_rate_hz"] == 20000.0 and len(data["depths"]) == 2
+    for depth in data["depths"]:
+        assert set(depth["indicators"]) == {"rms", "kurtosis", "crest_factor", "fm0", "fm4",
+                                            "na4", "ser"}
+        with open(depth["signal_csv"]) as handle:
+            rows = list(csv.DictReader(handle))
+        assert list(rows[0]) == ["time_s", "acceleration_m_s2"]
+        assert abs(len(rows) - 3 / data["carrier_hz"] * 20000) <= 1
+    from scipy.io import wavfile
+
+    rate, wav = wavfile.read(data["depths"][-1]["signal_wav"])
+    assert rate == 20000 and wav.size == len(rows)
+    assert data["monotone_indicators"], "a softer cracked tooth must move an indicator"
+    assert data["checks"]["non_multiple_of_N_relative"] < 1e-9
+    report = (out / "report.md").read_text()
+    assert "## Vibration signature" in report and "Monotone with depth" in report
+    for name in ("order_spectrum.csv", "indicators.csv", "harmonics.csv", "results.json"):
+        assert (out / name).stat().st_size > 0
+
+
+@pytest.mark.slow
+def test_signal_command_plots(tmp_path, capsys, fake_fe):
+    out = tmp_path / "out"
+    assert main(["signal", str(_scene(tmp_path, plots="true", depths=(0.0, 0.006, 0.012))),
+                 "--out", str(out)]) == 0
+    assert "monotone with depth:" in capsys.readouterr().out
+    for name in ("order_spectrum.png", "spectrogram.png", "indicators.png", "tsa.png"):
+        assert (out / name).stat().st_size > 10_000
+
+
+@pytest.mark.slow
+def test_shipped_signal_scene_has_a_monotone_indicator(tmp_path, capsys):
+    """The default Raba signal scene with the FE stage (cached after the first run)."""
+    pytest.importorskip("skfem")
+    out = tmp_path / "out"
+    assert main(["signal", "raba118_signal", "--out", str(out), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["monotone_indicators"], "issue 14: at least one indicator monotone with depth"
+    assert data["checks"]["step_halving"]["relative_change"] < 0.02
+    assert np.isfinite(data["depths"][-1]["indicators"]["fm0"]["mean"])
