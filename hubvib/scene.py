@@ -214,6 +214,9 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
         raise SceneError("[output] renders = true needs a [crack] study (it renders its modes)")
     folder = Path(_string(output, "output", "folder", "hubvib-out"))
     tables = {key: _extension(key, data[key]) for key in EXTENSION_TABLES if key in data}
+    for table in tables.values():  # checks that need the design (e.g. its mesh frequency)
+        if hasattr(table, "check_design"):
+            table.check_design(design)
     return Scene(name, params, parameter, tuple(float(v) for v in values), float(threshold),
                  method, folder, plots, data, crack, **flags, design=design, tables=tables)
 

@@ -40,7 +40,6 @@ def test_defaults_and_a_valid_table():
     ("sun_torque_N_m", 0, "[signal] sun_torque_N_m = 0; allowed"),
     ("sun_torque_N_m", float("nan"), "sun_torque_N_m = nan"),
     ("revolutions", 0.5, "[signal] revolutions = 0.5; allowed: a finite number in [1, 10000]"),
-    ("sample_rate_hz", 2000.0, "[signal] sample_rate_hz = 2000; allowed: >= 2773.33 Hz"),
     ("damping_ratio", 1.0, "[signal] damping_ratio = 1.0; allowed: a finite number in [0, 1)"),
     ("damping_ratio", -0.01, "damping_ratio = -0.01"),
     ("sensor_angle_deg", float("inf"), "[signal] sensor_angle_deg = inf; allowed: a finite"),
@@ -53,6 +52,19 @@ def test_bad_table_values_name_the_key_and_range(key, value, message):
     with pytest.raises(SceneError) as error:
         parse_signal_table({key: value})
     assert message in str(error.value)
+
+
+def test_sample_rate_is_checked_against_the_scenes_own_mesh_frequency():
+    """Nyquist: fs >= 2 k f_mesh with f_mesh = z_r f_s z_s / (z_s + z_r) of the scene's design
+    (Raba 64/26 at 1500 rpm and k = 3: 2 x 3 x 64 x 25 x 26/90 = 2773.33 Hz; hub4 80/24:
+    2 x 3 x 80 x 25 x 24/104 = 2769.23 Hz)."""
+    from hubvib.scene import parse_scene
+
+    for design, needed in (('[reducer]\npreset = "raba118"', "2773.33"),
+                           ('[design]\npreset = "hub4"', "2769.23")):
+        with pytest.raises(SceneError, match=f"sample_rate_hz = 2000; allowed: >= {needed} Hz"):
+            parse_scene(f"{design}\n[crack]\ndepths = [0.0]\n[signal]\n"
+                        "sample_rate_hz = 2000.0\n", "x")
 
 
 @pytest.fixture

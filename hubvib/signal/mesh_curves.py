@@ -95,12 +95,16 @@ def _curves(pairs, compliance, q_hertz, cracked_compliance=None, depth=0.0) -> M
                       cracked_s, cracked_k, float(depth))
 
 
-def _raba_pairs():
+def _pairs(design=None):
+    from hubvib.design.build import gear_body, ring_gear
     from hubvib.fem.mesh_cycle import GearPair
-    from hubvib.meshing import raba118
 
-    planet = raba118.gear_body("planet")
-    bodies = {"sun": raba118.gear_body("sun"), "planet": planet, "ring": raba118.ring_gear()}
+    if design is None:
+        from hubvib.meshing.raba118 import design as raba
+
+        design = raba()
+    planet = gear_body(design, "planet")
+    bodies = {"sun": gear_body(design, "sun"), "planet": planet, "ring": ring_gear(design)}
     return bodies, (GearPair(planet, bodies["sun"]), GearPair(planet, bodies["ring"]))
 
 
@@ -115,7 +119,7 @@ def synthetic_curves(tooth_compliance: float = 2.0e-9, crack_factor: float = 1.0
     from hubvib.fem.material import Material
     from hubvib.fem.tooth_beam import hertz_compliance
 
-    bodies, pairs = _raba_pairs()
+    bodies, pairs = _pairs()
 
     def constant(value):
         return lambda r: np.full(np.shape(r), value)
@@ -127,8 +131,9 @@ def synthetic_curves(tooth_compliance: float = 2.0e-9, crack_factor: float = 1.0
 
 
 def fe_mesh_curves(depths, start: str = "root", angle: float = 0.0, scale: float = 1.0,
-                   progress=None) -> list[MeshCurves]:
-    """FE mesh curves of the Raba reducer for each crack depth [m] (0: intact).
+                   progress=None, design=None) -> list[MeshCurves]:
+    """FE mesh curves of a design's reducer (default Raba 118/76) for each crack depth [m]
+    (0: intact).
 
     ``scale`` is the mesh level (``hubvib.meshing.levels.scaled_options``); the crack
     (``hubvib.meshing.crack.Crack``) is moved to tooth 0 for the tooth model, as in
@@ -140,9 +145,14 @@ def fe_mesh_curves(depths, start: str = "root", angle: float = 0.0, scale: float
     from hubvib.meshing.crack import Crack
     from hubvib.meshing.levels import scaled_options
 
-    material = Material()
+    if design is None:
+        material = Material()
+    else:
+        from hubvib.design.build import material as design_material
+
+        material = design_material(design)
     options = scaled_options(scale)
-    bodies, pairs = _raba_pairs()
+    bodies, pairs = _pairs(design)
     spans = {"sun": contact_radii(bodies["sun"], [pairs[0]]),
              "planet": contact_radii(bodies["planet"], list(pairs)),
              "ring": contact_radii(bodies["ring"], [pairs[1]])}

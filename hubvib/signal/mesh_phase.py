@@ -90,19 +90,33 @@ class MeshPhasing:
         return self.roll_sum - self.ring_roll(theta)
 
 
+def design_teeth(design=None) -> dict[str, int]:
+    """Tooth counts of the sun, planet and ring of a ``ReducerDesign`` (default Raba 118/76)."""
+    design = design or _raba()
+    return {"sun": design.sun.teeth, "planet": design.planet.teeth, "ring": design.ring.teeth}
+
+
+def design_phasing(design=None) -> MeshPhasing:
+    """Mesh phasing of a ``ReducerDesign``'s gears (default Raba 118/76)."""
+    from hubvib.design.build import spur_gears
+
+    return gear_phasing(*spur_gears(design or _raba()))
+
+
 def raba118_teeth() -> dict[str, int]:
     """Tooth counts of the Raba 118/76 sun, planet and ring."""
-    from hubvib.meshing import raba118
-
-    return {"sun": raba118.sun().teeth, "planet": raba118.planet().teeth,
-            "ring": raba118.ring().teeth}
+    return design_teeth()
 
 
 def raba118_phasing() -> MeshPhasing:
-    """Mesh phasing of the Raba 118/76 gears (``hubvib.meshing.raba118``)."""
-    from hubvib.meshing import raba118
+    """Mesh phasing of the Raba 118/76 gears."""
+    return design_phasing()
 
-    return gear_phasing(raba118.sun(), raba118.planet(), raba118.ring())
+
+def _raba():
+    from hubvib.meshing.raba118 import design
+
+    return design()
 
 
 def gear_phasing(sun, planet, ring) -> MeshPhasing:

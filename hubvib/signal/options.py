@@ -103,13 +103,17 @@ class SignalOptions:
     def to_dict(self) -> dict:
         return asdict(self)
 
+    def check_design(self, design) -> None:
+        """Checks that need the scene's design (the mesh frequency)."""
+        check_sample_rate(self, design)
 
-def raba_kinematics(sun_speed_rpm: float) -> tuple[float, float]:
-    """Carrier and ring-mesh frequency [Hz] of the Raba reducer at this sun speed
-    (ring fixed: f_c = f_s z_s / (z_s + z_r), f_mesh = z_r f_c)."""
-    from .mesh_phase import raba118_teeth
 
-    teeth = raba118_teeth()
+def kinematics(sun_speed_rpm: float, design=None) -> tuple[float, float]:
+    """Carrier and ring-mesh frequency [Hz] at this sun speed, for a design (default Raba
+    118/76; ring fixed: f_c = f_s z_s / (z_s + z_r), f_mesh = z_r f_c)."""
+    from .mesh_phase import design_teeth
+
+    teeth = design_teeth(design)
     carrier = sun_speed_rpm / 60 * teeth["sun"] / (teeth["sun"] + teeth["ring"])
     return carrier, teeth["ring"] * carrier
 
@@ -172,15 +176,15 @@ def parse_signal_table(table: dict) -> SignalOptions:
         if key in table:
             values[key] = table[key]
     options = SignalOptions(**values)
-    check_sample_rate(options)
     return options
 
 
-def check_sample_rate(options: SignalOptions) -> None:
-    """Refuse a sample rate below twice the highest mesh harmonic asked for (aliasing)."""
+def check_sample_rate(options: SignalOptions, design=None) -> None:
+    """Refuse a sample rate below twice the highest mesh harmonic asked for (aliasing);
+    the mesh frequency is the design's (default Raba 118/76)."""
     from hubvib.scene import SceneError
 
-    _, mesh = raba_kinematics(options.sun_speed_rpm)
+    _, mesh = kinematics(options.sun_speed_rpm, design)
     needed = 2 * options.mesh_harmonics * mesh
     if options.sample_rate_hz < needed:
         raise SceneError(

@@ -19,7 +19,7 @@ from hubvib.lumped import natural_modes
 
 from .indicators import INDICATORS, GearOrders, indicators, residual
 from .mesh_curves import MeshCurves
-from .mesh_phase import raba118_phasing, raba118_teeth
+from .mesh_phase import design_phasing, design_teeth
 from .options import SignalOptions
 from .sensor import add_noise, sampled, sensor_signal
 from .simulation import Simulation, carrier_speed, simulate, steps_per_revolution
@@ -112,10 +112,10 @@ class SignalStudy:
         return out
 
 
-def harmonic_rules(n_planets: int) -> list[HarmonicRule]:
+def harmonic_rules(n_planets: int, design=None) -> list[HarmonicRule]:
     """Labels of carrier orders: mesh harmonics, planet-pass / cracked-tooth sidebands
     (multiples of N around them), planet-pass orders, shaft orders; else unexplained."""
-    teeth = raba118_teeth()
+    teeth = design_teeth(design)
     z_r, z_s, z_p = teeth["ring"], teeth["sun"], teeth["planet"]
     return [
         HarmonicRule("z_r", z_r, meaning="ring mesh harmonic"),
@@ -138,7 +138,7 @@ def curves_for(scene, options: SignalOptions, progress=None) -> list[MeshCurves]
     depths = sweep.depths if sweep is not None else (0.0,)
     fe = fe_mesh_curves(depths, sweep.start if sweep else "root",
                         sweep.angle if sweep else 0.0,
-                        ACCURACY[sweep.accuracy] if sweep else 1.0, progress)
+                        ACCURACY[sweep.accuracy] if sweep else 1.0, progress, scene.design)
     if options.mesh_stiffness == "ratio":
         return [c.to_preset(scene.params.c_sp, scene.params.c_rp) for c in fe]
     return fe
@@ -153,17 +153,17 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
     """
     options = options or scene.tables.get("signal") or SignalOptions()
     params = scene.params
-    teeth = raba118_teeth()
+    teeth = design_teeth(scene.design)
     if options.mesh_stiffness == "ratio":  # the mean system is known: check h before any FE
         omega = natural_modes(params.replace(c_rp_factors=())).omega.max()
         speed = carrier_speed(options, teeth["ring"], teeth["sun"])
         steps_per_revolution(float(omega), speed, teeth["ring"], options, params.n_planets)
     if curves is None:
         curves = curves_for(scene, options, progress)
-    phasing = raba118_phasing()
+    phasing = design_phasing(scene.design)
     tooth = scene.crack.tooth if scene.crack is not None else 0
     gear = GearOrders(teeth["ring"], params.n_planets, options.mesh_harmonics)
-    rules = harmonic_rules(params.n_planets)
+    rules = harmonic_rules(params.n_planets, scene.design)
     depths, sims = [], []
     for c in curves:
         started = time.perf_counter()
@@ -190,7 +190,7 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
     study = SignalStudy(scene.name, options, carrier_hz, carrier_hz * teeth["ring"],
                         params.n_planets, sims[0].step, sims[0].steps_per_revolution, points,
                         noise_rms, depths, crack_tooth=tooth, ring_teeth=teeth["ring"])
-    study.checks = _checks(study, params, curves[0], phasing, options)
+    study.checks = _checks(study, params, curves[0], phasing, options, teeth["sun"])
     return study
 
 
@@ -204,15 +204,17 @@ def _below_nyquist(spectrum: OrderSpectrum, sim: Simulation,
 
 
 def step_halving_change(params, curves: MeshCurves, phasing, options: SignalOptions,
-                        max_order: int, full_order: int | None = None) -> dict:
+                        max_order: int, full_order: int | None = None,
+                        sun_teeth: int | None = None) -> dict:
     """Largest change of the order amplitudes when the time step is halved, relative to the
     largest amplitude [-]: orders <= ``max_order`` (the analysed band) and, with
     ``full_order``, orders <= ``full_order`` (up to the Nyquist order of the record)."""
+    sun_teeth = sun_teeth or design_teeth()["sun"]
     spectra = []
     for factor in (1, 2):
         halved = replace(options, steps_per_period=options.steps_per_period * factor,
                          time_step_s=options.time_step_s / factor)
-        sim = simulate(params, curves, phasing, halved, None, 1, raba118_teeth()["sun"])
+        sim = simulate(params, curves, phasing, halved, None, 1, sun_teeth)
         spectra.append(order_spectrum(sensor_signal(sim, options.sensor_angle,
                                                     options.rigid_path)[:-1]))
 
@@ -226,7 +228,7 @@ def step_halving_change(params, curves: MeshCurves, phasing, options: SignalOpti
     return out
 
 
-def _checks(study: SignalStudy, params, intact: MeshCurves, phasing, options) -> dict:
+def _checks(study: SignalStudy, params, intact: MeshCurves, phasing, options, sun_teeth: int) -> dict:
     """Cancellation rule on the intact spectrum and the step-halving change."""
     spectrum = study.depths[0].spectrum
     n = study.n_planets
@@ -241,6 +243,6 @@ def _checks(study: SignalStudy, params, intact: MeshCurves, phasing, options) ->
             "equally spaced planets: only carrier orders that are multiples of N reach a "
             "sensor fixed on the ring (McFadden & Smith 1985; Parker & Lin 2004)")
     out["step_halving"] = step_halving_change(params, intact, phasing, options, top,
-                                              spectrum.nyquist_order)
+                                              spectrum.nyquist_order, sun_teeth)
     return out
 
