@@ -174,26 +174,36 @@ def fe_mesh_curves(depths, start: str = "root", angle: float = 0.0, scale: float
 
 def cached_tooth_curve(body, span, material, options, crack=None, progress=None,
                        name: str = "tooth"):
-    """FE tooth compliance curve (``hubvib.fem.tooth_stiffness.fe_curve``), cached."""
-    from hubvib.fem.tooth_stiffness import ToothCurve, fe_curve
-    from hubvib.meshing import cache
-    from hubvib.output import write_json
+    """FE tooth compliance curve (``hubvib.fem.tooth_stiffness.fe_curve``), cached and
+    checked (``hubvib.fe_cache``: inputs, checksum, FE-stage version)."""
+    from dataclasses import asdict
 
-    key = cache.key("signal tooth curve", body, [float(v) for v in span], material, options,
-                    crack)
-    path = cache.root_folder() / "signal-curves" / f"{key}.json"
+    from hubvib.fe_cache import CacheEntryError, entry_key, read_entry, write_entry
+    from hubvib.fem.tooth_stiffness import ToothCurve, fe_curve
+    from hubvib.meshing.cache import root_folder
+
+    inputs = json.loads(json.dumps({
+        "quantity": "tooth compliance curve", "body": repr(body),
+        "span_m": [float(v) for v in span], "material": asdict(material),
+        "options": asdict(options), "crack": None if crack is None else asdict(crack)}))
+    path = root_folder() / "signal-curves" / f"{entry_key(inputs)}.json"
+
+    def check(result):
+        radii, values = result.get("radii_m"), result.get("compliance_m_N")
+        if not (isinstance(radii, list) and isinstance(values, list) and radii
+                and len(radii) == len(values)
+                and all(isinstance(v, float) and np.isfinite(v) and v > 0 for v in values)):
+            raise CacheEntryError("not a compliance curve of finite positive values")
+
     try:
-        data = json.loads(path.read_text())
-        radii, values = np.array(data["radii_m"]), np.array(data["compliance_m_N"])
-        if radii.size and np.all(np.isfinite(values)):
-            return ToothCurve(radii, values)
-    except (OSError, ValueError, KeyError):
+        data = read_entry(path, inputs, check)
+        return ToothCurve(np.array(data["radii_m"]), np.array(data["compliance_m_N"]))
+    except CacheEntryError:
         pass
     if progress is not None:
         progress(f"FE tooth compliance of the {name}"
                  + ("" if crack is None else f", crack {1e3 * crack.depth:.3g} mm"))
     curve = fe_curve(body, span, material, options, crack)
-    write_json(path, {"radii_m": curve.radii.tolist(),
-                      "compliance_m_N": curve.compliance.tolist(), "dofs": curve.dofs})
+    write_entry(path, inputs, {"radii_m": curve.radii.tolist(),
+                               "compliance_m_N": curve.compliance.tolist(), "dofs": curve.dofs})
     return curve
-
