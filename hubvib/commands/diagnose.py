@@ -1,0 +1,50 @@
+"""``hubvib diagnose --scene SCENE --measured FILE.csv``: crack depth from measured frequencies."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("diagnose", help="estimate the ring crack depth from identified natural "
+                       "frequencies (CSV: frequency_hz, optional mode, baseline_hz)")
+    p.add_argument("--scene", required=True, help="scene TOML file with a [crack] study, or "
+                   "the name of a shipped scene (hubvib scenes lists them)")
+    p.add_argument("--measured", required=True, type=Path,
+                   help="CSV of identified natural frequencies: header frequency_hz, optional "
+                   "columns mode (model mode, 1 = lowest) and baseline_hz (same mode, intact)")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(handler=run)
+
+
+def run(args) -> int:
+    from hubvib.detection.diagnosis import diagnose_scene
+    from hubvib.detection.measured import read_measured
+    from hubvib.scene import load_scene
+
+    measured = read_measured(args.measured)
+    scene = load_scene(args.scene)
+    result, ref = diagnose_scene(scene, measured, progress=not args.json)
+    if args.json:
+        print(json.dumps({"scene": scene.name, **result.to_dict()}, indent=2, allow_nan=False))
+        return 0
+    nominal = ref.nominal_hz[0]
+    print(f"scene {scene.name!r}: {len(result.modes)} measured mode(s), baseline: "
+          f"{'the measured intact frequencies' if result.baseline == 'measured' else 'the model intact spectrum'}")
+    print(f"{'mode':>4} {'model intact [Hz]':>17} {'measured [Hz]':>13} {'shift [Hz]':>10}  "
+          f"informative")
+    for mode, f, shift, useful in zip(result.modes, measured.frequency_hz, result.shift_hz,
+                                      result.informative):
+        print(f"{mode:>4} {nominal[mode - 1]:>17.3f} {f:>13.3f} {shift:>+10.3f}  "
+              f"{'yes' if useful else 'no'}")
+    if result.depth is None:
+        print(f"verdict: {result.verdict} (no measured mode tells the deepest crack of the "
+              f"sweep, {1e3 * ref.depths[-1]:.3g} mm, from an intact reducer)")
+    elif result.verdict == "crack indicated":
+        print(f"verdict: {result.verdict}: depth {1e3 * result.depth:.3g} mm, "
+              f"{100 * result.confidence:g} % interval {1e3 * result.depth_low:.3g} .. "
+              f"{1e3 * result.depth_high:.3g} mm")
+    else:
+        print(f"verdict: {result.verdict}: depth below {1e3 * result.depth_high:.3g} mm "
+              f"at {100 * result.confidence:g} %")
+    return 0

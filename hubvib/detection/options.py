@@ -1,0 +1,134 @@
+"""The scene's ``[detection]`` table: what decides whether a frequency shift is detectable.
+
+All keys, with their defaults::
+
+    [detection]
+    record_length_s = 10.0              # one record; frequency resolution 1/T [Hz]
+    false_alarm_rate = 0.01             # per mode, one-sided (a crack only lowers frequencies)
+    detection_probability = 0.9         # POD at which a depth counts as detectable
+    scatter_masses_percent = 2.0        # relative standard deviation of every mass
+    scatter_stiffnesses_percent = 10.0  # ... of mesh, bearing and sun/carrier torsion springs
+    scatter_mounting_percent = 30.0     # ... of the ring mounting (c_ru, c_r mounts)
+    samples = 2000                      # Monte Carlo samples per depth (POD, diagnosis)
+    map_samples = 200                   # ... per mounting stiffness of the detectability map
+    seed = 0
+    mount_min_N_m = 1e6                 # mounting stiffness sweep of the map, log-spaced
+    mount_max_N_m = 1e12
+    mount_points = 13
+    carrier_speed_rpm = 150.0           # ASSUMED: ~28 km/h on a 0.5 m wheel
+    confidence = 0.9                    # two-sided interval of ``hubvib diagnose``
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+
+
+@dataclass(frozen=True)
+class DetectionOptions:
+    """How a measured frequency shift is judged (SI).
+
+    Attributes
+    ----------
+    record_length : float
+        Length T of one vibration record [s]; frequency resolution 1/T [Hz].
+    false_alarm_rate : float
+        Probability [-] that an intact reducer raises an alarm on one mode.
+    detection_probability : float
+        Probability of detection [-] at which a depth counts as detectable.
+    scatter_masses, scatter_stiffnesses, scatter_mounting : float
+        Relative standard deviations [-] of the masses, of the springs other than the
+        ring mounting, and of the ring mounting (log-normal, independent).
+    samples, map_samples : int
+        Monte Carlo samples per depth (POD, diagnosis) and per mounting stiffness (map).
+    seed : int
+        Seed of the random generator (results repeat exactly).
+    mount_min, mount_max : float
+        Range of the mounting stiffness swept by the detectability map [N/m].
+    mount_points : int
+        Log-spaced mounting stiffnesses in that range.
+    carrier_speed : float
+        Carrier speed [rad/s] (ASSUMED 150 rpm by default).
+    confidence : float
+        Level of the two-sided depth interval of a diagnosis [-].
+    """
+
+    record_length: float = 10.0
+    false_alarm_rate: float = 0.01
+    detection_probability: float = 0.9
+    scatter_masses: float = 0.02
+    scatter_stiffnesses: float = 0.10
+    scatter_mounting: float = 0.30
+    samples: int = 2000
+    map_samples: int = 200
+    seed: int = 0
+    mount_min: float = 1e6
+    mount_max: float = 1e12
+    mount_points: int = 13
+    carrier_speed: float = 150.0 * 2 * math.pi / 60
+    confidence: float = 0.9
+
+    @property
+    def resolution_hz(self) -> float:
+        """Frequency resolution 1/T [Hz]."""
+        return 1.0 / self.record_length
+
+    def to_dict(self) -> dict:
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
+#: TOML key -> (attribute, kind, low, high, open low?, open high?, scale to SI)
+_KEYS = {
+    "record_length_s": ("record_length", float, 0.0, math.inf, True, True, 1.0),
+    "false_alarm_rate": ("false_alarm_rate", float, 0.0, 0.5, True, True, 1.0),
+    "detection_probability": ("detection_probability", float, 0.0, 1.0, True, True, 1.0),
+    "scatter_masses_percent": ("scatter_masses", float, 0.0, 100.0, False, False, 0.01),
+    "scatter_stiffnesses_percent": ("scatter_stiffnesses", float, 0.0, 100.0, False, False,
+                                    0.01),
+    "scatter_mounting_percent": ("scatter_mounting", float, 0.0, 100.0, False, False, 0.01),
+    "samples": ("samples", int, 100, 1_000_000, False, False, 1),
+    "map_samples": ("map_samples", int, 20, 100_000, False, False, 1),
+    "seed": ("seed", int, 0, 2**63 - 1, False, False, 1),
+    "mount_min_N_m": ("mount_min", float, 0.0, math.inf, True, True, 1.0),
+    "mount_max_N_m": ("mount_max", float, 0.0, math.inf, True, True, 1.0),
+    "mount_points": ("mount_points", int, 2, 200, False, False, 1),
+    "carrier_speed_rpm": ("carrier_speed", float, 0.0, 1e5, True, False, 2 * math.pi / 60),
+    "confidence": ("confidence", float, 0.0, 1.0, True, True, 1.0),
+}
+
+
+def parse_detection_table(table: dict) -> DetectionOptions:
+    """Validate a ``[detection]`` table; raise SceneError naming the key, value and range."""
+    from hubvib.scene import SceneError
+
+    unknown = set(table) - set(_KEYS)
+    if unknown:
+        raise SceneError(f"unknown key(s) {sorted(unknown)} at [detection]; allowed: "
+                         f"{sorted(_KEYS)}")
+    values = {}
+    for key, value in table.items():
+        name, kind, low, high, open_low, open_high, scale = _KEYS[key]
+        number = (isinstance(value, int) if kind is int else isinstance(value, (int, float)))
+        inside = number and not isinstance(value, bool) and math.isfinite(value) and (
+            (low < value if open_low else low <= value)
+            and (value < high if open_high else value <= high))
+        if not inside:
+            what = "an integer" if kind is int else "a number"
+            raise SceneError(f"[detection] {key} = {value!r}; allowed: {what} in "
+                             f"{'(' if open_low else '['}{low:g}, {high:g}"
+                             f"{')' if open_high else ']'}")
+        values[name] = kind(value * scale) if kind is float else value
+    options = DetectionOptions(**values)
+    if options.mount_min >= options.mount_max:
+        raise SceneError(f"[detection] mount_min_N_m = {options.mount_min:g} must be below "
+                         f"mount_max_N_m = {options.mount_max:g}")
+    if options.detection_probability <= options.false_alarm_rate:
+        raise SceneError(f"[detection] detection_probability = "
+                         f"{options.detection_probability:g} must exceed false_alarm_rate = "
+                         f"{options.false_alarm_rate:g}")
+    return options
+
+
+def detection_options(scene) -> DetectionOptions:
+    """The scene's ``[detection]`` options, or the documented defaults."""
+    return scene.tables.get("detection") or DetectionOptions()

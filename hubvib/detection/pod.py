@@ -1,0 +1,262 @@
+"""Probability of detecting a crack from one mode's frequency, by Monte Carlo (SI).
+
+Measurement: a natural frequency identified from a record of length T lies on
+the frequency grid of spacing 1/T, so its error is uniform within +-1/(2T).
+Two baselines:
+
+``measured``
+    The reducer's own intact spectrum, measured the same way (monitoring).  The
+    statistic ``f(d) - f(0) + u_1 - u_0`` has triangular noise on +-1/T; an
+    alarm is ``statistic < -t`` with ``t = (1 - sqrt(2 alpha)) / T``, which an
+    intact reducer exceeds with probability alpha exactly.  One-sided: a crack
+    only softens springs, so by the Courant-Fischer min-max principle no
+    natural frequency can rise.
+``model``
+    The model's nominal intact spectrum.  The unit's own scatter then enters the
+    statistic ``f(d) + u - f_model(0)``; the threshold is the alpha quantile of
+    intact units, calibrated on samples drawn independently of those that give
+    the POD.
+
+The probability of detection (POD) of mode i at depth d is the fraction of
+sampled reducers (parameter scatter and FE error, :mod:`.uncertainty`) that
+raise the alarm, with the measurement noise integrated exactly.  A nominal
+shift smaller than the change that the FE error of the stiffness carrying it
+would cause is flagged as not resolved: the FE stage cannot tell it apart from
+its own discretisation error.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .numbers import ROUND_OFF
+from .uncertainty import draw, nominal, observed_frequencies
+
+#: stiffnesses a ring crack changes, as the report names them
+CARRIERS = ("c_ru", "c_r", "c_rp")
+
+
+def triangular_cdf(x, half_width: float):
+    """CDF of the difference of two independent uniform(-w/2, w/2) errors, ``w = half_width``."""
+    a = half_width
+    x = np.clip(np.asarray(x, dtype=float), -a, a)
+    return np.where(x < 0, (x + a) ** 2 / (2 * a * a), 1 - (a - x) ** 2 / (2 * a * a))
+
+
+def uniform_cdf(x, width: float):
+    """CDF of a uniform error on +-width/2."""
+    return np.clip(np.asarray(x, dtype=float) / width + 0.5, 0.0, 1.0)
+
+
+def measured_threshold(record_length: float, false_alarm_rate: float) -> float:
+    """Alarm threshold [Hz] on a shift against the reducer's own intact measurement."""
+    return (1.0 - math.sqrt(2 * false_alarm_rate)) / record_length
+
+
+@dataclass(frozen=True)
+class NominalShifts:
+    """Shifts of the nominal reducer as a record sees them, and what carries them.
+
+    Attributes
+    ----------
+    frequency_hz : ndarray, shape (depths, modes)
+        Observed frequencies [Hz].
+    partial_hz : dict
+        Shift [Hz] with only ``c_ru``, only ``c_r`` or only ``c_rp`` at the crack depth.
+    fe_error_hz : dict
+        Change of the frequency [Hz] when that stiffness's FE value at the crack depth
+        moves by its error estimate.
+    """
+
+    frequency_hz: np.ndarray
+    partial_hz: dict
+    fe_error_hz: dict
+
+    @property
+    def shift_hz(self) -> np.ndarray:
+        return self.frequency_hz - self.frequency_hz[0]
+
+    @property
+    def round_off_hz(self) -> np.ndarray:
+        """Shift [Hz] below which a mode does not move (eigensolver round-off), per mode."""
+        return ROUND_OFF * self.frequency_hz[0]
+
+    @property
+    def carried_by(self) -> np.ndarray:
+        """Per depth and mode, the stiffness whose change alone shifts it most; ``"none"``
+        where no change moves it beyond round-off."""
+        stacked = np.abs(np.array([self.partial_hz[c] for c in CARRIERS]))
+        names = np.array(CARRIERS)[stacked.argmax(axis=0)]
+        return np.where(stacked.max(axis=0) > self.round_off_hz, names, "none")
+
+    @property
+    def carrier_error_hz(self) -> np.ndarray:
+        """FE error effect [Hz] of the stiffness that carries each shift."""
+        errors = np.array([self.fe_error_hz[c] for c in CARRIERS])
+        index = np.abs(np.array([self.partial_hz[c] for c in CARRIERS])).argmax(axis=0)
+        return np.take_along_axis(errors, index[None], axis=0)[0]
+
+
+def nominal_shifts(model, fraction: float, long_record: bool) -> NominalShifts:
+    """Nominal observed frequencies of ``model`` and the split of their shifts."""
+    def observed(variant):
+        return observed_frequencies(variant, nominal(variant), fraction, long_record)[0]
+
+    depths = len(model.depths)
+    total = observed(model)
+    intact = {"c_ru": dict(c_ru_body=(model.c_ru_body[0],) * depths),
+              "c_r": dict(c_r_body=(model.c_r_body[0],) * depths),
+              "c_rp": dict(c_rp_ratio=(model.c_rp_ratio[0],) * depths)}
+    partial = {}
+    for carrier in CARRIERS:
+        others = {k: v for c, change in intact.items() if c != carrier for k, v in change.items()}
+        partial[carrier] = observed(replace(model, **others)) - total[0]
+    errors = {}
+    for carrier, (value, error) in {"c_ru": ("c_ru_body", "c_ru_body_error"),
+                                    "c_r": ("c_r_body", "c_r_body_error"),
+                                    "c_rp": ("c_rp_ratio", "c_rp_ratio_error")}.items():
+        values, errs = getattr(model, value), getattr(model, error)
+        moved = (values[0],) + tuple(v - e for v, e in zip(values[1:], errs[1:]))
+        errors[carrier] = np.abs(observed(replace(model, **{value: moved})) - total)
+    return NominalShifts(total, partial, errors)
+
+
+@dataclass(frozen=True)
+class PodResult:
+    """Monte Carlo detection of a crack per depth and mode.
+
+    Attributes
+    ----------
+    depths : ndarray
+        [m]
+    kind : tuple of str
+        Mode types of the nominal intact spectrum.
+    nominal : NominalShifts
+    shift_mean_hz, shift_p05_hz, shift_p95_hz : ndarray, shape (depths, modes)
+        Mean and 5 / 95 % quantiles of the sampled shift [Hz] (no measurement noise).
+    threshold_hz : float
+        Alarm threshold against the reducer's own intact measurement [Hz].
+    pod : ndarray, shape (depths, modes)
+        Probability of detection against the reducer's own intact measurement [-].
+    threshold_model_hz, pod_model : ndarray or None
+        The same against the model's nominal intact spectrum [Hz], [-].
+    false_alarm_rate, detection_probability : float
+        [-]
+    samples : int
+    """
+
+    depths: np.ndarray
+    kind: tuple
+    nominal: NominalShifts
+    shift_mean_hz: np.ndarray
+    shift_p05_hz: np.ndarray
+    shift_p95_hz: np.ndarray
+    threshold_hz: float
+    pod: np.ndarray
+    threshold_model_hz: np.ndarray | None
+    pod_model: np.ndarray | None
+    false_alarm_rate: float
+    detection_probability: float
+    samples: int
+
+    @property
+    def resolved(self) -> np.ndarray:
+        """(depths, modes): the nominal shift exceeds the FE error of what carries it (and
+        round-off)."""
+        nominal = self.nominal
+        return np.abs(nominal.shift_hz) > np.maximum(nominal.carrier_error_hz,
+                                                     nominal.round_off_hz)
+
+    def detectable_depth(self, model_baseline: bool = False) -> np.ndarray:
+        """Per mode, the smallest depth [m] with POD >= the required probability and a
+        resolved shift; NaN where none is."""
+        pod = self.pod_model if model_baseline else self.pod
+        ok = (pod >= self.detection_probability) & self.resolved
+        ok[0] = False
+        first = np.where(ok.any(axis=0), ok.argmax(axis=0), -1)
+        return np.where(first >= 0, self.depths[np.maximum(first, 0)], np.nan)
+
+    def rows(self) -> list[dict]:
+        nominal = self.nominal
+        carried = nominal.carried_by
+        rows = []
+        for k, depth in enumerate(self.depths):
+            for i, kind in enumerate(self.kind):
+                rows.append({
+                    "depth_mm": 1e3 * depth, "mode": i + 1, "kind": kind,
+                    "frequency_intact_hz": float(nominal.frequency_hz[0, i]),
+                    "shift_hz": float(nominal.shift_hz[k, i]),
+                    "shift_percent": float(100 * nominal.shift_hz[k, i]
+                                           / nominal.frequency_hz[0, i]),
+                    "shift_mean_hz": float(self.shift_mean_hz[k, i]),
+                    "shift_p05_hz": float(self.shift_p05_hz[k, i]),
+                    "shift_p95_hz": float(self.shift_p95_hz[k, i]),
+                    "carried_by": str(carried[k, i]),
+                    "fe_error_hz": float(nominal.carrier_error_hz[k, i]),
+                    "resolved": bool(self.resolved[k, i]) if k else None,
+                    "threshold_hz": self.threshold_hz,
+                    "pod": float(self.pod[k, i]),
+                    "threshold_model_hz": (None if self.threshold_model_hz is None
+                                           else float(self.threshold_model_hz[i])),
+                    "pod_model": None if self.pod_model is None else float(self.pod_model[k, i])})
+        return rows
+
+
+def pod_study(model, options, timing, samples: int | None = None, model_baseline: bool = True,
+              seed: int | None = None, workers: int = 1) -> PodResult:
+    """POD of every mode at every depth of ``model`` (CrackModel).
+
+    Parameters
+    ----------
+    model : CrackModel
+    options : DetectionOptions
+    timing : MeshTiming
+        When the cracked tooth is in mesh (see :mod:`.carrier`).
+    samples : int, optional
+        Monte Carlo samples (default ``options.samples``).
+    model_baseline : bool
+        Also compute the POD against the model's intact spectrum.
+    seed : int, optional
+        Default ``options.seed``.
+    """
+    from hubvib.lumped import natural_modes
+
+    n = samples or options.samples
+    rng = np.random.default_rng(options.seed if seed is None else seed)
+    fraction, long = timing.engaged_fraction, timing.long_record(options.record_length)
+    frequencies = observed_frequencies(model, draw(model, options, n, rng), fraction, long,
+                                       workers)
+    shifts = frequencies - frequencies[:, :1]
+    T, alpha = options.record_length, options.false_alarm_rate
+    threshold = measured_threshold(T, alpha)
+    pod = triangular_cdf(-threshold - shifts, 1.0 / T).mean(axis=0)
+    threshold_model = pod_model = None
+    nominal_result = nominal_shifts(model, fraction, long)
+    if model_baseline:
+        reference = nominal_result.frequency_hz[0]
+        calibration = observed_frequencies(model.at_depths([0.0]),
+                                           draw(model, options, n, rng), fraction, long,
+                                           workers)[:, 0]
+        threshold_model = np.array([_quantile_threshold(calibration[:, i] - reference[i],
+                                                        1.0 / T, alpha)
+                                    for i in range(reference.size)])
+        pod_model = uniform_cdf(-threshold_model - (frequencies - reference), 1.0 / T
+                                ).mean(axis=0)
+    kind = natural_modes(model.parameters(0), model.method).kind
+    return PodResult(np.array(model.depths), kind, nominal_result, shifts.mean(axis=0),
+                     np.quantile(shifts, 0.05, axis=0), np.quantile(shifts, 0.95, axis=0),
+                     threshold, pod, threshold_model, pod_model, alpha,
+                     options.detection_probability, n)
+
+
+def _quantile_threshold(offsets: np.ndarray, width: float, alpha: float) -> float:
+    """t with mean(P(offset + u < -t)) = alpha, u uniform on +-width/2."""
+    def excess(t):
+        return uniform_cdf(-t - offsets, width).mean() - alpha
+
+    low = -offsets.max() - width
+    high = -offsets.min() + width
+    return float(brentq(excess, low, high, xtol=1e-12 * max(1.0, abs(high))))

@@ -1,0 +1,232 @@
+"""Report sections of the detection study (markdown), generated from its results."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .numbers import depth_mm, number, percent, shift_hz
+from .series import DIRECT, RATIO
+
+
+def mounting_sentence(model) -> str:
+    """How the ring support enters the lumped model, and what share the mounting holds."""
+    params = model.params
+    if model.apply == RATIO:
+        return ("`apply = \"ratio\"`: the preset's c_ru and c_r scaled by FE(depth)/FE(intact). "
+                "This is the paper's hypothesis that the whole support compliance is the ring "
+                "body: an upper bound of the effect, not a mounting anyone measured.")
+    if model.apply == DIRECT:
+        return ("`apply = \"direct\"`: c_ru and c_r are the FE ring body itself (a rigid "
+                "mounting): the largest effect a real mounting can leave.")
+    identified = []
+    for name, preset in (("c_ru", params.c_ru), ("c_r", params.c_r)):
+        total = float(getattr(model, name)[0])
+        if math.isclose(total, preset, rel_tol=1e-9):
+            identified.append(f"{name} = {preset:.4g} N/m")
+    how = (f"identified so that the intact totals equal the preset's {' and '.join(identified)}"
+           if identified else "given in the scene")
+    share = [f"{100 * float(getattr(model, n)[0]) / getattr(model, f'{n}_mount'):.4g} % of the "
+             f"ring's {what} compliance" for n, what in (("c_ru", "torsional"),
+                                                          ("c_r", "radial"))]
+    return (f"`apply = \"series\"`: the mounting in series with the FE ring body, c_ru mounting "
+            f"{model.c_ru_mount:.6g} N/m and c_r mounting {model.c_r_mount:.6g} N/m ({how}). "
+            f"The mounting holds {share[0]} and {share[1]}: that share of a body softening "
+            f"never reaches the spectrum, so through c_ru and c_r the mounting decides what a "
+            f"crack can show.")
+
+
+def _support_sentence(pod) -> str:
+    """Which stiffness carries the detectable signals at the scene's mounting."""
+    depth = pod.detectable_depth()
+    carriers = {}
+    for i in np.flatnonzero(~np.isnan(depth)):
+        k = int(np.searchsorted(pod.depths, depth[i]))
+        carriers.setdefault(str(pod.nominal.carried_by[k, i]), []).append(float(depth[i]))
+    through_support = [d for c in ("c_ru", "c_r") for d in carriers.get(c, [])]
+    if through_support:
+        return (f"Through the ring support (c_ru, c_r) a crack is detectable from "
+                f"{depth_mm(min(through_support))} mm under this mounting.")
+    text = ("Through the ring support (c_ru, c_r) no crack of the sweep is detectable under "
+            "this mounting (the map below shows how stiff it must be).")
+    if "c_rp" in carriers:
+        text += (" What remains is the cracked tooth's own mesh stiffness (c_rp), which no "
+                 "mounting filters.")
+    return text
+
+
+def _modulation_sentence(study, watched) -> str:
+    """Where the passes modulate a watched mode by more than 1 rad."""
+    index = study.carrier.modulation_index
+    split = [(i, int(np.argmax(index[:, i] > 1))) for i in watched if (index[:, i] > 1).any()]
+    if not split:
+        return ""
+    parts = ", ".join(f"mode {i + 1} from {depth_mm(study.pod.depths[k])} mm" for i, k in split)
+    return (f" Caution: each pass of a planet over the cracked tooth modulates the phase of "
+            f"{parts} by more than 1 rad (see Carrier position): there the crack shows as "
+            f"sidebands {study.timing.pass_frequency:.3g} Hz apart as much as a shifted line.")
+
+
+def short_answer(name: str, model, study) -> list[str]:
+    """The report's opening: modes to watch, shift per depth, detectable depth, mounting."""
+    pod, options = study.pod, study.options
+    watched = study.watched_modes()
+    depth = pod.detectable_depth()
+    f0 = pod.nominal.frequency_hz[0]
+    rule = (f"POD >= {options.detection_probability:g} at a false-alarm rate of "
+            f"{options.false_alarm_rate:g} per mode; records of {options.record_length:g} s "
+            f"(resolution {options.resolution_hz:.3g} Hz, alarm below -{pod.threshold_hz:.3g} "
+            f"Hz); compared with the same reducer's intact spectrum")
+    modes = ", ".join(f"{i + 1} ({f0[i]:.1f} Hz, signal in {pod.nominal.carried_by[-1, i]})"
+                      for i in watched)
+    found = ~np.isnan(depth[watched])
+    lines = ["## Short answer", "", mounting_sentence(model), ""]
+    if found.any():
+        first = np.nanmin(depth[watched])
+        shallowest = pod.depths[1]
+        note = " (the shallowest crack computed)" if math.isclose(first, shallowest) else ""
+        lines.append(f"**Watch modes {modes}. A crack is detectable from {depth_mm(first)} mm"
+                     f"{note}** under this mounting ({rule}). {_support_sentence(pod)}"
+                     f"{_modulation_sentence(study, watched)}")
+    else:
+        lines.append(f"**No mode detects any crack of the sweep under this mounting** ({rule}). "
+                     f"The modes moving most against the threshold: {modes}. "
+                     f"{_support_sentence(pod)}")
+    lines += ["", "Shift a record sees [Hz] and POD per depth (nr: smaller than the FE error of "
+              "the stiffness carrying it, not resolved):", ""]
+    head = "| depth [mm] | " + " | ".join(f"mode {i + 1} [Hz] | [%] | POD" for i in watched)
+    lines += [head + " |", "|---:|" + "---:|---:|---:|" * len(watched)]
+    for k, d in enumerate(pod.depths):
+        cells = []
+        for i in watched:
+            s = pod.nominal.shift_hz[k, i]
+            flag = "" if k == 0 or pod.resolved[k, i] else " nr"
+            cells += [shift_hz(s, f0[i]) + flag, percent(100 * s / f0[i]),
+                      f"{pod.pod[k, i]:.2f}"]
+        lines.append(f"| {depth_mm(d)} | " + " | ".join(cells) + " |")
+    model_depth = pod.detectable_depth(model_baseline=True)
+    if pod.pod_model is not None:
+        best = np.nanmin(model_depth) if not np.isnan(model_depth).all() else None
+        lines += ["", "Compared with the model's intact spectrum instead (no measured baseline), "
+                  f"the parameter scatter (masses {100 * options.scatter_masses:g} %, springs "
+                  f"{100 * options.scatter_stiffnesses:g} %, mounting "
+                  f"{100 * options.scatter_mounting:g} %) "
+                  + ("hides every crack of the sweep." if best is None else
+                     f"leaves a crack detectable from {depth_mm(best)} mm.")]
+    lines += ["", *map_summary(study.map), ""]
+    return lines
+
+
+def map_summary(dmap) -> list[str]:
+    """One sentence per mounting swept and stiffness carrying the signal."""
+    lines = []
+    for swept, carrier in (("c_ru_mount", "c_ru"), ("c_r_mount", "c_r")):
+        depth, carried = dmap.depth[swept], dmap.carried_by[swept]
+        own = np.where(carried == carrier, depth, np.nan)
+        rows = np.flatnonzero(~np.isnan(own).all(axis=1))
+        if rows.size == 0:
+            lines.append(f"- Modes with their signal in {carrier}: no crack of the sweep is "
+                         f"detectable for any {swept} from {dmap.mounts[0]:.3g} to "
+                         f"{dmap.mounts[-1]:.3g} N/m.")
+            continue
+        first = rows[0]
+        stiff = np.nanmin(own[-1]) if not np.isnan(own[-1]).all() else math.nan
+        lines.append(f"- Modes with their signal in {carrier}: detectable once {swept} >= "
+                     f"{dmap.mounts[first]:.3g} N/m (from {depth_mm(np.nanmin(own[first]))} mm "
+                     f"there; at {dmap.mounts[-1]:.3g} N/m from {depth_mm(stiff)} mm).")
+    rp = {s: np.where(dmap.carried_by[s] == "c_rp", dmap.depth[s], np.nan)
+          for s in ("c_ru_mount", "c_r_mount")}
+    every = np.concatenate([~np.isnan(v).all(axis=1) for v in rp.values()])
+    if every.any():
+        where = ("at every mounting swept" if every.all() else
+                 f"at {int(every.sum())} of the {every.size} mountings swept")
+        lines.append(f"- Modes with their signal in c_rp (the cracked tooth's mesh, behind no "
+                     f"mounting): detectable {where}, from "
+                     f"{depth_mm(np.nanmin(np.concatenate([v.ravel() for v in rp.values()])))} mm.")
+    return lines
+
+
+def map_table(dmap) -> list[str]:
+    """Per mounting value and sweep: the smallest detectable depth among the modes whose
+    signal is in the swept support, and among all modes."""
+    lines = ["| mounting [N/m] | c_ru_mount swept: via c_ru [mm] | mode | any mode [mm] "
+             "| c_r_mount swept: via c_r [mm] | mode | any mode [mm] |",
+             "|---:|---:|---|---:|---:|---|---:|"]
+    for m, mount in enumerate(dmap.mounts):
+        cells = []
+        for swept, carrier in (("c_ru_mount", "c_ru"), ("c_r_mount", "c_r")):
+            depth = dmap.depth[swept][m]
+            own = np.where(dmap.carried_by[swept][m] == carrier, depth, np.nan)
+            if np.isnan(own).all():
+                cells += ["not detectable", "-"]
+            else:
+                i = int(np.nanargmin(own))
+                cells += [depth_mm(own[i]), f"{i + 1} ({dmap.frequency_hz[swept][m, i]:.1f} Hz)"]
+            cells.append("not detectable" if np.isnan(depth).all()
+                         else f"{depth_mm(np.nanmin(depth))} "
+                              f"({dmap.carried_by[swept][m, int(np.nanargmin(depth))]})")
+        lines.append(f"| {mount:.3g} | " + " | ".join(cells) + " |")
+    return lines
+
+
+def pod_section(study) -> list[str]:
+    """How the threshold follows from the physics, and the POD per watched mode."""
+    pod, options, timing = study.pod, study.options, study.timing
+    long = timing.long_record(options.record_length)
+    return [
+        "## Detection threshold and probability of detection", "",
+        f"- Measurement: a frequency identified from a {options.record_length:g} s record lies "
+        f"on a grid of {options.resolution_hz:.3g} Hz, error uniform within half a step. "
+        f"Against the reducer's own intact measurement the alarm is a drop below "
+        f"-{pod.threshold_hz:.3g} Hz, which an intact reducer crosses with probability "
+        f"{options.false_alarm_rate:g} exactly. Frequencies can only drop: a crack softens "
+        "springs (Courant-Fischer), so the test is one-sided.",
+        f"- Scatter (log-normal, relative standard deviation): masses "
+        f"{100 * options.scatter_masses:g} %, springs {100 * options.scatter_stiffnesses:g} %, "
+        f"ring mounting {100 * options.scatter_mounting:g} %; FE error estimates (difference "
+        "to a mesh twice as coarse) as the standard deviation of a discretisation error common "
+        f"to all depths. {pod.samples} Monte Carlo samples per depth (batched lumped solves).",
+        f"- Record against mesh timing: "
+        + (f"a record longer than one engagement ({1e3 * timing.pass_seconds:.3g} ms) sees the "
+           f"time-averaged stiffness (the cracked tooth is in mesh "
+           f"{100 * timing.engaged_fraction:.3g} % of the time), so the c_rp effect enters "
+           "diluted by that fraction." if long else
+           "the record fits inside one engagement and sees the in-mesh spectrum."),
+        "- A shift smaller than the change the FE error of its own stiffness would cause is "
+        "flagged *not resolved* and never counts as detectable. Not modelled: temperature "
+        "and load drifts between the two measurements, damping.", ""]
+
+
+def carrier_section(study) -> list[str]:
+    """Fraction of time in mesh and the spectra in and out of engagement."""
+    carrier, timing = study.carrier, study.timing
+    out, inside = carrier.omega_out[-1], carrier.omega_in[-1]
+    relative = inside / out - 1
+    moving = np.flatnonzero(np.abs(relative) > 1e-8)
+    lines = [
+        "## Carrier position", "",
+        f"The ring is held; the carrier turns at {timing.carrier_speed * 60 / (2 * math.pi):.4g} "
+        f"rpm (ASSUMED). The cracked tooth (z_r = {timing.ring_teeth}, contact ratio "
+        f"{timing.contact_ratio:.3f}) is in mesh with one of the {timing.n_planets} planets "
+        f"{100 * timing.engaged_fraction:.3g} % of the time, in passes of "
+        f"{1e3 * timing.pass_seconds:.3g} ms (one per planet and carrier revolution). Within a "
+        f"pass the frequency resolution cannot be finer than {1 / timing.pass_seconds:.3g} Hz.",
+        f"Each pass puts sidebands at multiples of {timing.pass_frequency:.3g} Hz around every "
+        "mode; the record sees the central line at the time-averaged frequency. The "
+        "modulation index (phase a mode loses during one pass) tells how strong the "
+        "sidebands are: above 1 rad the mode's peak splits and a single shifted line is no "
+        "longer what a peak picker finds.", "",
+        "Spectrum at the deepest crack in and out of engagement (modes that differ):", "",
+        "| mode | out of engagement [Hz] | planet 1 on the crack [Hz] | difference [%] "
+        "| long record [Hz] | modulation index [rad] |",
+        "|---:|---:|---:|---:|---:|---:|"]
+    observed = carrier.omega_observed[-1]
+    index = carrier.modulation_index[-1]
+    for i in moving:
+        lines.append(f"| {i + 1} | {out[i] / (2 * math.pi):.3f} | "
+                     f"{inside[i] / (2 * math.pi):.3f} | {percent(100 * relative[i])} | "
+                     f"{observed[i] / (2 * math.pi):.3f} | {number(index[i], 2)}"
+                     f"{' (peak splits)' if index[i] > 1 else ''} |")
+    if moving.size == 0:
+        lines.append("| - | | | no mode differs | | |")
+    return lines + [""]

@@ -1,0 +1,53 @@
+"""Synthetic FE rows for the detection tests (no FE stage), and checks that they look like
+the FE stage's rows."""
+import math
+
+import numpy as np
+import pytest
+
+from hubvib.crack_sweep import CrackSweep
+from hubvib.detection.carrier import MeshTiming
+from hubvib.detection.model import CrackModel
+from hubvib.lumped import raba118
+
+#: FE ring body of Raba 118/76 (README: c_ru 1.663e10 N/m +-0.15 %, c_r 3.807e10 N/m +-0.03 %);
+#: the through-rim crack lowers c_ru to x0.942 (issue 13)
+C_RU, C_R = 1.663e10, 3.807e10
+DEEPEST = 0.0246
+#: Raba 118/76 ring-planet mesh: z_r = 64, contact ratio 1.416, 3 planets, 150 rpm
+TIMING = MeshTiming(64, 1.416, 3, 150 * 2 * math.pi / 60)
+
+
+def synthetic_fe_rows(depths=None, c_ru_drop=0.058, c_r_drop=0.05, c_rp_drop=0.1,
+                      c_ru_error=2.5e7, c_r_error=1e7, c_rp_error=1e-3, body_scale=1.0):
+    """Rows with the keys of ``crack_sweep.fe_case``: stiffness falling with depth^2."""
+    depths = np.linspace(0, DEEPEST, 9) if depths is None else np.asarray(depths)
+    x = depths / depths[-1]
+    return [{"depth_m": float(d), "c_ru_N_m": body_scale * C_RU * (1 - c_ru_drop * t * t),
+             "c_ru_error_N_m": c_ru_error * body_scale, "c_ru_min_N_m": 0.66 * C_RU * body_scale,
+             "c_ru_max_N_m": 1.3 * C_RU * body_scale,
+             "c_r_N_m": body_scale * C_R * (1 - c_r_drop * t * t),
+             "c_r_error_N_m": c_r_error * body_scale,
+             "c_rp_engaged_ratio": 1 - c_rp_drop * t, "c_rp_engaged_ratio_error": c_rp_error * t,
+             "c_rp_engaged_min_ratio": 1 - 2 * c_rp_drop * t, "seconds_total": 0.0}
+            for d, t in zip(depths, x)]
+
+
+def synthetic_model(apply="series", c_ru_mount=None, c_r_mount=None, **rows) -> CrackModel:
+    fe = synthetic_fe_rows(**rows)
+    sweep = CrackSweep(tuple(r["depth_m"] for r in fe), apply=apply, c_ru_mount=c_ru_mount,
+                       c_r_mount=c_r_mount)
+    return CrackModel.from_fe(raba118(), sweep, fe)
+
+
+def test_synthetic_rows_pass_the_fe_cache_plausibility_check():
+    from hubvib.crack_sweep import check_case
+
+    for row in synthetic_fe_rows():
+        check_case(row["depth_m"])(row)  # raises CacheEntryError when implausible
+
+
+def test_through_rim_crack_of_the_synthetic_rows_is_the_issue_s_x0_942():
+    model = synthetic_model()
+    assert model.c_ru_body[-1] / model.c_ru_body[0] == pytest.approx(0.942), \
+        "issue 13: through-rim crack body x0.942"

@@ -1,0 +1,120 @@
+"""Probability of detection from physics: threshold, Monte Carlo POD, FE resolution, records
+against the mesh timing."""
+import math
+
+import numpy as np
+import pytest
+from test_detection_helpers import TIMING, synthetic_model
+
+from hubvib.detection.carrier import MeshTiming, carrier_study, mesh_timing, observed_omega
+from hubvib.detection.options import DetectionOptions
+from hubvib.detection.pod import measured_threshold, pod_study, triangular_cdf
+
+OPTIONS = DetectionOptions(samples=600)
+
+
+def test_threshold_gives_the_false_alarm_rate_of_two_grid_errors():
+    # independent check by sampling: two frequencies on a 1/T grid, errors uniform in +-1/(2T)
+    T, alpha = 4.0, 0.05
+    rng = np.random.default_rng(0)
+    noise = rng.uniform(-0.5, 0.5, (2, 1_000_000)) / T
+    rate = np.mean(noise[1] - noise[0] < -measured_threshold(T, alpha))
+    assert rate == pytest.approx(alpha, abs=5e-4), "sampled false-alarm rate vs closed form"
+    x = np.linspace(-0.3, 0.3, 7)
+    empirical = [(noise[1] - noise[0] < v).mean() for v in x]
+    np.testing.assert_allclose(triangular_cdf(x, 1 / T), empirical, atol=2e-3)
+
+
+@pytest.fixture(scope="module")
+def direct_pod():
+    return pod_study(synthetic_model("direct"), OPTIONS, TIMING)
+
+
+def test_pod_is_the_false_alarm_rate_at_depth_0_and_rises_with_depth(direct_pod):
+    pod = direct_pod
+    sigma = math.sqrt(0.01 * 0.99 / OPTIONS.samples)
+    assert np.allclose(pod.pod[0], OPTIONS.false_alarm_rate, atol=1e-12), \
+        "own baseline: an intact reducer shifts by exactly 0"
+    # model baseline: the threshold is the alpha quantile of independent calibration samples,
+    # so each estimate scatters by about sqrt(2) binomial sigmas
+    assert (pod.pod_model[0] <= OPTIONS.false_alarm_rate + 5 * math.sqrt(2) * sigma).all()
+    assert pod.pod_model[0].mean() <= OPTIONS.false_alarm_rate + 2 * sigma
+    best = int(np.argmax(pod.pod[-1]))
+    assert pod.pod[-1, best] > 0.99
+    assert (np.diff(pod.pod[:, best]) >= -0.02).all(), "POD rises with depth"
+    assert pod.detectable_depth()[best] <= pod.depths[-1]
+
+
+def test_shift_distribution_brackets_the_nominal_shift(direct_pod):
+    pod = direct_pod
+    moving = np.abs(pod.nominal.shift_hz[-1]) > 10 * pod.threshold_hz
+    inside = ((pod.shift_p05_hz[-1] <= pod.nominal.shift_hz[-1])
+              & (pod.nominal.shift_hz[-1] <= pod.shift_p95_hz[-1]))
+    assert inside[moving].all()
+
+
+def test_a_shift_below_its_own_fe_error_is_not_resolved():
+    # the c_ru body error (10 %) exceeds what the crack does to it (5.8 %)
+    model = synthetic_model("direct", c_ru_error=1.663e9, c_r_drop=0.0, c_rp_drop=0.0)
+    pod = pod_study(model, DetectionOptions(samples=200), TIMING, model_baseline=False)
+    carried = pod.nominal.carried_by[-1]
+    assert (carried == "c_ru").sum() >= 3 and set(carried) == {"c_ru", "none"}
+    assert not pod.resolved[-1].any()
+    assert np.isnan(pod.detectable_depth()).all()
+    assert pod.pod[-1].max() > 0.9  # the Monte Carlo alone would have called it detectable
+    assert "resolved" in pod.rows()[-1]
+
+
+def test_mesh_timing_of_the_raba_design():
+    from hubvib.crack_sweep import CrackSweep
+
+    timing = mesh_timing(CrackSweep((0.0,)).reducer, 15.0)
+    assert timing.ring_teeth == 64 and timing.n_planets == 3
+    assert 1.0 < timing.contact_ratio < 2.0
+    # N eps / z of the time, passes of eps 2 pi / (z Omega)
+    assert timing.engaged_fraction == pytest.approx(3 * timing.contact_ratio / 64, rel=1e-15)
+    assert timing.pass_seconds == pytest.approx(timing.contact_ratio * 2 * math.pi / 64 / 15)
+
+
+def _floquet_omega(w_in, w_out, fraction, period, near):
+    """Characteristic frequency of x'' + w(t)^2 x = 0, w switching between w_in (for
+    fraction * period) and w_out: from the exact monodromy matrix, the branch nearest
+    ``near`` (frequencies are defined modulo 2 pi / period)."""
+    def step(w, t):
+        return np.array([[math.cos(w * t), math.sin(w * t) / w],
+                         [-w * math.sin(w * t), math.cos(w * t)]])
+    monodromy = step(w_in, fraction * period) @ step(w_out, (1 - fraction) * period)
+    theta = math.acos(np.clip(np.trace(monodromy) / 2, -1, 1))
+    n = round((near * period - theta) / (2 * math.pi))
+    branches = [(2 * math.pi * m + s * theta) / period for m in (n - 1, n, n + 1)
+                for s in (1, -1)]
+    return min(branches, key=lambda w: abs(w - near))
+
+
+@pytest.mark.parametrize("drop", [0.002, 0.02])
+def test_long_record_sees_the_time_averaged_stiffness(drop):
+    # mode 13 of Raba 118/76 (4548 Hz) dropping while planet 1 passes the crack, one pass
+    # per planet at 150 rpm: averaging method vs the exact Floquet exponent
+    w_out = 2 * math.pi * 4548.0
+    w_in = w_out * (1 - drop)
+    period = 2 * math.pi / (TIMING.n_planets * TIMING.carrier_speed)
+    averaged = float(observed_omega(np.array(w_in), np.array(w_out),
+                                    TIMING.engaged_fraction, True))
+    exact = _floquet_omega(w_in, w_out, TIMING.engaged_fraction, period, averaged)
+    shift = averaged / w_out - 1
+    assert abs(exact / averaged - 1) < 0.02 * abs(shift), \
+        "first-order averaging vs exact monodromy, within 2 % of the shift"
+    assert float(observed_omega(np.array(w_in), np.array(w_out), 0.1, False)) == w_in
+
+
+def test_carrier_study_steps_in_and_out_of_the_engagement():
+    model = synthetic_model("series")
+    study = carrier_study(model, TIMING, 10.0)
+    inside = (study.angle >= 0) & (study.angle <= TIMING.pass_angle)
+    np.testing.assert_array_equal(study.omega_angle[inside], np.broadcast_to(
+        study.omega_in[-1], (inside.sum(), study.omega_in.shape[1])))
+    np.testing.assert_array_equal(study.omega_angle[~inside][0], study.omega_out[-1])
+    assert (study.omega_angle_min[inside][0] <= study.omega_angle[inside][0] + 1e-9).all()
+    assert study.modulation_index[0].max() == 0.0
+    fraction = MeshTiming(64, 1.5, 4, 1.0).engaged_fraction
+    assert fraction == pytest.approx(4 * 1.5 / 64)
