@@ -50,17 +50,22 @@ class RingEstimate:
 
 
 def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
-                  solid: bool = False, mesher=None) -> RingEstimate:
+                  solid: bool = False, mesher=None, material=None,
+                  n_planets: int = 3, front=None) -> RingEstimate:
     """c_ru and c_r on the default mesh (sizes times ``scale``) and on one twice as coarse.
 
     With ``solid``: the solid ring on the last two ``SOLID_LEVELS``, planet 1 on
     tooth 0 only.  ``mesher(ring, crack, options)`` replaces the plane mesher
-    (to share meshes).
+    (to share meshes).  ``material`` (default steel) and ``n_planets`` (equally spaced)
+    are the design's; ``front`` (``meshing.crack.CrackFront``) shapes a solid crack
+    (default: through the face width).
     """
+    from hubvib.meshing.crack import CrackFront
     from hubvib.meshing.levels import SOLID_LEVELS, scaled_options, solid_options
     from hubvib.meshing.ring_mesh import ring_mesh
     from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
 
+    from .material import Material
     from .ring_stiffness import ring_stiffness
 
     mesher = mesher or ring_mesh
@@ -72,10 +77,11 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
     results = {}
     for name, options in levels.items():
         started = time.perf_counter()
-        mesh = (ring_mesh_3d(ring, crack, options=options) if solid
+        mesh = (ring_mesh_3d(ring, crack, front or CrackFront(), options=options) if solid
                 else mesher(ring, crack, options))
         meshed = time.perf_counter()
-        result = ring_stiffness(ring, mesh, carrier_teeth=[0] if solid else None, solver=solver)
+        result = ring_stiffness(ring, mesh, material or Material(), n_planets=n_planets,
+                                carrier_teeth=[0] if solid else None, solver=solver)
         results[name] = (result, meshed - started, time.perf_counter() - meshed)
     fine, coarse = results["fine"][0], results["coarse"][0]
     return RingEstimate(
@@ -84,6 +90,102 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
         c_r=fine.c_r, c_r_error=abs(fine.c_r - coarse.c_r), dofs=fine.dofs,
         solver=fine.seconds["solver"], seconds_mesh=results["fine"][1],
         seconds_fe=results["fine"][2],
+        seconds_total=sum(r[1] + r[2] for r in results.values()))
+
+
+@dataclass(frozen=True)
+class CrackCaseEstimate:
+    """One crack case of a sweep: the ring body's stiffnesses and the cracked tooth's mesh
+    stiffness, each on the default mesh with its error against a mesh twice as coarse.
+
+    Attributes
+    ----------
+    c_ru, c_ru_error : float
+        Reduced torsional stiffness, mean over the carrier positions of one planet
+        pitch, and its error [N/m].
+    c_ru_min, c_ru_max : float
+        Lowest and highest c_ru over those carrier positions [N/m].
+    c_r, c_r_error : float
+        Radial (support) stiffness and its error [N/m].
+    c_rp_engaged_ratio, c_rp_engaged_ratio_error : float
+        Ring-planet mesh stiffness averaged over the cracked tooth's engagement, as a
+        ratio to the same tooth intact, and its error [-] (1 and 0 without a crack).
+    c_rp_engaged_min_ratio : float
+        The same for the lowest value over the engagement [-].
+    dofs : int
+        Degrees of freedom of the fine level.
+    solver : str
+        Sparse solver used.
+    seconds_mesh, seconds_fe, seconds_total : float
+        Wall times [s]: fine mesh, fine FE (one factorisation for c_ru, c_r and the
+        tooth), both levels in all.
+    """
+
+    c_ru: float
+    c_ru_error: float
+    c_ru_min: float
+    c_ru_max: float
+    c_r: float
+    c_r_error: float
+    c_rp_engaged_ratio: float
+    c_rp_engaged_ratio_error: float
+    c_rp_engaged_min_ratio: float
+    dofs: int
+    solver: str
+    seconds_mesh: float
+    seconds_fe: float
+    seconds_total: float
+
+    def to_dict(self) -> dict:
+        """Keys with units, as ``RingEstimate.to_dict`` plus the ``c_rp_engaged_*`` ratios."""
+        units = {"c_ru": "c_ru_N_m", "c_ru_error": "c_ru_error_N_m",
+                 "c_ru_min": "c_ru_min_N_m", "c_ru_max": "c_ru_max_N_m", "c_r": "c_r_N_m",
+                 "c_r_error": "c_r_error_N_m"}
+        return {units.get(k, k): v for k, v in asdict(self).items()}
+
+
+def estimate_crack_case(ring, planet, crack, scale: float = 1.0, mesher=None, material=None,
+                        n_planets: int = 3) -> CrackCaseEstimate:
+    """c_ru, c_r and the cracked tooth's engaged c_rp ratio on the default plane mesh
+    (sizes times ``scale``) and on one twice as coarse: per level one mesh, one assembly
+    and one factorisation serve all three (``fem.crack_level``).
+
+    ``crack`` (None or depth 0: intact) is measured on the tooth it is in; ``planet`` is
+    the planet's gear body; ``mesher(ring, crack, options)`` replaces ``ring_mesh``;
+    ``material`` (default steel) and ``n_planets`` (equally spaced) are the design's.
+    """
+    from hubvib.meshing.levels import scaled_options
+    from hubvib.meshing.ring_mesh import ring_mesh
+
+    from .crack_level import crack_level
+    from .material import Material
+
+    mesher = mesher or ring_mesh
+    material = material or Material()
+    results = {}
+    for name, level in (("coarse", 2 * scale), ("fine", scale)):
+        options = scaled_options(level)
+        started = time.perf_counter()
+        mesh = mesher(ring, crack, options)
+        meshed = time.perf_counter()
+        result = crack_level(ring, planet, crack, mesh, options, material, n_planets)
+        results[name] = (result, meshed - started, time.perf_counter() - meshed)
+    fine, coarse = results["fine"][0], results["coarse"][0]
+    ratios = dict(c_rp_engaged_ratio=1.0, c_rp_engaged_ratio_error=0.0,
+                  c_rp_engaged_min_ratio=1.0)
+    if fine.engaged is not None:
+        ratios = dict(c_rp_engaged_ratio=fine.engaged.mean_ratio,
+                      c_rp_engaged_ratio_error=abs(fine.engaged.mean_ratio
+                                                   - coarse.engaged.mean_ratio),
+                      c_rp_engaged_min_ratio=fine.engaged.min_ratio)
+    ring_fine, ring_coarse = fine.ring, coarse.ring
+    return CrackCaseEstimate(
+        c_ru=ring_fine.c_ru, c_ru_error=abs(ring_fine.c_ru - ring_coarse.c_ru),
+        c_ru_min=float(ring_fine.c_ru_positions.min()),
+        c_ru_max=float(ring_fine.c_ru_positions.max()),
+        c_r=ring_fine.c_r, c_r_error=abs(ring_fine.c_r - ring_coarse.c_r), **ratios,
+        dofs=ring_fine.dofs, solver=ring_fine.seconds["solver"],
+        seconds_mesh=results["fine"][1], seconds_fe=results["fine"][2],
         seconds_total=sum(r[1] + r[2] for r in results.values()))
 
 
@@ -139,7 +241,8 @@ class MeshEstimate:
         return out
 
 
-def estimate_mesh(sun, planet, ring, crack=None, scale: float = 1.0) -> dict[str, MeshEstimate]:
+def estimate_mesh(sun, planet, ring, crack=None, scale: float = 1.0,
+                  material=None) -> dict[str, MeshEstimate]:
     """c_sp and c_rp (FE mean over the mesh cycle) on the default mesh (sizes times
     ``scale``) and on one twice as coarse; analytical and ISO 6336-1 values beside them.
 
@@ -153,7 +256,9 @@ def estimate_mesh(sun, planet, ring, crack=None, scale: float = 1.0) -> dict[str
     results = {}
     for name, level in (("coarse", 2 * scale), ("fine", scale)):
         started = time.perf_counter()
-        results[name] = (reducer_mesh_stiffness(sun, planet, ring, scaled_options(level), crack),
+        results[name] = (reducer_mesh_stiffness(sun, planet, ring, scaled_options(level), crack,
+                                                **({} if material is None else
+                                                   {"material": material})),
                          time.perf_counter() - started)
     seconds = sum(r[1] for r in results.values())
     out = {}

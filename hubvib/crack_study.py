@@ -20,6 +20,7 @@ from hubvib.lumped import Spectrum, frequency_sensitivity, natural_modes
 from hubvib.lumped.tracking import match
 
 from .crack_sweep import run_fe_cases
+from .engines import Execution
 from .detection.model import CrackModel
 from .detection.numbers import depth_mm, percent, sensitivity, shift_hz
 from .output import save_figure, write_csv, write_json, write_text
@@ -123,7 +124,8 @@ class CrackStudyResult:
 def run_crack_study(scene: Scene, progress: bool = True, detection: bool = True,
                     workers: int = 2) -> CrackStudyResult:
     """FE cases (cached), lumped spectra per depth, and the detection study."""
-    fe, computed = run_fe_cases(scene.crack, progress)
+    fe, computed = run_fe_cases(scene.crack, progress,
+                                scene.tables.get("execution", Execution()))
     return crack_study_from_fe(scene, fe, computed, detection=detection, workers=workers)
 
 
@@ -270,15 +272,14 @@ def rendered_depth(sweep) -> float:
 
 
 def _render_fe(scene: Scene, folder: Path) -> list[Path]:
-    from hubvib.meshing import raba118
-
     from .crack_sweep import ACCURACY, crack_of
     from .fe_render import render_fe, ring_fields
     from hubvib.meshing.levels import scaled_options
 
     depth = rendered_depth(scene.crack)
     crack = crack_of(scene.crack, depth) if depth > 0 else None
-    fields = ring_fields(raba118.design(), crack, scaled_options(ACCURACY[scene.crack.accuracy]))
+    fields = ring_fields(scene.crack.reducer, crack,
+                         scaled_options(ACCURACY[scene.crack.accuracy]))
     return render_fe(fields, folder, vtu=scene.vtm)
 
 
@@ -326,7 +327,7 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
         "value estimated against a mesh twice as coarse (column `fe_c_ru_error_N_m`).",
         "- Series composition: tends to the FE values when the mounting stiffens and to the "
         "mounting alone when the body does (tests).",
-        "- Lumped spectrum: reproduces the published Raba 118/76 spectrum (`hubvib validate`); "
+        "- Lumped model: reproduces the published Raba 118/76 spectrum (`hubvib validate`); "
         "eigensolver checked against 50-digit arithmetic (`hubvib stability`); batched "
         "Monte Carlo solves agree with it to 1e-10 (tests).", "",
         f"FE cases: {len(result.fe)} ({result.computed} computed now, "
@@ -371,9 +372,10 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
                "it has no tip left to show, so the render shows the deepest crack that still "
                "has one.")
         lines += ["", f"## FE ring with the {1e3 * shown:.3g} mm crack", "",
-                  f"Rendered depth: {1e3 * shown:.3g} mm.{why} Under the three planet mesh "
-                  "forces of the ASSUMED 1000 N m sun torque (planet 1 on the cracked tooth), "
-                  "von Mises stress; then its lowest modes on the clamped supports (plane "
-                  "stress, deformation magnified).", ""]
+                  f"Rendered depth: {1e3 * shown:.3g} mm.{why} Under the "
+                  f"{sweep.reducer.n_planets} planet mesh forces of the design's "
+                  f"{sweep.reducer.sun_torque:g} N m sun torque (planet 1 on the cracked "
+                  "tooth), von Mises stress; then its lowest modes on the clamped supports "
+                  "(plane stress, deformation magnified).", ""]
         lines += [f"![{n}]({n})" for n in fe_renders]
     return "\n".join(lines) + "\n"
