@@ -3,13 +3,21 @@
 Keys are the field names of :class:`lumped.PlanetaryParameters` (SI).  Edge
 conveniences, converted here and nowhere else:
 
-``n_planets``   N equally spaced planets starting at theta = 0
-``theta_deg``   planet angles [deg], comma separated on the command line
-``alpha_w_deg`` one working pressure angle for both meshes [deg]
+``n_planets``   N equally spaced planets starting at theta = 0 (1..MAX_PLANETS)
+``theta_deg``   planet angles [deg] in [-360, 360], comma separated on the command line
+``alpha_w_deg`` one working pressure angle for both meshes [deg], in (0, 90)
+
+One source gives the planets one way: ``n_planets`` with ``theta`` or
+``theta_deg`` of a different count, ``theta`` with ``theta_deg``, or
+``alpha_w_deg`` with ``alpha_s``/``alpha_r`` is refused, not silently resolved.
+A parameters file is a regular UTF-8 TOML file of at most ``MAX_FILE_BYTES``.
 """
 from __future__ import annotations
 
+import codecs
 import math
+import os
+import stat
 import tomllib
 from pathlib import Path
 
@@ -17,22 +25,34 @@ from hubvib.lumped import ParameterError, PlanetaryParameters, equally_spaced_an
 
 CONVENIENCE_KEYS = ("n_planets", "theta_deg", "alpha_w_deg")
 TUPLE_KEYS = ("theta", "theta_deg", "c_rp_factors")
+#: largest parameters (or scene) file read [bytes]; a real one is well under 10 kB
+MAX_FILE_BYTES = 1 << 20
+#: keys that say the same thing and must not both be given by one source
+_EXCLUSIVE = (("theta", "theta_deg"), ("alpha_w_deg", "alpha_s"), ("alpha_w_deg", "alpha_r"))
 
 
 def apply_overrides(params: PlanetaryParameters, overrides: dict) -> PlanetaryParameters:
     """Apply ``{key: value}`` overrides (field names or convenience keys)."""
+    _check_exclusive(overrides)
     changes = {}
     for key, value in overrides.items():
         if key == "n_planets":
             if isinstance(value, float) and value.is_integer():
                 value = int(value)
-            changes["theta"] = equally_spaced_angles(value)
+            if "theta" not in overrides and "theta_deg" not in overrides:
+                changes["theta"] = equally_spaced_angles(value)
         elif key == "theta_deg":
             values = value if isinstance(value, (list, tuple)) else [value]
-            changes["theta"] = tuple(math.radians(_number(key, v)) for v in values)
+            for i, v in enumerate(values):
+                if abs(_number(f"{key}[{i}]", v)) > 360:
+                    raise ParameterError(f"{key}[{i}] = {v!r}, but planet angles must lie in "
+                                         "[-360, 360] deg")
+            changes["theta"] = tuple(math.radians(v) for v in values)
         elif key == "alpha_w_deg":
-            alpha = math.radians(_number(key, value))
-            changes["alpha_s"] = changes["alpha_r"] = alpha
+            value = _number(key, value)
+            if not 0 < value < 90:
+                raise ParameterError(f"{key} = {value!r}, but it must lie in (0, 90) deg")
+            changes["alpha_s"] = changes["alpha_r"] = math.radians(value)
         elif key in ("theta", "c_rp_factors"):
             changes[key] = tuple(value) if isinstance(value, (list, tuple)) else (value,)
         elif key in field_names():
@@ -51,7 +71,7 @@ def parse_set(items: list[str]) -> dict:
         key, sep, text = item.partition("=")
         if not sep or not key:
             raise ParameterError(f"--set {item!r}: expected KEY=VALUE, e.g. c_ru=1e5")
-        parts = [_parse_number(key, p) for p in text.split(",")]
+        parts = [parse_number(key, p) for p in text.split(",")]
         result[key.strip()] = parts if len(parts) > 1 or key.strip() in TUPLE_KEYS else parts[0]
     return result
 
@@ -61,14 +81,89 @@ def load_parameters(preset_name: str = "raba118", params_file: Path | None = Non
     """Preset, then the TOML file's keys (may name its own ``preset``), then overrides."""
     file_values = {}
     if params_file is not None:
-        with open(params_file, "rb") as handle:
-            file_values = tomllib.load(handle)
+        file_values = read_toml_file(params_file, "parameters file")
         preset_name = file_values.pop("preset", preset_name)
-    params = apply_overrides(preset(preset_name), file_values)
+        if not isinstance(preset_name, str):
+            raise ParameterError(f"parameters file {str(params_file)!r}: preset = "
+                                 f"{preset_name!r}, but it must be a string")
+        try:
+            params = apply_overrides(preset(preset_name), file_values)
+        except ParameterError as exc:
+            raise ParameterError(f"parameters file {str(params_file)!r}: {exc}") from None
+    else:
+        params = preset(preset_name)
     return apply_overrides(params, overrides or {})
 
 
-def _parse_number(key, text):
+def read_toml_file(path: Path, what: str = "parameters file", error=ParameterError) -> dict:
+    """The TOML table in ``path`` (read by :func:`read_text_file`); errors name the file."""
+    text = read_text_file(path, what, error)
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise error(f"{what} {str(path)!r} is not valid TOML: {exc}") from None
+
+
+def read_text_file(path: Path, what: str = "parameters file", error=ParameterError) -> str:
+    """The UTF-8 text of ``path``; every refusal names ``what`` and the file.
+
+    Only a regular file of at most ``MAX_FILE_BYTES`` is read (not a directory,
+    device or pipe: ``/dev/zero`` would never end); a UTF-8 byte-order mark is
+    skipped, UTF-16 and binary files are refused.
+
+    Raises
+    ------
+    error
+        (default :class:`ParameterError`) with a one-line message.
+    """
+    name = f"{what} {str(path)!r}"
+    try:
+        info = os.stat(path)
+    except OSError as exc:
+        raise error(f"cannot read {name}: {exc.strerror}") from None
+    if stat.S_ISDIR(info.st_mode):
+        raise error(f"{name} is a directory, not a TOML file")
+    if not stat.S_ISREG(info.st_mode):
+        raise error(f"{name} is not a regular file (a device, pipe or socket)")
+    try:
+        with open(path, "rb") as handle:
+            data = handle.read(MAX_FILE_BYTES + 1)  # bounded even if the size lied (/proc)
+    except OSError as exc:
+        raise error(f"cannot read {name}: {exc.strerror}") from None
+    if len(data) > MAX_FILE_BYTES:
+        raise error(f"{name} is larger than {MAX_FILE_BYTES} bytes, the most a TOML "
+                    "file may hold here")
+    if data.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
+        raise error(f"{name} is UTF-16 text; TOML must be UTF-8 (save it as UTF-8)")
+    if b"\0" in data:
+        raise error(f"{name} is a binary file (it holds NUL bytes), not TOML text")
+    try:
+        return data.decode("utf-8").removeprefix("\ufeff")
+    except UnicodeDecodeError as exc:
+        raise error(f"{name} is not UTF-8 text (byte {exc.start} is "
+                    f"0x{data[exc.start]:02x}); TOML must be UTF-8") from None
+
+
+def _check_exclusive(overrides: dict) -> None:
+    for a, b in _EXCLUSIVE:
+        if a in overrides and b in overrides:
+            raise ParameterError(f"{a} and {b} are both given; they set the same thing, "
+                                 "give one of them")
+    if "n_planets" in overrides:
+        n = overrides["n_planets"]
+        if isinstance(n, float) and n.is_integer():
+            n = int(n)  # --set gives 4.0
+        for key in ("theta", "theta_deg"):
+            angles = overrides.get(key)
+            count = len(angles) if isinstance(angles, (list, tuple)) else 1
+            if key in overrides and count != n:
+                raise ParameterError(
+                    f"n_planets = {n!r}, but {key} gives {count} planet angle(s); give one "
+                    "of them (n_planets spaces the planets equally)")
+
+
+def parse_number(key: str, text: str) -> float:
+    """``text`` as a float; a ``ParameterError`` naming ``key`` otherwise."""
     try:
         return float(text)
     except ValueError:

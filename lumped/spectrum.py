@@ -9,7 +9,7 @@ import numpy as np
 from . import modes as _modes
 from .eigensolve import solve_assembled, solve_network
 from .network import dof_names, mass_diagonal, spring_network
-from .parameters import PlanetaryParameters
+from .parameters import MASS_FIELDS, STIFFNESS_FIELDS, ParameterError, PlanetaryParameters
 from .printed import printed_stiffness_matrix
 
 
@@ -89,7 +89,9 @@ class Spectrum:
 def natural_modes(params: PlanetaryParameters, method: str = "jacobi") -> Spectrum:
     """Natural modes of the energy-consistent model (see :mod:`lumped.eigensolve`)."""
     mass = mass_diagonal(params)
-    lam, shapes, n_rigid = solve_network(spring_network(params), mass, method)
+    with np.errstate(over="ignore", invalid="ignore"):
+        lam, shapes, n_rigid = solve_network(spring_network(params), mass, method)
+    _check_finite(params, lam, shapes)
     return _spectrum(params, lam, shapes, mass, n_rigid, method)
 
 
@@ -100,9 +102,28 @@ def printed_modes(params: PlanetaryParameters) -> Spectrum:
     how the published table was evidently obtained.
     """
     mass = mass_diagonal(params)
-    lam, shapes = solve_assembled(printed_stiffness_matrix(params), mass, allow_indefinite=True)
+    with np.errstate(over="ignore", invalid="ignore"):
+        lam, shapes = solve_assembled(printed_stiffness_matrix(params), mass,
+                                      allow_indefinite=True)
+    _check_finite(params, lam, shapes)
     order = np.argsort(np.abs(lam), kind="stable")
     return _spectrum(params, lam[order], shapes[:, order], mass, 0, "eigh (printed matrix)")
+
+
+def _check_finite(params: PlanetaryParameters, lam, shapes) -> None:
+    """Refuse a spectrum beyond double precision (omega^2 above ~1.8e308 rad^2/s^2)."""
+    if np.all(np.isfinite(lam)) and np.all(np.isfinite(shapes)):
+        return
+    stiff = max(STIFFNESS_FIELDS, key=lambda name: getattr(params, name))
+    light = min(MASS_FIELDS, key=lambda name: getattr(params, name))
+    exponent = math.log10(getattr(params, stiff)) - math.log10(getattr(params, light))
+    ratio = f"{10 ** (exponent % 1):.2f}e{math.floor(exponent):+d}"  # may exceed the float range
+    raise ParameterError(
+        f"natural frequencies overflow double precision ({int(np.sum(~np.isfinite(lam)))} of "
+        f"{lam.size} not finite): {stiff} = {getattr(params, stiff):.3g} N/m over {light} = "
+        f"{getattr(params, light):.3g} kg is {ratio} 1/s^2; stiffness/mass ratios must stay "
+        "well below 1e300 1/s^2"
+    )
 
 
 def _spectrum(params, lam, shapes, mass, n_rigid, method) -> Spectrum:

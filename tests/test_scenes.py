@@ -9,8 +9,18 @@ SCENES = sorted((Path(__file__).parents[1] / "scenes").glob("*.toml"))
 FE_SCENES = [s for s in SCENES if "[crack]" in s.read_text()]
 
 
-def test_scene_folder_is_not_empty():
-    assert len(SCENES) >= 3 and FE_SCENES
+def test_shipped_scenes_are_the_scene_files():
+    """What an installed package ships (importlib.resources, ``hubvib scenes``) is exactly
+    the TOML files of scenes/, the default and an FE scene among them, each described by a
+    first comment line: so the parametrised run below covers every shipped scene."""
+    from hubvib.scene import DEFAULT_SCENE, shipped_scenes
+
+    shipped = shipped_scenes()
+    assert sorted(shipped) == [s.stem for s in SCENES], "package data vs scenes/*.toml"
+    assert DEFAULT_SCENE in shipped and FE_SCENES
+    for scene in SCENES:
+        first = scene.read_text(encoding="utf-8").splitlines()[0]
+        assert first.startswith("# ") and shipped[scene.stem], f"{scene.name}: no description"
 
 
 @pytest.mark.parametrize("scene", [pytest.param(s, marks=pytest.mark.slow) if s in FE_SCENES
@@ -61,9 +71,9 @@ def test_fig4_scene_detects_the_crack_in_rotational_modes_only(tmp_path, capsys)
     ("study = [\n", "not valid TOML"),
     ("[crack]\ndepths = [0.0, 0.5]\n", r"depths\[1\]: crack.depth = 0.5 m is deeper than"),
     ("[crack]\ndepths = [0.002, 0.001]\n", "allowed ascending values from 0"),
-    ("[crack]\napply = 'both'\n", "apply = 'both'; allowed: ratio, direct"),
+    ("[crack]\napply = 'both'\n", "apply = 'both'; allowed: .*ratio, direct"),
     ("[crack]\nworkers = 0\n", r"workers = 0; allowed integers 1..64"),
-    ("[crack]\ntooth = 64\n", r"crack.tooth = 64, but the ring has 64 teeth"),
+    ("[crack]\ntooth = 64\n", r"tooth = 64.* 64 teeth"),
     ("[crack]\nangle_deg = 75\n", "angle_deg = 75; allowed -60..60"),
     ("[crack]\ncolour = 1\n", r"unknown key\(s\) \['colour'\] at \[crack\]"),
     ("[output]\nrenders = true\n[study]\nvalues = [1e5]\n", "renders = true needs a"),

@@ -162,11 +162,14 @@ def test_bearing_deflection_matches_harris_maximum_roller_load():
 
 
 def test_bearing_tangent_and_secant():
-    """F ~ delta^(10/9): tangent = secant / 0.9 (1e-12); stiffness rises with load as
-    F^(1/10) (1e-9)."""
+    """The tangent stiffness is dF/d delta: a central difference of the load-deflection
+    curve (step 1e-4 F: truncation ~1e-10, rounding ~1e-12) within 1e-6; the secant rises
+    with load as F^(1/10) (1e-9), since Palmgren's delta ~ F^0.9."""
     bearing = RollerBearing(16, 30e-3)
-    tangent, secant = bearing.stiffness(1e4)
-    assert tangent == pytest.approx(secant / 0.9, rel=1e-12)
+    load, step = 1e4, 1.0
+    tangent, secant = bearing.stiffness(load)
+    slope = 2 * step / (bearing.deflection(load + step) - bearing.deflection(load - step))
+    assert tangent == pytest.approx(slope, rel=1e-6), "tangent vs central difference of delta(F)"
     assert bearing.stiffness(2e4)[1] == pytest.approx(secant * 2 ** 0.1, rel=1e-9)
 
 

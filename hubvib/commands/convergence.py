@@ -1,7 +1,12 @@
 """``hubvib convergence QUANTITY --out DIR``: error against run time (CSV + log-log plot)."""
 from __future__ import annotations
 
+import csv
+import math
+import sys
 from pathlib import Path
+
+from hubvib.output import json_text, locked_folder
 
 
 def add_parser(sub) -> None:
@@ -11,13 +16,34 @@ def add_parser(sub) -> None:
     p.add_argument("quantity", choices=QUANTITIES,
                    help="c_ru, c_r, c_sp, c_rp of the Raba reducer, or an exact benchmark")
     p.add_argument("--out", type=Path, required=True, metavar="DIR")
+    p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
 
 
 def run(args) -> int:
     from hubvib.validation.convergence import run_study
 
-    table = run_study(args.quantity, args.out)
+    # checked and locked before any level is computed; the study writes its own files
+    # there as it goes (each finished level is kept, so a killed study resumes)
+    with locked_folder(args.out):
+        table = run_study(args.quantity, args.out,
+                          progress=lambda line: print(line, file=sys.stderr, flush=True))
+    plot = table.with_suffix(".png")
+    if args.json:
+        with open(table, newline="", encoding="utf-8") as handle:
+            levels = [{k: _number(v) for k, v in row.items()} for row in csv.DictReader(handle)]
+        print(json_text({"quantity": args.quantity, "files": [str(table), str(plot)],
+                         "levels": levels}))
+        return 0
     print(table.read_text(), end="")
-    print(f"written: {table} and {table.with_suffix('.png').name}")
+    print(f"written: {table} and {plot.name}")
     return 0
+
+
+def _number(text: str) -> float | None:
+    """A CSV cell as a number; empty or not finite (no reference) as ``None``."""
+    try:
+        value = float(text)
+    except (TypeError, ValueError):
+        return None
+    return value if math.isfinite(value) else None

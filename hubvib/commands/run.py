@@ -2,10 +2,12 @@
 from __future__ import annotations
 
 import importlib.util
-import json
 import sys
-import tempfile
+import time
 from pathlib import Path
+
+from hubvib.output import json_text, output_set
+from hubvib.progress import stage
 
 
 def add_parser(sub) -> None:
@@ -41,22 +43,51 @@ def run(args) -> int:
         print(f"hubvib: error: {missing}", file=sys.stderr)
         return 2
     folder = Path(args.out or scene.folder)
-    try:  # before any work: a run that cannot write its report must not start
-        folder.mkdir(parents=True, exist_ok=True)
-        tempfile.TemporaryFile(dir=folder).close()
-    except OSError as exc:
-        print(f"hubvib: error: cannot write the output folder {str(folder)!r}: {exc.strerror}",
-              file=sys.stderr)
-        return 2
+    if scene.crack is not None:  # before any work: the FE results must have a place to go
+        from hubvib.cache_check import check_writable
+
+        check_writable("stiffness")
+    # the folder is checked and locked before any work; the files go to a stage and
+    # move into place together when all are written (printing comes after: a closed
+    # stdout must not cost the files)
+    with output_set(folder) as staged:
+        result = (_crack_study if scene.crack is not None else _lumped_study)(scene, staged)
+    files = [folder / Path(f).relative_to(staged) for f in result.files]
     if scene.crack is not None:
-        return _run_crack(scene, folder, args.json)
+        return _print_crack(scene, result, folder, files, args.json)
+    return _print_lumped(scene, result, folder, files, args.json)
+
+
+def _lumped_study(scene, staged: Path):
     from hubvib.study import run_study, write_study
 
-    result = write_study(run_study(scene), folder)
-    if args.json:
-        print(json.dumps({"scene": scene.name, "folder": str(folder),
-                          "files": [str(f) for f in result.files],
-                          "detection": result.detection()}, indent=2))
+    started = time.perf_counter()
+    result = run_study(scene)
+    stage(f"lumped spectra and shifts of {len(scene.values)} values", started)
+    started = time.perf_counter()
+    write_study(result, staged)
+    stage(f"tables{', plots' if scene.plots else ''} and report", started)
+    return result
+
+
+def _crack_study(scene, staged: Path):
+    from hubvib.crack_study import run_crack_study, write_crack_study
+
+    started = time.perf_counter()
+    result = run_crack_study(scene)
+    stage(f"FE stage ({result.computed} of {len(result.fe)} cases computed) and lumped "
+          "spectra", started)
+    started = time.perf_counter()
+    write_crack_study(result, staged)
+    stage("tables, plots, renders and report", started)
+    return result
+
+
+def _print_lumped(scene, result, folder: Path, files: list[Path], as_json: bool) -> int:
+    if as_json:
+        print(json_text({"scene": scene.name, "folder": str(folder),
+                         "files": [str(f) for f in files],
+                         "detection": result.detection()}))
         return 0
     print(f"scene {scene.name!r}: {scene.parameter} {result.base_value:.6g} -> "
           f"{', '.join(f'{v:.3g}' for v in scene.values)}")
@@ -71,15 +102,12 @@ def run(args) -> int:
     return 0
 
 
-def _run_crack(scene, folder, as_json: bool) -> int:
-    from hubvib.crack_study import run_crack_study, write_crack_study
-
-    result = write_crack_study(run_crack_study(scene), folder)
+def _print_crack(scene, result, folder: Path, files: list[Path], as_json: bool) -> int:
     if as_json:
-        print(json.dumps({"scene": scene.name, "folder": str(folder),
-                          "files": [str(f) for f in result.files],
-                          "fe_cases_computed": result.computed,
-                          "modes": result.mode_rows()}, indent=2))
+        print(json_text({"scene": scene.name, "folder": str(folder),
+                         "files": [str(f) for f in files],
+                         "fe_cases_computed": result.computed,
+                         "modes": result.mode_rows()}))
         return 0
     print(f"scene {scene.name!r}: ring crack depths "
           f"{', '.join(f'{1e3 * d:.3g}' for d in result.depths)} mm "
@@ -93,3 +121,4 @@ def _run_crack(scene, folder, as_json: bool) -> int:
               f"{'not reached' if depth is None else f'{depth:.3g} mm'}")
     print(f"\nreport: {folder / 'report.md'}")
     return 0
+

@@ -1,30 +1,32 @@
 """``hubvib shift --to KEY VALUE``: per-mode frequency shift when one parameter changes."""
 from __future__ import annotations
 
-import json
-
-from hubvib.params_input import parse_set
+from hubvib.lumped import ParameterError
+from hubvib.lumped.parameters import scalar_field_names
+from hubvib.output import json_text
+from hubvib.params_input import parse_number
 
 from ._parameters import PARAMETER_HELP, add_parameter_options, parameters
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("shift", help="per-mode frequency shift when one parameter changes")
+    p = sub.add_parser("shift", help="per-mode frequency shift when one parameter changes",
+                       epilog=PARAMETER_HELP)
     add_parameter_options(p)
     p.add_argument("--to", nargs=2, required=True, metavar=("KEY", "VALUE"),
-                   help="the modified parameter and its new value, e.g. --to c_ru 1e5")
+                   help="the modified parameter (one number, SI) and its new value, e.g. "
+                   "--to c_ru 1e5")
     p.set_defaults(handler=run)
 
 
 def run(args) -> int:
     from hubvib.lumped import frequency_shift
 
-    key, text = args.to
-    value = parse_set([f"{key}={text}"])[key]
+    key, value = target(*args.to)
     shift = frequency_shift(parameters(args), key, value, method=args.method)
     if args.json:
-        print(json.dumps({"parameter": key, "base": shift.base_value, "modified": value,
-                          "modes": shift.rows()}, indent=2))
+        print(json_text({"parameter": key, "base": shift.base_value, "modified": value,
+                         "modes": shift.rows()}))
         return 0
     print(f"{key}: {shift.base_value:.6g} -> {value:.6g}")
     print(f"{'mode':>4} {'type':<13} {'base [rad/s]':>13} {'new [rad/s]':>12} "
@@ -34,3 +36,21 @@ def run(args) -> int:
               f"{r['omega_modified_rad_s']:>12.3f} {r['delta_rad_s']:>10.3f} "
               f"{r['delta_hz']:>9.3f} {r['percent']:>8.3f}")
     return 0
+
+
+def target(key: str, text: str) -> tuple[str, float]:
+    """``--to KEY VALUE`` checked: KEY a one-number parameter, VALUE a number."""
+    allowed = scalar_field_names()
+    if key not in allowed:
+        why = _NOT_SHIFTABLE.get(key, "is not a parameter")
+        raise ParameterError(f"--to {key!r} {why}; allowed: {', '.join(allowed)}")
+    return key, parse_number(f"--to {key}", text)
+
+
+_NOT_SHIFTABLE = {
+    "theta": "holds one value per planet",
+    "theta_deg": "holds one value per planet",
+    "c_rp_factors": "holds one value per planet",
+    "n_planets": "changes the model's size, so no mode can be followed",
+    "alpha_w_deg": "sets alpha_s and alpha_r together; shift one of them [rad]",
+}

@@ -1,7 +1,7 @@
 """``hubvib spectrum``: natural frequencies, mode types and multiplicities."""
 from __future__ import annotations
 
-import json
+from hubvib.output import json_text
 
 from ._parameters import PARAMETER_HELP, add_parameter_options, parameters
 
@@ -18,8 +18,8 @@ def run(args) -> int:
 
     spectrum = natural_modes(parameters(args), args.method)
     if args.json:
-        print(json.dumps({"method": spectrum.method, "n_rigid": spectrum.n_rigid,
-                          "modes": spectrum.rows()}, indent=2))
+        print(json_text({"method": spectrum.method, "n_rigid": spectrum.n_rigid,
+                         "modes": spectrum.rows()}))
         return 0
     print(f"{'mode':>4} {'omega [rad/s]':>14} {'f [Hz]':>11}  {'type':<13} mult")
     for r in spectrum.rows():

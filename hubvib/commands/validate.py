@@ -1,8 +1,9 @@
 """``hubvib validate raba118``: the published spectrum reproduced and explained."""
 from __future__ import annotations
 
-import json
 from pathlib import Path
+
+from hubvib.output import json_text, output_set
 
 
 def add_parser(sub) -> None:
@@ -16,10 +17,12 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     from hubvib.validation import raba118
 
-    result = raba118.write_report(raba118.validate(), args.out)
+    with output_set(args.out) as staged:  # checked and locked before the work
+        result = raba118.write_report(raba118.validate(), staged)
+    files = [args.out / Path(f).relative_to(staged) for f in result.files]
     if args.json:
-        print(json.dumps({**result.summary(), "files": [str(f) for f in result.files]}, indent=2))
+        print(json_text({**result.summary(), "files": [str(f) for f in files]}))
     else:
         print(raba118.format_report(result))
-        print(f"\nwritten: {', '.join(str(f) for f in result.files)}")
+        print(f"\nwritten: {', '.join(str(f) for f in files)}")
     return 0 if result.passed else 1

@@ -1,0 +1,58 @@
+"""``hubvib benchmark [--json] [--quick]``: FE speed and memory, each timing a ratio against
+its baseline measured in the same run (``hubvib.validation.benchmark``)."""
+from __future__ import annotations
+
+import sys
+
+from hubvib.output import json_text
+
+#: (key, label, unit, baseline key or None) of the printed table
+ROWS = (
+    ("c_ru_2d_seconds", "2D c_ru, mesh + FE", "s", "c_ru_2d_previous_seconds"),
+    ("c_ru_2d_rel_error", "2D c_ru error against the reference", "", None),
+    ("crack_case_seconds", "crack case FE (c_ru, c_r, engaged c_rp; 2 levels)", "s",
+     "crack_case_previous_seconds"),
+    ("crack_case_max_rel_difference", "crack case: shared against separate solves", "", None),
+    ("solid_seconds", "3D c_ru: model + loads + solve", "s", "solid_previous_seconds"),
+    ("calculix_seconds", "3D c_ru by CalculiX 2.20, same mesh and loads", "s", None),
+    ("calculix_speedup", "CalculiX time / ours", "x", None),
+    ("calculix_max_rel_difference", "displacements: CalculiX against ours", "", None),
+    ("solid_peak_memory_gb", "peak memory of hubvib stiffness --solid", "GB", None),
+    ("solid_solve_peak_memory_gb", "peak memory of the 3D solve alone", "GB",
+     "solid_solve_peak_memory_gb_previous"),
+    ("lumped_points_per_second", "lumped spectra per second (batched)", "1/s", None),
+)
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("benchmark", help="FE speed and memory against baselines run beside "
+                       "them (CalculiX, the previous FE path, separate solves)")
+    p.add_argument("--quick", action="store_true",
+                   help="skip the 3D race and the memory probes (a smoke test, ~1 min)")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(handler=run)
+
+
+def run(args) -> int:
+    from hubvib.validation.benchmark import run_benchmark
+
+    figures = run_benchmark(quick=args.quick,
+                            progress=lambda line: print(line, file=sys.stderr, flush=True))
+    if args.json:
+        print(json_text(figures))
+        return 0
+    print(f"{'figure':<52} {'value':>11} {'baseline':>11} {'ratio':>7}")
+    for key, label, unit, baseline in ROWS:
+        value = figures.get(key)
+        if value is None:
+            continue
+        base = figures.get(baseline) if baseline else None
+        ratio = f"{base / value:7.2f}" if base else f"{'':7}"
+        base_text = f"{base:11.3g}" if base else f"{'':11}"
+        print(f"{label + (f' [{unit}]' if unit else ''):<52} {value:11.3g} {base_text} {ratio}")
+    for key in ("solid_skipped", "calculix_skipped", "lumped_skipped", "signal_skipped"):
+        if key in figures:
+            print(f"{key.split('_')[0]}: {figures[key]}")
+    print("ratio = baseline / ours (time or memory), measured in this run; seconds are wall "
+          "times on a machine whose cores may be shared")
+    return 0
