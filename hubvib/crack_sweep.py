@@ -18,6 +18,7 @@ import sys
 from dataclasses import asdict, dataclass, replace
 
 from .engines import Execution, check_reachable, run_cases
+from .progress import progress as hubvib_progress
 from . import fe_cache
 from .fe_cache import (CacheEntryError, case_lock, entry_key, finite_positive, read_entry,
                        write_entry)
@@ -174,15 +175,13 @@ def run_fe_cases(sweep: CrackSweep, progress: bool = True,
     todo = [d for d in sweep.depths if not cached(d, notice=True)]
     if todo:
         check_reachable(execution)
-    bar = _progress(len(sweep.depths), len(sweep.depths) - len(todo), progress)
+    bar = (hubvib_progress(len(sweep.depths), "FE crack cases", "case",
+                           len(sweep.depths) - len(todo)) if progress else _Silent())
 
     def store(depth, result):
         write_entry(paths[depth], inputs[depth], result)
         results[depth] = result
-        bar.update(1)
-        if not bar_is_tty(progress):
-            print(f"FE case {len(results)}/{len(sweep.depths)}: depth {1e3 * depth:.4g} mm, "
-                  f"{result['seconds_total']:.1f} s", file=sys.stderr, flush=True)
+        bar.update(1, f"depth {1e3 * depth:.4g} mm, {result['seconds_total']:.1f} s")
 
     computed = 0
     try:
@@ -243,12 +242,9 @@ class _locks:
         self.stack.close()
 
 
-def bar_is_tty(enabled: bool) -> bool:
-    return enabled and sys.stderr.isatty()
+class _Silent:
+    def update(self, n: int = 1, note: str = "") -> None:
+        pass
 
-
-def _progress(total: int, done: int, enabled: bool):
-    from tqdm import tqdm
-
-    return tqdm(total=total, initial=done, desc="FE crack cases", unit="case",
-                disable=not bar_is_tty(enabled), file=sys.stderr)
+    def close(self) -> None:
+        pass

@@ -31,6 +31,11 @@ A scene is TOML with these tables (all keys shown; SI units)::
     accuracy = "default"          # or "fast" (element sizes doubled)
     workers = 2                   # worker processes for the FE cases
 
+    [detection]                   # optional, crack scenes: record length, scatter, POD
+                                  # (every key: hubvib/detection/options.py)
+    [signal]                      # optional: the vibration signature (hubvib/signal/options.py)
+    [execution]                   # optional: local pool or Dask (hubvib/engines.py)
+
     [output]
     folder = "hubvib-out"         # relative to the current directory
     plots = true
@@ -136,11 +141,9 @@ def load_scene(path: Path | str | None = None) -> Scene:
     path = Path(path)
     if not path.exists() and path.suffix != ".toml" and path.parent == Path("."):
         return parse_scene(shipped_scene_text(path.name), path.name)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise SceneError(f"cannot read scene {str(path)!r}: {exc.strerror}") from None
-    return parse_scene(text, path.stem, path.parent)
+    from .params_input import read_text_file
+
+    return parse_scene(read_text_file(path, "scene", SceneError), path.stem, path.parent)
 
 
 def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
@@ -177,6 +180,10 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
         _check_consistent(design, params)
 
     crack = _crack(data["crack"], design) if "crack" in data else None
+    if crack is not None and ("parameter" in study or "values" in study):
+        raise SceneError("[study] parameter and values are for a lumped sweep; a scene with "
+                         "[crack] sweeps the crack depth instead (remove them or the [crack] "
+                         "table)")
     parameter = _string(study, "study", "parameter", "c_ru")
     numeric = [f for f in field_names() if f not in ("theta", "c_rp_factors")]
     if parameter not in numeric:

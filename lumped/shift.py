@@ -62,6 +62,11 @@ def frequency_shift(
     Modes are followed through ``steps`` intermediate values (geometric when
     both ends are positive) so that crossings do not swap them.
     """
+    from .parameters import ParameterError, scalar_field_names
+
+    if parameter not in scalar_field_names():
+        raise ParameterError(f"parameter = {parameter!r}; allowed one-number fields: "
+                             f"{', '.join(scalar_field_names())}")
     base = float(getattr(params, parameter))
     params.replace(**{parameter: float(modified_value)})  # validates the target
     if base > 0 and modified_value > 0:

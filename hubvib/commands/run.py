@@ -78,7 +78,17 @@ def _crack_study(scene, staged: Path):
     stage(f"FE stage ({result.computed} of {len(result.fe)} cases computed) and lumped "
           "spectra", started)
     started = time.perf_counter()
+    if "signal" in scene.tables:  # the vibration signature beside the frequency study
+        from hubvib.signal.report import write_signal_study
+        from hubvib.signal.study import run_signal_study
+
+        study = run_signal_study(scene)
+        stage(f"signals of {len(study.depths)} crack depth(s)", started)
+        signal_files = write_signal_study(study, staged / "signal", plots=scene.plots)["files"]
+        started = time.perf_counter()
     write_crack_study(result, staged)
+    if "signal" in scene.tables:
+        result.files += [staged / "signal" / f for f in signal_files]
     stage("tables, plots, renders and report", started)
     return result
 
@@ -112,13 +122,25 @@ def _print_crack(scene, result, folder: Path, files: list[Path], as_json: bool) 
     print(f"scene {scene.name!r}: ring crack depths "
           f"{', '.join(f'{1e3 * d:.3g}' for d in result.depths)} mm "
           f"({result.computed} FE cases computed, {len(result.fe) - result.computed} cached)")
+    from hubvib.detection.numbers import percent
+
+    rows = result.mode_rows()
+    physical = "detectable_depth_mm" in rows[0]
+    if physical:
+        from hubvib.detection.options import DetectionOptions
+
+        pod = scene.tables.get("detection", DetectionOptions()).detection_probability
+        last = f"detectable from (POD >= {pod:g}), via"
+    else:
+        last = f"smallest crack shifting >= {scene.threshold_percent:g} %"
     print(f"{'mode':>4} {'type':<13} {'f intact [Hz]':>13} {'shift at deepest [%]':>21} "
-          f"{'follows':>10}  smallest crack shifting >= {scene.threshold_percent:g} %")
-    for r in result.mode_rows():
-        depth = r["smallest_detectable_depth_mm"]
+          f"{'follows':>10}  {last}")
+    for r in rows:
+        depth = r["detectable_depth_mm"] if physical else r["smallest_detectable_depth_mm"]
+        where = f" ({r['signal_in']})" if physical and depth is not None else ""
         print(f"{r['mode']:>4} {r['kind']:<13} {r['frequency_intact_hz']:>13.3f} "
-              f"{r['shift_at_deepest_percent']:>21.3f} {r['follows']:>10}  "
-              f"{'not reached' if depth is None else f'{depth:.3g} mm'}")
+              f"{percent(r['shift_at_deepest_percent']):>21} {r['follows']:>10}  "
+              f"{'not detectable' if depth is None else f'{depth:.3g} mm'}{where}")
     print(f"\nreport: {folder / 'report.md'}")
     return 0
 

@@ -1,7 +1,6 @@
 """``hubvib stiffness``: every stiffness of the lumped model with its error estimate and run time."""
 from __future__ import annotations
 
-import json
 import time
 
 from hubvib.fem.solvers import SOLVERS
@@ -37,6 +36,7 @@ def bearings(design) -> dict:
 def run(args) -> int:
     import math
 
+    from hubvib.output import json_text
     from hubvib.design.build import gear_body, material, ring_gear
     from hubvib.fem.estimate import estimate_mesh, estimate_ring
     from hubvib.meshing.crack import Crack
@@ -74,7 +74,7 @@ def run(args) -> int:
         rows.update(bearing_rows)
         out[name] = rows
     if args.json:
-        print(json.dumps({"cases": out}, indent=2))
+        print(json_text({"cases": out}))
         return 0
     for name, rows in out.items():
         print(f"== {name} ==")
