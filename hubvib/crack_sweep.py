@@ -13,7 +13,6 @@ processes or on a Dask cluster (``hubvib.engines``).
 """
 from __future__ import annotations
 
-import math
 import sys
 from dataclasses import asdict, dataclass, replace
 

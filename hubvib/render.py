@@ -145,13 +145,11 @@ def _draw(plotter, meshes: dict, reference: dict, label: str):
 
 
 def write_atomically(path: Path, write) -> Path:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.stem}.part{path.suffix}")
-    try:
+    """``write(tmp)`` into a temporary file that replaces ``path`` when it succeeds."""
+    from .output import atomic_path
+
+    with atomic_path(path) as tmp:
         write(tmp)
-        os.replace(tmp, path)
-    finally:
-        tmp.unlink(missing_ok=True)
     return path
 
 

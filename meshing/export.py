@@ -1,25 +1,17 @@
 """Write an ``FEMesh`` for people: VTU for ParaView, PNG for reports."""
 from __future__ import annotations
 
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
+
+from hubvib.output import atomic_path
 
 from .fe_mesh import GMSH_TO_VTK_TETRA10, FEMesh
 
 _MESHIO = {"triangle": "triangle", "triangle6": "triangle6", "tetra": "tetra",
            "tetra10": "tetra10"}
 _FACETS = {(2, 1): "line", (2, 2): "line3", (3, 1): "triangle", (3, 2): "triangle6"}
-
-
-def _atomic(path: Path, suffix: str):
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=suffix)
-    os.close(fd)
-    return path, Path(tmp)
 
 
 def write_vtu(mesh: FEMesh, path: Path) -> Path:
@@ -47,13 +39,9 @@ def write_vtu(mesh: FEMesh, path: Path) -> Path:
     out = meshio.Mesh(points, cells, cell_data={"group": groups},
                       field_data={name: np.array([i, mesh.dim - 1]) for i, name in
                                   enumerate(names, start=1)})
-    path, tmp = _atomic(path, ".vtu")
-    try:
+    with atomic_path(path) as tmp:
         meshio.write(tmp, out, file_format="vtu")
-        os.replace(tmp, path)
-    finally:
-        tmp.unlink(missing_ok=True)
-    return path
+    return Path(path)
 
 
 def write_png(mesh: FEMesh, path: Path, centre=None, half_width: float | None = None,
@@ -79,14 +67,12 @@ def write_png(mesh: FEMesh, path: Path, centre=None, half_width: float | None = 
         _draw_plane(ax, plane, centre, half_width, LineCollection)
     ax.set_aspect("equal")
     ax.set_title(title or f"{mesh.info.get('elements', len(mesh.cells))} {mesh.cell_type} elements")
-    path, tmp = _atomic(path, ".png")
     try:
-        fig.savefig(tmp, dpi=130, bbox_inches="tight")
-        os.replace(tmp, path)
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=130, bbox_inches="tight")
     finally:
-        tmp.unlink(missing_ok=True)
         plt.close(fig)
-    return path
+    return Path(path)
 
 
 def _draw_plane(ax, mesh, centre, half_width, LineCollection):

@@ -71,10 +71,10 @@ class FEMesh:
         arrays.update({f"boundary:{k}": v for k, v in self.boundaries.items()})
         arrays.update({f"points_of:{k}": v for k, v in self.points_of.items()})
         meta = json.dumps({"cell_type": self.cell_type, "info": self.info})
-        tmp = path.with_name(path.name + ".part")
-        with open(tmp, "wb") as handle:
+        from hubvib.output import atomic_path
+
+        with atomic_path(path) as tmp, open(tmp, "wb") as handle:
             np.savez(handle, meta=np.array(meta), **arrays)
-        tmp.replace(path)
 
     @classmethod
     def load(cls, path: Path) -> "FEMesh":
