@@ -16,13 +16,14 @@ from __future__ import annotations
 import sys
 from dataclasses import asdict, dataclass, replace
 
+from hubvib.meshing.crack import STARTS
+
 from .engines import Execution, check_reachable, run_cases
 from .progress import progress as hubvib_progress
 from . import fe_cache
 from .fe_cache import (CacheEntryError, case_lock, entry_key, finite_positive, read_entry,
                        write_entry)
 
-STARTS = ("root", "rim")
 APPLY = ("series", "ratio", "direct")
 #: mesh size multiplier of each accuracy setting (1.0: c_ru to ~0.3 %, see README)
 ACCURACY = {"default": 1.0, "fast": 2.0}

@@ -6,9 +6,10 @@ from pathlib import Path
 
 import numpy as np
 
+from hubvib.meshing.crack import STARTS
+
 from hubvib.output import json_text, output_set
 
-RING_PRESETS = ("raba118",)
 #: most bulk elements ``--size`` may ask for (estimated from the exact area or volume
 #: before meshing): 5e5 triangles take ~2 min to mesh on 2 cores (2.1e5 at 5e-4 m: 41 s)
 MAX_ELEMENTS = {2: 5e5, 3: 2e5}
@@ -18,13 +19,15 @@ def add_parser(sub) -> None:
     p = sub.add_parser("mesh", help="gmsh mesh of a gear body (VTU + PNG + counts)")
     p.add_argument("part", choices=["ring", "sun", "planet"],
                    help="the ring (may be cracked), or the sun or planet on its bore")
-    p.add_argument("--preset", default="raba118", choices=RING_PRESETS)
+    p.add_argument("--preset", default="raba118", choices=["raba118", "hub4"])
+    p.add_argument("--design", metavar="FILE.toml", help="a reducer design file (replaces "
+                   "--preset)")
     p.add_argument("--crack-depth", type=float, default=0.0, metavar="D",
                    help="crack length along its path [m]; 0 = intact")
     p.add_argument("--crack-tooth", type=int, default=0)
     p.add_argument("--crack-angle", type=float, default=0.0, metavar="DEG",
                    help="crack direction from the radial [deg]")
-    p.add_argument("--crack-start", choices=["root", "rim"], default="root")
+    p.add_argument("--crack-start", choices=STARTS, default="root")
     p.add_argument("--order", type=int, choices=[1, 2], default=2)
     p.add_argument("--dim", type=int, choices=[2, 3], default=2,
                    help="2 (plane section) or 3 (solid, ring only; coarser default sizes)")
@@ -43,8 +46,17 @@ def add_parser(sub) -> None:
     p.set_defaults(handler=run)
 
 
+def bodies(args):
+    """The ring and the named body (ring, sun or planet) of the design the options give."""
+    from hubvib.design.build import gear_body, ring_gear
+
+    from .design import design_from_argument
+
+    design = design_from_argument(args.design or args.preset)
+    return ring_gear(design) if args.part == "ring" else gear_body(design, args.part)
+
+
 def build(args):
-    from hubvib.meshing import raba118
     from hubvib.meshing.crack import Crack, CrackFront
     from hubvib.meshing.gear import GearGeometryError
     from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
@@ -54,9 +66,9 @@ def build(args):
     if args.part != "ring":
         if args.crack_depth or args.dim == 3:
             raise GearGeometryError(f"{args.part}: cracks and --dim 3 are for the ring only")
-        body = raba118.gear_body(args.part)
+        body = bodies(args)
         return body, ring_mesh(body, None, _options(MeshOptions(), args))
-    ring = raba118.ring_gear()
+    ring = bodies(args)
     if args.dim == 3:
         from hubvib.meshing.ring_mesh_3d import SOLID_OPTIONS, ring_mesh_3d
 
@@ -117,10 +129,9 @@ def summary(ring, mesh) -> dict:
 
 
 def run(args) -> int:
-    from hubvib.meshing import raba118
     from hubvib.meshing.export import write_png, write_vtu
 
-    check_size(args, raba118.ring_gear() if args.part == "ring" else raba118.gear_body(args.part))
+    check_size(args, bodies(args))
     name = args.part + ("" if args.crack_depth == 0 else f"_crack_{args.crack_depth:g}m") + (
         "_3d" if args.dim == 3 else "")
     with output_set(args.out) as staged:  # checked and locked before the meshing
