@@ -45,3 +45,30 @@ def test_hub4_mesh_stiffness_has_the_iso_6336_order_of_magnitude():
     for key in ("c_sp", "c_rp"):
         ratio = result[key].value / result[key].iso_c_gamma
         assert 1 / 2 < ratio < 2, (key, ratio, "ISO 6336-1 c_gamma_alpha b")
+
+
+def test_stiffness_command_from_a_design_file(tmp_path, capsys):
+    """Issue 12: `hubvib stiffness --design` gives c_ru, c_r, c_sp, c_rp in the --json shape
+    cases -> case -> quantity -> value_N_m, and the ring the mesh command builds has the
+    design's exact mass."""
+    import json
+
+    from hubvib.cli import main
+    from test_design import DEMO_TOML
+
+    path = tmp_path / "demo.toml"
+    path.write_text(DEMO_TOML)
+    assert main(["stiffness", "--design", str(path), "--json"]) == 0
+    cases = json.loads(capsys.readouterr().out)["cases"]
+    intact = cases["intact"]
+    for key in ("c_ru", "c_r", "c_sp", "c_rp"):
+        assert intact[key]["value_N_m"] > 1e8 and intact[key]["error_N_m"] < 0.01 * intact[key][
+            "value_N_m"], key
+    assert "c_p" not in intact  # the demo names no bearings
+    assert main(["mesh", "ring", "--design", str(path), "--order", "1", "--size", "4e-3",
+                 "--out", str(tmp_path / "mesh"), "--json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    from hubvib.design import load_design
+    from hubvib.design.build import mass_properties
+
+    assert info["mass_kg"] == pytest.approx(mass_properties(load_design(path))["m_r"], rel=2e-4)
