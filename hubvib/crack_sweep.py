@@ -14,9 +14,8 @@ processes or on a Dask cluster (``hubvib.engines``).
 from __future__ import annotations
 
 import sys
-from dataclasses import asdict, dataclass, replace
+from dataclasses import asdict, dataclass
 
-from hubvib.meshing.crack import STARTS
 
 from .engines import Execution, check_reachable, run_cases
 from .progress import progress as hubvib_progress
@@ -97,37 +96,20 @@ def case_inputs(sweep: CrackSweep, depth: float) -> dict:
 def fe_case(sweep: CrackSweep, depth: float) -> dict:
     """c_ru, c_r, c_rp with error estimate and timing for one depth (runs in a worker).
 
-    c_ru and the cracked tooth's c_rp are computed on the same ring meshes."""
-    import functools
+    Per mesh level one mesh, one assembly and one factorisation serve c_ru, c_r and the
+    cracked tooth's compliance (``fem.estimate.estimate_crack_case``)."""
     import time
 
     from hubvib.design.build import gear_body, material, ring_gear
-    from hubvib.fem.estimate import estimate_ring
-    from hubvib.meshing.levels import scaled_options
-    from hubvib.meshing.ring_mesh import ring_mesh
+    from hubvib.fem.estimate import estimate_crack_case
 
     started = time.perf_counter()
     design = sweep.reducer
-    scale = ACCURACY[sweep.accuracy]
-    mesher = functools.lru_cache(maxsize=2)(ring_mesh)
-    ring = ring_gear(design)
-    result = dict(estimate_ring(ring, crack_of(sweep, depth), scale, mesher=mesher,
-                                material=material(design),
-                                n_planets=design.n_planets).to_dict(), depth_m=float(depth))
-    engaged = {"c_rp_engaged_ratio": 1.0, "c_rp_engaged_ratio_error": 0.0,
-               "c_rp_engaged_min_ratio": 1.0}
-    if depth > 0:
-        from hubvib.fem.tooth_stiffness import engaged_ring_mesh
-
-        crack = replace(crack_of(sweep, depth), tooth=0)
-        planet = gear_body(design, "planet")
-        fine, coarse = (engaged_ring_mesh(planet, ring, crack, scaled_options(s),
-                                          material=material(design), mesher=mesher)
-                        for s in (scale, 2 * scale))
-        engaged = {"c_rp_engaged_ratio": fine.mean_ratio,
-                   "c_rp_engaged_ratio_error": abs(fine.mean_ratio - coarse.mean_ratio),
-                   "c_rp_engaged_min_ratio": fine.min_ratio}
-    return result | engaged | {"seconds_total": time.perf_counter() - started}
+    result = estimate_crack_case(ring_gear(design), gear_body(design, "planet"),
+                                 crack_of(sweep, depth), ACCURACY[sweep.accuracy],
+                                 material=material(design), n_planets=design.n_planets)
+    return dict(result.to_dict(), depth_m=float(depth),
+                seconds_total=time.perf_counter() - started)
 
 
 def cache_folder():

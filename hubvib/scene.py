@@ -60,7 +60,9 @@ from hubvib.lumped import METHODS, ParameterError, PlanetaryParameters, field_na
 
 PARAMETER_NAMES = field_names()
 
-from .crack_sweep import ACCURACY, APPLY, MAX_DEPTHS, STARTS, CrackSweep
+from hubvib.meshing.crack import STARTS
+
+from .crack_sweep import ACCURACY, APPLY, MAX_DEPTHS, CrackSweep
 from .params_input import load_parameters
 
 #: optional tables parsed by the module that uses them: table -> "module:function".
