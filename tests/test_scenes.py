@@ -38,6 +38,10 @@ def test_every_scene_runs(scene, tmp_path, capsys, monkeypatch):
         names = ("baseline_spectrum.csv", "shifts.csv", "detection.csv", "results.json")
     for name in names:
         assert (out / name).stat().st_size > 0
+    if "[signal]" in scene.read_text():
+        assert "## Vibration signature" in report
+        assert "## Vibration signature" in (out / "signal" / "report.md").read_text()
+        assert (out / "signal" / "indicators.csv").stat().st_size > 0
 
 
 def test_default_scene_is_the_shipped_crack_scene():

@@ -88,6 +88,13 @@ def _crack_study(scene, staged: Path):
         started = time.perf_counter()
     write_crack_study(result, staged)
     if "signal" in scene.tables:
+        from hubvib.output import write_text
+
+        report = staged / "report.md"
+        write_text(report, report.read_text(encoding="utf-8") + (
+            "\n## Vibration signature\n\nThe signal a sensor on the ring records, its order "
+            "spectrum, spectrogram and condition indicators against crack depth: "
+            "[signal/report.md](signal/report.md).\n"))
         result.files += [staged / "signal" / f for f in signal_files]
     stage("tables, plots, renders and report", started)
     return result
