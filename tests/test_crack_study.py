@@ -253,7 +253,8 @@ def test_kill_minus_9_mid_sweep_then_resume(tmp_path):
     before = {p: p.stat().st_mtime_ns for p in folder.glob("*.json")}
     assert 2 <= len(before) < 4, "the kill must land mid-sweep"
     for path in before:
-        assert np.isfinite(json.loads(path.read_text())["c_ru_N_m"])  # no corrupt case
+        entry = json.loads(path.read_text())  # no corrupt case: parses, checksum and value
+        assert entry["checksum"] and np.isfinite(entry["result"]["c_ru_N_m"])
     done = subprocess.run(command + ["--json"], env=env, capture_output=True, text=True,
                           check=True)
     assert json.loads(done.stdout)["fe_cases_computed"] == 4 - len(before)  # none recomputed
