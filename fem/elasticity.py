@@ -15,12 +15,15 @@ import numpy as np
 from hubvib.meshing.fe_mesh import FEMesh
 from hubvib.meshing.to_skfem import to_skfem
 
-from .fast_assembly import elasticity_matrix
+from .basis import vector_basis
+from .facets import facet_basis
+from .fast_assembly import BlockMatrix, elasticity_block_matrix
+from .locate import reference_coordinates
 from .material import Material, MaterialError
-from .solvers import SingularSystemError, pick, solve_spd
+from .solvers import SingularSystemError, factorise, factorise_blocks, pick
 
-__all__ = ["PlaneModel", "plane_model", "Solution", "solve", "rigid_body_modes",
-           "SingularSystemError"]
+__all__ = ["PlaneModel", "plane_model", "Solution", "solve", "supported", "SupportedSystem",
+           "rigid_body_modes", "SingularSystemError"]
 
 
 @dataclass(eq=False)
@@ -37,6 +40,8 @@ class PlaneModel:
         [m]
     timings : dict
         Seconds for ``to_skfem``, ``basis`` and ``assembly``.
+    blocks : fem.fast_assembly.BlockMatrix
+        The same stiffness as its upper triangle of 2 x 2 node blocks [N/m].
     """
 
     mesh: FEMesh
@@ -47,6 +52,7 @@ class PlaneModel:
     plane: str
     timings: dict = field(default_factory=dict)
     vertex_of: np.ndarray | None = None
+    blocks: BlockMatrix | None = None
 
     def node_dofs(self, nodes, component: int) -> np.ndarray:
         """DOF indices of displacement ``component`` (0: x, 1: y) at mesh corner ``nodes``."""
@@ -60,15 +66,14 @@ class PlaneModel:
         return self.K.shape[0]
 
     def facet_basis(self, groups: list[str]):
-        """skfem FacetBasis on the union of named boundaries (curved geometry)."""
-        import skfem
-
+        """skfem FacetBasis on the union of named boundaries (curved geometry; exact
+        reference points, ``fem.facets``: no Newton iteration that can fail on fine meshes)."""
         fe = self.basis.mesh
         missing = [g for g in groups if g not in fe.boundaries or len(fe.boundaries[g]) == 0]
         if missing:
             raise KeyError(f"the mesh has no boundary group {', '.join(map(repr, missing))}")
         facets = np.concatenate([fe.boundaries[g] for g in groups])
-        return skfem.FacetBasis(fe, self.basis.elem, facets=facets, intorder=2 * self.mesh.order)
+        return facet_basis(fe, self.basis.elem, facets, 2 * self.mesh.order, self.basis.dofs)
 
     def unit_traction_loads(self, facet_basis) -> np.ndarray:
         """Load vectors (2, ndofs) of a uniform 1 Pa traction along x and along y [N]."""
@@ -102,8 +107,9 @@ class PlaneModel:
 
         scikit-fem's own ``probes`` has no element finder for curved meshes:
         the cell is found on the straight-sided mesh of the corner nodes, then
-        the isoparametric map is inverted by Newton.  Points within the
-        sagitta of a curved boundary edge may be missed: keep them ~10 um inside.
+        the isoparametric map is inverted by Newton (``fem.locate``, robust on
+        fine meshes).  Points within the sagitta of a curved boundary edge may be
+        missed: keep them ~10 um inside.
         """
         from scipy.sparse import coo_matrix
 
@@ -113,7 +119,7 @@ class PlaneModel:
             cells = self._element_finder(*points)
         except ValueError:
             raise ValueError("a probe point lies outside the mesh") from None
-        local = basis.mapping.invF(points[:, :, None], tind=cells)
+        local = reference_coordinates(basis.mesh, points, cells)[:, :, None]
         values = np.array([basis.elem.gbasis(basis.mapping, local, k, tind=cells)[0]
                            for k in range(basis.Nbfun)]).flatten()
         n = points.shape[1]
@@ -146,13 +152,15 @@ def plane_model(mesh: FEMesh, material: Material = Material(), thickness: float 
     t0 = time.perf_counter()
     fe, vertex_of = to_skfem(mesh)
     t1 = time.perf_counter()
-    element = skfem.ElementVector(skfem.ElementTriP2() if mesh.order == 2 else skfem.ElementTriP1())
-    basis = skfem.Basis(fe, element, intorder=2 * mesh.order)
+    basis = vector_basis(fe, skfem.ElementTriP2() if mesh.order == 2 else skfem.ElementTriP1(),
+                         2 * mesh.order)
     t2 = time.perf_counter()
-    K = thickness * elasticity_matrix(basis, lam, mu)
+    blocks = elasticity_block_matrix(basis, lam, mu).scaled(thickness)
+    K = blocks.csr()
     t3 = time.perf_counter()
-    return PlaneModel(mesh, basis, K.tocsr(), material, thickness, plane,
-                      {"to_skfem": t1 - t0, "basis": t2 - t1, "assembly": t3 - t2}, vertex_of)
+    return PlaneModel(mesh, basis, K, material, thickness, plane,
+                      {"to_skfem": t1 - t0, "basis": t2 - t1, "assembly": t3 - t2}, vertex_of,
+                      blocks)
 
 
 @dataclass(frozen=True)
@@ -189,14 +197,57 @@ def rigid_body_modes(basis) -> np.ndarray:
     return np.column_stack(modes)
 
 
-def solve(model, loads: np.ndarray, fixed_groups: list[str], fixed_dofs=(),
-          solver: str = "auto") -> Solution:
-    """Solve K u = f with zero displacement on ``fixed_groups`` (every component)
-    and at ``fixed_dofs`` (DOF indices, e.g. from ``PlaneModel.node_dofs``).
+@dataclass(eq=False)
+class SupportedSystem:
+    """A model's stiffness with supports, factorised once: ``solve`` any number of load sets.
 
-    ``loads`` is (ndofs,) or (ndofs, k).  ``solver``: one of ``fem.solvers.SOLVERS``;
-    ``"auto"`` picks by size and dimension.  Raises SingularSystemError when
-    nothing is fixed or the solver finds the reduced matrix singular.
+    Attributes
+    ----------
+    ndofs : int
+        DOFs of the model.
+    free : ndarray
+        Indices of the unsupported DOFs.
+    factor : fem.solvers.Factor
+        The factorisation of K on them.
+    seconds : float
+        Wall time of the support check, the extraction and the factorisation [s].
+    """
+
+    ndofs: int
+    free: np.ndarray
+    factor: object
+    seconds: float
+
+    @property
+    def method(self) -> str:
+        return self.factor.method
+
+    def solve(self, loads: np.ndarray) -> Solution:
+        """Displacements [m] under ``loads`` [N], (ndofs,) or (ndofs, k); zero at the supports.
+        ``Solution.seconds`` is this solve's time."""
+        f = np.asarray(loads, dtype=float)
+        if f.shape[0] != self.ndofs:
+            raise ValueError(f"loads have {f.shape[0]} rows, the model {self.ndofs} DOFs")
+        started = time.perf_counter()
+        columns = f.reshape(self.ndofs, -1)
+        u = np.zeros_like(columns)
+        u[self.free] = self.factor.solve(columns[self.free])
+        return Solution(u.reshape(f.shape), time.perf_counter() - started, self.method)
+
+    def release(self) -> None:
+        """Free the factorisation's memory."""
+        self.factor.free()
+
+
+def supported(model, fixed_groups: list[str], fixed_dofs=(), solver: str = "auto"
+              ) -> SupportedSystem:
+    """Factorise K with zero displacement on ``fixed_groups`` (every component) and at
+    ``fixed_dofs`` (DOF indices, e.g. from ``PlaneModel.node_dofs``).
+
+    ``solver``: one of ``fem.solvers.SOLVERS``; ``"auto"`` picks by size and dimension.
+    PARDISO works on the node blocks when the supports hold whole nodes.  Raises
+    SingularSystemError when nothing is fixed, when the supports leave a rigid-body
+    motion, or when the solver finds the reduced matrix singular.
     """
     fe = model.basis.mesh
     missing = [g for g in fixed_groups if g not in fe.boundaries or len(fe.boundaries[g]) == 0]
@@ -204,21 +255,57 @@ def solve(model, loads: np.ndarray, fixed_groups: list[str], fixed_dofs=(),
         raise SingularSystemError(
             f"no support: fixed groups {fixed_groups} ({'missing: ' + ', '.join(missing) if missing else 'none given'}); "
             "an unsupported body has rigid-body modes and K is singular")
+    started = time.perf_counter()
     fixed = np.unique(np.concatenate([model.basis.get_dofs(g).flatten() for g in fixed_groups]
                                      + [np.asarray(fixed_dofs, dtype=np.int64)]))
-    free = np.setdiff1d(np.arange(model.ndofs), fixed)
-    f = np.asarray(loads, dtype=float)
-    single = f.ndim == 1
-    f = f.reshape(model.ndofs, -1)
-    t0 = time.perf_counter()
     rigid = rigid_body_modes(model.basis)
     held = np.linalg.matrix_rank(rigid[fixed]) if len(fixed) else 0
     if held < rigid.shape[1]:
         raise SingularSystemError(
             f"the supports leave {rigid.shape[1] - held} rigid-body motion(s) free (fixed "
             f"groups {fixed_groups}, {len(fixed_dofs)} single DOFs): K is singular")
+    keep = np.ones(model.ndofs, dtype=bool)
+    keep[fixed] = False
+    free = np.flatnonzero(keep)
     method = pick(solver, len(free), fe.dim())
-    near_null = rigid[free] if method == "amg" else None
-    u = np.zeros_like(f)
-    u[free] = solve_spd(model.K[free][:, free], f[free], method, near_null)
-    return Solution(u[:, 0] if single else u, time.perf_counter() - t0, method)
+    blocks = getattr(model, "blocks", None)
+    dim = fe.dim()
+    whole_nodes = keep.reshape(-1, dim).all(axis=1) == keep.reshape(-1, dim).any(axis=1)
+    if method == "pardiso" and blocks is not None and whole_nodes.all():
+        # single precision pays off where the factorisation dominates (3D), not in 2D,
+        # where the refinement of many load columns costs more than it saves
+        factor = factorise_blocks(*blocks.upper(keep.reshape(-1, dim)[:, 0]), single=dim == 3)
+    else:
+        near_null = rigid[free] if method == "amg" else None
+        factor = factorise(submatrix(model.K, keep), method, near_null)
+    return SupportedSystem(model.ndofs, free, factor, time.perf_counter() - started)
+
+
+def submatrix(K, keep: np.ndarray):
+    """The rows and columns of CSR ``K`` where ``keep`` is true (``K[keep][:, keep]``
+    without scipy's two copies)."""
+    K = K.tocsr()
+    rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
+    mask = keep[rows] & keep[K.indices]
+    new = np.cumsum(keep) - 1
+    count = int(keep.sum())
+    indptr = np.concatenate([[0], np.cumsum(np.bincount(new[rows[mask]], minlength=count))])
+    return K.__class__((K.data[mask], new[K.indices[mask]], indptr), shape=(count, count))
+
+
+def solve(model, loads: np.ndarray, fixed_groups: list[str], fixed_dofs=(),
+          solver: str = "auto") -> Solution:
+    """Solve K u = f with zero displacement on ``fixed_groups`` (every component)
+    and at ``fixed_dofs`` (DOF indices, e.g. from ``PlaneModel.node_dofs``).
+
+    ``loads`` is (ndofs,) or (ndofs, k).  ``solver``: one of ``fem.solvers.SOLVERS``;
+    ``"auto"`` picks by size and dimension.  Raises SingularSystemError when
+    nothing is fixed or the solver finds the reduced matrix singular.  To solve
+    more load sets later with the same factorisation, use ``supported``.
+    """
+    system = supported(model, fixed_groups, fixed_dofs, solver)
+    try:
+        solution = system.solve(loads)
+    finally:
+        system.release()
+    return Solution(solution.u, system.seconds + solution.seconds, solution.solver)

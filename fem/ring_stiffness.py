@@ -8,6 +8,9 @@ of each loaded tooth (mean tangential displacement over its two root-land
 arcs, a boundary integral independent of the mesh), not at the load
 point, so the bending of the tooth itself belongs to the mesh stiffness c_rp.
 ``c_ru = k_theta / r_b^2`` with ``k_theta = T / theta``, as the lumped model uses it.
+
+Loads and measurements are sparse maps built once per model (``tooth_forces``,
+``root_lands``): every carrier position is a load column of one factorisation.
 """
 from __future__ import annotations
 
@@ -41,7 +44,7 @@ class RingStiffness:
         Support (translational) stiffness, mean of x and y [N/m].
     dofs : int
     seconds : dict
-        assembly/loads/solve wall times [s], and the solver used.
+        assembly/loads/solve/measure wall times [s], and the solver used.
     """
 
     c_ru: float
@@ -52,16 +55,35 @@ class RingStiffness:
     seconds: dict
 
 
-def tooth_unit_forces(model, teeth) -> list[np.ndarray]:
-    """Per tooth: load vectors (2, ndofs) of 1 N along x and along y spread uniformly
-    over its load patch (group ``tooth{k}_load``).
+@dataclass(frozen=True, eq=False)
+class ToothForces:
+    """Forces spread uniformly over the load patches (groups ``tooth{k}_load``) of ``teeth``.
 
-    Two facet assemblies serve every tooth: the load of a traction that is
-    constant on each facet is ``B_x t_x + B_y t_y``, ``B`` holding one column per facet.
+    Two facet assemblies serve every tooth and every load case: the load of a traction
+    that is constant on each facet is ``B_x t_x + B_y t_y``, ``B`` holding one column per
+    facet (``per_facet``); ``owner`` gives each facet's tooth (index into ``teeth``) and
+    ``size`` each patch's area [m^2] (length times thickness in a plane model).
     """
+
+    teeth: tuple
+    per_facet: tuple
+    owner: np.ndarray
+    size: np.ndarray
+
+    def loads(self, forces: np.ndarray) -> np.ndarray:
+        """Load vectors (ndofs, cases) [N] of the forces ``forces`` (teeth, 2, cases) [N]:
+        x and y components on each tooth in each load case."""
+        forces = np.asarray(forces, dtype=float)
+        on_facet = forces[self.owner] / self.size[self.owner][:, None, None]
+        return sum(b @ on_facet[:, i, :] for i, b in enumerate(self.per_facet))
+
+
+def tooth_forces(model, teeth) -> ToothForces:
+    """``ToothForces`` of ``teeth`` on ``model`` (one facet basis for all of them)."""
     import scipy.sparse as sp
     import skfem
 
+    teeth = tuple(int(k) for k in teeth)
     groups = [f"tooth{k}_load" for k in teeth]
     patch = model.facet_basis(groups)
     owner = np.repeat(np.arange(len(groups)),
@@ -82,11 +104,18 @@ def tooth_unit_forces(model, teeth) -> list[np.ndarray]:
         facet = np.tile(np.arange(patch.nelems), patch.Nbfun)
         per_facet.append(sp.csr_matrix((coo.data, (coo.indices[0], facet)),
                                        shape=(model.ndofs, patch.nelems)))
-    forces = []
-    for j in range(len(groups)):
-        on_tooth = (owner == j) / patch_size[j]
-        forces.append(np.array([b @ on_tooth for b in per_facet]))
-    return forces
+    return ToothForces(teeth, tuple(per_facet), owner, patch_size)
+
+
+def tooth_unit_forces(model, teeth) -> list[np.ndarray]:
+    """Per tooth: load vectors (2, ndofs) of 1 N along x and along y spread uniformly
+    over its load patch (group ``tooth{k}_load``)."""
+    forces = tooth_forces(model, teeth)
+    unit = np.zeros((len(forces.teeth), 2, 2 * len(forces.teeth)))
+    for j in range(len(forces.teeth)):
+        unit[j, :, 2 * j:2 * j + 2] = np.eye(2)
+    loads = forces.loads(unit)
+    return [loads[:, 2 * j:2 * j + 2].T for j in range(len(forces.teeth))]
 
 
 def planet_teeth(ring: RingGear, carrier_tooth: int, n_planets: int) -> list[int]:
@@ -97,18 +126,150 @@ def planet_teeth(ring: RingGear, carrier_tooth: int, n_planets: int) -> list[int
 
 def mesh_force_load(model, ring: RingGear, teeth: list[int], force: float) -> np.ndarray:
     """Load vector [N] of ``force`` [N] along the line of action on each of ``teeth``."""
-    unit = tooth_unit_forces(model, teeth)
-    return force * sum(ring.load_point(k)[1] @ f for k, f in zip(teeth, unit))
+    forces = tooth_forces(model, sorted(set(teeth)))
+    along = np.zeros((len(forces.teeth), 2, 1))
+    for k in teeth:
+        along[forces.teeth.index(k), :, 0] += force * ring.load_point(k)[1]
+    return forces.loads(along)[:, 0]
 
 
-def reduced_torsional_stiffness(model, ring: RingGear, teeth: list[int], u: np.ndarray
-                                ) -> float:
+@dataclass(frozen=True, eq=False)
+class RootLands:
+    """Boundary integrals over the root lands of each of ``teeth``, as sparse functionals.
+
+    Attributes
+    ----------
+    teeth : tuple of int
+    size : ndarray
+        Length [m] (plane) or area [m^2] (solid) of each tooth's root lands.
+    u_x, u_y, rotation : scipy.sparse.csr_matrix (teeth, ndofs)
+        Row k applied to a displacement [m] gives the integral over tooth k's root
+        lands of u_x, u_y [m^2 or m^3] and of the rotation about the ring axis
+        u_theta / r [rad m or rad m^2], counter-clockwise positive.
+    """
+
+    teeth: tuple
+    size: np.ndarray
+    u_x: object
+    u_y: object
+    rotation: object
+
+    def rows(self, teeth) -> np.ndarray:
+        index = {k: i for i, k in enumerate(self.teeth)}
+        return np.array([index[k] for k in teeth])
+
+    def mean_rotation(self, teeth, u: np.ndarray):
+        """Mean rotation [rad] over the root lands of ``teeth`` (together) of the
+        displacement ``u`` (ndofs,) or of each column of (ndofs, k)."""
+        rows = self.rows(teeth)
+        return (self.rotation[rows] @ u).sum(axis=0) / self.size[rows].sum()
+
+    def mean_translation(self, u: np.ndarray) -> tuple:
+        """Mean u_x, u_y [m] over all the root lands."""
+        total = self.size.sum()
+        return (self.u_x @ u).sum(axis=0) / total, (self.u_y @ u).sum(axis=0) / total
+
+
+def root_lands(model, teeth) -> RootLands:
+    """``RootLands`` of ``teeth`` (groups ``tooth{k}_root``): one facet basis for all."""
+    import scipy.sparse as sp
+    import skfem
+
+    teeth = tuple(int(k) for k in teeth)
+    groups = [f"tooth{k}_root" for k in teeth]
+    lands = model.facet_basis(groups)
+    owner = np.repeat(np.arange(len(groups)),
+                      [len(model.basis.mesh.boundaries[g]) for g in groups])
+    per_tooth = sp.csr_matrix((np.ones(len(owner)), (np.arange(len(owner)), owner)),
+                              shape=(lands.nelems, len(groups)))
+
+    @skfem.Functional
+    def size(w):
+        return 1.0 + 0.0 * w.x[0]
+
+    def functional(density):
+        form = skfem.LinearForm(lambda v, w: density(v, w.x))
+        coo = form.coo_data(lands)
+        facet = np.tile(np.arange(lands.nelems), lands.Nbfun)
+        per_facet = sp.csr_matrix((coo.data, (facet, coo.indices[0])),
+                                  shape=(lands.nelems, model.ndofs))
+        return (per_tooth.T @ per_facet).tocsr()
+
+    return RootLands(
+        teeth, np.bincount(owner, size.elemental(lands)),
+        functional(lambda v, x: v[0]), functional(lambda v, x: v[1]),
+        functional(lambda v, x: (-x[1] * v[0] + x[0] * v[1]) / (x[0] ** 2 + x[1] ** 2)))
+
+
+def reduced_torsional_stiffness(model, ring: RingGear, teeth: list[int], u: np.ndarray,
+                                lands: RootLands | None = None):
     """c_ru = T / theta / r_b^2 [N/m] from the displacement ``u`` under 1 N along the line
-    of action on each of ``teeth``; theta is the mean rotation of their root lands."""
+    of action on each of ``teeth``; theta is the mean rotation of their root lands.
+
+    ``u`` (ndofs,) gives a float, (ndofs, k) an array; ``lands`` (covering ``teeth``)
+    saves building the boundary functionals again."""
     rb = ring.gear.base_diameter / 2
-    roots = model.facet_basis([f"tooth{k}_root" for k in teeth])
-    theta = -model.boundary_means(roots, u)[3]  # clockwise positive
-    return len(teeth) * rb / theta / rb ** 2
+    lands = lands or root_lands(model, teeth)
+    theta = -lands.mean_rotation(teeth, u)  # clockwise positive
+    c_ru = len(teeth) * rb / theta / rb ** 2
+    return float(c_ru) if np.ndim(c_ru) == 0 else c_ru
+
+
+@dataclass(frozen=True, eq=False)
+class RingLoads:
+    """The load columns of ``ring_stiffness`` and what they mean.
+
+    ``loads`` (ndofs, positions + 2) [N]: 1 N along the line of action on each tooth of
+    ``loaded[i]`` (column i, one per carrier position), then 1 N spread over all teeth
+    along x and along y (the support stiffness).
+    """
+
+    loads: np.ndarray
+    loaded: list
+    carrier_teeth: np.ndarray
+
+
+def ring_loads(model, ring: RingGear, carrier_teeth, n_planets: int) -> RingLoads:
+    """Torque load of each carrier position and the two translation loads."""
+    z = ring.teeth
+    loaded = [planet_teeth(ring, int(s), n_planets) for s in carrier_teeth]
+    forces = np.zeros((z, 2, len(loaded) + 2))
+    for column, teeth in enumerate(loaded):
+        for k in teeth:
+            forces[k, :, column] += ring.load_point(k)[1]
+    forces[:, 0, -2] = forces[:, 1, -1] = 1.0 / z
+    return RingLoads(tooth_forces(model, range(z)).loads(forces), loaded,
+                     np.asarray(carrier_teeth, dtype=int))
+
+
+def ring_response(model, ring: RingGear, loads: RingLoads, u: np.ndarray
+                  ) -> tuple[np.ndarray, float]:
+    """c_ru at each carrier position and c_r [N/m] from the displacements ``u``
+    (ndofs, columns of ``loads.loads``)."""
+    lands = root_lands(model, range(ring.teeth))
+    c_ru = np.array([reduced_torsional_stiffness(model, ring, teeth, u[:, column], lands)
+                     for column, teeth in enumerate(loads.loaded)])
+    positions = len(loads.loaded)
+    means = lands.mean_translation(u[:, positions:positions + 2])
+    c_r = float(np.mean([1.0 / means[0][0], 1.0 / means[1][1]]))
+    return c_ru, c_r
+
+
+def check_ring_input(ring: RingGear, mesh: FEMesh, n_planets: int) -> None:
+    """Raise ValueError for a planet count out of range or a mesh without the ring groups."""
+    if isinstance(n_planets, bool) or not isinstance(n_planets, int) or not 1 <= n_planets <= 12:
+        raise ValueError(f"n_planets = {n_planets!r}, allowed integers 1..12")
+    needed = {"supports"} | {f"tooth{k}_{part}" for k in range(ring.teeth)
+                             for part in ("load", "root")}
+    missing = sorted(needed - set(mesh.boundaries))
+    if missing:
+        raise ValueError(f"the mesh lacks the groups c_ru needs: {', '.join(missing[:5])}"
+                         + (" ..." if len(missing) > 5 else ""))
+
+
+def default_carrier_teeth(ring: RingGear, n_planets: int) -> np.ndarray:
+    """Every tooth over one planet pitch."""
+    return np.arange(int(math.ceil(ring.teeth / n_planets)))
 
 
 def ring_stiffness(ring: RingGear, mesh: FEMesh, material: Material = Material(),
@@ -118,43 +279,26 @@ def ring_stiffness(ring: RingGear, mesh: FEMesh, material: Material = Material()
 
     A plane mesh is solved in plane stress over the face width; a solid mesh
     in 3D, with the loads spread over the tooth's load surface across the face.
-    ``solver``: see ``fem.solvers``.
+    ``solver``: see ``fem.solvers``.  One factorisation serves every load column.
     """
-    if isinstance(n_planets, bool) or not isinstance(n_planets, int) or not 1 <= n_planets <= 12:
-        raise ValueError(f"n_planets = {n_planets!r}, allowed integers 1..12")
-    needed = {"supports"} | {f"tooth{k}_{part}" for k in range(ring.teeth)
-                             for part in ("load", "root")}
-    missing = sorted(needed - set(mesh.boundaries))
-    if missing:
-        raise ValueError(f"the mesh lacks the groups c_ru needs: {', '.join(missing[:5])}"
-                         + (" ..." if len(missing) > 5 else ""))
-    z = ring.teeth
+    check_ring_input(ring, mesh, n_planets)
     if carrier_teeth is None:
-        carrier_teeth = np.arange(int(math.ceil(z / n_planets)))
-    carrier_teeth = np.asarray(carrier_teeth, dtype=int)
+        carrier_teeth = default_carrier_teeth(ring, n_planets)
     t0 = time.perf_counter()
-    if mesh.dim == 2:
-        model = plane_model(mesh, material, ring.gear.face_width, "stress")
-    else:
-        model = solid_model(mesh, material)
+    model = ring_model(ring, mesh, material)
     t1 = time.perf_counter()
-    unit_force = tooth_unit_forces(model, range(z))
-    torque_loads, loaded = [], []
-    for s in carrier_teeth:
-        teeth = planet_teeth(ring, int(s), n_planets)
-        loaded.append(teeth)
-        torque_loads.append(sum(ring.load_point(k)[1] @ unit_force[k] for k in teeth))
-    translation = [sum(f[axis] for f in unit_force) / z for axis in (0, 1)]
-    loads = np.column_stack(torque_loads + translation)
+    loads = ring_loads(model, ring, carrier_teeth, n_planets)
     t2 = time.perf_counter()
-    solution = solve(model, loads, ["supports"], solver=solver)
+    solution = solve(model, loads.loads, ["supports"], solver=solver)
     t3 = time.perf_counter()
-    c_ru = [reduced_torsional_stiffness(model, ring, teeth, solution.u[:, column])
-            for column, teeth in enumerate(loaded)]
-    all_roots = model.facet_basis([f"tooth{k}_root" for k in range(z)])
-    c_r = [1.0 / model.boundary_means(all_roots, solution.u[:, column])[1 + axis]
-           for column, axis in ((-2, 0), (-1, 1))]
-    c_ru = np.array(c_ru)
-    return RingStiffness(float(c_ru.mean()), c_ru, carrier_teeth, float(np.mean(c_r)),
-                         model.ndofs, {"assembly": t1 - t0, "loads": t2 - t1, "solve": t3 - t2,
-                                       "solver": solution.solver})
+    c_ru, c_r = ring_response(model, ring, loads, solution.u)
+    return RingStiffness(float(c_ru.mean()), c_ru, loads.carrier_teeth, c_r, model.ndofs,
+                         {"assembly": t1 - t0, "loads": t2 - t1, "solve": t3 - t2,
+                          "measure": time.perf_counter() - t3, "solver": solution.solver})
+
+
+def ring_model(ring: RingGear, mesh: FEMesh, material: Material = Material()):
+    """Plane-stress model over the face width (plane mesh) or solid model (3D mesh)."""
+    if mesh.dim == 2:
+        return plane_model(mesh, material, ring.gear.face_width, "stress")
+    return solid_model(mesh, material)

@@ -3,10 +3,13 @@
 The same interface as ``elasticity.PlaneModel`` where the ring-stiffness code
 needs it: boundary groups are surfaces, ``thickness`` is 1 (loads and means
 are integrals over areas), ``boundary_means`` gives the mean in-plane
-displacement and the mean rotation about the z axis.
+displacement and the mean rotation about the z axis.  The stiffness is kept
+in 3 x 3 node blocks (``blocks``), which PARDISO factorises directly; the
+CSR matrix ``K`` is built only when asked for.
 """
 from __future__ import annotations
 
+import functools
 import time
 from dataclasses import dataclass, field
 
@@ -15,25 +18,31 @@ import numpy as np
 from hubvib.meshing.fe_mesh import FEMesh
 from hubvib.meshing.to_skfem import to_skfem
 
+from .basis import vector_basis
 from .elasticity import PlaneModel
-from .fast_assembly import elasticity_matrix
+from .fast_assembly import BlockMatrix, elasticity_block_matrix
 from .material import Material
 
 
 @dataclass(eq=False)
 class SolidModel:
-    """Assembled 3D model: ``basis`` (P1 or curved P2 tetrahedra) and ``K`` [N/m]."""
+    """Assembled 3D model: ``basis`` (P1 or curved P2 tetrahedra) and the stiffness in
+    node blocks ``blocks`` [N/m]; ``K`` is the same in CSR."""
 
     mesh: FEMesh
     basis: object
-    K: object
+    blocks: BlockMatrix
     material: Material
     timings: dict = field(default_factory=dict)
     thickness: float = 1.0
 
+    @functools.cached_property
+    def K(self):
+        return self.blocks.csr()
+
     @property
     def ndofs(self) -> int:
-        return self.K.shape[0]
+        return self.blocks.shape[0]
 
     # with thickness 1 the plane model's surface integrals hold in 3D
     facet_basis = PlaneModel.facet_basis
@@ -65,13 +74,12 @@ def solid_model(mesh: FEMesh, material: Material = Material()) -> SolidModel:
     t0 = time.perf_counter()
     fe, _ = to_skfem(mesh)
     t1 = time.perf_counter()
-    element = skfem.ElementVector(skfem.ElementTetP2() if mesh.order == 2
-                                  else skfem.ElementTetP1(), 3)
     # degree 2 integrates the P2 stiffness exactly on straight tetrahedra with 4 points
     # instead of the 11 of skfem's default: assembly dominates the 3D cost (fe_facts)
-    basis = skfem.Basis(fe, element, intorder=2 if mesh.order == 2 else 1)
+    basis = vector_basis(fe, skfem.ElementTetP2() if mesh.order == 2 else skfem.ElementTetP1(),
+                         2 if mesh.order == 2 else 1)
     t2 = time.perf_counter()
-    K = elasticity_matrix(basis, lam, mu)
+    blocks = elasticity_block_matrix(basis, lam, mu)
     t3 = time.perf_counter()
-    return SolidModel(mesh, basis, K.tocsr(), material,
+    return SolidModel(mesh, basis, blocks, material,
                       {"to_skfem": t1 - t0, "basis": t2 - t1, "assembly": t3 - t2})

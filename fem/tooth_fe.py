@@ -1,7 +1,10 @@
 """FE tooth compliance along the flank (SI units).
 
-Tooth 0 of a gear body or ring is loaded by a unit point force along the line
-of action at flank radii ``radii``; one factorisation serves all of them.  The
+One tooth of a gear body or ring (tooth 0 unless asked: any other is measured
+in its own frame, tooth 0's rotated) is loaded by a unit point force along the
+line of action at flank radii ``radii``; one factorisation serves all of them,
+and ``tooth_probe`` gives the load columns to share a factorisation with other
+loads (``crack_level``).  The
 deflection is measured as the analytical method defines it, so that Hertzian
 contact is added once (``tooth_beam.hertz_compliance``): the section through
 the load point normal to the tooth axis is taken as rigid, its translation
@@ -62,17 +65,51 @@ def _root_land_points(body: RingGear) -> np.ndarray:
     return np.column_stack([r * np.cos(psi), r * np.sin(psi)])
 
 
-def fe_tooth_compliance(body: ToothedBody, mesh: FEMesh, radii,
-                        material: Material = Material()) -> FEToothCompliance:
-    """Compliance of tooth 0 at each flank radius (plane stress, face width thickness)."""
+@dataclass(frozen=True, eq=False)
+class ToothProbe:
+    """Unit loads on one tooth and the probes that measure its deflection.
+
+    Attributes
+    ----------
+    loads : ndarray (ndofs, radii)
+        1 N along the line of action at each flank radius [N].
+    radii : ndarray
+        Flank radii [m].
+    rotation : ndarray (2, 2)
+        From the tooth's own frame (tooth 0's position) to the global one.
+    section, land : scipy.sparse matrices
+        Displacements at the section probe points of every radius and at the root-land
+        points (rows: u_x of every point, then u_y) [m per m of DOF].
+    """
+
+    loads: np.ndarray
+    radii: np.ndarray
+    rotation: np.ndarray
+    section: object
+    land: object | None
+    points: list
+    land_points: np.ndarray | None
+
+
+def _rotation(angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[c, -s], [s, c]])
+
+
+def tooth_probe(body: ToothedBody, model, radii, tooth: int = 0) -> ToothProbe:
+    """Loads and probes of tooth ``tooth`` at flank ``radii`` [m] (on the involute).
+
+    The tooth is measured in its own frame, tooth 0's rotated by its angle, so that
+    every tooth of an intact gear has the same compliance."""
     radii = np.atleast_1d(np.asarray(radii, dtype=float))
     low, high = sorted((body.profile.form_radius, body.profile.tip_radius))
     if np.any((radii <= low) | (radii >= high)):
         raise ValueError(f"radii must lie on the involute, {low:.6g}..{high:.6g} m; got "
                          f"{radii.min():.6g}..{radii.max():.6g} m")
-    t0 = time.perf_counter()
-    model = plane_model(mesh, material, body.gear.face_width, "stress")
-    t1 = time.perf_counter()
+    if isinstance(tooth, bool) or not isinstance(tooth, (int, np.integer)) \
+            or not 0 <= tooth < body.teeth:
+        raise ValueError(f"tooth = {tooth!r}, allowed integers 0..{body.teeth - 1}")
+    rot = _rotation(body.tooth_angle(int(tooth)))
     points, forces, probes = [], [], []
     for r in radii:
         p, d = load_point(body, r)
@@ -81,25 +118,53 @@ def fe_tooth_compliance(body: ToothedBody, mesh: FEMesh, radii,
         centre = np.array([p[0], 0.0])
         offset = np.array([0.0, p[1] / 2])
         probes.append((p, d, np.array([centre, centre + offset, centre - offset])))
-    n, forces = len(radii), np.array(forces)
-    at_loads = model.probes(np.array(points))  # rows: u_x at each point, then u_y
+    n = len(radii)
+    forces = np.array(forces) @ rot.T
+    at_loads = model.probes(np.array(points) @ rot.T)  # rows: u_x at each point, then u_y
     loads = at_loads[:n].multiply(forces[:, :1]) + at_loads[n:].multiply(forces[:, 1:])
-    solution = solve(model, loads.T.toarray(), ["supports"])
-    t2 = time.perf_counter()
+    section = model.probes(np.vstack([q for _, _, q in probes]) @ rot.T)
     land = _root_land_points(body) if isinstance(body, RingGear) else None
-    land_probe = model.probes(land) if land is not None else None
+    land_probe = model.probes(land @ rot.T) if land is not None else None
+    return ToothProbe(loads.T.toarray(), radii, rot, section, land_probe, probes, land)
+
+
+def _local(probe, rotation: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """u_x, u_y in the tooth's frame at the probe's points."""
+    values = probe @ u
+    n = len(values) // 2
+    ux, uy = values[:n], values[n:]
+    return rotation[0, 0] * ux + rotation[1, 0] * uy, rotation[0, 1] * ux + rotation[1, 1] * uy
+
+
+def tooth_compliance(probe: ToothProbe, u: np.ndarray) -> np.ndarray:
+    """Compliance [m/N] at each radius from the displacements ``u`` (ndofs, radii) under
+    ``probe.loads``."""
     compliance = []
-    for column, (p, d, points) in enumerate(probes):
-        u = solution.u[:, column]
-        values = model.probes(points) @ u
-        ux, uy = values[:3], values[3:]
+    for column, (p, d, points) in enumerate(probe.points):
+        ux, uy = _local(probe.section, probe.rotation, u[:, column])
+        ux, uy = ux[3 * column:3 * column + 3], uy[3 * column:3 * column + 3]
         theta = -(ux[1] - ux[2]) / (points[1, 1] - points[2, 1])
         lever = p - points[0]
         moved = np.array([ux[0] - theta * lever[1], uy[0] + theta * lever[0]])
-        if land_probe is not None:
-            sx, sy, st = _rigid_fit(land, land_probe @ u)
+        if probe.land is not None:
+            sx, sy, st = _rigid_fit(probe.land_points,
+                                    np.concatenate(_local(probe.land, probe.rotation,
+                                                          u[:, column])))
             moved -= np.array([sx - st * p[1], sy + st * p[0]])
         compliance.append(float(d @ moved))
+    return np.array(compliance)
+
+
+def fe_tooth_compliance(body: ToothedBody, mesh: FEMesh, radii,
+                        material: Material = Material(), tooth: int = 0) -> FEToothCompliance:
+    """Compliance of tooth ``tooth`` at each flank radius (plane stress, face width thickness)."""
+    t0 = time.perf_counter()
+    model = plane_model(mesh, material, body.gear.face_width, "stress")
+    t1 = time.perf_counter()
+    probe = tooth_probe(body, model, radii, tooth)
+    solution = solve(model, probe.loads, ["supports"])
+    t2 = time.perf_counter()
+    compliance = tooth_compliance(probe, solution.u)
     t3 = time.perf_counter()
-    return FEToothCompliance(radii, np.array(compliance), model.ndofs,
+    return FEToothCompliance(probe.radii, compliance, model.ndofs,
                              {"assembly": t1 - t0, "solve": t2 - t1, "measure": t3 - t2})

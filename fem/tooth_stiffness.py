@@ -68,8 +68,8 @@ def contact_radii(body: ToothedBody, pairs: list[GearPair]) -> tuple[float, floa
 
 
 def fe_curve(body: ToothedBody, radii_range, material: Material, options, crack=None,
-             mesher=None) -> ToothCurve:
-    """FE tooth compliance of tooth 0 at Chebyshev radii of ``radii_range``;
+             mesher=None, tooth: int = 0) -> ToothCurve:
+    """FE tooth compliance of ``tooth`` at Chebyshev radii of ``radii_range``;
     ``mesher(body, crack, options)`` replaces ``ring_mesh`` (to share meshes)."""
     from hubvib.meshing.ring_mesh import ring_mesh
 
@@ -77,7 +77,7 @@ def fe_curve(body: ToothedBody, radii_range, material: Material, options, crack=
     started = time.perf_counter()
     mesh = (mesher or ring_mesh)(body, crack, options)
     meshed = time.perf_counter() - started
-    result = fe_tooth_compliance(body, mesh, radii, material)
+    result = fe_tooth_compliance(body, mesh, radii, material, tooth)
     seconds = {"mesh": meshed, "assembly": result.seconds["assembly"],
                "solve": result.seconds["solve"] + result.seconds["measure"]}
     return ToothCurve(radii, result.compliance, result.dofs, seconds)
@@ -151,8 +151,8 @@ class EngagedMesh:
 
 
 @functools.lru_cache(maxsize=8)
-def _intact_curve(body, span, material, options) -> ToothCurve:
-    return fe_curve(body, span, material, options)
+def _intact_curve(body, span, material, options, tooth: int = 0) -> ToothCurve:
+    return fe_curve(body, span, material, options, tooth=tooth)
 
 
 def engaged_ring_mesh(planet: ToothedBody, ring: ToothedBody, crack, options=None,
@@ -165,11 +165,21 @@ def engaged_ring_mesh(planet: ToothedBody, ring: ToothedBody, crack, options=Non
     from hubvib.meshing.ring_mesh import MeshOptions
 
     options = MeshOptions() if options is None else options
+    span = contact_radii(ring, [GearPair(planet, ring)])
+    cracked = fe_curve(ring, span, material, options, crack, mesher)
+    return engaged_mesh(planet, ring, cracked, options, material)
+
+
+def engaged_mesh(planet: ToothedBody, ring: ToothedBody, cracked: ToothCurve, options,
+                 material: Material = Material(), tooth: int = 0) -> EngagedMesh:
+    """c_rp over the engagement of ring tooth ``tooth`` whose compliance is ``cracked``
+    (at the Chebyshev radii of the ring's contact span), against the same tooth intact.
+
+    The intact curves (planet; ring tooth ``tooth``, meshed with ``options``) are kept
+    between calls."""
     pair = GearPair(planet, ring)
     planet_curve = _intact_curve(planet, contact_radii(planet, [pair]), material, options)
-    span = contact_radii(ring, [pair])
-    ring_curve = _intact_curve(ring, span, material, options)
-    cracked = fe_curve(ring, span, material, options, crack, mesher)
+    ring_curve = _intact_curve(ring, contact_radii(ring, [pair]), material, options, tooth)
     q_h = hertz_compliance(min(planet.gear.face_width, ring.gear.face_width), material)
     return EngagedMesh(
         mesh_cycle(pair, planet_curve, ring_curve, q_h, marked_pair_compliance=cracked),

@@ -205,6 +205,7 @@ def test_crack_adds_no_area(intact, cracked):
     Crack(7, 0.0, start="root"), Crack(11, 8e-3, start="rim"),
     Crack(4, 10e-3, angle=math.radians(15), kink_fraction=0.5, kink_angle=math.radians(-30)),
 ], ids=["through", "rim", "kinked"])
+@pytest.mark.slow
 def test_crack_variants_mesh(crack):
     if crack.depth == 0:
         crack = Crack(7, Crack(7, 1.0).through_depth(RING))
@@ -219,6 +220,7 @@ def test_crack_variants_mesh(crack):
     assert m.info["min_quality"] > 0.1
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("crack", [None, Crack(0, 5e-3)], ids=["intact", "cracked"])
 def test_mesh_quality_of_the_preset(crack):
     """gmsh minSICN above 0.5 with the default mesh options (tip refined to 10 um)."""

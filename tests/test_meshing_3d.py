@@ -40,6 +40,7 @@ def _face_nodes(mesh, name):
     return set(np.unique(mesh.boundaries[name]).tolist())
 
 
+@pytest.mark.slow
 def test_solid_volume_matches_exact(intact):
     # exact: plane area (closed forms + quadrature, test_meshing) x face width; P2 to 1e-5
     assert intact.cell_type == "tetra10"
@@ -47,6 +48,7 @@ def test_solid_volume_matches_exact(intact):
     assert intact.info["min_quality"] > 0  # every curved tetrahedron valid
 
 
+@pytest.mark.slow
 def test_solid_groups_are_swept_curves(intact):
     b = GEAR.face_width
     for k in (0, RING.teeth - 1):
@@ -63,6 +65,7 @@ def test_solid_groups_are_swept_curves(intact):
     assert np.abs(np.hypot(*load[:, :2].T) - RING.load_radius).max() <= 1e-3 + 1e-12
 
 
+@pytest.mark.slow
 def test_through_width_crack_is_open_except_its_front(through):
     a, b = _face_nodes(through, "crack_a"), _face_nodes(through, "crack_b")
     front = set(through.points_of["crack_front"].tolist())
@@ -77,6 +80,7 @@ def test_through_width_crack_is_open_except_its_front(through):
     assert len(mouth) == 2 * len(np.unique(np.round(through.points[mouth], 12), axis=0))
 
 
+@pytest.mark.slow
 def test_semi_elliptic_front_is_the_ellipse(semi):
     mouth, tip = (np.array(p) for p in semi.info["crack_path"])
     direction = (tip - mouth) / np.hypot(*(tip - mouth))
@@ -92,18 +96,21 @@ def test_semi_elliptic_front_is_the_ellipse(semi):
     assert semi.info["min_quality"] > 0
 
 
+@pytest.mark.slow
 def test_crack_adds_no_volume(intact, through, semi):
     exact = intact.info["exact_volume"]
     for mesh in (through, semi):
         assert abs(measure.volume(mesh) / exact - 1) < 1e-5
 
 
+@pytest.mark.slow
 def test_zero_depth_crack_gives_the_intact_mesh(intact):
     zero = ring_mesh_3d(RING, Crack(3, 0.0), SEMI, options=COARSE)
     assert zero.info["nodes"] == intact.info["nodes"]
     assert np.array_equal(zero.points, intact.points)
 
 
+@pytest.mark.slow
 def test_skfem_sees_solid_groups_and_volume(semi):
     skfem = pytest.importorskip("skfem")
     from hubvib.meshing.to_skfem import to_skfem
@@ -137,6 +144,7 @@ def test_bad_front(kwargs, message):
         CrackFront(**kwargs)
 
 
+@pytest.mark.slow
 def test_vtu_has_vtk_tetra10_order(semi, tmp_path):
     meshio = pytest.importorskip("meshio")
     from hubvib.meshing.export import write_png, write_vtu

@@ -29,6 +29,7 @@ def test_mode_renders_are_real_distinct_and_repeatable(tmp_path):
     assert np.abs(a - c).mean() > 1.0  # a rotational and a translational mode differ
 
 
+@pytest.mark.slow
 def test_gif_and_multiblock_on_request(tmp_path):
     files = render_mode(PARAMS, SPECTRUM, 2, tmp_path, gif=True, vtm=True)
     assert [f.suffix for f in files] == [".png", ".gif", ".vtm"]
