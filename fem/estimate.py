@@ -9,6 +9,11 @@ import time
 from dataclasses import asdict, dataclass
 
 
+#: field -> JSON / cache key with its unit
+RING_KEYS = {"c_ru": "c_ru_N_m", "c_ru_error": "c_ru_error_N_m", "c_ru_min": "c_ru_min_N_m",
+             "c_ru_max": "c_ru_max_N_m", "c_r": "c_r_N_m", "c_r_error": "c_r_error_N_m"}
+
+
 @dataclass(frozen=True)
 class RingEstimate:
     """The ring body's stiffnesses on the default mesh, with error estimates.
@@ -43,10 +48,7 @@ class RingEstimate:
 
     def to_dict(self) -> dict:
         """Keys with units (``c_ru_N_m`` ...), as in the JSON output and the cache."""
-        units = {"c_ru": "c_ru_N_m", "c_ru_error": "c_ru_error_N_m",
-                 "c_ru_min": "c_ru_min_N_m", "c_ru_max": "c_ru_max_N_m", "c_r": "c_r_N_m",
-                 "c_r_error": "c_r_error_N_m"}
-        return {units.get(k, k): v for k, v in asdict(self).items()}
+        return {RING_KEYS.get(k, k): v for k, v in asdict(self).items()}
 
 
 def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
@@ -138,10 +140,7 @@ class CrackCaseEstimate:
 
     def to_dict(self) -> dict:
         """Keys with units, as ``RingEstimate.to_dict`` plus the ``c_rp_engaged_*`` ratios."""
-        units = {"c_ru": "c_ru_N_m", "c_ru_error": "c_ru_error_N_m",
-                 "c_ru_min": "c_ru_min_N_m", "c_ru_max": "c_ru_max_N_m", "c_r": "c_r_N_m",
-                 "c_r_error": "c_r_error_N_m"}
-        return {units.get(k, k): v for k, v in asdict(self).items()}
+        return {RING_KEYS.get(k, k): v for k, v in asdict(self).items()}
 
 
 def estimate_crack_case(ring, planet, crack, scale: float = 1.0, mesher=None, material=None,

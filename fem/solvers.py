@@ -27,7 +27,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .threads import blas_threads
+from hubvib.blas import blas_threads
 
 SOLVERS = ("auto", "superlu", "pardiso", "amg")
 DIRECT_LIMIT = 60_000  # [DOF] 3D systems below this factorise fast enough with SuperLU
@@ -131,7 +131,7 @@ class _SuperLU(Factor):
                 f"{diag.min() / diag.max():.1e}): check the supports")
 
     def _solve(self, columns):
-        with blas_threads(1):  # small BLAS kernels: more threads only wait (fem/threads.py)
+        with blas_threads(1):  # small BLAS kernels: more threads only wait (hubvib/blas.py)
             return self._lu.solve(columns)
 
     def free(self):

@@ -23,17 +23,15 @@ chunks of points.
 """
 from __future__ import annotations
 
-import ctypes
 import math
-import os
 import time
 from concurrent.futures import ThreadPoolExecutor
-from contextlib import contextmanager
-from functools import lru_cache
 from dataclasses import dataclass
 from typing import Mapping
 
 import numpy as np
+
+from hubvib.blas import blas_thread_counts, blas_threads
 
 from .eigensolve import rigid_body_count, solve_network
 from .network import SpringNetwork, mass_diagonal, spring_network
@@ -201,67 +199,6 @@ def _solve_chunk(G, k, mass, tolerance):
             tier[idx[poor]] = 2
         omega[idx], bound[idx] = sigma, error
     return omega, bound, tier
-
-
-@contextmanager
-def blas_threads(count: int):
-    """Limit the OpenBLAS libraries loaded in this process to ``count`` threads.
-
-    Calls ``openblas_set_num_threads`` (any of its symbol spellings) in every
-    OpenBLAS found in ``/proc/self/maps`` and restores the previous counts on
-    exit; does nothing where there is no such file (not Linux) or no OpenBLAS.
-    Environment variables such as ``OPENBLAS_NUM_THREADS`` would not help: they
-    are read once, when the library loads.
-    """
-    handles = _openblas_handles()
-    previous = [get() for get, _ in handles]
-    try:
-        for _, set_threads in handles:
-            set_threads(count)
-        yield
-    finally:
-        for (_, set_threads), n in zip(handles, previous):
-            set_threads(n)
-
-
-def blas_thread_counts() -> list[int]:
-    """Current thread count of every loaded OpenBLAS (empty when none is found)."""
-    return [get() for get, _ in _openblas_handles()]
-
-
-_PREFIXES = ("openblas", "scipy_openblas")
-_SUFFIXES = ("", "64_")
-
-
-@lru_cache(maxsize=1)
-def _openblas_handles() -> tuple:
-    """(get, set) thread-count functions of every OpenBLAS loaded (numpy's and scipy's
-    are loaded by the time this module is: it imports scipy.linalg through eigensolve)."""
-    try:
-        with open("/proc/self/maps", encoding="utf-8") as maps:
-            paths = sorted({line.split()[-1] for line in maps
-                            if "openblas" in os.path.basename(line.split()[-1]).lower()})
-    except OSError:
-        return ()
-    handles = []
-    for path in paths:
-        try:
-            lib = ctypes.CDLL(path)
-        except OSError:
-            continue
-        for prefix in _PREFIXES:
-            for suffix in _SUFFIXES:
-                get = getattr(lib, f"{prefix}_get_num_threads{suffix}", None)
-                set_ = getattr(lib, f"{prefix}_set_num_threads{suffix}", None)
-                if get is not None and set_ is not None:
-                    get.restype = ctypes.c_int
-                    set_.argtypes = [ctypes.c_int]
-                    handles.append((get, set_))
-                    break
-            else:
-                continue
-            break
-    return tuple(handles)
 
 
 def benchmark_batch(points: int = 10_000, single: int = 200, seed: int = 0,

@@ -214,7 +214,7 @@ def test_lazy_basis_is_scikit_fems_basis(mesh, element):
 
 def test_blas_threads_are_set_and_restored():
     """OpenBLAS runs with the asked thread count inside the block and its own after."""
-    from hubvib.fem.threads import _handles, blas_threads
+    from hubvib.blas import _handles, blas_threads
 
     if not _handles():
         pytest.skip("no OpenBLAS loaded")

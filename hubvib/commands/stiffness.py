@@ -16,8 +16,8 @@ def add_parser(sub) -> None:
     p.add_argument("--solid", action="store_true",
                    help="also c_ru and c_r of the solid (3D) ring, ~1 min per case")
     p.add_argument("--solver", default="auto", choices=SOLVERS,
-                   help="sparse solver of c_ru, c_r; auto: SuperLU in 2D and below 6e4 DOFs, else "
-                   "PARDISO if installed, else AMG-CG")
+                   help="sparse solver of c_ru, c_r; auto: PARDISO if installed (2D and 3D), else "
+                   "SuperLU in 2D and below 6e4 DOFs, else AMG-CG")
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
 

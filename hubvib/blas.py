@@ -1,4 +1,5 @@
-"""Run a block of code with OpenBLAS limited to a number of threads.
+"""Run a block of code with OpenBLAS limited to a number of threads (the FE solvers and
+the batched lumped solves both need it; stdlib only).
 
 SuperLU's triangular solves with many right-hand sides call small BLAS
 kernels; with two OpenBLAS threads on a busy 2-core machine they spin-wait
@@ -31,6 +32,11 @@ def blas_threads(count: int):
     finally:
         for (_, set_threads), n in zip(handles, previous):
             set_threads(n)
+
+
+def blas_thread_counts() -> list[int]:
+    """Current thread count of every loaded OpenBLAS (empty when none is found)."""
+    return [get() for get, _ in _handles()]
 
 
 @functools.lru_cache(maxsize=1)
