@@ -210,3 +210,31 @@ def test_scene_design_file_is_relative_to_the_scene(tmp_path):
                                          "depths = [0.0, 0.002]\n")
     scene = load_scene(tmp_path / "scene.toml")
     assert scene.design.name == "demo" and scene.crack.design.ring.teeth == 82
+
+
+@pytest.mark.parametrize("depth", ["-0.005", "nan", "inf"])
+def test_stiffness_refuses_a_crack_depth_that_is_not_a_depth(depth, capsys):
+    """Issue 17 item 2: it used to exit 0 with the intact ring only."""
+    assert main(["stiffness", f"--crack-depth={depth}"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--crack-depth" in err and "allowed" in err
+
+
+def test_scene_refusals_name_the_file_or_the_key(tmp_path, capsys):
+    """Issue 17 items 3, 10, 15: a non-UTF-8 scene names its file; 5000 depths and a crack
+    scene's ignored [study] values are refused before any FE work."""
+    bad = tmp_path / "latin.toml"
+    bad.write_bytes("# Zürich\n[crack]\ndepths = [0.0]\n".encode("latin-1"))
+    assert main(["run", str(bad), "--out", str(tmp_path / "o1")]) == 2
+    assert str(bad) in capsys.readouterr().err
+    many = tmp_path / "many.toml"
+    many.write_text("[crack]\ndepths = [" + ", ".join(f"{i * 1e-5:g}" for i in range(5000))
+                    + "]\n")
+    assert main(["run", str(many), "--out", str(tmp_path / "o2")]) == 2
+    assert "allowed at most 64" in capsys.readouterr().err
+    ignored = tmp_path / "ignored.toml"
+    ignored.write_text("[crack]\ndepths = [0.0, 0.003]\n[study]\nparameter = \"c_ru\"\n"
+                       "values = [1e5]\n")
+    assert main(["run", str(ignored), "--out", str(tmp_path / "o3")]) == 2
+    assert "[study] parameter and values are for a lumped sweep" in capsys.readouterr().err
+    assert not any((tmp_path / name).exists() for name in ("o1", "o2", "o3"))
