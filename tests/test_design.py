@@ -1,7 +1,6 @@
 """The reducer design: file parsing, every assembly rule, derived fields, scenes and commands."""
 import json
 import math
-from pathlib import Path
 
 import pytest
 

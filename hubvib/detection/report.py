@@ -186,7 +186,7 @@ def pod_section(study) -> list[str]:
         f"ring mounting {100 * options.scatter_mounting:g} %; FE error estimates (difference "
         "to a mesh twice as coarse) as the standard deviation of a discretisation error common "
         f"to all depths. {pod.samples} Monte Carlo samples per depth (batched lumped solves).",
-        f"- Record against mesh timing: "
+        "- Record against mesh timing: "
         + (f"a record longer than one engagement ({1e3 * timing.pass_seconds:.3g} ms) sees the "
            f"time-averaged stiffness (the cracked tooth is in mesh "
            f"{100 * timing.engaged_fraction:.3g} % of the time), so the c_rp effect enters "
