@@ -87,21 +87,6 @@ class PlaneModel:
             loads.append(load.assemble(facet_basis))
         return np.array(loads)
 
-    @staticmethod
-    def boundary_means(facet_basis, u: np.ndarray) -> tuple[float, float, float, float]:
-        """Length [m], mean u_x, mean u_y [m] and mean rotation u_theta / r [rad]
-        (counter-clockwise positive) over the facets of ``facet_basis``."""
-        import skfem
-
-        @skfem.Functional
-        def means(w):
-            x, y = w.x
-            ux, uy = w["u"]
-            return np.array([1.0 + 0 * x, ux, uy, (-y * ux + x * uy) / (x * x + y * y)])
-
-        length, *integrals = means.assemble(facet_basis, u=facet_basis.interpolate(u))
-        return (float(length), *(float(v) / length for v in integrals))
-
     def probes(self, points: np.ndarray):
         """Sparse matrix (2 n, ndofs) giving u_x at the n ``points`` [m], then u_y.
 

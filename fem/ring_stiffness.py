@@ -107,17 +107,6 @@ def tooth_forces(model, teeth) -> ToothForces:
     return ToothForces(teeth, tuple(per_facet), owner, patch_size)
 
 
-def tooth_unit_forces(model, teeth) -> list[np.ndarray]:
-    """Per tooth: load vectors (2, ndofs) of 1 N along x and along y spread uniformly
-    over its load patch (group ``tooth{k}_load``)."""
-    forces = tooth_forces(model, teeth)
-    unit = np.zeros((len(forces.teeth), 2, 2 * len(forces.teeth)))
-    for j in range(len(forces.teeth)):
-        unit[j, :, 2 * j:2 * j + 2] = np.eye(2)
-    loads = forces.loads(unit)
-    return [loads[:, 2 * j:2 * j + 2].T for j in range(len(forces.teeth))]
-
-
 def planet_teeth(ring: RingGear, carrier_tooth: int, n_planets: int) -> list[int]:
     """Ring teeth loaded by N equally spaced planets when planet 1 is at ``carrier_tooth``."""
     z = ring.teeth

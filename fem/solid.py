@@ -13,7 +13,6 @@ import functools
 import time
 from dataclasses import dataclass, field
 
-import numpy as np
 
 from hubvib.meshing.fe_mesh import FEMesh
 from hubvib.meshing.to_skfem import to_skfem
@@ -47,21 +46,6 @@ class SolidModel:
     # with thickness 1 the plane model's surface integrals hold in 3D
     facet_basis = PlaneModel.facet_basis
     unit_traction_loads = PlaneModel.unit_traction_loads
-
-    @staticmethod
-    def boundary_means(facet_basis, u: np.ndarray) -> tuple[float, float, float, float]:
-        """Area [m^2], mean u_x, mean u_y [m] and mean rotation about z [rad]
-        (counter-clockwise positive) over the facets of ``facet_basis``."""
-        import skfem
-
-        @skfem.Functional
-        def means(w):
-            x, y, _ = w.x
-            ux, uy, _ = w["u"]
-            return np.array([1.0 + 0 * x, ux, uy, (-y * ux + x * uy) / (x * x + y * y)])
-
-        area, *integrals = means.assemble(facet_basis, u=facet_basis.interpolate(u))
-        return (float(area), *(float(v) / area for v in integrals))
 
 
 def solid_model(mesh: FEMesh, material: Material = Material()) -> SolidModel:

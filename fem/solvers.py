@@ -97,16 +97,6 @@ def factorise_blocks(indptr, indices, values, single: bool = True) -> Factor:
                           lambda: _symmetric_block_matvec(indptr, indices, values))
 
 
-def solve_spd(K, f: np.ndarray, method: str, near_null: np.ndarray | None = None
-              ) -> np.ndarray:
-    """Solve ``K u = f`` (f: (n,) or (n, k)) with the named solver (not ``"auto"``)."""
-    factor = factorise(K, method, near_null)
-    try:
-        return factor.solve(f)
-    finally:
-        factor.free()
-
-
 def _csc_of_symmetric(K):
     """CSC of a symmetric matrix: its CSR arrays read column-wise (no conversion)."""
     if sp.issparse(K) and K.format == "csr":

@@ -2,7 +2,7 @@
 a zoom on the crack tip, and the ring's lowest modes on its supports (SI inside).
 
 The load is the operating one: each of the three planets pushes on its ring
-tooth with the mesh force of the ASSUMED sun torque (``fem.raba118``); planet 1
+tooth with the mesh force of the design's sun torque (``hubvib.design``); planet 1
 sits on the cracked tooth.  Drawn on the corner nodes (linear triangles); the
 deformation is magnified, by the factor printed on the image.
 """

@@ -1,6 +1,8 @@
 """Named parameter sets: the lumped model of each design preset (``hubvib.design``)."""
 from __future__ import annotations
 
+from functools import lru_cache
+
 from .parameters import ParameterError, PlanetaryParameters
 
 
@@ -27,17 +29,15 @@ PRESETS = {"raba118": raba118, "hub4": hub4}
 
 def preset(name: str) -> PlanetaryParameters:
     """Parameters of a named preset (see ``PRESETS``)."""
+    if name not in PRESETS:
+        raise ParameterError(f"unknown preset {name!r}; available: {sorted(PRESETS)}")
+    return _from_design(name)
+
+
+@lru_cache(maxsize=None)
+def _from_design(name: str) -> PlanetaryParameters:
+    """The lumped model of the named design preset (built once; parameters are frozen)."""
     from hubvib.design.build import lumped_parameters
-    from hubvib.design.presets import PRESETS as DESIGNS
+    from hubvib.design.presets import preset_design
 
-    if name not in DESIGNS:
-        raise ParameterError(f"unknown preset {name!r}; available: {sorted(DESIGNS)}")
-    return _cached(name, lumped_parameters)
-
-
-def _cached(name, build, _memo={}):
-    if name not in _memo:
-        from hubvib.design.presets import PRESETS as DESIGNS
-
-        _memo[name] = build(DESIGNS[name]())
-    return _memo[name]
+    return lumped_parameters(preset_design(name))
