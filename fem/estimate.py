@@ -11,7 +11,11 @@ from dataclasses import asdict, dataclass
 
 #: field -> JSON / cache key with its unit
 RING_KEYS = {"c_ru": "c_ru_N_m", "c_ru_error": "c_ru_error_N_m", "c_ru_min": "c_ru_min_N_m",
-             "c_ru_max": "c_ru_max_N_m", "c_r": "c_r_N_m", "c_r_error": "c_r_error_N_m"}
+             "c_ru_max": "c_ru_max_N_m", "c_r": "c_r_N_m", "c_r_error": "c_r_error_N_m",
+             "c_ru_coarse": "c_ru_coarse_N_m", "c_r_coarse": "c_r_coarse_N_m",
+             "c_ru_poor_half": "c_ru_poor_half_N_m", "c_r_poor_half": "c_r_poor_half_N_m"}
+#: a cell whose gmsh min SICN is below this counts as poorly shaped
+USABLE_QUALITY = 0.1
 
 
 @dataclass(frozen=True)
@@ -32,6 +36,17 @@ class RingEstimate:
         Sparse solver used.
     seconds_mesh, seconds_fe, seconds_total : float
         Wall times [s]: fine mesh, fine FE, both levels in all.
+    c_ru_coarse, c_r_coarse : float
+        The same on the coarse level [N/m]: a crack's change of c_ru has the error
+        ``|(fine - fine_intact) - (coarse - coarse_intact)|``, much below ``c_ru_error``
+        where the meshes differ only near the crack.
+    min_quality : float
+        Lowest gmsh min SICN of the fine mesh's cells [-].
+    poor_cells : int
+        Fine-mesh cells with min SICN below ``USABLE_QUALITY``.
+    c_ru_poor_half, c_r_poor_half : float
+        With ``poor_cells_halved``: the fine level again with those cells at half their
+        stiffness [N/m], how much the result hangs on them (NaN otherwise).
     """
 
     c_ru: float
@@ -45,6 +60,12 @@ class RingEstimate:
     seconds_mesh: float
     seconds_fe: float
     seconds_total: float
+    c_ru_coarse: float = float("nan")
+    c_r_coarse: float = float("nan")
+    min_quality: float = float("nan")
+    poor_cells: int = 0
+    c_ru_poor_half: float = float("nan")
+    c_r_poor_half: float = float("nan")
 
     def to_dict(self) -> dict:
         """Keys with units (``c_ru_N_m`` ...), as in the JSON output and the cache."""
@@ -53,15 +74,21 @@ class RingEstimate:
 
 def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
                   solid: bool = False, mesher=None, material=None,
-                  n_planets: int = 3, front=None) -> RingEstimate:
+                  n_planets: int = 3, front=None, carrier_teeth=None,
+                  poor_cells_halved: bool = False) -> RingEstimate:
     """c_ru and c_r on the default mesh (sizes times ``scale``) and on one twice as coarse.
 
-    With ``solid``: the solid ring on the last two ``SOLID_LEVELS``, planet 1 on
-    tooth 0 only.  ``mesher(ring, crack, options)`` replaces the plane mesher
+    With ``solid``: the solid ring on the last two ``SOLID_LEVELS``, by default planet 1
+    on tooth 0 only.  ``mesher(ring, crack, options)`` replaces the plane mesher
     (to share meshes).  ``material`` (default steel) and ``n_planets`` (equally spaced)
     are the design's; ``front`` (``meshing.crack.CrackFront``) shapes a solid crack
-    (default: through the face width).
+    (default: through the face width); ``carrier_teeth`` lists the carrier positions as
+    the tooth planet 1 loads (default: every tooth of one planet pitch in the plane);
+    ``poor_cells_halved`` (solid) solves the fine level once more with the cells below
+    ``USABLE_QUALITY`` at half stiffness.
     """
+    import numpy as np
+
     from hubvib.meshing.crack import CrackFront
     from hubvib.meshing.levels import SOLID_LEVELS, scaled_options, solid_options
     from hubvib.meshing.ring_mesh import ring_mesh
@@ -77,14 +104,27 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
     else:
         levels = {"coarse": scaled_options(2 * scale), "fine": scaled_options(scale)}
     results = {}
+    teeth = [0] if solid and carrier_teeth is None else carrier_teeth
     for name, options in levels.items():
         started = time.perf_counter()
         mesh = (ring_mesh_3d(ring, crack, front or CrackFront(), options=options) if solid
                 else mesher(ring, crack, options))
         meshed = time.perf_counter()
         result = ring_stiffness(ring, mesh, material or Material(), n_planets=n_planets,
-                                carrier_teeth=[0] if solid else None, solver=solver)
+                                carrier_teeth=teeth, solver=solver)
         results[name] = (result, meshed - started, time.perf_counter() - meshed)
+    quality = mesh.cell_quality
+    if quality is None:
+        raise ValueError("the mesh carries no cell quality (a mesh cached by an older hubvib)")
+    poor = quality < USABLE_QUALITY
+    halved = {}
+    if poor_cells_halved:
+        started = time.perf_counter()
+        result = ring_stiffness(ring, mesh, material or Material(), n_planets=n_planets,
+                                carrier_teeth=teeth, solver=solver,
+                                cell_scale=np.where(poor, 0.5, 1.0))
+        halved = dict(c_ru_poor_half=result.c_ru, c_r_poor_half=result.c_r)
+        results["halved"] = (result, 0.0, time.perf_counter() - started)
     fine, coarse = results["fine"][0], results["coarse"][0]
     return RingEstimate(
         c_ru=fine.c_ru, c_ru_error=abs(fine.c_ru - coarse.c_ru),
@@ -92,7 +132,9 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
         c_r=fine.c_r, c_r_error=abs(fine.c_r - coarse.c_r), dofs=fine.dofs,
         solver=fine.seconds["solver"], seconds_mesh=results["fine"][1],
         seconds_fe=results["fine"][2],
-        seconds_total=sum(r[1] + r[2] for r in results.values()))
+        seconds_total=sum(r[1] + r[2] for r in results.values()),
+        c_ru_coarse=coarse.c_ru, c_r_coarse=coarse.c_r,
+        min_quality=float(quality.min()), poor_cells=int(poor.sum()), **halved)
 
 
 @dataclass(frozen=True)

@@ -178,13 +178,15 @@ class BlockMatrix:
         return BlockMatrix(self.pattern, factor * self.values)
 
 
-def elasticity_block_matrix(basis, lam: float, mu: float) -> BlockMatrix:
+def elasticity_block_matrix(basis, lam: float, mu: float, cell_scale=None) -> BlockMatrix:
     """K [N/m] of a scikit-fem ``ElementVector`` basis for Lame constants ``lam``, ``mu`` [Pa],
-    in node blocks."""
+    in node blocks; ``cell_scale`` (one factor per cell) scales each cell's stiffness."""
     dim = basis.mesh.dim()
     pattern = block_pattern(element_nodes(basis), basis.N // dim, dim)
     X, W = basis.quadrature
     grads, dx = scalar_gradients(basis.mesh, basis.elem.elem, X, W)
+    if cell_scale is not None:
+        dx = dx * np.asarray(cell_scale, dtype=float)[:, None]
     return BlockMatrix(pattern, elasticity_blocks(pattern, grads, dx, lam, mu))
 
 

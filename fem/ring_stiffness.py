@@ -262,19 +262,21 @@ def default_carrier_teeth(ring: RingGear, n_planets: int) -> np.ndarray:
 
 
 def ring_stiffness(ring: RingGear, mesh: FEMesh, material: Material = Material(),
-                   n_planets: int = 3, carrier_teeth=None, solver: str = "auto"
-                   ) -> RingStiffness:
+                   n_planets: int = 3, carrier_teeth=None, solver: str = "auto",
+                   cell_scale=None) -> RingStiffness:
     """c_ru at each carrier position (default: every tooth over one planet pitch) and c_r.
 
     A plane mesh is solved in plane stress over the face width; a solid mesh
     in 3D, with the loads spread over the tooth's load surface across the face.
     ``solver``: see ``fem.solvers``.  One factorisation serves every load column.
+    ``cell_scale`` (solid meshes: one stiffness factor per cell) measures how much the
+    result depends on some cells.
     """
     check_ring_input(ring, mesh, n_planets)
     if carrier_teeth is None:
         carrier_teeth = default_carrier_teeth(ring, n_planets)
     t0 = time.perf_counter()
-    model = ring_model(ring, mesh, material)
+    model = ring_model(ring, mesh, material, cell_scale)
     t1 = time.perf_counter()
     loads = ring_loads(model, ring, carrier_teeth, n_planets)
     t2 = time.perf_counter()
@@ -286,8 +288,12 @@ def ring_stiffness(ring: RingGear, mesh: FEMesh, material: Material = Material()
                           "measure": time.perf_counter() - t3, "solver": solution.solver})
 
 
-def ring_model(ring: RingGear, mesh: FEMesh, material: Material = Material()):
-    """Plane-stress model over the face width (plane mesh) or solid model (3D mesh)."""
+def ring_model(ring: RingGear, mesh: FEMesh, material: Material = Material(),
+               cell_scale=None):
+    """Plane-stress model over the face width (plane mesh) or solid model (3D mesh, each
+    cell's stiffness times ``cell_scale`` if given)."""
     if mesh.dim == 2:
+        if cell_scale is not None:
+            raise ValueError("cell_scale applies to solid meshes only")
         return plane_model(mesh, material, ring.gear.face_width, "stress")
-    return solid_model(mesh, material)
+    return solid_model(mesh, material, cell_scale)

@@ -48,8 +48,11 @@ class SolidModel:
     unit_traction_loads = PlaneModel.unit_traction_loads
 
 
-def solid_model(mesh: FEMesh, material: Material = Material()) -> SolidModel:
-    """Assemble K for a tetrahedral mesh; P1 or P2 follows the mesh order."""
+def solid_model(mesh: FEMesh, material: Material = Material(), cell_scale=None) -> SolidModel:
+    """Assemble K for a tetrahedral mesh; P1 or P2 follows the mesh order.
+
+    ``cell_scale`` (one factor per cell, default 1) scales each cell's stiffness: how much
+    a result depends on some cells (e.g. the poorly shaped ones)."""
     import skfem
 
     if mesh.dim != 3:
@@ -63,7 +66,7 @@ def solid_model(mesh: FEMesh, material: Material = Material()) -> SolidModel:
     basis = vector_basis(fe, skfem.ElementTetP2() if mesh.order == 2 else skfem.ElementTetP1(),
                          2 if mesh.order == 2 else 1)
     t2 = time.perf_counter()
-    blocks = elasticity_block_matrix(basis, lam, mu)
+    blocks = elasticity_block_matrix(basis, lam, mu, cell_scale)
     t3 = time.perf_counter()
     return SolidModel(mesh, basis, blocks, material,
                       {"to_skfem": t1 - t0, "basis": t2 - t1, "assembly": t3 - t2})

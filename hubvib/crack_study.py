@@ -173,7 +173,7 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
     if study is not None:
         files += [write_csv(folder / "pod.csv", study.pod.rows()),
                   write_csv(folder / "detectability_map.csv", study.map.rows())]
-    files.append(write_json(folder / "results.json", _plain({
+    files.append(write_json(folder / "results.json", json_safe({
         "scene": scene.name, **provenance(), "parameters": scene.params.to_dict(),
         "crack": {k: v for k, v in asdict(scene.crack).items() if k != "design"},
         "mounting": {"apply": result.model.apply, "c_ru_mount_N_m": result.model.c_ru_mount,
@@ -206,11 +206,9 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
                             folder / "carrier_position.png")]
     renders, fe_renders = [], []
     if scene.renders:
-        from .render import render_modes
-
-        renders = render_modes(scene.params, result.spectra[0], folder / "renders",
-                               gif=scene.gif, vtm=scene.vtm)
-        fe_renders = _render_fe(scene, folder / "renders")
+        renders = _render_modes(scene, result.spectra[0], folder / "renders")
+        # the FE render is of the plane ring; a solid study's crack is part-width
+        fe_renders = _render_fe(scene, folder / "renders") if scene.crack.model == "plane" else []
     files += plots + renders + fe_renders
 
     def pictures(paths):
@@ -236,12 +234,12 @@ def _pod_modes(study) -> list[int]:
     return (modes + [int(i) for i in reaching if i not in modes])[:8]
 
 
-def _plain(value):
+def json_safe(value):
     """JSON-safe: NaN and infinity become None (standard JSON)."""
     if isinstance(value, dict):
-        return {k: _plain(v) for k, v in value.items()}
+        return {k: json_safe(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
+        return [json_safe(v) for v in value]
     if isinstance(value, float) and not math.isfinite(value):
         return None
     return value
@@ -271,16 +269,44 @@ def rendered_depth(sweep) -> float:
     return max(open_ended, default=max(sweep.depths))
 
 
+def _render_modes(scene: Scene, spectrum, folder: Path) -> list[Path]:
+    """Every elastic lumped mode (``render.render_modes``), from the render cache when the
+    same spectrum was rendered before."""
+    from .render_cache import array_digest, cached_render
+
+    def render(target):
+        from .render import render_modes
+
+        return render_modes(scene.params, spectrum, target, gif=scene.gif, vtm=scene.vtm)
+
+    inputs = {"params": scene.params.to_dict(), "omega": array_digest(spectrum.omega),
+              "shapes": array_digest(spectrum.shapes), "kind": list(spectrum.kind),
+              "gif": scene.gif, "vtm": scene.vtm}
+    return cached_render("modes", inputs, folder, render)
+
+
 def _render_fe(scene: Scene, folder: Path) -> list[Path]:
+    """The FE ring at the rendered depth (``fe_render``), from the render cache when the
+    same design, crack and mesh were rendered by this FE stage before."""
     from .crack_sweep import ACCURACY, crack_of
-    from .fe_render import render_fe, ring_fields
+    from .fe_cache import fe_version
+    from .render_cache import cached_render
     from hubvib.meshing.levels import scaled_options
 
     depth = rendered_depth(scene.crack)
     crack = crack_of(scene.crack, depth) if depth > 0 else None
-    fields = ring_fields(scene.crack.reducer, crack,
-                         scaled_options(ACCURACY[scene.crack.accuracy]))
-    return render_fe(fields, folder, vtu=scene.vtm)
+    options = scaled_options(ACCURACY[scene.crack.accuracy])
+
+    def render(target):
+        from .fe_render import render_fe, ring_fields
+
+        return render_fe(ring_fields(scene.crack.reducer, crack, options), target,
+                         vtu=scene.vtm)
+
+    inputs = {"design": scene.crack.reducer.fingerprint(),
+              "crack": None if crack is None else asdict(crack), "options": asdict(options),
+              "vtu": scene.vtm, "fe": fe_version()}
+    return cached_render("fe-ring", inputs, folder, render)
 
 
 def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
@@ -293,7 +319,10 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
     lines = [f"# {scene.name}: ring-crack sensitivity study", "",
              f"hubvib {info['hubvib_version']}, {info['date']}. Ring crack at tooth "
              f"{sweep.tooth} ({sweep.start}, {math.degrees(sweep.angle):g} deg from radial), "
-             f"depths {', '.join(f'{1e3 * d:.3g}' for d in sweep.depths)} mm.", ""]
+             f"depths {', '.join(f'{1e3 * d:.3g}' for d in sweep.depths)} mm"
+             + ("." if sweep.model == "plane" else
+                f" at the deepest point of a semi-elliptic crack of half-length "
+                f"{1e3 * result.fe[-1]['half_length_m']:g} mm in the solid ring."), ""]
     if study is not None:
         lines += sections.short_answer(scene.name, model, study)
         lines += ["## Detectability against the ring mounting", "",
@@ -321,10 +350,19 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
         "ratio cracked/intact is the mean over the cracked tooth's engagement (its minimum is "
         "in `fe_c_rp_engaged_min_ratio`). This ratio is physical (the same tooth pair, cracked "
         "and intact) and applies whatever the mounting. Only planet 1's ring mesh changes, so "
-        "the crack splits the repeated (translational) frequencies.", "",
+        "the crack splits the repeated (translational) frequencies."
+        + ("" if sweep.model == "plane" else
+           f" Solid study, semi-elliptic crack of half-length "
+           f"{1e3 * result.fe[-1]['half_length_m']:g} mm: the ring body's c_ru and c_r are "
+           "the solid ring's; c_rp is the plane ratio carried over by the slice method "
+           "(see the study's top report)."), "",
         "## Validation status", "",
         "- FE c_ru: annulus against the exact k_theta (curved P2 to 1e-7), error of each "
-        "value estimated against a mesh twice as coarse (column `fe_c_ru_error_N_m`).",
+        "value estimated against "
+        + ("a mesh twice as coarse" if sweep.model == "plane" else
+           "the solid level before the default (`hubvib.meshing.levels.SOLID_LEVELS`; the "
+           "top report gives the error of each change)")
+        + " (column `fe_c_ru_error_N_m`).",
         "- Series composition: tends to the FE values when the mounting stiffens and to the "
         "mounting alone when the body does (tests).",
         "- Lumped model: reproduces the published Raba 118/76 spectrum (`hubvib validate`); "

@@ -101,6 +101,22 @@ def atomic_path(path: Path):
         tmp.unlink(missing_ok=True)
 
 
+@contextmanager
+def atomic_folder(path: Path):
+    """A scratch folder beside ``path``; when the block succeeds it takes ``path``'s place
+    whole (a folder already there is removed first).  On failure it is removed and
+    ``path`` is untouched."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    scratch = Path(tempfile.mkdtemp(dir=path.parent, prefix=f".{path.name}."))
+    try:
+        yield scratch
+        shutil.rmtree(path, ignore_errors=True)
+        os.replace(scratch, path)
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+
+
 def write_text(path: Path, text: str) -> Path:
     """Write ``text`` (UTF-8) to ``path`` atomically."""
     with atomic_path(path) as tmp:

@@ -30,6 +30,10 @@ A scene is TOML with these tables (all keys shown; SI units)::
     c_r_mount = 1e8               # intact total equals the preset's c_ru / c_r
     accuracy = "default"          # or "fast" (element sizes doubled)
     workers = 2                   # worker processes for the FE cases
+    model = "plane"               # or "solid": semi-elliptic root cracks in the solid ring,
+    half_lengths = [0.004, 0.008] # [m] one case per depth > 0 and half-length (solid only;
+                                  # depth / half_length 0.125..3); accuracy then applies to
+                                  # the plane cases of the same depths that give c_rp
 
     [detection]                   # optional, crack scenes: record length, scatter, POD
                                   # (every key: hubvib/detection/options.py)
@@ -62,7 +66,7 @@ PARAMETER_NAMES = field_names()
 
 from hubvib.meshing.crack import STARTS
 
-from .crack_sweep import ACCURACY, APPLY, MAX_DEPTHS, CrackSweep
+from .crack_sweep import ACCURACY, APPLY, MAX_DEPTHS, MODELS, CrackSweep
 from .params_input import load_parameters
 
 #: optional tables parsed by the module that uses them: table -> "module:function".
@@ -80,7 +84,7 @@ ALLOWED = {
     "reducer": {"preset", "parameters"},
     "study": {"parameter", "values", "detection_threshold_percent", "method"},
     "crack": {"depths", "through_rim", "tooth", "start", "angle_deg", "apply", "accuracy",
-              "workers", "c_ru_mount", "c_r_mount"},
+              "workers", "c_ru_mount", "c_r_mount", "model", "half_lengths"},
     "output": {"folder", "plots", "renders", "gif", "vtm"},
 }
 
@@ -223,6 +227,9 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
         raise SceneError("[output] renders = true needs a [crack] study (it renders its modes)")
     folder = Path(_string(output, "output", "folder", "hubvib-out"))
     tables = {key: _extension(key, data[key]) for key in EXTENSION_TABLES if key in data}
+    if "signal" in tables and crack is not None and crack.model == "solid":
+        raise SceneError("[signal] needs a plane crack study: the tooth curves of the signal "
+                         "are plane (remove [signal] or set [crack] model = \"plane\")")
     for table in tables.values():  # checks that need the design (e.g. its mesh frequency)
         if hasattr(table, "check_design"):
             table.check_design(design)
@@ -341,10 +348,41 @@ def _crack(table, design) -> CrackSweep:
             raise SceneError(f"[crack] {key} is given, but it applies only with apply = "
                              f"\"series\" (apply = {apply!r})")
         mounts[key] = None if value is None else float(value)
+    model = _string(table, "crack", "model", "plane")
+    if model not in MODELS:
+        raise SceneError(f"[crack] model = {model!r}; allowed: {', '.join(MODELS)}")
     sweep = CrackSweep(tuple(float(d) for d in depths), integers["tooth"], start,
                        math.radians(angle), apply, accuracy, integers["workers"], **mounts,
-                       design=design)
+                       design=design, model=model,
+                       half_lengths=_half_lengths(table, model, start, through))
     return _checked_depths(sweep, through)
+
+
+#: at most this many half-lengths in a solid sweep
+MAX_HALF_LENGTHS = 8
+#: allowed depth / half-length of a semi-elliptic crack (the shipped scene: 0.19..2.25)
+ASPECT_RATIOS = (0.125, 3.0)
+
+
+def _half_lengths(table, model, start, through) -> tuple[float, ...]:
+    """``[crack] half_lengths`` [m] of a solid sweep (the face width is checked with the
+    depths)."""
+    values = table.get("half_lengths")
+    if model == "plane":
+        if values is not None:
+            raise SceneError("[crack] half_lengths applies only with model = \"solid\" "
+                             "(a plane crack runs through the face width)")
+        return ()
+    if start != "root" or through:
+        raise SceneError(f"[crack] model = \"solid\" grows semi-elliptic root cracks inside "
+                         f"the rim: allowed start = \"root\" (got {start!r}) and through_rim "
+                         f"= false (got {str(through).lower()})")
+    if not isinstance(values, list) or not 1 <= len(values) <= MAX_HALF_LENGTHS or not all(
+            isinstance(c, (int, float)) and not isinstance(c, bool) and math.isfinite(c)
+            and c > 0 for c in values) or any(b <= a for a, b in zip(values[:-1], values[1:])):
+        raise SceneError(f"[crack] half_lengths = {values!r}; allowed: 1..{MAX_HALF_LENGTHS} "
+                         "ascending values > 0 [m] with model = \"solid\"")
+    return tuple(float(c) for c in values)
 
 
 def _checked_depths(sweep: CrackSweep, through: bool) -> CrackSweep:
@@ -361,6 +399,25 @@ def _checked_depths(sweep: CrackSweep, through: bool) -> CrackSweep:
                          f"(the ring of {sweep.reducer.name!r} has {sweep.reducer.ring.teeth} teeth)")
     ring = ring_gear(sweep.reducer)
     depths = list(sweep.depths)
+    if sweep.half_lengths:
+        from hubvib.meshing.crack import MIN_LIGAMENT
+
+        limit = sweep.reducer.face_width / 2 - MIN_LIGAMENT
+        if sweep.half_lengths[-1] > limit:
+            raise SceneError(f"[crack] half_lengths = {list(sweep.half_lengths)!r}; allowed "
+                             f"values up to {limit:.6g} m (half the {sweep.reducer.face_width:g} "
+                             f"m face width less {1e3 * MIN_LIGAMENT:g} mm)")
+        if len(depths) < 2:
+            raise SceneError("[crack] depths = [0.0]: model = \"solid\" needs a depth > 0")
+        low, high = ASPECT_RATIOS
+        for depth in depths[1:]:
+            for half in sweep.half_lengths:
+                if not low <= depth / half <= high:
+                    raise SceneError(
+                        f"[crack] depth {depth!r} m with half_length {half!r} m: allowed "
+                        f"depth / half_length {low:g}..{high:g} (the front's ends curve with "
+                        "radius depth^2 / half_length or half_length^2 / depth, which the "
+                        "mesh must resolve)")
     if through and sweep.start == "root":
         try:
             limit = crack_of(sweep, 0.0).through_depth(ring)
@@ -373,6 +430,10 @@ def _checked_depths(sweep: CrackSweep, through: bool) -> CrackSweep:
             crack_of(sweep, depth).path(ring)
         except GearGeometryError as exc:
             raise SceneError(f"[crack] depths[{i}]: {exc}") from None
+        if sweep.model == "solid" and crack_of(sweep, depth).is_through(ring):
+            raise SceneError(f"[crack] depths[{i}] = {depth!r} m: a semi-elliptic crack must "
+                             f"stay inside the rim, allowed 0..{crack_of(sweep, 0.0).through_depth(ring):.6g} "
+                             "m (exclusive)")
     return replace(sweep, depths=tuple(depths))
 
 

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from .fe_mesh import FEMesh
 
-VERSION = 3  # bump when the mesher changes what a given parameter set produces
+VERSION = 4  # bump when the mesher changes what a given parameter set produces
 
 
 def root_folder() -> Path:

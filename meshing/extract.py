@@ -49,4 +49,4 @@ def extract(gmsh, groups: dict[str, list[int]], dim: int) -> tuple[FEMesh, np.nd
     boundaries = {group: facet_elements(entities) for group, entities in groups.items()}
     info = dict(nodes=int(len(points)), elements=int(len(cells)),
                 min_quality=float(quality.min()), mean_quality=float(quality.mean()))
-    return FEMesh(points, cells, name, boundaries, {}, info), index
+    return FEMesh(points, cells, name, boundaries, {}, info, quality), index

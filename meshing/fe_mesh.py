@@ -39,6 +39,9 @@ class FEMesh:
         Named node sets (crack tip, crack mouth).
     info : dict
         Parameters and measures (JSON-serialisable).
+    cell_quality : ndarray (n_cells,) or None
+        gmsh's minimum scaled Jacobian (min SICN) of each cell as meshed (curved cells
+        with their curvature), 1 for a perfect cell, <= 0 for an inverted one.
     """
 
     points: np.ndarray
@@ -47,6 +50,7 @@ class FEMesh:
     boundaries: dict = field(default_factory=dict)
     points_of: dict = field(default_factory=dict)
     info: dict = field(default_factory=dict)
+    cell_quality: np.ndarray | None = None
 
     @property
     def dim(self) -> int:
@@ -70,6 +74,8 @@ class FEMesh:
         arrays = {"points": self.points, "cells": self.cells}
         arrays.update({f"boundary:{k}": v for k, v in self.boundaries.items()})
         arrays.update({f"points_of:{k}": v for k, v in self.points_of.items()})
+        if self.cell_quality is not None:
+            arrays["cell_quality"] = self.cell_quality
         meta = json.dumps({"cell_type": self.cell_type, "info": self.info})
         from hubvib.output import atomic_path
 
@@ -85,4 +91,6 @@ class FEMesh:
                                    if k.startswith("boundary:")},
                        points_of={k.split(":", 1)[1]: data[k] for k in data.files
                                   if k.startswith("points_of:")},
-                       info=meta["info"])
+                       info=meta["info"],
+                       cell_quality=data["cell_quality"] if "cell_quality" in data.files
+                       else None)

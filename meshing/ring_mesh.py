@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
@@ -118,7 +118,7 @@ def with_info(mesh: FEMesh, started: float, ring, options, crack, crack_path, **
                 crack=None if crack is None else asdict(crack),
                 crack_path=None if crack_path is None else crack_path.tolist(),
                 density=ring.density, **extra)
-    return FEMesh(mesh.points, mesh.cells, mesh.cell_type, mesh.boundaries, mesh.points_of, info)
+    return replace(mesh, info=info)
 
 
 def check_load_patch(body: ToothedBody, options: MeshOptions) -> None:
@@ -360,5 +360,4 @@ class RingBuilder:
             points_of["crack_tip"] = index[tip_nodes]
             points_of["crack_mouth"] = np.nonzero(
                 np.hypot(*(mesh.points - self.path[0]).T) < 1e-12 * self.ring.outer_radius)[0]
-        return FEMesh(mesh.points, mesh.cells, mesh.cell_type, mesh.boundaries, points_of,
-                      mesh.info)
+        return replace(mesh, points_of=points_of)

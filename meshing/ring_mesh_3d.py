@@ -258,7 +258,8 @@ class _SolidBuilder(RingBuilder):
             points_of["crack_mouth"] = faces[
                 np.hypot(*(points[faces, :2] - self.path[0]).T) < 1e-9]
         info = dict(mesh.info, straightened=self.straightened)
-        return FEMesh(points, cells, mesh.cell_type, boundaries, points_of, info)
+        return FEMesh(points, cells, mesh.cell_type, boundaries, points_of, info,
+                      mesh.cell_quality)
 
 
 def _weld(points, cells, boundaries, corners, front):
@@ -285,15 +286,17 @@ def _straighten_inverted(gmsh, keep_curves=(), rounds: int = 5) -> int:
     mid-node pulled onto the true surface inverts the element.  Putting those
     mid-nodes back at their edge midpoints (a geometric error of the order
     h^2 / (8 R), the same order as the mesh's own) keeps every element valid.
-    Edges on ``keep_curves`` (the crack front) stay exact.  Returns the number of
-    elements straightened.
+    Edges on ``keep_curves`` (the crack front) stay exact unless that is not enough: a
+    shallow, long front (its ends curved with radius depth^2 / half-length) may need its
+    own edges straight too.  Returns the number of elements straightened.
     """
     model = gmsh.model
-    keep = {(1, c) for c in keep_curves}
+    front = {(1, c) for c in keep_curves}
     types, element_tags, nodes = model.mesh.getElements(3)
     tags, cells = element_tags[0], nodes[0].reshape(-1, 10)
     fixed = 0
-    for _ in range(rounds):
+    for attempt in range(2 * rounds):
+        keep = front if attempt < rounds else set()
         bad = np.nonzero(model.mesh.getElementQualities(tags, "minSICN") <= 0)[0]
         if not len(bad):
             return fixed

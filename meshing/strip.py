@@ -8,6 +8,8 @@ middle) and ``roller`` (top right corner), ``crack_tip``.
 """
 from __future__ import annotations
 
+from dataclasses import replace
+
 from .extract import extract_plane
 from .fe_mesh import FEMesh
 from .gear import GearGeometryError
@@ -66,4 +68,4 @@ def edge_crack_strip(width: float, half_length: float, depth: float, size: float
         if tip is not None:
             points_of["crack_tip"] = index[model.mesh.getNodes(0, tip)[0]]
     info = dict(mesh.info, width=W, half_length=L, depth=depth, size=size, tip_size=tip_size)
-    return FEMesh(mesh.points, mesh.cells, mesh.cell_type, mesh.boundaries, points_of, info)
+    return replace(mesh, points_of=points_of, info=info)

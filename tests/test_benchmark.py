@@ -112,3 +112,21 @@ def test_quick_benchmark_runs():
     assert figures["crack_case_max_rel_difference"] < 1e-9
     assert figures["c_ru_2d_rel_error"] < 1e-3
     json.dumps(figures, allow_nan=False)
+
+
+def test_main_job_and_test_command_failures_are_named_not_timed(monkeypatch):
+    import subprocess
+
+    import hubvib.validation.benchmark as benchmark
+
+    def failing(command, **kwargs):
+        return subprocess.CompletedProcess(command, 2, "1 failed, 9 passed\n",
+                                           "hubvib: error: no display\n")
+
+    monkeypatch.setattr(subprocess, "run", failing)
+    assert benchmark.main_job() == {"main_job_fresh_seconds": None,
+                                    "main_job_cached_seconds": None,
+                                    "main_job_skipped": "hubvib run (fresh) failed: hubvib: "
+                                                        "error: no display"}
+    assert benchmark.readme_test_command() == {
+        "tests_seconds": None, "tests_skipped": "the tests failed: 1 failed, 9 passed"}

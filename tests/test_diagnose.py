@@ -145,6 +145,8 @@ def test_missing_file_and_scene_without_crack(tmp_path, capsys):
     path.write_text("frequency_hz\n53.5\n")
     assert main(["diagnose", "--scene", "raba118_c_ru", "--measured", str(path)]) == 2
     assert "has no [crack] study" in capsys.readouterr().err
+    assert main(["diagnose", "--scene", "raba118_crack_3d", "--measured", str(path)]) == 2
+    assert "needs a plane crack sweep" in capsys.readouterr().err
 
 
 def test_parse_keeps_file_lines():

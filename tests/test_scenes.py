@@ -7,24 +7,28 @@ from hubvib.scene import SceneError, default_scene_text, load_scene, parse_scene
 
 SCENES = sorted((Path(__file__).parents[1] / "scenes").glob("*.toml"))
 FE_SCENES = [s for s in SCENES if "[crack]" in s.read_text()]
+#: run by test_crack_growth.test_shipped_3d_scene_on_a_local_cluster (some 10 minutes)
+SOLID_SCENES = [s for s in SCENES if 'model = "solid"' in s.read_text()]
 
 
 def test_shipped_scenes_are_the_scene_files():
     """What an installed package ships (importlib.resources, ``hubvib scenes``) is exactly
     the TOML files of scenes/, the default and an FE scene among them, each described by a
-    first comment line: so the parametrised run below covers every shipped scene."""
+    first comment line: so the parametrised run below (and the solid crack-growth test)
+    covers every shipped scene."""
     from hubvib.scene import DEFAULT_SCENE, shipped_scenes
 
     shipped = shipped_scenes()
     assert sorted(shipped) == [s.stem for s in SCENES], "package data vs scenes/*.toml"
-    assert DEFAULT_SCENE in shipped and FE_SCENES
+    assert DEFAULT_SCENE in shipped and FE_SCENES and SOLID_SCENES
     for scene in SCENES:
         first = scene.read_text(encoding="utf-8").splitlines()[0]
         assert first.startswith("# ") and shipped[scene.stem], f"{scene.name}: no description"
 
 
 @pytest.mark.parametrize("scene", [pytest.param(s, marks=pytest.mark.slow) if s in FE_SCENES
-                                   else s for s in SCENES], ids=[s.stem for s in SCENES])
+                                   else s for s in SCENES if s not in SOLID_SCENES],
+                         ids=[s.stem for s in SCENES if s not in SOLID_SCENES])
 def test_every_scene_runs(scene, tmp_path, capsys, monkeypatch):
     monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path / "cache"))
     out = tmp_path / "out"

@@ -16,7 +16,10 @@ interleaved, and the ratio is the figure to trust.  Baselines:
   factorised separately (``estimate_ring`` + ``engaged_ring_mesh``, as the crack
   sweep did) against one shared factorisation (``estimate_crack_case``);
 - the lumped and signal stages report their own baselines
-  (``hubvib.lumped.batch.benchmark_batch``, ``hubvib.signal.benchmark_signal``).
+  (``hubvib.lumped.batch.benchmark_batch``, ``hubvib.signal.benchmark_signal``);
+- the main job (``hubvib run``, the default scene) run again with its FE cases and
+  renders cached, against the same job from an empty cache; the README's test command
+  (from a source checkout) is timed beside it.
 
 Timings are measured here, never asserted in tests.
 """
@@ -474,8 +477,65 @@ def run_benchmark(quick: bool = False, progress=None) -> dict:
     if why:
         out["signal_skipped"] = why
     say("signal: " + (why or "done"))
+    if quick:
+        out.update(main_job_fresh_seconds=None, main_job_cached_seconds=None,
+                   tests_seconds=None, main_job_skipped=skipped, tests_skipped=skipped)
+    else:
+        out.update(main_job(say))
+        out.update(readme_test_command(say))
     out["seconds_total"] = time.perf_counter() - started
     return out
+
+
+def main_job(progress=None) -> dict:
+    """``hubvib run`` (the default scene) in a subprocess from an empty cache, then again
+    with its FE cases and renders cached [s]."""
+    import os
+    import subprocess
+    import sys
+    import tempfile
+
+    import json
+
+    say = progress or (lambda line: None)
+    out = {"main_job_fresh_seconds": None, "main_job_cached_seconds": None}
+    with tempfile.TemporaryDirectory() as folder:
+        env = dict(os.environ, HUBVIB_CACHE=os.path.join(folder, "cache"))
+        for name in ("fresh", "cached"):
+            started = time.perf_counter()
+            run = subprocess.run([sys.executable, "-m", "hubvib.cli", "run", "--json", "--out",
+                                  os.path.join(folder, name)], env=env, capture_output=True,
+                                 text=True)
+            if run.returncode != 0:
+                last = (run.stderr.strip().splitlines() or ["no message"])[-1]
+                return dict(out, main_job_skipped=f"hubvib run ({name}) failed: {last}")
+            computed = json.loads(run.stdout)["fe_cases_computed"]
+            if name == "cached" and computed:
+                return dict(out, main_job_skipped=f"the rerun computed {computed} FE cases")
+            out[f"main_job_{name}_seconds"] = time.perf_counter() - started
+            say(f"main job, {name}: {out[f'main_job_{name}_seconds']:.1f} s")
+    return out
+
+
+def readme_test_command(progress=None) -> dict:
+    """The README's test command (``python -m pytest``) in the source checkout [s]."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    say = progress or (lambda line: None)
+    root = Path(__file__).resolve().parents[1]
+    if not (root / "tests").is_dir() or not (root / "pyproject.toml").is_file():
+        return {"tests_seconds": None, "tests_skipped": "no source checkout (tests/)"}
+    started = time.perf_counter()
+    run = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider"],
+                         cwd=root, capture_output=True, text=True)
+    seconds = time.perf_counter() - started
+    last = (run.stdout.strip().splitlines() or ["no output"])[-1]
+    if run.returncode != 0:
+        return {"tests_seconds": None, "tests_skipped": f"the tests failed: {last}"}
+    say(f"tests: {last}")
+    return {"tests_seconds": seconds, "tests_summary": last}
 
 
 # ---- the README's tables (python -m hubvib.validation.benchmark) ---------------------------

@@ -21,6 +21,10 @@ ROWS = (
     ("solid_solve_peak_memory_gb", "peak memory of the 3D solve alone", "GB",
      "solid_solve_peak_memory_gb_previous"),
     ("lumped_points_per_second", "lumped spectra per second (batched)", "1/s", None),
+    ("main_job_fresh_seconds", "main job (hubvib run), empty cache", "s", None),
+    ("main_job_cached_seconds", "main job, FE cases and renders cached", "s",
+     "main_job_fresh_seconds"),
+    ("tests_seconds", "default test command (python -m pytest)", "s", None),
 )
 
 
@@ -28,7 +32,8 @@ def add_parser(sub) -> None:
     p = sub.add_parser("benchmark", help="FE speed and memory against baselines run beside "
                        "them (CalculiX, the previous FE path, separate solves)")
     p.add_argument("--quick", action="store_true",
-                   help="skip the 3D race and the memory probes (a smoke test, ~1 min)")
+                   help="skip the 3D race, the memory probes, the main job and the tests "
+                   "(a smoke test, ~1 min)")
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
 
@@ -50,9 +55,10 @@ def run(args) -> int:
         ratio = f"{base / value:7.2f}" if base else f"{'':7}"
         base_text = f"{base:11.3g}" if base else f"{'':11}"
         print(f"{label + (f' [{unit}]' if unit else ''):<52} {value:11.3g} {base_text} {ratio}")
-    for key in ("solid_skipped", "calculix_skipped", "lumped_skipped", "signal_skipped"):
+    for key in ("solid_skipped", "calculix_skipped", "lumped_skipped", "signal_skipped",
+                "main_job_skipped", "tests_skipped"):
         if key in figures:
-            print(f"{key.split('_')[0]}: {figures[key]}")
+            print(f"{key.removesuffix('_skipped').replace('_', ' ')}: {figures[key]}")
     print("ratio = baseline / ours (time or memory), measured in this run; seconds are wall "
           "times on a machine whose cores may be shared")
     return 0

@@ -53,6 +53,8 @@ def run(args) -> int:
     with output_set(folder) as staged:
         result = (_crack_study if scene.crack is not None else _lumped_study)(scene, staged)
     files = [folder / Path(f).relative_to(staged) for f in result.files]
+    if scene.crack is not None and scene.crack.model == "solid":
+        return _print_growth(scene, result, folder, files, args.json)
     if scene.crack is not None:
         return _print_crack(scene, result, folder, files, args.json)
     return _print_lumped(scene, result, folder, files, args.json)
@@ -70,9 +72,24 @@ def _lumped_study(scene, staged: Path):
     return result
 
 
+def _crack_growth(scene, staged: Path):
+    from hubvib.crack_growth import run_crack_growth, write_crack_growth
+
+    started = time.perf_counter()
+    result = run_crack_growth(scene)
+    stage(f"FE stage ({result.computed} of {len(result.rows) + len(result.plane)} cases "
+          f"computed) and lumped spectra of {len(result.studies)} half-lengths", started)
+    started = time.perf_counter()
+    write_crack_growth(result, staged)
+    stage("tables, plots and reports", started)
+    return result
+
+
 def _crack_study(scene, staged: Path):
     from hubvib.crack_study import run_crack_study, write_crack_study
 
+    if scene.crack.model == "solid":
+        return _crack_growth(scene, staged)
     started = time.perf_counter()
     result = run_crack_study(scene)
     stage(f"FE stage ({result.computed} of {len(result.fe)} cases computed) and lumped "
@@ -115,6 +132,28 @@ def _print_lumped(scene, result, folder: Path, files: list[Path], as_json: bool)
         first = "not reached" if r["detectable_at"] is None else f"{r['detectable_at']:.4g}"
         print(f"{r['mode']:>4} {r['kind']:<13} {r['omega_base_rad_s']:>13.3f} "
               f"{last.percent[r['mode'] - 1]:>24.3f}  {first}")
+    print(f"\nreport: {folder / 'report.md'}")
+    return 0
+
+
+def _print_growth(scene, result, folder: Path, files: list[Path], as_json: bool) -> int:
+    grid = result.grid_rows()
+    if as_json:
+        print(json_text({"scene": scene.name, "folder": str(folder),
+                         "files": [str(f) for f in files],
+                         "fe_cases_computed": result.computed, "grid": grid}))
+        return 0
+    print(f"scene {scene.name!r}: semi-elliptic ring root cracks, {len(grid) - 1} solid cases "
+          f"({result.computed} FE cases computed, the others cached)")
+    print(f"{'depth [mm]':>10} {'half-length [mm]':>16} {'c_ru change [%]':>16} {'+-':>7} "
+          f"{'1/2 poor':>8} {'plane through [%]':>17} {'c_rp ratio':>10}")
+    for r in grid[1:]:
+        print(f"{r['depth_mm']:>10.3g} {r['half_length_mm']:>16.3g} "
+              f"{r['c_ru_change_percent']:>+16.3f} {r['c_ru_change_error_percent']:>7.3f} "
+              f"{r['c_ru_change_poor_cells_percent']:>+8.3f} "
+              f"{r['plane_through_c_ru_change_percent']:>+17.3f} {r['c_rp_slice_ratio']:>10.4f}")
+    print("+-: fine minus coarse level; 1/2 poor: the change with the cells of min SICN < 0.1 "
+          "at half stiffness (take the larger)")
     print(f"\nreport: {folder / 'report.md'}")
     return 0
 

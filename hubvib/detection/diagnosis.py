@@ -296,6 +296,10 @@ def diagnose_scene(scene, measured: Measured, progress: bool = True,
     if scene.crack is None:
         raise ValueError(f"--scene {scene.name!r} has no [crack] study: diagnosis needs the "
                          "crack sweep it compares the measurement with")
+    if scene.crack.model != "plane":
+        raise ValueError(f"--scene {scene.name!r} is a solid crack-growth study (depth x "
+                         "half-length): diagnosis needs a plane crack sweep, one crack "
+                         "per depth ([crack] model = \"plane\")")
     options = detection_options(scene)
     fe, _ = run_fe_cases(scene.crack, progress)
     model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method)
