@@ -6,10 +6,11 @@ ring tooth, centred on the face width: depth ``a`` at its deepest point, mouth
 carrier position of one planet pitch) and ``c_r`` with their error estimates
 (``fem.estimate.estimate_ring``).  The cracked tooth's mesh stiffness is not
 solved in 3D: the slice method (the face width cut into independent slices in
-parallel, each with the plane c_rp ratio at its local depth ``a(z)``; Chen &
-Shao 2011) carries the plane cases of the same depths over to the part-width
-crack.  Slices that do not hold each other up are softer than the solid tooth,
-so the slice ratio overstates the crack's effect on c_rp.
+parallel, each with the plane c_rp ratio at its local depth ``a(z)``; Z. Chen,
+Y. Shao, Engineering Failure Analysis 18 (2011) 2149-2164) carries the plane
+cases of the same depths over to the part-width crack.  Slices that do not hold
+each other up are softer than the solid tooth, so the slice ratio overstates the
+crack's effect on c_rp.
 
 Per half-length the lumped and detection stages and the report are those of the
 plane study (``hubvib.crack_study``), in a folder of their own.
