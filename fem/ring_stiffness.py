@@ -78,14 +78,15 @@ class ToothForces:
         return sum(b @ on_facet[:, i, :] for i, b in enumerate(self.per_facet))
 
 
-def tooth_forces(model, teeth) -> ToothForces:
-    """``ToothForces`` of ``teeth`` on ``model`` (one facet basis for all of them)."""
-    import scipy.sparse as sp
+def _tooth_groups(model, teeth, part: str):
+    """The facets of groups ``tooth{k}_{part}`` of ``teeth`` in one facet basis: the teeth
+    as a tuple, the basis, each facet's index in ``teeth`` and each group's length [m]
+    (plane) or area [m^2] (solid)."""
     import skfem
 
     teeth = tuple(int(k) for k in teeth)
-    groups = [f"tooth{k}_load" for k in teeth]
-    patch = model.facet_basis(groups)
+    groups = [f"tooth{k}_{part}" for k in teeth]
+    basis = model.facet_basis(groups)
     owner = np.repeat(np.arange(len(groups)),
                       [len(model.basis.mesh.boundaries[g]) for g in groups])
 
@@ -93,7 +94,17 @@ def tooth_forces(model, teeth) -> ToothForces:
     def size(w):
         return 1.0 + 0.0 * w.x[0]
 
-    patch_size = np.bincount(owner, size.elemental(patch)) * model.thickness  # [m^2]
+    return teeth, basis, owner, np.bincount(owner, size.elemental(basis),
+                                            minlength=len(groups))
+
+
+def tooth_forces(model, teeth) -> ToothForces:
+    """``ToothForces`` of ``teeth`` on ``model`` (one facet basis for all of them)."""
+    import scipy.sparse as sp
+    import skfem
+
+    teeth, patch, owner, size = _tooth_groups(model, teeth, "load")
+    patch_size = size * model.thickness  # [m^2]
     per_facet = []
     for i in range(2):
         @skfem.LinearForm
@@ -164,17 +175,9 @@ def root_lands(model, teeth) -> RootLands:
     import scipy.sparse as sp
     import skfem
 
-    teeth = tuple(int(k) for k in teeth)
-    groups = [f"tooth{k}_root" for k in teeth]
-    lands = model.facet_basis(groups)
-    owner = np.repeat(np.arange(len(groups)),
-                      [len(model.basis.mesh.boundaries[g]) for g in groups])
+    teeth, lands, owner, size = _tooth_groups(model, teeth, "root")
     per_tooth = sp.csr_matrix((np.ones(len(owner)), (np.arange(len(owner)), owner)),
-                              shape=(lands.nelems, len(groups)))
-
-    @skfem.Functional
-    def size(w):
-        return 1.0 + 0.0 * w.x[0]
+                              shape=(lands.nelems, len(teeth)))
 
     def functional(density):
         form = skfem.LinearForm(lambda v, w: density(v, w.x))
@@ -185,7 +188,7 @@ def root_lands(model, teeth) -> RootLands:
         return (per_tooth.T @ per_facet).tocsr()
 
     return RootLands(
-        teeth, np.bincount(owner, size.elemental(lands)),
+        teeth, size,
         functional(lambda v, x: v[0]), functional(lambda v, x: v[1]),
         functional(lambda v, x: (-x[1] * v[0] + x[0] * v[1]) / (x[0] ** 2 + x[1] ** 2)))
 
