@@ -9,6 +9,10 @@ the dynamic ring-mesh force of planet ``i`` reaches a sensor fixed at angle
     a(t) = (1 / m_r) sum_i w(theta_i(t) - theta_s) F_i(t) + rho (x_r'' cos theta_s
            + y_r'' sin theta_s),
 
+``F_i`` the dynamic ring-mesh force plus the deviation of the planet's static force
+from the mean (unequal load sharing: a load turning with the carrier; zero when the
+planets share equally),
+
 with ``w`` a Hann window of half-width one planet spacing ``2 pi / N`` (the
 windows of all planets add up to 1 at every instant), ``1 / m_r`` the ring
 mass's inertance [1/kg] as the path gain, and ``rho`` the weight of the ring's
@@ -42,7 +46,9 @@ def sensor_signal(sim: Simulation, sensor_angle: float, rigid_path: float = 0.0)
     params = sim.dynamics.params
     theta = sim.carrier_angle[:, None] + np.array(params.theta)[None, :]
     window = hann_window(theta - sensor_angle, params.n_planets)
-    signal = (window * sim.ring_forces).sum(axis=1) / params.m_r
+    static = sim.dynamics.static_force[params.n_planets:]
+    forces = sim.ring_forces + (static - static.mean())[None, :]
+    signal = (window * forces).sum(axis=1) / params.m_r
     if rigid_path:
         signal = signal + rigid_path * (sim.ring_acceleration[:, 0] * math.cos(sensor_angle)
                                         + sim.ring_acceleration[:, 1] * math.sin(sensor_angle))

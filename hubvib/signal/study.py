@@ -17,7 +17,7 @@ import numpy as np
 
 from hubvib.lumped import natural_modes
 
-from .indicators import INDICATORS, GearOrders, indicators, residual
+from .indicators import INDICATORS, GearOrders, ensemble_variances, indicators
 from .mesh_curves import MeshCurves
 from .mesh_phase import design_phasing, design_teeth
 from .options import SignalOptions
@@ -95,7 +95,8 @@ class SignalStudy:
 
     @property
     def gear(self) -> GearOrders:
-        return GearOrders(self.ring_teeth, self.n_planets, self.options.mesh_harmonics)
+        return GearOrders(self.ring_teeth, self.n_planets, self.options.mesh_harmonics,
+                          self.options.indicator_max_order)
 
     def monotone(self) -> list[dict]:
         """Indicators whose seed-mean moves the same way at every depth step."""
@@ -162,7 +163,8 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
         curves = curves_for(scene, options, progress)
     phasing = design_phasing(scene.design)
     tooth = scene.crack.tooth if scene.crack is not None else 0
-    gear = GearOrders(teeth["ring"], params.n_planets, options.mesh_harmonics)
+    gear = GearOrders(teeth["ring"], params.n_planets, options.mesh_harmonics,
+                      options.indicator_max_order)
     rules = harmonic_rules(params.n_planets, scene.design)
     depths, sims = [], []
     for c in curves:
@@ -179,14 +181,17 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
     clean = [sampled(d.revolution, carrier_hz, options.sample_rate_hz, duration) for d in depths]
     noise_rms = options.noise_level * float(np.sqrt(np.mean(clean[0][1] ** 2)))
     points = 2 ** int(math.ceil(math.log2(options.sample_rate_hz / carrier_hz)))
-    variances = []
+    variances, envelopes = [], []
     for d, (t, values) in zip(depths, clean):
         records = [add_noise(values, noise_rms, seed) for seed in range(options.noise_seeds)]
         d.time, d.record = t, records[0]
         angle = 2 * math.pi * carrier_hz * t
         d.tsa = [angle_domain(angle, r, points).synchronous_average() for r in records]
-        variances += [float(np.var(residual(tsa, gear))) for tsa in d.tsa]
-        d.values = [indicators(tsa, gear, variances) for tsa in d.tsa]
+        for tsa in d.tsa:
+            r, s = ensemble_variances(tsa, gear)
+            variances.append(r)
+            envelopes.append(s)
+        d.values = [indicators(tsa, gear, variances, envelopes) for tsa in d.tsa]
     study = SignalStudy(scene.name, options, carrier_hz, carrier_hz * teeth["ring"],
                         params.n_planets, sims[0].step, sims[0].steps_per_revolution, points,
                         noise_rms, depths, crack_tooth=tooth, ring_teeth=teeth["ring"])
