@@ -113,7 +113,11 @@ def test_signal_command_writes_signal_spectrum_and_indicators(tmp_path, capsys, 
     assert data["sample_rate_hz"] == 20000.0 and len(data["depths"]) == 2
     for depth in data["depths"]:
         assert set(depth["indicators"]) == {"rms", "kurtosis", "crest_factor", "fm0", "fm4",
-                                            "na4", "ser"}
+                                            "na4", "nb4", "m6a", "m8a", "er", "ser"}
+        assert depth["non_multiple_fraction"] < 1e-18, \
+            "no errors: the energy off the multiples of N is round-off (McFadden & Smith 1985)"
+        assert min(depth["contact"]["min_force_ratio"].values()) > 0, "no contact loss here"
+        assert max(depth["contact"]["separated_fraction"].values()) == 0
         with open(depth["signal_csv"]) as handle:
             rows = list(csv.DictReader(handle))
         assert list(rows[0]) == ["time_s", "acceleration_m_s2"]
@@ -124,6 +128,10 @@ def test_signal_command_writes_signal_spectrum_and_indicators(tmp_path, capsys, 
     assert rate == 20000 and wav.size == len(rows)
     assert data["monotone_indicators"], "a softer cracked tooth must move an indicator"
     assert data["checks"]["non_multiple_of_N_relative"] < 1e-9
+    assert [r["fraction"] for r in data["non_multiple_fraction"]] == \
+        [d["non_multiple_fraction"] for d in data["depths"]]
+    np.testing.assert_allclose(data["load_sharing"], 1.0, atol=1e-9,
+                               err_msg="no errors: equal load sharing")
     report = (out / "report.md").read_text()
     assert "## Vibration signature" in report and "Monotone with depth" in report
     for name in ("order_spectrum.csv", "indicators.csv", "harmonics.csv", "results.json"):

@@ -28,10 +28,11 @@ bearings; each planet a sun mesh ``k_s`` and a ring mesh ``k_r`` in series,
 ``k_sr = k_s k_r / (k_s + k_r)``, the planet's own rotation free): planet i's mesh
 force is
 
-    F_i = F_mean + k_sr [(cos a_s + cos a_r)(e_t,i - mean e_t)
+    F_i = F_mean - k_sr [(cos a_s + cos a_r)(e_t,i - mean e_t)
                          + (sin a_s - sin a_r)(e_r,i - mean e_r)],
 
-``F_mean = T_s / (N r_bs)``.  With a floating sun (``c_s = 0``) and three planets the
+``F_mean = T_s / (N r_bs)`` (magnitudes; with the sun driven in the sense of the
+planet angle, a pin ahead of its place unloads its planet).  With a floating sun (``c_s = 0``) and three planets the
 sun's force balance leaves only equal mesh forces (three lines of action 120 deg
 apart), whatever the errors (e.g. Kahraman 1994, "Load sharing characteristics of
 planetary transmissions", Mech. Mach. Theory 29).
@@ -130,7 +131,7 @@ def rigid_centre_sharing(params: PlanetaryParameters, errors: StageErrors, sun_t
     mean = sun_torque / (params.n_planets * params.d_s / 2)
     c_t = math.cos(params.alpha_s) + math.cos(params.alpha_r)
     c_r = math.sin(params.alpha_s) - math.sin(params.alpha_r)
-    return mean + k_sr * (c_t * (tangential - tangential.mean())
+    return mean - k_sr * (c_t * (tangential - tangential.mean())
                           + c_r * (radial - radial.mean()))
 
 

@@ -75,8 +75,14 @@ def to_json(study: SignalStudy, files: dict) -> dict:
                     "signal_wav": str(files["wav"][i]),
                     "indicators": summary[1e3 * d.depth],
                     "top_harmonics": [line.to_dict() for line in d.lines],
-                    "simulation_seconds": d.seconds}
+                    "simulation_seconds": d.seconds,
+                    "non_multiple_fraction": d.non_multiple_fraction,
+                    "contact": d.contact}
                    for i, d in enumerate(study.depths)],
+        "non_multiple_fraction": [{"depth_mm": 1e3 * d.depth,
+                                   "fraction": d.non_multiple_fraction}
+                                  for d in study.depths],
+        "load_sharing": study.load_sharing,
         "monotone_indicators": study.monotone(),
         "checks": study.checks,
         "files": [str(p) for p in files["all"]],
@@ -148,6 +154,8 @@ def report(study: SignalStudy, pictures: list[str]) -> str:
         lines.append(f"- Planet phasing: {checks['cancellation_rule']}. Intact, the largest "
                      f"line at an order that is not a multiple of N is "
                      f"{checks['non_multiple_of_N_relative']:.2g} of the largest line.")
+    if "load_sharing_rule" in checks:
+        lines.append(f"- Load sharing: {checks['load_sharing_rule']}.")
     halving = checks.get("step_halving")
     if halving:
         lines.append(f"- Halving the time step changes the intact order amplitudes up to order "
@@ -155,6 +163,28 @@ def report(study: SignalStudy, pictures: list[str]) -> str:
                      f"by at most {halving['relative_change']:.2g} of the largest (tolerance "
                      f"0.02); up to the Nyquist order {halving['full_order']}, where the highest "
                      f"modes ring, by {halving['full_band_relative_change']:.2g}.")
+    errors = o.errors
+    sharing = ", ".join(f"{v:.4g}" for v in study.load_sharing)
+    lines += ["", "### Errors, load sharing, contact", "",
+              f"Pin-hole errors: tangential {list(o.planet_position_errors_m) or 'none'} m, "
+              f"radial {list(o.pin_hole_radial_errors_m) or 'none'} m; ring run-out "
+              f"{o.ring_runout_m:g} m. Static ring-mesh force of each planet over the mean "
+              f"(intact): {sharing}."
+              + (" The errors break the phase cancellation: lines at orders that are not "
+                 "multiples of N are labelled '(planet error)' / '(planet load)'."
+                 if errors.any() else ""), "",
+              "| depth [mm] | non-multiple energy share | min total/static mesh force "
+              "(linear) | mesh | separated [% of a revolution] |",
+              "|---:|---:|---:|---|---:|"]
+    for d in study.depths:
+        ratios = d.contact["min_force_ratio"]
+        worst = min(ratios, key=ratios.get)
+        separated = max(d.contact["separated_fraction"].values())
+        lines.append(f"| {1e3 * d.depth:.3g} | {d.non_multiple_fraction:.3g} | "
+                     f"{ratios[worst]:.3g} | {worst} | {100 * separated:.3g} |")
+    lines += ["", "Below 0 the linear mesh spring would pull; the signal then comes from the "
+              f"piecewise contact model (`contact = \"{o.contact}\"`: stiffness 0 where a "
+              "tooth pair separates)."]
     lines += ["", "### Indicators against crack depth (mean over the noise seeds)", "",
               "| depth [mm] | " + " | ".join(INDICATORS) + " |",
               "|---:|" + "---:|" * len(INDICATORS)]

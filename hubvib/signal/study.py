@@ -15,6 +15,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from hubvib.foundation.errors import SceneError
 from hubvib.lumped import natural_modes
 
 from .indicators import INDICATORS, GearOrders, ensemble_variances, indicators
@@ -23,8 +24,10 @@ from .mesh_phase import design_phasing, design_teeth
 from .options import SignalOptions
 from .sensor import add_noise, sampled, sensor_signal
 from .simulation import Simulation, carrier_speed, simulate, steps_per_revolution
-from .spectral import (HarmonicRule, OrderSpectrum, SidebandRule, angle_domain,
-                       order_spectrum, top_harmonics)
+from .contact import force_ratio, mesh_names
+from .errors import load_sharing
+from .spectral import (HarmonicRule, OrderSpectrum, PlanetErrorRule, SidebandRule,
+                       angle_domain, non_multiple_fraction, order_spectrum, top_harmonics)
 
 #: labelled lines listed per depth
 TOP_LINES = 12
@@ -55,6 +58,11 @@ class DepthSignal:
         The largest lines of ``spectrum`` with their labels.
     seconds : float
         Wall time of the simulation [s].
+    non_multiple_fraction : float
+        Energy share of the carrier orders that are not multiples of N [-].
+    contact : dict
+        Per mesh: smallest total/static force of the linear model and the fraction of
+        the revolution spent separated in the piecewise model [-].
     """
 
     depth: float
@@ -66,6 +74,8 @@ class DepthSignal:
     values: list = field(default_factory=list)
     lines: list = field(default_factory=list)
     seconds: float = 0.0
+    non_multiple_fraction: float = 0.0
+    contact: dict = field(default_factory=dict)
 
     def summary(self) -> dict:
         """Mean and standard deviation of each indicator over the seeds."""
@@ -92,6 +102,7 @@ class SignalStudy:
     crack_tooth: int = 0
 
     ring_teeth: int = 64
+    load_sharing: list = field(default_factory=list)
 
     @property
     def gear(self) -> GearOrders:
@@ -113,11 +124,13 @@ class SignalStudy:
         return out
 
 
-def harmonic_rules(n_planets: int, design) -> list[HarmonicRule]:
+def harmonic_rules(n_planets: int, design, errors: bool = False) -> list[HarmonicRule]:
     """Labels of carrier orders: mesh harmonics, planet-pass / cracked-tooth sidebands
-    (multiples of N around them), planet-pass orders, shaft orders; else unexplained."""
+    (multiples of N around them), planet-pass orders, shaft orders, and with ``errors``
+    the other integer orders (planet errors, load sharing); else unexplained."""
     teeth = design_teeth(design)
     z_r, z_s, z_p = teeth["ring"], teeth["sun"], teeth["planet"]
+    extra = [PlanetErrorRule(z_r, n_planets)] if errors else []
     return [
         HarmonicRule("z_r", z_r, meaning="ring mesh harmonic"),
         SidebandRule("z_r", z_r, n_planets, "N",
@@ -126,7 +139,7 @@ def harmonic_rules(n_planets: int, design) -> list[HarmonicRule]:
         HarmonicRule("carrier", 1, 2, meaning="carrier shaft order"),
         HarmonicRule("sun", (z_s + z_r) / z_s, 3, meaning="sun shaft order (relative)"),
         HarmonicRule("planet", abs(1 - z_r / z_p), 3, meaning="planet spin order"),
-    ]
+    ] + extra + extra
 
 
 def curves_for(scene, options: SignalOptions, progress=None) -> list[MeshCurves]:
@@ -165,7 +178,11 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
     tooth = scene.crack.tooth if scene.crack is not None else 0
     gear = GearOrders(teeth["ring"], params.n_planets, options.mesh_harmonics,
                       options.indicator_max_order)
-    rules = harmonic_rules(params.n_planets, scene.design)
+    try:
+        options.errors.per_planet(params.n_planets)
+    except ValueError as exc:
+        raise SceneError(str(exc)) from None
+    rules = harmonic_rules(params.n_planets, scene.design, options.errors.any())
     depths, sims = [], []
     for c in curves:
         started = time.perf_counter()
@@ -175,7 +192,10 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
         spectrum = _below_nyquist(order_spectrum(revolution), sim, options)
         depths.append(DepthSignal(c.depth, revolution, spectrum, np.empty(0), np.empty(0),
                                   lines=top_harmonics(spectrum, rules, TOP_LINES),
-                                  seconds=time.perf_counter() - started))
+                                  seconds=time.perf_counter() - started,
+                                  non_multiple_fraction=non_multiple_fraction(
+                                      spectrum, params.n_planets),
+                                  contact=contact_summary(sim)))
     carrier_hz = sims[0].carrier_speed / (2 * math.pi)
     duration = options.revolutions / carrier_hz
     clean = [sampled(d.revolution, carrier_hz, options.sample_rate_hz, duration) for d in depths]
@@ -196,7 +216,19 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
                         params.n_planets, sims[0].step, sims[0].steps_per_revolution, points,
                         noise_rms, depths, crack_tooth=tooth, ring_teeth=teeth["ring"])
     study.checks = _checks(study, params, curves[0], phasing, options, teeth["sun"])
+    study.load_sharing = [float(v) for v in load_sharing(sims[0].dynamics.static_force,
+                                                          params.n_planets)]
     return study
+
+
+def contact_summary(sim: Simulation) -> dict:
+    """Per mesh: the smallest total/static force ratio of the linear model and the fraction
+    of the revolution separated in the piecewise contact model [-]."""
+    names = mesh_names(sim.dynamics.n_planets)
+    return {"min_force_ratio": dict(zip(names, map(float, sim.linear_min_force_ratio))),
+            "separated_fraction": dict(zip(names, map(float, sim.separated))),
+            "min_force_ratio_after": dict(zip(names, map(float, force_ratio(
+                sim.dynamics, sim.forces).min(axis=0))))}
 
 
 def _below_nyquist(spectrum: OrderSpectrum, sim: Simulation,
@@ -241,7 +273,11 @@ def _checks(study: SignalStudy, params, intact: MeshCurves, phasing, options, su
     top = options.mesh_harmonics * study.ring_teeth + SER_REACH * n
     out = {"non_multiple_of_N_relative": float(amplitude[off].max() / amplitude.max())
            if off.any() else 0.0}
-    if params.equally_spaced():
+    if params.equally_spaced() and params.n_planets == 3 and params.c_s == 0:
+        out["load_sharing_rule"] = (
+            "floating sun, three planets: the sun's force balance leaves only equal mesh "
+            "forces, whatever the pin-hole errors (Kahraman 1994)")
+    if params.equally_spaced() and not options.errors.any():
         out["cancellation_rule"] = (
             "equally spaced planets: only carrier orders that are multiples of N reach a "
             "sensor fixed on the ring (McFadden & Smith 1985; Parker & Lin 2004)")
