@@ -158,3 +158,28 @@ def test_shipped_signal_scene_has_a_monotone_indicator(tmp_path, capsys):
     assert data["monotone_indicators"], "issue 14: at least one indicator monotone with depth"
     assert data["checks"]["step_halving"]["relative_change"] < 0.02
     assert np.isfinite(data["depths"][-1]["indicators"]["fm0"]["mean"])
+
+
+def test_several_sensors_relative_to_the_crack(tmp_path, capsys, fake_fe):
+    """A sensor at 0 deg from the cracked tooth (tooth 0) is the study's own sensor at 0 deg:
+    same numbers.  Intact, a sensor 120 deg on sees the same signal a third of a revolution
+    later (N = 3 symmetry): the same RMS, kurtosis and SER, to the cubic-spline angle
+    resampling of the TSA (the samples fall elsewhere on the revolution), 1e-3.  (Without
+    noise the intact difference signal is that resampling error itself, so FM4 & co.
+    are left out of this comparison.)"""
+    out = tmp_path / "out"
+    extra = "sensor_angles_from_crack_deg = [0.0, 120.0, 180.0]\nnoise_level = 0.0"
+    assert main(["signal", str(_scene(tmp_path, extra)), "--out", str(out), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    own, at120, at180 = data["sensors"]
+    assert [s["angle_from_crack_deg"] for s in data["sensors"]] == [0.0, 120.0, 180.0]
+    for depth, row in zip(data["depths"], own["depths"]):
+        for name, value in depth["indicators"].items():
+            assert value["mean"] == pytest.approx(row["indicators"][name]["mean"], rel=1e-12)
+    for name in ("rms", "kurtosis", "ser"):
+        assert at120["depths"][0]["indicators"][name]["mean"] == pytest.approx(
+            own["depths"][0]["indicators"][name]["mean"], rel=1e-3), name
+    cracked = [s["depths"][-1]["indicators"]["fm4"]["mean"] for s in (own, at180)]
+    assert cracked[0] != pytest.approx(cracked[1], rel=1e-6), \
+        "cracked: the view depends on where the sensor sits"
+    assert "from the cracked tooth" in (out / "report.md").read_text()

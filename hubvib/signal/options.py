@@ -27,6 +27,7 @@ Scene keys (all optional; defaults shown)::
     ring_runout_m = 0.0           # eccentricity of the ring teeth about the carrier axis [m]
     ring_runout_phase_deg = 0.0   # its direction, fixed in space [deg]
     contact = "piecewise"         # a mesh that would pull separates; "linear": it may pull
+    sensor_angles_from_crack_deg = []  # more sensors, at these angles from the cracked tooth
 
 Every check that needs only the table and the Raba gear data (the mesh frequency) is
 made here; the time-step stability check needs the model and is made before the
@@ -94,6 +95,9 @@ class SignalOptions:
     contact : str
         ``"piecewise"``: mesh stiffness 0 where a tooth pair would carry tension
         (:mod:`hubvib.signal.contact`); ``"linear"``: the springs may pull.
+    sensor_angles_from_crack_deg : tuple of float
+        Further sensors, each at this angle from the cracked tooth [deg]
+        (:mod:`hubvib.signal.sensors`).
     """
 
     sun_speed_rpm: float = 1500.0
@@ -117,6 +121,7 @@ class SignalOptions:
     ring_runout_m: float = 0.0
     ring_runout_phase_deg: float = 0.0
     contact: str = "piecewise"
+    sensor_angles_from_crack_deg: tuple[float, ...] = ()
 
     @property
     def errors(self) -> StageErrors:
@@ -167,7 +172,9 @@ _NUMBERS = {  # key: (low, high, low closed, high closed)
     "ring_runout_phase_deg": (-math.inf, math.inf, False, False),
 }
 #: per-planet lists [m]: (low, high) for each value
-_LISTS = {"planet_position_errors_m": (-1e-3, 1e-3), "pin_hole_radial_errors_m": (-1e-3, 1e-3)}
+_LISTS = {"planet_position_errors_m": (-1e-3, 1e-3, "[m], one per planet"),
+          "pin_hole_radial_errors_m": (-1e-3, 1e-3, "[m], one per planet"),
+          "sensor_angles_from_crack_deg": (-360.0, 360.0, "[deg]")}
 _INTEGERS = {"mesh_harmonics": (1, 50), "noise_seeds": (1, 100), "steps_per_period": (4, 1000),
              "indicator_max_order": (0, 100000)}
 _CHOICES = {"mesh_stiffness": MESH_STIFFNESS, "integrator": INTEGRATORS, "contact": CONTACT}
@@ -212,7 +219,7 @@ def parse_signal_table(table: dict) -> SignalOptions:
             raise SceneError(f"[signal] {key} = {table[key]!r}; allowed: {', '.join(choices)}")
         if key in table:
             values[key] = table[key]
-    for key, (low, high) in _LISTS.items():
+    for key, (low, high, unit) in _LISTS.items():
         if key not in table:
             continue
         value = table[key]
@@ -221,7 +228,7 @@ def parse_signal_table(table: dict) -> SignalOptions:
             and low <= v <= high for v in value)
         if not ok:
             raise SceneError(f"[signal] {key} = {value!r}; allowed: a list of 1 to 12 "
-                             f"numbers in [{low:g}, {high:g}] [m], one per planet")
+                             f"numbers in [{low:g}, {high:g}] {unit}")
         values[key] = tuple(float(v) for v in value)
     options = SignalOptions(**values)
     return options

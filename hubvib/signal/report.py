@@ -83,6 +83,7 @@ def to_json(study: SignalStudy, files: dict) -> dict:
                                    "fraction": d.non_multiple_fraction}
                                   for d in study.depths],
         "load_sharing": study.load_sharing,
+        "sensors": study.sensors,
         "monotone_indicators": study.monotone(),
         "checks": study.checks,
         "files": [str(p) for p in files["all"]],
@@ -193,6 +194,15 @@ def report(study: SignalStudy, pictures: list[str]) -> str:
         lines.append(f"| {1e3 * d.depth:.3g} | "
                      + " | ".join(f"{s[n]['mean']:.4g} ± {s[n]['std']:.2g}" for n in INDICATORS)
                      + " |")
+    for sensor in study.sensors:
+        lines += ["", f"Sensor at {sensor['angle_from_crack_deg']:g} deg from the cracked tooth "
+                  f"({sensor['angle_deg']:.4g} deg):", "",
+                  "| depth [mm] | non-multiple share | " + " | ".join(INDICATORS) + " |",
+                  "|---:|---:|" + "---:|" * len(INDICATORS)]
+        for row in sensor["depths"]:
+            lines.append(f"| {row['depth_mm']:.3g} | {row['non_multiple_fraction']:.3g} | "
+                         + " | ".join(f"{row['indicators'][n]['mean']:.4g}"
+                                      for n in INDICATORS) + " |")
     if monotone:
         names = ", ".join(f"{m['indicator']} ({m['direction']}, deepest "
                           f"{m['separation_at_deepest']:+.3g} intact standard deviations)"

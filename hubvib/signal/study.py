@@ -18,16 +18,18 @@ import numpy as np
 from hubvib.foundation.errors import SceneError
 from hubvib.lumped import natural_modes
 
-from .indicators import INDICATORS, GearOrders, ensemble_variances, indicators
+from .indicators import INDICATORS, GearOrders
+from .records import indicator_run, summarise
 from .mesh_curves import MeshCurves
 from .mesh_phase import design_phasing, design_teeth
 from .options import SignalOptions
-from .sensor import add_noise, sampled, sensor_signal
+from .sensor import sampled, sensor_signal
+from .sensors import sensor_rows
 from .simulation import Simulation, carrier_speed, simulate, steps_per_revolution
 from .contact import force_ratio, mesh_names
 from .errors import load_sharing
 from .spectral import (HarmonicRule, OrderSpectrum, PlanetErrorRule, SidebandRule,
-                       angle_domain, non_multiple_fraction, order_spectrum, top_harmonics)
+                       non_multiple_fraction, order_spectrum, top_harmonics)
 
 #: labelled lines listed per depth
 TOP_LINES = 12
@@ -79,9 +81,7 @@ class DepthSignal:
 
     def summary(self) -> dict:
         """Mean and standard deviation of each indicator over the seeds."""
-        table = np.array([[getattr(v, name) for name in INDICATORS] for v in self.values])
-        return {name: {"mean": float(table[:, i].mean()), "std": float(table[:, i].std())}
-                for i, name in enumerate(INDICATORS)}
+        return summarise(self.values, INDICATORS)
 
 
 @dataclass
@@ -103,6 +103,7 @@ class SignalStudy:
 
     ring_teeth: int = 64
     load_sharing: list = field(default_factory=list)
+    sensors: list = field(default_factory=list)
 
     @property
     def gear(self) -> GearOrders:
@@ -201,23 +202,19 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
     clean = [sampled(d.revolution, carrier_hz, options.sample_rate_hz, duration) for d in depths]
     noise_rms = options.noise_level * float(np.sqrt(np.mean(clean[0][1] ** 2)))
     points = 2 ** int(math.ceil(math.log2(options.sample_rate_hz / carrier_hz)))
-    variances, envelopes = [], []
-    for d, (t, values) in zip(depths, clean):
-        records = [add_noise(values, noise_rms, seed) for seed in range(options.noise_seeds)]
-        d.time, d.record = t, records[0]
-        angle = 2 * math.pi * carrier_hz * t
-        d.tsa = [angle_domain(angle, r, points).synchronous_average() for r in records]
-        for tsa in d.tsa:
-            r, s = ensemble_variances(tsa, gear)
-            variances.append(r)
-            envelopes.append(s)
-        d.values = [indicators(tsa, gear, variances, envelopes) for tsa in d.tsa]
+    first, tsas, values = indicator_run(clean, carrier_hz, points, gear, noise_rms,
+                                        range(options.noise_seeds))
+    for d, (t, _), record, tsa, v in zip(depths, clean, first, tsas, values):
+        d.time, d.record, d.tsa, d.values = t, record, tsa, v
     study = SignalStudy(scene.name, options, carrier_hz, carrier_hz * teeth["ring"],
                         params.n_planets, sims[0].step, sims[0].steps_per_revolution, points,
                         noise_rms, depths, crack_tooth=tooth, ring_teeth=teeth["ring"])
     study.checks = _checks(study, params, curves[0], phasing, options, teeth["sun"])
     study.load_sharing = [float(v) for v in load_sharing(sims[0].dynamics.static_force,
                                                           params.n_planets)]
+    study.sensors = [sensor_rows(sims, [d.depth for d in depths], offset, tooth, gear, options,
+                                 carrier_hz, points, noise_rms)
+                     for offset in options.sensor_angles_from_crack_deg]
     return study
 
 

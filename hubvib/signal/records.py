@@ -1,0 +1,54 @@
+"""From noise-free sampled records to noisy records, TSAs and indicators (SI).
+
+One pipeline for the study's sensor, the extra sensors and the detection rates:
+white Gaussian noise of a given RMS [m/s^2] per seed, the time-synchronous
+average on ``points`` angle steps per carrier revolution, then the indicators with
+the NA4 / NB4 ensemble of the run so far (depth by depth, intact first).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .indicators import GearOrders, ensemble_variances, indicators
+from .sensor import add_noise
+from .spectral import angle_domain
+
+
+def synchronous_average(time: np.ndarray, values: np.ndarray, carrier_hz: float,
+                        points: int) -> np.ndarray:
+    """TSA of a record sampled at ``time`` [s] at constant carrier speed [Hz]."""
+    angle = 2 * math.pi * carrier_hz * time
+    return angle_domain(angle, values, points).synchronous_average()
+
+
+def indicator_run(clean, carrier_hz: float, points: int, gear: GearOrders, noise_rms: float,
+                  seeds) -> tuple[list, list, list]:
+    """Per depth (``clean``: list of (time [s], values [m/s^2])): the first seed's noisy
+    record, the TSA of every seed and its indicators.
+
+    Returns
+    -------
+    first_records, tsas, values : list (per depth)
+    """
+    variances, envelopes = [], []
+    first, tsas, values = [], [], []
+    for t, v in clean:
+        records = [add_noise(v, noise_rms, seed) for seed in seeds]
+        first.append(records[0])
+        averaged = [synchronous_average(t, r, carrier_hz, points) for r in records]
+        for tsa in averaged:
+            r, s = ensemble_variances(tsa, gear)
+            variances.append(r)
+            envelopes.append(s)
+        tsas.append(averaged)
+        values.append([indicators(tsa, gear, variances, envelopes) for tsa in averaged])
+    return first, tsas, values
+
+
+def summarise(values, names) -> dict:
+    """Mean and standard deviation of each indicator over the records."""
+    table = np.array([[getattr(v, name) for name in names] for v in values])
+    return {name: {"mean": float(table[:, i].mean()), "std": float(table[:, i].std())}
+            for i, name in enumerate(names)}
