@@ -24,6 +24,7 @@ accuracy = "fast"
 [signal]
 sun_speed_rpm = 6000.0
 noise_seeds = 2
+roc_records = {roc}
 {extra}
 [output]
 plots = {plots}
@@ -81,9 +82,9 @@ def fake_fe(monkeypatch):
     monkeypatch.setattr(signal_study, "curves_for", curves)
 
 
-def _scene(tmp_path, extra="revolutions = 3", plots="false", depths=(0.0, 0.012)):
+def _scene(tmp_path, extra="revolutions = 3", plots="false", depths=(0.0, 0.012), roc=20):
     path = tmp_path / "signal.toml"
-    path.write_text(SCENE.format(extra=extra, plots=plots, depths=list(depths)))
+    path.write_text(SCENE.format(extra=extra, plots=plots, depths=list(depths), roc=roc))
     return path
 
 
@@ -132,6 +133,12 @@ def test_signal_command_writes_signal_spectrum_and_indicators(tmp_path, capsys, 
         [d["non_multiple_fraction"] for d in data["depths"]]
     np.testing.assert_allclose(data["load_sharing"], 1.0, atol=1e-9,
                                err_msg="no errors: equal load sharing")
+    roc = data["roc"]
+    assert roc["records_per_depth"] == 20 and roc["training_records"] == 60
+    assert set(roc["indicators"]) == set(data["depths"][0]["indicators"])
+    for row in roc["indicators"].values():
+        assert len(row["pod"]) == 2 and len(row["roc"]) == 1 and 0 <= row["auc"][1] <= 1
+    assert "### Detection rates (ROC / POD)" in (out / "report.md").read_text()
     report = (out / "report.md").read_text()
     assert "## Vibration signature" in report and "Monotone with depth" in report
     for name in ("order_spectrum.csv", "indicators.csv", "harmonics.csv", "results.json"):
@@ -170,7 +177,8 @@ def test_several_sensors_relative_to_the_crack(tmp_path, capsys, fake_fe):
     are left out of this comparison.)"""
     out = tmp_path / "out"
     extra = "sensor_angles_from_crack_deg = [0.0, 120.0, 180.0]\nnoise_level = 0.0"
-    assert main(["signal", str(_scene(tmp_path, extra)), "--out", str(out), "--json"]) == 0
+    assert main(["signal", str(_scene(tmp_path, extra, roc=0)), "--out", str(out),
+                 "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     own, at120, at180 = data["sensors"]
     assert [s["angle_from_crack_deg"] for s in data["sensors"]] == [0.0, 120.0, 180.0]

@@ -28,6 +28,8 @@ Scene keys (all optional; defaults shown)::
     ring_runout_phase_deg = 0.0   # its direction, fixed in space [deg]
     contact = "piecewise"         # a mesh that would pull separates; "linear": it may pull
     sensor_angles_from_crack_deg = []  # more sensors, at these angles from the cracked tooth
+    roc_records = 100             # records per depth for ROC / POD (0: none); 3x for training
+    false_alarm_rate = 0.05       # family-wise false-alarm rate of the POD thresholds
 
 Every check that needs only the table and the Raba gear data (the mesh frequency) is
 made here; the time-step stability check needs the model and is made before the
@@ -98,6 +100,11 @@ class SignalOptions:
     sensor_angles_from_crack_deg : tuple of float
         Further sensors, each at this angle from the cracked tooth [deg]
         (:mod:`hubvib.signal.sensors`).
+    roc_records : int
+        Evaluation records per depth of the detection rates [-] (0: none;
+        :mod:`hubvib.signal.roc`).
+    false_alarm_rate : float
+        Family-wise false-alarm rate of the POD thresholds [-], in (0, 0.5).
     """
 
     sun_speed_rpm: float = 1500.0
@@ -122,6 +129,8 @@ class SignalOptions:
     ring_runout_phase_deg: float = 0.0
     contact: str = "piecewise"
     sensor_angles_from_crack_deg: tuple[float, ...] = ()
+    roc_records: int = 100
+    false_alarm_rate: float = 0.05
 
     @property
     def errors(self) -> StageErrors:
@@ -170,13 +179,14 @@ _NUMBERS = {  # key: (low, high, low closed, high closed)
     "time_step_s": (0.0, 1.0, True, True),
     "ring_runout_m": (0.0, 1e-3, True, True),
     "ring_runout_phase_deg": (-math.inf, math.inf, False, False),
+    "false_alarm_rate": (0.0, 0.5, False, False),
 }
 #: per-planet lists [m]: (low, high) for each value
 _LISTS = {"planet_position_errors_m": (-1e-3, 1e-3, "[m], one per planet"),
           "pin_hole_radial_errors_m": (-1e-3, 1e-3, "[m], one per planet"),
           "sensor_angles_from_crack_deg": (-360.0, 360.0, "[deg]")}
 _INTEGERS = {"mesh_harmonics": (1, 50), "noise_seeds": (1, 100), "steps_per_period": (4, 1000),
-             "indicator_max_order": (0, 100000)}
+             "indicator_max_order": (0, 100000), "roc_records": (0, 10000)}
 _CHOICES = {"mesh_stiffness": MESH_STIFFNESS, "integrator": INTEGRATORS, "contact": CONTACT}
 
 

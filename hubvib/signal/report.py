@@ -84,6 +84,7 @@ def to_json(study: SignalStudy, files: dict) -> dict:
                                   for d in study.depths],
         "load_sharing": study.load_sharing,
         "sensors": study.sensors,
+        "roc": study.roc,
         "monotone_indicators": study.monotone(),
         "checks": study.checks,
         "files": [str(p) for p in files["all"]],
@@ -210,6 +211,8 @@ def report(study: SignalStudy, pictures: list[str]) -> str:
         lines += ["", f"Monotone with depth: {names}."]
     else:
         lines += ["", "No indicator is monotone with depth in this scene."]
+    if study.roc:
+        lines += roc_section(study.roc)
     lines += ["", f"### Largest lines at {1e3 * deepest.depth:.3g} mm (noise-free)", "",
               "| order | frequency [Hz] | amplitude [m/s^2] | label |", "|---:|---:|---:|---|"]
     for line in deepest.lines:
@@ -304,3 +307,30 @@ def _tsa_figure(study: SignalStudy):
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7)
     return fig
+
+
+def roc_section(roc: dict) -> list[str]:
+    """The detection-rate table of the report: POD per depth at the family-wise
+    false-alarm rate, AUC at the deepest crack, the first depth seen."""
+    depths = roc["depth_mm"]
+    lines = ["", "### Detection rates (ROC / POD)", "",
+             f"{roc['records_per_depth']} records per depth ({roc['evaluation_noise']}); "
+             f"thresholds from {roc['training_records']} intact records with "
+             f"{roc['training_noise']} noise at a family-wise false-alarm rate of "
+             f"{roc['false_alarm_rate']:g} (Bonferroni, z = {roc['bonferroni_z']:.3g}); measured "
+             f"on the intact evaluation records: {roc['family_false_alarm_measured']:.3g} ± "
+             f"{roc['family_false_alarm_standard_error']:.2g}. Robustness (not claimed): the "
+             f"same thresholds on intact records with {roc['coloured_noise']} noise give "
+             f"{roc['family_false_alarm_coloured']:.3g}, with {roc['heavy_tail_noise']} noise "
+             f"{roc['family_false_alarm_heavy_tail']:.3g}: thresholds must be trained on the "
+             "machine's own healthy records.", "",
+             "| indicator | " + " | ".join(f"POD {d:g} mm" for d in depths)
+             + f" | AUC {depths[-1]:g} mm | first depth with POD >= 0.9 [mm] |",
+             "|---|" + "---:|" * (len(depths) + 2)]
+    for name, row in roc["indicators"].items():
+        seen = row["first_depth_seen_mm"]
+        lines.append(f"| {name} | " + " | ".join(f"{p:.2f}" for p in row["pod"])
+                     + f" | {row['auc'][-1]:.3f} | {'-' if seen is None else f'{seen:g}'} |")
+    lines.append("| any | " + " | ".join(f"{p:.2f}" for p in roc["any_indicator_pod"])
+                 + " | | |")
+    return lines

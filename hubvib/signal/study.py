@@ -24,6 +24,7 @@ from .mesh_curves import MeshCurves
 from .mesh_phase import design_phasing, design_teeth
 from .options import SignalOptions
 from .sensor import sampled, sensor_signal
+from .roc import detection_rates
 from .sensors import sensor_rows
 from .simulation import Simulation, carrier_speed, simulate, steps_per_revolution
 from .contact import force_ratio, mesh_names
@@ -104,6 +105,7 @@ class SignalStudy:
     ring_teeth: int = 64
     load_sharing: list = field(default_factory=list)
     sensors: list = field(default_factory=list)
+    roc: dict | None = None
 
     @property
     def gear(self) -> GearOrders:
@@ -183,6 +185,14 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
         options.errors.per_planet(params.n_planets)
     except ValueError as exc:
         raise SceneError(str(exc)) from None
+    if options.roc_records and options.noise_level == 0:
+        raise SceneError("[signal] noise_level = 0 with roc_records > 0: every record is the "
+                         "same, no detection rate; allowed: noise_level > 0 or roc_records = 0")
+    depth_list = scene.crack.depths if scene.crack is not None else (0.0,)
+    if options.roc_records and depth_list[0] != 0.0:
+        raise SceneError(f"[crack] depths = {list(depth_list)}: detection rates need the "
+                         f"intact case 0.0 first; allowed: depths starting at 0.0, or "
+                         f"[signal] roc_records = 0")
     rules = harmonic_rules(params.n_planets, scene.design, options.errors.any())
     depths, sims = [], []
     for c in curves:
@@ -212,6 +222,9 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
     study.checks = _checks(study, params, curves[0], phasing, options, teeth["sun"])
     study.load_sharing = [float(v) for v in load_sharing(sims[0].dynamics.static_force,
                                                           params.n_planets)]
+    if options.roc_records:
+        study.roc = detection_rates([d.depth for d in depths], clean, carrier_hz, points, gear,
+                                    noise_rms, options.roc_records, options.false_alarm_rate)
     study.sensors = [sensor_rows(sims, [d.depth for d in depths], offset, tooth, gear, options,
                                  carrier_hz, points, noise_rms)
                      for offset in options.sensor_angles_from_crack_deg]
