@@ -11,6 +11,7 @@ the mounting stiffness, the carrier position) is :mod:`hubvib.detection`.
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
@@ -24,7 +25,12 @@ from hubvib.runtime.engines import Execution
 from hubvib.detection.model import CrackModel
 from hubvib.detection.numbers import depth_mm, percent, sensitivity, shift_hz
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.detection.options import DetectionOptions
+from hubvib.runtime.progress import stage
+from hubvib.signal.report import write_signal_study
+from hubvib.signal.study import run_signal_study
 from hubvib.studies.scene import Scene
+from hubvib.studies.study import Study
 
 #: a mode "follows" a stiffness when its relative sensitivity exceeds this
 SENSITIVE = 0.01
@@ -417,3 +423,61 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
                   "(plane stress, deformation magnified).", ""]
         lines += [f"![{n}]({n})" for n in fe_renders]
     return "\n".join(lines) + "\n"
+
+
+def _run(scene: Scene, staged: Path) -> CrackStudyResult:
+    started = time.perf_counter()
+    result = run_crack_study(scene)
+    stage(f"FE stage ({result.computed} of {len(result.fe)} cases computed) and lumped "
+          "spectra", started)
+    started = time.perf_counter()
+    if "signal" in scene.tables:  # the vibration signature beside the frequency study
+        study = run_signal_study(scene)
+        stage(f"signals of {len(study.depths)} crack depth(s)", started)
+        signal_files = write_signal_study(study, staged / "signal", plots=scene.plots)["files"]
+        started = time.perf_counter()
+    write_crack_study(result, staged)
+    if "signal" in scene.tables:
+        report = staged / "report.md"
+        write_text(report, report.read_text(encoding="utf-8") + SIGNAL_SECTION)
+        result.files += [staged / "signal" / f for f in signal_files]
+    stage("tables, plots, renders and report", started)
+    return result
+
+
+#: the report section that links the vibration signature (scenes with a [signal] table)
+SIGNAL_SECTION = ("\n## Vibration signature\n\nThe signal a sensor on the ring records, its "
+                  "order spectrum, spectrogram and condition indicators against crack depth: "
+                  "[signal/report.md](signal/report.md).\n")
+
+
+def _summary(scene: Scene, result: CrackStudyResult, folder: Path, files: list) -> dict:
+    return {"scene": scene.name, "folder": str(folder), "files": [str(f) for f in files],
+            "fe_cases_computed": result.computed, "modes": result.mode_rows()}
+
+
+def _lines(scene: Scene, result: CrackStudyResult, folder: Path) -> list[str]:
+    out = [f"scene {scene.name!r}: ring crack depths "
+           f"{', '.join(f'{1e3 * d:.3g}' for d in result.depths)} mm "
+           f"({result.computed} FE cases computed, {len(result.fe) - result.computed} cached)"]
+    rows = result.mode_rows()
+    physical = "detectable_depth_mm" in rows[0]
+    if physical:
+        pod = scene.tables.get("detection", DetectionOptions()).detection_probability
+        last = f"detectable from (POD >= {pod:g}), via"
+    else:
+        last = f"smallest crack shifting >= {scene.threshold_percent:g} %"
+    out.append(f"{'mode':>4} {'type':<13} {'f intact [Hz]':>13} {'shift at deepest [%]':>21} "
+               f"{'follows':>10}  {last}")
+    for r in rows:
+        depth = r["detectable_depth_mm"] if physical else r["smallest_detectable_depth_mm"]
+        where = f" ({r['signal_in']})" if physical and depth is not None else ""
+        out.append(f"{r['mode']:>4} {r['kind']:<13} {r['frequency_intact_hz']:>13.3f} "
+                   f"{percent(r['shift_at_deepest_percent']):>21} {r['follows']:>10}  "
+                   f"{'not detectable' if depth is None else f'{depth:.3g} mm'}{where}")
+    out.append(f"\nreport: {folder / 'report.md'}")
+    return out
+
+
+#: the plane crack study: a scene with [crack] (model = "plane")
+CRACK_STUDY = Study("crack", _run, _summary, _lines)

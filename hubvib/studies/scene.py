@@ -109,6 +109,14 @@ class Scene:
     design: object = None
     tables: dict = field(default_factory=dict, compare=False)
 
+    @property
+    def kind(self) -> str:
+        """The study this scene runs (``hubvib.studies.kinds.STUDIES``): "sweep" (no
+        [crack] table), "crack" ([crack] model = "plane") or "growth" (model = "solid")."""
+        if self.crack is None:
+            return "sweep"
+        return "growth" if self.crack.model == "solid" else "crack"
+
 
 #: the shipped scene ``hubvib run`` runs without an argument
 DEFAULT_SCENE = "raba118_crack"
