@@ -1,6 +1,7 @@
 """``[signal]`` scene table, ``hubvib signal`` end to end, and every bad input of issue 14."""
 import csv
 import json
+import math
 
 import numpy as np
 import pytest
@@ -143,6 +144,25 @@ def test_signal_command_writes_signal_spectrum_and_indicators(tmp_path, capsys, 
     assert "## Vibration signature" in report and "Monotone with depth" in report
     for name in ("order_spectrum.csv", "indicators.csv", "harmonics.csv", "results.json"):
         assert (out / name).stat().st_size > 0
+
+
+@pytest.mark.slow
+def test_signal_command_with_speed_fluctuation_writes_the_tacho(tmp_path, capsys, fake_fe):
+    from hubvib.signal.speed import SpeedProfile
+
+    out = tmp_path / "out"
+    extra = "revolutions = 3\nspeed_fluctuation = 0.05\nspeed_fluctuation_hz = 2.0"
+    assert main(["signal", str(_scene(tmp_path, extra, roc=0)), "--out", str(out),
+                 "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    rows = (out / "tacho.csv").read_text().splitlines()
+    assert rows[0] == "pulse_time_s" and data["tacho_csv"] == str(out / "tacho.csv")
+    pulses = np.array([float(r) for r in rows[1:]])
+    speed = SpeedProfile(data["carrier_hz"], 0.05, 2.0)
+    np.testing.assert_allclose(speed.angle(pulses), 2 * math.pi / 16 * np.arange(pulses.size),
+                               atol=1e-9, err_msg="16 pulses per revolution (default)")
+    assert data["depths"][-1]["indicators"]["fm4"]["mean"] > \
+        data["depths"][0]["indicators"]["fm4"]["mean"]
 
 
 @pytest.mark.slow

@@ -33,7 +33,8 @@ def test_auc_is_the_mann_whitney_count():
 def _rates(records):
     depths = [0.0, 0.001, 0.002, 0.004]
     clean = [_clean(b) for b in (0.0, 0.02, 0.05, 0.3)]
-    return detection_rates(depths, clean, CARRIER_HZ, 512, GEAR, 0.1, records, 0.1)
+    angle = 2 * math.pi * CARRIER_HZ * clean[0][0]
+    return detection_rates(depths, clean, angle, 512, GEAR, 0.1, records, 0.1)
 
 
 def _check(roc, records, alpha=0.1):

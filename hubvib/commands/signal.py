@@ -33,6 +33,7 @@ def run(args) -> int:
     with output_set(folder) as staged:
         data = write_signal_study(study, staged, plots=scene.plots)
     data = dict(data, folder=str(folder), files=[str(folder / f) for f in data["files"]])
+    data["tacho_csv"] = str(folder / data["tacho_csv"])
     for d in data["depths"]:
         d["signal_csv"], d["signal_wav"] = (str(folder / d[k]) for k in ("signal_csv",
                                                                           "signal_wav"))

@@ -29,6 +29,9 @@ Scene keys (all optional; defaults shown)::
     contact = "piecewise"         # a mesh that would pull separates; "linear": it may pull
     sensor_angles_from_crack_deg = []  # more sensors, at these angles from the cracked tooth
     roc_records = 100             # records per depth for ROC / POD (0: none); 3x for training
+    speed_fluctuation = 0.0       # relative amplitude of a sinusoidal carrier-speed fluctuation
+    speed_fluctuation_hz = 1.0    # its frequency [Hz]; the record is order-tracked by the tacho
+    tacho_pulses_per_revolution = 16  # pulses of the carrier encoder per revolution
     false_alarm_rate = 0.05       # family-wise false-alarm rate of the POD thresholds
 
 Every check that needs only the table and the Raba gear data (the mesh frequency) is
@@ -105,6 +108,13 @@ class SignalOptions:
         :mod:`hubvib.signal.roc`).
     false_alarm_rate : float
         Family-wise false-alarm rate of the POD thresholds [-], in (0, 0.5).
+    speed_fluctuation : float
+        Relative amplitude of the carrier-speed fluctuation [-], in [0, 0.5]
+        (:mod:`hubvib.signal.speed`).
+    speed_fluctuation_hz : float
+        Frequency of the fluctuation [Hz], > 0.
+    tacho_pulses_per_revolution : int
+        Pulses of the carrier tacho (encoder) per revolution [-], 1..4096.
     """
 
     sun_speed_rpm: float = 1500.0
@@ -131,6 +141,9 @@ class SignalOptions:
     sensor_angles_from_crack_deg: tuple[float, ...] = ()
     roc_records: int = 100
     false_alarm_rate: float = 0.05
+    speed_fluctuation: float = 0.0
+    speed_fluctuation_hz: float = 1.0
+    tacho_pulses_per_revolution: int = 16
 
     @property
     def errors(self) -> StageErrors:
@@ -180,13 +193,16 @@ _NUMBERS = {  # key: (low, high, low closed, high closed)
     "ring_runout_m": (0.0, 1e-3, True, True),
     "ring_runout_phase_deg": (-math.inf, math.inf, False, False),
     "false_alarm_rate": (0.0, 0.5, False, False),
+    "speed_fluctuation": (0.0, 0.5, True, True),
+    "speed_fluctuation_hz": (0.0, 1e3, False, True),
 }
 #: per-planet lists [m]: (low, high) for each value
 _LISTS = {"planet_position_errors_m": (-1e-3, 1e-3, "[m], one per planet"),
           "pin_hole_radial_errors_m": (-1e-3, 1e-3, "[m], one per planet"),
           "sensor_angles_from_crack_deg": (-360.0, 360.0, "[deg]")}
 _INTEGERS = {"mesh_harmonics": (1, 50), "noise_seeds": (1, 100), "steps_per_period": (4, 1000),
-             "indicator_max_order": (0, 100000), "roc_records": (0, 10000)}
+             "indicator_max_order": (0, 100000), "roc_records": (0, 10000),
+             "tacho_pulses_per_revolution": (1, 4096)}
 _CHOICES = {"mesh_stiffness": MESH_STIFFNESS, "integrator": INTEGRATORS, "contact": CONTACT}
 
 

@@ -16,21 +16,20 @@ from .sensor import add_noise
 from .spectral import angle_domain
 
 
-def synchronous_average(time: np.ndarray, values: np.ndarray, carrier_hz: float,
-                        points: int) -> np.ndarray:
-    """TSA of a record sampled at ``time`` [s] at constant carrier speed [Hz]."""
-    angle = 2 * math.pi * carrier_hz * time
-    return angle_domain(angle, values, points).synchronous_average()
+def synchronous_average(angle: np.ndarray, values: np.ndarray, points: int) -> np.ndarray:
+    """TSA of a record whose samples sit at carrier angles ``angle`` [rad] (from the
+    tacho or the constant speed); samples past ``angle``'s end are left out."""
+    return angle_domain(angle, np.asarray(values)[:len(angle)], points).synchronous_average()
 
 
-def synchronous_averages(time: np.ndarray, values: np.ndarray, carrier_hz: float,
-                         points: int) -> np.ndarray:
-    """TSAs of several records on the same sample times, ``values`` (samples, records):
+def synchronous_averages(angle: np.ndarray, values: np.ndarray, points: int) -> np.ndarray:
+    """TSAs of several records on the same sample angles, ``values`` (samples, records):
     the same cubic-spline resampling as :func:`synchronous_average`, all columns at once.
     Returns (records, points)."""
     from scipy.interpolate import CubicSpline
 
-    angle = 2 * math.pi * carrier_hz * np.asarray(time)
+    angle = np.asarray(angle)
+    values = np.asarray(values)[:angle.size]
     whole = int(math.floor((angle[-1] - angle[0]) / (2 * math.pi) + 1e-9))
     if whole < 1:
         raise ValueError(f"the record covers {(angle[-1] - angle[0]) / (2 * math.pi):.3g} "
@@ -40,10 +39,11 @@ def synchronous_averages(time: np.ndarray, values: np.ndarray, carrier_hz: float
     return on_grid.reshape(whole, points, -1).mean(axis=0).T
 
 
-def indicator_run(clean, carrier_hz: float, points: int, gear: GearOrders, noise_rms: float,
+def indicator_run(clean, angle: np.ndarray, points: int, gear: GearOrders, noise_rms: float,
                   seeds) -> tuple[list, list, list]:
     """Per depth (``clean``: list of (time [s], values [m/s^2])): the first seed's noisy
-    record, the TSA of every seed and its indicators.
+    record, the TSA of every seed and its indicators; ``angle`` [rad]: the carrier
+    angle of the samples (see :func:`synchronous_average`).
 
     Returns
     -------
@@ -54,7 +54,7 @@ def indicator_run(clean, carrier_hz: float, points: int, gear: GearOrders, noise
     for t, v in clean:
         records = [add_noise(v, noise_rms, seed) for seed in seeds]
         first.append(records[0])
-        averaged = [synchronous_average(t, r, carrier_hz, points) for r in records]
+        averaged = [synchronous_average(angle, r, points) for r in records]
         for tsa in averaged:
             r, s = ensemble_variances(tsa, gear)
             variances.append(r)

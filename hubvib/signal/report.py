@@ -85,6 +85,7 @@ def to_json(study: SignalStudy, files: dict) -> dict:
         "load_sharing": study.load_sharing,
         "sensors": study.sensors,
         "roc": study.roc,
+        "tacho_csv": "tacho.csv",
         "monotone_indicators": study.monotone(),
         "checks": study.checks,
         "files": [str(p) for p in files["all"]],
@@ -105,7 +106,8 @@ def write_signal_study(study: SignalStudy, folder: Path, plots: bool = True) -> 
         write_csv(folder / "order_spectrum.csv", spectrum_rows(study)),
         write_csv(folder / "harmonics.csv", line_rows(study)),
         write_csv(folder / "indicators.csv", indicator_rows(study)),
-        write_csv(folder / "indicators_summary.csv", summary_rows(study))]
+        write_csv(folder / "indicators_summary.csv", summary_rows(study)),
+        write_csv(folder / "tacho.csv", [{"pulse_time_s": float(t)} for t in study.tacho])]
     pictures = []
     if plots:
         pictures = [save_figure(_spectrum_figure(study), folder / "order_spectrum.png"),

@@ -75,15 +75,15 @@ NOISE = {"gaussian": lambda rng, n: rng.standard_normal(n), "ar1": _ar1, "studen
 BATCH = 64
 
 
-def _tsas(clean_tsa, time, carrier_hz, points, rms, count, seed, model):
+def _tsas(clean_tsa, angle, size, points, rms, count, seed, model):
     """TSAs of ``count`` records: the clean TSA plus the TSA of the noise (the resampling
     is linear), the noise's in batches."""
     rng = np.random.default_rng(seed)
     out = []
     for start in range(0, count, BATCH):
         n = min(BATCH, count - start)
-        noise = np.stack([NOISE[model](rng, time.size) for _ in range(n)], axis=1)
-        out += list(clean_tsa + synchronous_averages(time, rms * noise, carrier_hz, points))
+        noise = np.stack([NOISE[model](rng, size) for _ in range(n)], axis=1)
+        out += list(clean_tsa + synchronous_averages(angle, rms * noise, points))
     return out
 
 
@@ -103,7 +103,7 @@ def roc_curve(intact: np.ndarray, cracked: np.ndarray) -> list[list[float]]:
     return [rows[i] for i in keep]
 
 
-def detection_rates(depths, clean, carrier_hz: float, points: int, gear: GearOrders,
+def detection_rates(depths, clean, angle: np.ndarray, points: int, gear: GearOrders,
                     noise_rms: float, records: int, alpha: float, seed: int = 1) -> dict:
     """ROC / POD data of every indicator (see the module docstring).
 
@@ -113,6 +113,8 @@ def detection_rates(depths, clean, carrier_hz: float, points: int, gear: GearOrd
         Crack depths [m], intact (0) first.
     clean : list of (time [s], values [m/s^2])
         Noise-free record of each depth.
+    angle : ndarray
+        Carrier angle of the samples [rad] (tacho or constant speed).
     records : int
         Evaluation records per depth (training: 3 x as many intact ones).
     alpha : float
@@ -131,19 +133,19 @@ def detection_rates(depths, clean, carrier_hz: float, points: int, gear: GearOrd
     if noise_rms <= 0:
         raise ValueError("[signal] noise_level = 0: every record is the same, no detection "
                          "rate; allowed: noise_level > 0 with roc_records > 0")
-    clean_tsa = [synchronous_average(t, v, carrier_hz, points) for t, v in clean]
-    time = clean[0][0]
-    train = _tsas(clean_tsa[0], time, carrier_hz, points, noise_rms, 3 * records, seed,
+    clean_tsa = [synchronous_average(angle, v, points) for _, v in clean]
+    size = clean[0][1].size
+    train = _tsas(clean_tsa[0], angle, size, points, noise_rms, 3 * records, seed,
                   "gaussian")
     pairs = np.array([ensemble_variances(t, gear) for t in train])
     reference = (float(pairs[:, 0].mean()), float(pairs[:, 1].mean()))
     trained = _values(train, gear, reference)
-    evaluated = [_values(_tsas(c, time, carrier_hz, points, noise_rms, records,
+    evaluated = [_values(_tsas(c, angle, size, points, noise_rms, records,
                                seed + 1000 * (i + 1), "gaussian"), gear, reference)
                  for i, c in enumerate(clean_tsa)]
-    heavy = _values(_tsas(clean_tsa[0], time, carrier_hz, points, noise_rms, records,
+    heavy = _values(_tsas(clean_tsa[0], angle, size, points, noise_rms, records,
                           seed + 999, "student"), gear, reference)
-    coloured = _values(_tsas(clean_tsa[0], time, carrier_hz, points, noise_rms, records,
+    coloured = _values(_tsas(clean_tsa[0], angle, size, points, noise_rms, records,
                              seed + 998, "ar1"), gear, reference)
     direction = np.sign(evaluated[-1].mean(axis=0) - evaluated[0].mean(axis=0))
     direction[direction == 0] = 1.0

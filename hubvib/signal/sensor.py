@@ -68,9 +68,11 @@ def order_coefficients(one_revolution: np.ndarray, max_order: int) -> np.ndarray
 
 
 def sampled(one_revolution: np.ndarray, carrier_hz: float, sample_rate: float,
-            duration: float) -> tuple[np.ndarray, np.ndarray]:
+            duration: float, speed=None) -> tuple[np.ndarray, np.ndarray]:
     """The periodic signal band-limited below ``sample_rate / 2`` at ``t_k = k / f_s``,
-    0 <= t_k < duration [s]; returns (time [s], values).
+    0 <= t_k < duration [s]; returns (time [s], values).  With ``speed`` (a
+    :class:`hubvib.signal.speed.SpeedProfile`) the signal is read at its carrier angle
+    phi(t_k) and band-limited below the Nyquist order of the highest speed.
 
     The kept orders are put on a grid 16 times finer than the Nyquist order (inverse
     FFT) and a periodic cubic spline reads it at the sample angles: relative error
@@ -78,7 +80,8 @@ def sampled(one_revolution: np.ndarray, carrier_hz: float, sample_rate: float,
     """
     from scipy.interpolate import CubicSpline
 
-    nyquist_order = int(math.ceil(sample_rate / 2 / carrier_hz)) - 1
+    top_hz = carrier_hz if speed is None else speed.top_hz
+    nyquist_order = int(math.ceil(sample_rate / 2 / top_hz)) - 1
     max_order = min(nyquist_order, one_revolution.size // 2 - 1)
     X = np.fft.rfft(one_revolution)
     grid = 2 ** int(math.ceil(math.log2(32 * (max_order + 1))))
@@ -88,7 +91,8 @@ def sampled(one_revolution: np.ndarray, carrier_hz: float, sample_rate: float,
     angle = np.linspace(0.0, 2 * math.pi, grid + 1)
     spline = CubicSpline(angle, np.append(fine, fine[0]), bc_type="periodic")
     time = np.arange(int(math.floor(duration * sample_rate + 1e-9))) / sample_rate
-    return time, spline(np.mod(2 * math.pi * carrier_hz * time, 2 * math.pi))
+    angle = 2 * math.pi * carrier_hz * time if speed is None else speed.angle(time)
+    return time, spline(np.mod(angle, 2 * math.pi))
 
 
 def add_noise(values: np.ndarray, rms: float, seed: int) -> np.ndarray:

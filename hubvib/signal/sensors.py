@@ -24,14 +24,18 @@ def sensor_angle(offset_from_crack_deg: float, crack_tooth: int, ring_teeth: int
 
 
 def sensor_rows(sims, depths, offset_deg: float, crack_tooth: int, gear: GearOrders,
-                options, carrier_hz: float, points: int, noise_rms: float) -> dict:
+                options, tracking, points: int, noise_rms: float) -> dict:
     """One sensor: its angle and, per depth, the indicator summary and the energy share
-    off the multiples of N (noise-free revolution)."""
+    off the multiples of N (noise-free revolution); ``tracking`` is (the speed profile
+    or None at constant speed, the carrier angle of the samples [rad])."""
+    speed, sample_angle = tracking
     angle = sensor_angle(offset_deg, crack_tooth, gear.ring_teeth)
+    carrier_hz = sims[0].carrier_speed / (2 * math.pi)
     duration = options.revolutions / carrier_hz
     revolutions = [sensor_signal(sim, angle, options.rigid_path)[:-1] for sim in sims]
-    clean = [sampled(r, carrier_hz, options.sample_rate_hz, duration) for r in revolutions]
-    _, _, values = indicator_run(clean, carrier_hz, points, gear, noise_rms,
+    clean = [sampled(r, carrier_hz, options.sample_rate_hz, duration, speed)
+             for r in revolutions]
+    _, _, values = indicator_run(clean, sample_angle, points, gear, noise_rms,
                                  range(options.noise_seeds))
     return {"angle_from_crack_deg": offset_deg, "angle_deg": math.degrees(angle),
             "depths": [{"depth_mm": 1e3 * depth,

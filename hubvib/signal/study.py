@@ -26,6 +26,7 @@ from .options import SignalOptions
 from .sensor import sampled, sensor_signal
 from .roc import detection_rates
 from .sensors import sensor_rows
+from .speed import SpeedProfile, angle_from_tacho
 from .simulation import Simulation, carrier_speed, simulate, steps_per_revolution
 from .contact import force_ratio, mesh_names
 from .errors import load_sharing
@@ -106,6 +107,7 @@ class SignalStudy:
     load_sharing: list = field(default_factory=list)
     sensors: list = field(default_factory=list)
     roc: dict | None = None
+    tacho: np.ndarray | None = None
 
     @property
     def gear(self) -> GearOrders:
@@ -209,10 +211,17 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
                                   contact=contact_summary(sim)))
     carrier_hz = sims[0].carrier_speed / (2 * math.pi)
     duration = options.revolutions / carrier_hz
-    clean = [sampled(d.revolution, carrier_hz, options.sample_rate_hz, duration) for d in depths]
+    speed = SpeedProfile(carrier_hz, options.speed_fluctuation, options.speed_fluctuation_hz)
+    varying = speed if options.speed_fluctuation else None
+    clean = [sampled(d.revolution, carrier_hz, options.sample_rate_hz, duration, varying)
+             for d in depths]
+    pulses = speed.pulses(clean[0][0][-1], options.tacho_pulses_per_revolution)
+    angle = angle_from_tacho(pulses, clean[0][0], options.tacho_pulses_per_revolution) \
+        if varying else \
+        2 * math.pi * carrier_hz * clean[0][0]
     noise_rms = options.noise_level * float(np.sqrt(np.mean(clean[0][1] ** 2)))
     points = 2 ** int(math.ceil(math.log2(options.sample_rate_hz / carrier_hz)))
-    first, tsas, values = indicator_run(clean, carrier_hz, points, gear, noise_rms,
+    first, tsas, values = indicator_run(clean, angle, points, gear, noise_rms,
                                         range(options.noise_seeds))
     for d, (t, _), record, tsa, v in zip(depths, clean, first, tsas, values):
         d.time, d.record, d.tsa, d.values = t, record, tsa, v
@@ -222,11 +231,12 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
     study.checks = _checks(study, params, curves[0], phasing, options, teeth["sun"])
     study.load_sharing = [float(v) for v in load_sharing(sims[0].dynamics.static_force,
                                                           params.n_planets)]
+    study.tacho = pulses
     if options.roc_records:
-        study.roc = detection_rates([d.depth for d in depths], clean, carrier_hz, points, gear,
+        study.roc = detection_rates([d.depth for d in depths], clean, angle, points, gear,
                                     noise_rms, options.roc_records, options.false_alarm_rate)
     study.sensors = [sensor_rows(sims, [d.depth for d in depths], offset, tooth, gear, options,
-                                 carrier_hz, points, noise_rms)
+                                 (varying, angle), points, noise_rms)
                      for offset in options.sensor_angles_from_crack_deg]
     return study
 
