@@ -38,9 +38,9 @@ def _rates(records):
 
 
 def _check(roc, records, alpha=0.1):
-    # thresholds: mean + z std of Gaussian-noise intact records (a Gaussian model of each
-    # indicator, Bonferroni over 11); the family-wise rate is measured on independent
-    # intact records and must stay within alpha + 3 binomial standard errors
+    # thresholds: max-T split-conformal calibration on Gaussian-noise intact records; the
+    # family-wise rate is measured on independent intact records and must stay within
+    # alpha + 3 binomial standard errors
     measured, se = roc["family_false_alarm_measured"], math.sqrt(alpha * (1 - alpha) / records)
     assert measured <= alpha + 3 * se, f"family-wise false alarms {measured} vs {alpha}"
     any_pod = roc["any_indicator_pod"]
@@ -60,3 +60,9 @@ def test_false_alarms_and_pod_on_many_records():
     _check(roc, 300)
     pod = roc["any_indicator_pod"]
     assert pod[1] <= pod[2] + 0.05 and pod[2] <= pod[3], "POD grows with the fault"
+
+
+def test_too_few_records_for_the_rate_are_refused():
+    with pytest.raises(ValueError, match="roc_records = 2"):
+        detection_rates([0.0, 0.001], [_clean(0.0), _clean(0.3)],
+                        2 * math.pi * CARRIER_HZ * _clean(0.0)[0], 512, GEAR, 0.1, 2, 0.05)
