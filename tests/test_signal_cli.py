@@ -96,7 +96,13 @@ def _scene(tmp_path, extra="revolutions = 3", plots="false", depths=(0.0, 0.012)
     ("sun_torque_N_m = -1.0", "[signal] sun_torque_N_m = -1.0"),
     ("revolutions = 0.9", "[signal] revolutions = 0.9"),
     ("sample_rate_hz = 5000.0", "[signal] sample_rate_hz = 5000; allowed: >= 11093.3 Hz"),
-], ids=["unstable-step", "step-over-half-mesh-period", "torque", "duration", "aliasing"])
+    ("planet_position_errors_m = [5e-5, 0.0]",
+     "[signal] planet_position_errors_m has 2 value(s), but the reducer has 3 planets"),
+    ("noise_level = 0.0", "[signal] noise_level = 0 with roc_records > 0"),
+    ("speed_fluctuation = 0.7", "[signal] speed_fluctuation = 0.7; allowed: a finite number "
+                                "in [0, 0.5]"),
+], ids=["unstable-step", "step-over-half-mesh-period", "torque", "duration", "aliasing",
+        "errors-per-planet", "roc-without-noise", "speed-fluctuation"])
 def test_bad_input_is_one_line_exit_2_and_nothing_written(tmp_path, capsys, fake_fe, extra,
                                                           message):
     out = tmp_path / "out"
