@@ -29,8 +29,8 @@ import numpy as np
 from hubvib.lumped import PlanetaryParameters, natural_modes, spring_network
 from hubvib.lumped.network import mass_diagonal
 
-from .mesh_curves import MeshCurves
 from .errors import StageErrors, error_load
+from .mesh_curves import MeshCurves
 from .mesh_phase import MeshPhasing
 from .time_response import Excitation, LinearSystem
 

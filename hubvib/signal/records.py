@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.interpolate import CubicSpline
 
 from .indicators import GearOrders, ensemble_variances, indicators
 from .sensor import add_noise
@@ -26,8 +27,6 @@ def synchronous_averages(angle: np.ndarray, values: np.ndarray, points: int) -> 
     """TSAs of several records on the same sample angles, ``values`` (samples, records):
     the same cubic-spline resampling as :func:`synchronous_average`, all columns at once.
     Returns (records, points)."""
-    from scipy.interpolate import CubicSpline
-
     angle = np.asarray(angle)
     values = np.asarray(values)[:angle.size]
     whole = int(math.floor((angle[-1] - angle[0]) / (2 * math.pi) + 1e-9))

@@ -38,7 +38,9 @@ value, and the area under it (Mann-Whitney statistic).
 from __future__ import annotations
 
 import math
+
 import numpy as np
+from scipy.signal import lfilter
 
 from .indicators import INDICATORS, GearOrders, ensemble_variances, indicators
 from .records import synchronous_average, synchronous_averages
@@ -66,8 +68,6 @@ def _values(tsas, gear: GearOrders, reference: tuple[float, float]) -> np.ndarra
 
 def _ar1(rng: np.random.Generator, size: int) -> np.ndarray:
     """Unit-variance AR(1) noise ``n_k = c n_(k-1) + sqrt(1 - c^2) w_k`` (stationary start)."""
-    from scipy.signal import lfilter
-
     c = AR_COEFFICIENT
     w = rng.standard_normal(size)
     w[0] /= math.sqrt(1 - c * c)

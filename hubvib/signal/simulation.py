@@ -19,9 +19,9 @@ import numpy as np
 
 from hubvib.lumped import PlanetaryParameters
 
+from .contact import MAX_PASSES, force_ratio, in_contact, mesh_names
 from .dynamics import (MeshState, PlanetaryDynamics, excitation, mesh_forces, mesh_state,
                        planetary_dynamics, transmission_error_of)
-from .contact import MAX_PASSES, force_ratio, in_contact
 from .errors import planet_shift, runout_error
 from .mesh_curves import MeshCurves
 from .mesh_phase import MeshPhasing
@@ -216,8 +216,6 @@ def simulate(params: PlanetaryParameters, curves: MeshCurves, phasing: MeshPhasi
 
 
 def _lost(contact: np.ndarray) -> list[str]:
-    from .contact import mesh_names
-
     names = mesh_names(contact.shape[1] // 2)
     return [names[j] for j in range(contact.shape[1]) if not contact[:, j].all()]
 

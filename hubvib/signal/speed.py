@@ -26,6 +26,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.interpolate import CubicSpline
 
 
 @dataclass(frozen=True)
@@ -88,8 +89,6 @@ def angle_from_tacho(pulse_times: np.ndarray, time: np.ndarray,
     ValueError
         Fewer than two pulses (less than one revolution) or pulses not increasing.
     """
-    from scipy.interpolate import CubicSpline
-
     pulse_times = np.asarray(pulse_times, dtype=float)
     if pulse_times.size < 2 or np.any(np.diff(pulse_times) <= 0):
         raise ValueError(f"tacho: {pulse_times.size} pulse(s); allowed: >= 2 increasing "

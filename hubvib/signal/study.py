@@ -17,19 +17,21 @@ import numpy as np
 
 from hubvib.foundation.errors import SceneError
 from hubvib.lumped import natural_modes
+from hubvib.signal.mesh_curves import fe_mesh_curves
+from hubvib.studies.crack_sweep import ACCURACY
 
+from .contact import force_ratio, mesh_names
+from .errors import load_sharing
 from .indicators import INDICATORS, GearOrders
-from .records import indicator_run, summarise
 from .mesh_curves import MeshCurves
 from .mesh_phase import design_phasing, design_teeth
 from .options import SignalOptions
-from .sensor import sampled, sensor_signal
+from .records import indicator_run, summarise
 from .roc import detection_rates
+from .sensor import sampled, sensor_signal
 from .sensors import sensor_rows
-from .speed import SpeedProfile, angle_from_tacho
 from .simulation import Simulation, carrier_speed, simulate, steps_per_revolution
-from .contact import force_ratio, mesh_names
-from .errors import load_sharing
+from .speed import SpeedProfile, angle_from_tacho
 from .spectral import (HarmonicRule, OrderSpectrum, PlanetErrorRule, SidebandRule,
                        non_multiple_fraction, order_spectrum, top_harmonics)
 
@@ -149,10 +151,6 @@ def harmonic_rules(n_planets: int, design, errors: bool = False) -> list[Harmoni
 
 def curves_for(scene, options: SignalOptions, progress=None) -> list[MeshCurves]:
     """The mesh curves of every depth, scaled as ``options.mesh_stiffness`` says."""
-    from hubvib.studies.crack_sweep import ACCURACY
-
-    from .mesh_curves import fe_mesh_curves
-
     sweep = scene.crack
     depths = sweep.depths if sweep is not None else (0.0,)
     fe = fe_mesh_curves(depths, sweep.start if sweep else "root",
