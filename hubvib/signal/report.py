@@ -170,8 +170,8 @@ def report(study: SignalStudy, pictures: list[str]) -> str:
     errors = o.errors
     sharing = ", ".join(f"{v:.4g}" for v in study.load_sharing)
     lines += ["", "### Errors, load sharing, contact", "",
-              f"Pin-hole errors: tangential {list(o.planet_position_errors_m) or 'none'} m, "
-              f"radial {list(o.pin_hole_radial_errors_m) or 'none'} m; ring run-out "
+              f"Pin-hole errors: tangential {_metres(o.planet_position_errors_m)}, "
+              f"radial {_metres(o.pin_hole_radial_errors_m)}; ring run-out "
               f"{o.ring_runout_m:g} m. Static ring-mesh force of each planet over the mean "
               f"(intact): {sharing}."
               + (" The errors break the phase cancellation: lines at orders that are not "
@@ -309,6 +309,10 @@ def _tsa_figure(study: SignalStudy):
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7)
     return fig
+
+
+def _metres(values) -> str:
+    return f"{list(values)} m" if values else "none"
 
 
 def roc_section(roc: dict) -> list[str]:
