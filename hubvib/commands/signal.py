@@ -20,6 +20,7 @@ def run(args) -> int:
     from hubvib.foundation.output import json_text, output_set
     from hubvib.runtime.progress import stage
     from hubvib.studies.scene import load_scene
+    from hubvib.signal.indicators import INDICATORS
     from hubvib.signal.report import write_signal_study
     from hubvib.signal.study import run_signal_study
 
@@ -32,6 +33,7 @@ def run(args) -> int:
     with output_set(folder) as staged:
         data = write_signal_study(study, staged, plots=scene.plots)
     data = dict(data, folder=str(folder), files=[str(folder / f) for f in data["files"]])
+    data["tacho_csv"] = str(folder / data["tacho_csv"])
     for d in data["depths"]:
         d["signal_csv"], d["signal_wav"] = (str(folder / d[k]) for k in ("signal_csv",
                                                                           "signal_wav"))
@@ -41,7 +43,7 @@ def run(args) -> int:
     print(f"scene {scene.name!r}: carrier {study.carrier_hz:.4g} Hz, mesh {study.mesh_hz:.4g} "
           f"Hz, {study.options.sample_rate_hz:g} samples/s, h = {study.step:.3g} s "
           f"({study.steps_per_revolution} steps per revolution)")
-    names = ("rms", "kurtosis", "crest_factor", "fm0", "fm4", "na4", "ser")
+    names = INDICATORS
     print(f"{'depth [mm]':>10} " + " ".join(f"{n:>12}" for n in names))
     for d in data["depths"]:
         print(f"{d['depth_mm']:>10.3g} "

@@ -4,8 +4,11 @@ FE mesh-cycle stiffness (``mesh_curves``) placed per planet by the gear geometry
 (``mesh_phase``) drives the lumped model in time (``dynamics``, ``time_response``,
 ``simulation``); a ring-mounted sensor (``sensor``) records it; ``spectral``
 (shared with the seed-000 harmonics), ``indicators``, ``study`` and ``report``
-turn it into spectra and condition indicators against crack depth.  Only numpy
-and scipy are imported with the package.
+turn it into spectra and condition indicators against crack depth.  Issue 24:
+manufacturing errors and load sharing (``errors``), tooth separation (``contact``),
+sensors placed from the crack (``sensors``), speed fluctuation, tacho and order
+tracking (``speed``), the records pipeline (``records``) and detection rates
+(``roc``).  Only numpy and scipy are imported with the package.
 """
 from .benchmark import benchmark_signal
 from .options import SignalOptions, parse_signal_table

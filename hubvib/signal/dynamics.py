@@ -14,7 +14,9 @@ state of the mean system, ``x = q - q0`` obeys
     M x'' + C x' + K(t) x = -sum_j dk_j(t) delta_j g_j + sum_j k_j(t) e_j(t) g_j,
 
 ``delta_j = g_j . q0`` the static mesh deflection, ``e_j`` an optional static
-transmission error.  Damping is modal: ``C = M Phi diag(2 zeta omega) Phi^T M``
+transmission error plus the run-out errors of :mod:`hubvib.signal.errors`; pin-hole
+errors of the planets pre-deform their bearings and enter ``q0`` (the static load
+sharing).  Damping is modal: ``C = M Phi diag(2 zeta omega) Phi^T M``
 with the mass-normalised modes of the mean system.
 """
 from __future__ import annotations
@@ -27,6 +29,7 @@ import numpy as np
 from hubvib.lumped import PlanetaryParameters, natural_modes, spring_network
 from hubvib.lumped.network import mass_diagonal
 
+from .errors import StageErrors, error_load
 from .mesh_curves import MeshCurves
 from .mesh_phase import MeshPhasing
 from .time_response import Excitation, LinearSystem
@@ -72,7 +75,7 @@ class PlanetaryDynamics:
 
 
 def planetary_dynamics(params: PlanetaryParameters, curves: MeshCurves, damping_ratio: float,
-                       sun_torque: float) -> PlanetaryDynamics:
+                       sun_torque: float, errors: StageErrors | None = None) -> PlanetaryDynamics:
     """Assemble the mean system with modal damping and the static preload.
 
     Parameters
@@ -86,6 +89,8 @@ def planetary_dynamics(params: PlanetaryParameters, curves: MeshCurves, damping_
         Modal damping ratio [-], in [0, 1).
     sun_torque : float
         Input torque on the sun [N m], > 0.
+    errors : StageErrors, optional
+        Pin-hole errors pre-deform the planet bearings (static state, load sharing).
     """
     if not 0 <= damping_ratio < 1:
         raise ValueError(f"damping_ratio = {damping_ratio!r}; allowed: [0, 1)")
@@ -112,6 +117,8 @@ def planetary_dynamics(params: PlanetaryParameters, curves: MeshCurves, damping_
     unit = np.linalg.solve(K, np.eye(K.shape[0])[SUN_ROTATION])
     transmitted = 1.0 - params.c_su * unit[SUN_ROTATION]
     q0 = (sun_torque / (params.d_s / 2)) / transmitted * unit
+    if errors is not None and errors.any():
+        q0 = q0 + np.linalg.solve(K, error_load(params, errors))
     return PlanetaryDynamics(params, LinearSystem(mass, C, K, rows), mean, rows @ q0,
                              spectrum.omega, float(damping_ratio))
 
@@ -128,25 +135,40 @@ class MeshState:
 
 
 def mesh_state(dynamics: PlanetaryDynamics, curves: MeshCurves, phasing: MeshPhasing,
-               carrier_angle: np.ndarray, crack_tooth: int | None) -> MeshState:
+               carrier_angle: np.ndarray, crack_tooth: int | None,
+               planet_shift: np.ndarray | None = None,
+               ring_roll_shift: np.ndarray | None = None) -> MeshState:
     """Mesh stiffnesses at carrier angles ``carrier_angle`` [rad] (planet i at
-    ``theta_i + carrier_angle``); ``crack_tooth`` is the cracked ring tooth (or None)."""
-    theta = np.asarray(carrier_angle)[:, None] + np.array(dynamics.params.theta)[None, :]
+    ``theta_i + carrier_angle``, plus ``planet_shift[i]`` [rad] in its mesh cycles);
+    ``crack_tooth`` is the cracked ring tooth (or None); ``ring_roll_shift``
+    (steps, N) [m] moves each ring contact along its line of action (ring run-out) and
+    the planet's sun contact as much back (the roll sum of a rigid planet stays)."""
+    angles = np.array(dynamics.params.theta)
+    if planet_shift is not None:
+        angles = angles + planet_shift
+    theta = np.asarray(carrier_angle)[:, None] + angles[None, :]
     s_ring = phasing.ring_roll(theta)
     s_sun = phasing.sun_roll(theta)
     s_cracked = None if crack_tooth is None else phasing.ring_roll(theta, crack_tooth)
+    if ring_roll_shift is not None:
+        s_ring, s_sun = s_ring + ring_roll_shift, s_sun - ring_roll_shift
+        s_cracked = None if s_cracked is None else s_cracked + ring_roll_shift
     k_sun = curves.sun(s_sun)
     k_ring = curves.ring(s_ring, s_cracked)
     return MeshState(np.hstack([k_sun, k_ring]), np.hstack([s_sun, s_ring]))
 
 
 def excitation(dynamics: PlanetaryDynamics, state: MeshState, base_pitch: float,
-               transmission_error: float = 0.0) -> Excitation:
-    """Right-hand side of the equation in the module docstring, per step."""
+               transmission_error: float = 0.0, mesh_error: np.ndarray | None = None
+               ) -> Excitation:
+    """Right-hand side of the equation in the module docstring, per step;
+    ``mesh_error`` (steps + 1, 2N) [m] adds to the transmission error."""
     dk = state.stiffness - dynamics.mean[None, :]
     r = -dk * dynamics.preload[None, :]
     if transmission_error:
         r = r + state.stiffness * transmission_error_of(state, base_pitch, transmission_error)
+    if mesh_error is not None:
+        r = r + state.stiffness * mesh_error
     return Excitation(dk, r)
 
 
@@ -156,9 +178,12 @@ def transmission_error_of(state: MeshState, base_pitch: float, amplitude: float)
 
 
 def mesh_forces(dynamics: PlanetaryDynamics, state: MeshState, displacement: np.ndarray,
-                base_pitch: float, transmission_error: float = 0.0) -> np.ndarray:
+                base_pitch: float, transmission_error: float = 0.0,
+                mesh_error: np.ndarray | None = None) -> np.ndarray:
     """Dynamic part of every mesh force [N]: ``k_j (delta_j + g_j . x - e_j) - kbar_j delta_j``."""
     deflection = dynamics.preload[None, :] + displacement @ dynamics.system.rows.T
     if transmission_error:
         deflection = deflection - transmission_error_of(state, base_pitch, transmission_error)
+    if mesh_error is not None:
+        deflection = deflection - mesh_error
     return state.stiffness * deflection - dynamics.static_force[None, :]

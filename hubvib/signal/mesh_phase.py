@@ -73,6 +73,11 @@ class MeshPhasing:
         return self.planet_base_radius * (2 * self.planet_base_half_angle + self.alpha_s
                                           + self.alpha_r - math.pi)
 
+    @property
+    def centre_distance(self) -> float:
+        """Planet-ring (and sun-planet) centre distance a [m]."""
+        return self.tangent_gap / math.sin(self.alpha_r)
+
     def tooth_angle(self, tooth: int) -> float:
         """Polar angle of ring tooth ``tooth``'s centre line [rad]."""
         return 2 * math.pi * tooth / self.ring_teeth

@@ -21,6 +21,18 @@ Scene keys (all optional; defaults shown)::
     integrator = "newmark"        # average acceleration; "central" (explicit, for checks)
     steps_per_period = 20         # time steps per period of the highest mode
     time_step_s = 0.0             # 0: chosen from steps_per_period and the mesh period
+    indicator_max_order = 0       # highest carrier order the indicators see (0: all)
+    planet_position_errors_m = [] # carrier pin-hole tangential error of each planet [m]
+    pin_hole_radial_errors_m = [] # carrier pin-hole radial error of each planet [m]
+    ring_runout_m = 0.0           # eccentricity of the ring teeth about the carrier axis [m]
+    ring_runout_phase_deg = 0.0   # its direction, fixed in space [deg]
+    contact = "piecewise"         # a mesh that would pull separates; "linear": it may pull
+    sensor_angles_from_crack_deg = []  # more sensors, at these angles from the cracked tooth
+    roc_records = 100             # records per depth for ROC / POD (0: none); 3x for training
+    speed_fluctuation = 0.0       # relative amplitude of a sinusoidal carrier-speed fluctuation
+    speed_fluctuation_hz = 1.0    # its frequency [Hz]; the record is order-tracked by the tacho
+    tacho_pulses_per_revolution = 16  # pulses of the carrier encoder per revolution
+    false_alarm_rate = 0.05       # family-wise false-alarm rate of the POD thresholds
 
 Every check that needs only the table and the Raba gear data (the mesh frequency) is
 made here; the time-step stability check needs the model and is made before the
@@ -34,8 +46,11 @@ from dataclasses import asdict, dataclass
 from hubvib.foundation.errors import SceneError
 from hubvib.signal.mesh_phase import design_teeth
 
+from .errors import StageErrors
+
 MESH_STIFFNESS = ("ratio", "direct")
 INTEGRATORS = ("newmark", "central")
+CONTACT = ("piecewise", "linear")
 
 
 @dataclass(frozen=True)
@@ -75,6 +90,32 @@ class SignalOptions:
         Time steps per period of the highest natural frequency [-], >= 4.
     time_step_s : float
         Explicit time step [s]; 0 chooses it (see ``steps_per_period``).
+    indicator_max_order : int
+        Highest carrier order kept in the indicators [-] (0: every order of the TSA).
+    planet_position_errors_m, pin_hole_radial_errors_m : tuple of float
+        Carrier pin-hole errors, one per planet (tangential, radial) [m]; empty: none.
+    ring_runout_m : float
+        Ring run-out (eccentricity) [m], >= 0.
+    ring_runout_phase_deg : float
+        Direction of the ring run-out [deg].
+    contact : str
+        ``"piecewise"``: mesh stiffness 0 where a tooth pair would carry tension
+        (:mod:`hubvib.signal.contact`); ``"linear"``: the springs may pull.
+    sensor_angles_from_crack_deg : tuple of float
+        Further sensors, each at this angle from the cracked tooth [deg]
+        (:mod:`hubvib.signal.sensors`).
+    roc_records : int
+        Evaluation records per depth of the detection rates [-] (0: none;
+        :mod:`hubvib.signal.roc`).
+    false_alarm_rate : float
+        Family-wise false-alarm rate of the POD thresholds [-], in (0, 0.5).
+    speed_fluctuation : float
+        Relative amplitude of the carrier-speed fluctuation [-], in [0, 0.5]
+        (:mod:`hubvib.signal.speed`).
+    speed_fluctuation_hz : float
+        Frequency of the fluctuation [Hz], > 0.
+    tacho_pulses_per_revolution : int
+        Pulses of the carrier tacho (encoder) per revolution [-], 1..4096.
     """
 
     sun_speed_rpm: float = 1500.0
@@ -92,6 +133,24 @@ class SignalOptions:
     integrator: str = "newmark"
     steps_per_period: int = 20
     time_step_s: float = 0.0
+    indicator_max_order: int = 0
+    planet_position_errors_m: tuple[float, ...] = ()
+    pin_hole_radial_errors_m: tuple[float, ...] = ()
+    ring_runout_m: float = 0.0
+    ring_runout_phase_deg: float = 0.0
+    contact: str = "piecewise"
+    sensor_angles_from_crack_deg: tuple[float, ...] = ()
+    roc_records: int = 100
+    false_alarm_rate: float = 0.05
+    speed_fluctuation: float = 0.0
+    speed_fluctuation_hz: float = 1.0
+    tacho_pulses_per_revolution: int = 16
+
+    @property
+    def errors(self) -> StageErrors:
+        """The manufacturing errors of the stage (SI)."""
+        return StageErrors(self.planet_position_errors_m, self.pin_hole_radial_errors_m,
+                           self.ring_runout_m, math.radians(self.ring_runout_phase_deg))
 
     @property
     def sensor_angle(self) -> float:
@@ -130,9 +189,20 @@ _NUMBERS = {  # key: (low, high, low closed, high closed)
     "rigid_path": (0.0, 1e6, True, True),
     "transmission_error_m": (0.0, 1e-3, True, True),
     "time_step_s": (0.0, 1.0, True, True),
+    "ring_runout_m": (0.0, 1e-3, True, True),
+    "ring_runout_phase_deg": (-math.inf, math.inf, False, False),
+    "false_alarm_rate": (0.0, 0.5, False, False),
+    "speed_fluctuation": (0.0, 0.5, True, True),
+    "speed_fluctuation_hz": (0.0, 1e3, False, True),
 }
-_INTEGERS = {"mesh_harmonics": (1, 50), "noise_seeds": (1, 100), "steps_per_period": (4, 1000)}
-_CHOICES = {"mesh_stiffness": MESH_STIFFNESS, "integrator": INTEGRATORS}
+#: per-planet lists [m]: (low, high) for each value
+_LISTS = {"planet_position_errors_m": (-1e-3, 1e-3, "[m], one per planet"),
+          "pin_hole_radial_errors_m": (-1e-3, 1e-3, "[m], one per planet"),
+          "sensor_angles_from_crack_deg": (-360.0, 360.0, "[deg]")}
+_INTEGERS = {"mesh_harmonics": (1, 50), "noise_seeds": (1, 100), "steps_per_period": (4, 1000),
+             "indicator_max_order": (0, 100000), "roc_records": (0, 10000),
+             "tacho_pulses_per_revolution": (1, 4096)}
+_CHOICES = {"mesh_stiffness": MESH_STIFFNESS, "integrator": INTEGRATORS, "contact": CONTACT}
 
 
 def parse_signal_table(table: dict) -> SignalOptions:
@@ -143,7 +213,7 @@ def parse_signal_table(table: dict) -> SignalOptions:
     hubvib.foundation.errors.SceneError
         Naming ``[signal] key``, the value and the allowed range.
     """
-    allowed = set(_NUMBERS) | set(_INTEGERS) | set(_CHOICES)
+    allowed = set(_NUMBERS) | set(_INTEGERS) | set(_CHOICES) | set(_LISTS)
     unknown = set(table) - allowed
     if unknown:
         raise SceneError(f"unknown key(s) {sorted(unknown)} at [signal]; allowed: "
@@ -174,6 +244,17 @@ def parse_signal_table(table: dict) -> SignalOptions:
             raise SceneError(f"[signal] {key} = {table[key]!r}; allowed: {', '.join(choices)}")
         if key in table:
             values[key] = table[key]
+    for key, (low, high, unit) in _LISTS.items():
+        if key not in table:
+            continue
+        value = table[key]
+        ok = isinstance(value, list) and 1 <= len(value) <= 12 and all(
+            not isinstance(v, bool) and isinstance(v, (int, float)) and math.isfinite(v)
+            and low <= v <= high for v in value)
+        if not ok:
+            raise SceneError(f"[signal] {key} = {value!r}; allowed: a list of 1 to 12 "
+                             f"numbers in [{low:g}, {high:g}] {unit}")
+        values[key] = tuple(float(v) for v in value)
     options = SignalOptions(**values)
     return options
 

@@ -75,8 +75,17 @@ def to_json(study: SignalStudy, files: dict) -> dict:
                     "signal_wav": str(files["wav"][i]),
                     "indicators": summary[1e3 * d.depth],
                     "top_harmonics": [line.to_dict() for line in d.lines],
-                    "simulation_seconds": d.seconds}
+                    "simulation_seconds": d.seconds,
+                    "non_multiple_fraction": d.non_multiple_fraction,
+                    "contact": d.contact}
                    for i, d in enumerate(study.depths)],
+        "non_multiple_fraction": [{"depth_mm": 1e3 * d.depth,
+                                   "fraction": d.non_multiple_fraction}
+                                  for d in study.depths],
+        "load_sharing": study.load_sharing,
+        "sensors": study.sensors,
+        "roc": study.roc,
+        "tacho_csv": "tacho.csv",
         "monotone_indicators": study.monotone(),
         "checks": study.checks,
         "files": [str(p) for p in files["all"]],
@@ -97,7 +106,8 @@ def write_signal_study(study: SignalStudy, folder: Path, plots: bool = True) -> 
         write_csv(folder / "order_spectrum.csv", spectrum_rows(study)),
         write_csv(folder / "harmonics.csv", line_rows(study)),
         write_csv(folder / "indicators.csv", indicator_rows(study)),
-        write_csv(folder / "indicators_summary.csv", summary_rows(study))]
+        write_csv(folder / "indicators_summary.csv", summary_rows(study)),
+        write_csv(folder / "tacho.csv", [{"pulse_time_s": float(t)} for t in study.tacho])]
     pictures = []
     if plots:
         pictures = [save_figure(_spectrum_figure(study), folder / "order_spectrum.png"),
@@ -148,6 +158,8 @@ def report(study: SignalStudy, pictures: list[str]) -> str:
         lines.append(f"- Planet phasing: {checks['cancellation_rule']}. Intact, the largest "
                      f"line at an order that is not a multiple of N is "
                      f"{checks['non_multiple_of_N_relative']:.2g} of the largest line.")
+    if "load_sharing_rule" in checks:
+        lines.append(f"- Load sharing: {checks['load_sharing_rule']}.")
     halving = checks.get("step_halving")
     if halving:
         lines.append(f"- Halving the time step changes the intact order amplitudes up to order "
@@ -155,6 +167,28 @@ def report(study: SignalStudy, pictures: list[str]) -> str:
                      f"by at most {halving['relative_change']:.2g} of the largest (tolerance "
                      f"0.02); up to the Nyquist order {halving['full_order']}, where the highest "
                      f"modes ring, by {halving['full_band_relative_change']:.2g}.")
+    errors = o.errors
+    sharing = ", ".join(f"{v:.4g}" for v in study.load_sharing)
+    lines += ["", "### Errors, load sharing, contact", "",
+              f"Pin-hole errors: tangential {_metres(o.planet_position_errors_m)}, "
+              f"radial {_metres(o.pin_hole_radial_errors_m)}; ring run-out "
+              f"{o.ring_runout_m:g} m. Static ring-mesh force of each planet over the mean "
+              f"(intact): {sharing}."
+              + (" The errors break the phase cancellation: lines at orders that are not "
+                 "multiples of N are labelled '(planet error)' / '(planet load)'."
+                 if errors.any() else ""), "",
+              "| depth [mm] | non-multiple energy share | min total/static mesh force "
+              "(linear) | mesh | separated [% of a revolution] |",
+              "|---:|---:|---:|---|---:|"]
+    for d in study.depths:
+        ratios = d.contact["min_force_ratio"]
+        worst = min(ratios, key=ratios.get)
+        separated = max(d.contact["separated_fraction"].values())
+        lines.append(f"| {1e3 * d.depth:.3g} | {d.non_multiple_fraction:.3g} | "
+                     f"{ratios[worst]:.3g} | {worst} | {100 * separated:.3g} |")
+    lines += ["", "Below 0 the linear mesh spring would pull; the signal then comes from the "
+              f"piecewise contact model (`contact = \"{o.contact}\"`: stiffness 0 where a "
+              "tooth pair separates)."]
     lines += ["", "### Indicators against crack depth (mean over the noise seeds)", "",
               "| depth [mm] | " + " | ".join(INDICATORS) + " |",
               "|---:|" + "---:|" * len(INDICATORS)]
@@ -163,6 +197,15 @@ def report(study: SignalStudy, pictures: list[str]) -> str:
         lines.append(f"| {1e3 * d.depth:.3g} | "
                      + " | ".join(f"{s[n]['mean']:.4g} ± {s[n]['std']:.2g}" for n in INDICATORS)
                      + " |")
+    for sensor in study.sensors:
+        lines += ["", f"Sensor at {sensor['angle_from_crack_deg']:g} deg from the cracked tooth "
+                  f"({sensor['angle_deg']:.4g} deg):", "",
+                  "| depth [mm] | non-multiple share | " + " | ".join(INDICATORS) + " |",
+                  "|---:|---:|" + "---:|" * len(INDICATORS)]
+        for row in sensor["depths"]:
+            lines.append(f"| {row['depth_mm']:.3g} | {row['non_multiple_fraction']:.3g} | "
+                         + " | ".join(f"{row['indicators'][n]['mean']:.4g}"
+                                      for n in INDICATORS) + " |")
     if monotone:
         names = ", ".join(f"{m['indicator']} ({m['direction']}, deepest "
                           f"{m['separation_at_deepest']:+.3g} intact standard deviations)"
@@ -170,6 +213,8 @@ def report(study: SignalStudy, pictures: list[str]) -> str:
         lines += ["", f"Monotone with depth: {names}."]
     else:
         lines += ["", "No indicator is monotone with depth in this scene."]
+    if study.roc:
+        lines += roc_section(study.roc)
     lines += ["", f"### Largest lines at {1e3 * deepest.depth:.3g} mm (noise-free)", "",
               "| order | frequency [Hz] | amplitude [m/s^2] | label |", "|---:|---:|---:|---|"]
     for line in deepest.lines:
@@ -264,3 +309,35 @@ def _tsa_figure(study: SignalStudy):
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7)
     return fig
+
+
+def _metres(values) -> str:
+    return f"{list(values)} m" if values else "none"
+
+
+def roc_section(roc: dict) -> list[str]:
+    """The detection-rate table of the report: POD per depth at the family-wise
+    false-alarm rate, AUC at the deepest crack, the first depth seen."""
+    depths = roc["depth_mm"]
+    lines = ["", "### Detection rates (ROC / POD)", "",
+             f"{roc['records_per_depth']} records per depth ({roc['evaluation_noise']}); "
+             f"thresholds from {roc['training_records']} intact records with "
+             f"{roc['training_noise']} noise at a family-wise false-alarm rate of "
+             f"{roc['false_alarm_rate']:g} (max-T, T = {roc['max_z_threshold']:.3g} standard "
+             f"deviations); measured "
+             f"on the intact evaluation records: {roc['family_false_alarm_measured']:.3g} ± "
+             f"{roc['family_false_alarm_standard_error']:.2g}. Robustness (not claimed): the "
+             f"same thresholds on intact records with {roc['coloured_noise']} noise give "
+             f"{roc['family_false_alarm_coloured']:.3g}, with {roc['heavy_tail_noise']} noise "
+             f"{roc['family_false_alarm_heavy_tail']:.3g}: thresholds must be trained on the "
+             "machine's own healthy records.", "",
+             "| indicator | " + " | ".join(f"POD {d:g} mm" for d in depths)
+             + f" | AUC {depths[-1]:g} mm | first depth with POD >= 0.9 [mm] |",
+             "|---|" + "---:|" * (len(depths) + 2)]
+    for name, row in roc["indicators"].items():
+        seen = row["first_depth_seen_mm"]
+        lines.append(f"| {name} | " + " | ".join(f"{p:.2f}" for p in row["pod"])
+                     + f" | {row['auc'][-1]:.3f} | {'-' if seen is None else f'{seen:g}'} |")
+    lines.append("| any | " + " | ".join(f"{p:.2f}" for p in roc["any_indicator_pod"])
+                 + " | | |")
+    return lines

@@ -9,6 +9,10 @@ the dynamic ring-mesh force of planet ``i`` reaches a sensor fixed at angle
     a(t) = (1 / m_r) sum_i w(theta_i(t) - theta_s) F_i(t) + rho (x_r'' cos theta_s
            + y_r'' sin theta_s),
 
+``F_i`` the dynamic ring-mesh force plus the deviation of the planet's static force
+from the mean (unequal load sharing: a load turning with the carrier; zero when the
+planets share equally),
+
 with ``w`` a Hann window of half-width one planet spacing ``2 pi / N`` (the
 windows of all planets add up to 1 at every instant), ``1 / m_r`` the ring
 mass's inertance [1/kg] as the path gain, and ``rho`` the weight of the ring's
@@ -46,7 +50,9 @@ def sensor_signal(sim: Simulation, sensor_angle: float, rigid_path: float = 0.0)
     params = sim.dynamics.params
     theta = sim.carrier_angle[:, None] + np.array(params.theta)[None, :]
     window = hann_window(theta - sensor_angle, params.n_planets)
-    signal = (window * sim.ring_forces).sum(axis=1) / params.m_r
+    static = sim.dynamics.static_force[params.n_planets:]
+    forces = sim.ring_forces + (static - static.mean())[None, :]
+    signal = (window * forces).sum(axis=1) / params.m_r
     if rigid_path:
         signal = signal + rigid_path * (sim.ring_acceleration[:, 0] * math.cos(sensor_angle)
                                         + sim.ring_acceleration[:, 1] * math.sin(sensor_angle))
@@ -66,15 +72,18 @@ def order_coefficients(one_revolution: np.ndarray, max_order: int) -> np.ndarray
 
 
 def sampled(one_revolution: np.ndarray, carrier_hz: float, sample_rate: float,
-            duration: float) -> tuple[np.ndarray, np.ndarray]:
+            duration: float, speed=None) -> tuple[np.ndarray, np.ndarray]:
     """The periodic signal band-limited below ``sample_rate / 2`` at ``t_k = k / f_s``,
-    0 <= t_k < duration [s]; returns (time [s], values).
+    0 <= t_k < duration [s]; returns (time [s], values).  With ``speed`` (a
+    :class:`hubvib.signal.speed.SpeedProfile`) the signal is read at its carrier angle
+    phi(t_k) and band-limited below the Nyquist order of the highest speed.
 
     The kept orders are put on a grid 16 times finer than the Nyquist order (inverse
     FFT) and a periodic cubic spline reads it at the sample angles: relative error
     below 1e-5 at the highest kept order.
     """
-    nyquist_order = int(math.ceil(sample_rate / 2 / carrier_hz)) - 1
+    top_hz = carrier_hz if speed is None else speed.top_hz
+    nyquist_order = int(math.ceil(sample_rate / 2 / top_hz)) - 1
     max_order = min(nyquist_order, one_revolution.size // 2 - 1)
     X = np.fft.rfft(one_revolution)
     grid = 2 ** int(math.ceil(math.log2(32 * (max_order + 1))))
@@ -84,7 +93,8 @@ def sampled(one_revolution: np.ndarray, carrier_hz: float, sample_rate: float,
     angle = np.linspace(0.0, 2 * math.pi, grid + 1)
     spline = CubicSpline(angle, np.append(fine, fine[0]), bc_type="periodic")
     time = np.arange(int(math.floor(duration * sample_rate + 1e-9))) / sample_rate
-    return time, spline(np.mod(2 * math.pi * carrier_hz * time, 2 * math.pi))
+    angle = 2 * math.pi * carrier_hz * time if speed is None else speed.angle(time)
+    return time, spline(np.mod(angle, 2 * math.pi))
 
 
 def add_noise(values: np.ndarray, rms: float, seed: int) -> np.ndarray:

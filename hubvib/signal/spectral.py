@@ -210,6 +210,40 @@ class SidebandRule:
         return f"{n}x{self.spacing_label} ({centre} {'+' if offset > 0 else '-'} {abs(offset):g})"
 
 
+@dataclass(frozen=True)
+class PlanetErrorRule:
+    """Integer orders that are not multiples of N: what differs from planet to planet
+    (position errors, unequal load sharing) breaks the phase cancellation.  Labelled
+    ``"z_r + 1 (planet error)"`` near a mesh harmonic, ``"4 (planet load)"`` below."""
+
+    base: float
+    n_planets: int
+    meaning: str = "planet-to-planet difference (position error, load sharing)"
+
+    def match(self, order: float, tolerance: float = 1e-6) -> str | None:
+        k = round(order)
+        if abs(order - k) > tolerance * max(1.0, abs(order)) or k < 1 or k % self.n_planets == 0:
+            return None
+        m = round(k / self.base)
+        if m == 0:
+            return f"{k} (planet load)"
+        offset = k - m * self.base
+        centre = "z_r" if m == 1 else f"{m}xz_r"
+        if offset == 0:
+            return f"{centre} (planet error)"
+        return f"{centre} {'+' if offset > 0 else '-'} {abs(offset):g} (planet error)"
+
+
+def non_multiple_fraction(spectrum: OrderSpectrum, n_planets: int) -> float:
+    """Energy share of the orders >= 1 that are not multiples of N,
+    ``sum_{k mod N != 0} c_k^2 / sum_k c_k^2`` [-] (0 for ideal equally spaced planets)."""
+    energy = spectrum.amplitude[1:] ** 2
+    total = energy.sum()
+    if total == 0:
+        raise ValueError("non_multiple_fraction of a signal without energy (all c_k = 0)")
+    return float(energy[spectrum.orders[1:] % n_planets != 0].sum() / total)
+
+
 UNEXPLAINED = "unexplained"
 
 

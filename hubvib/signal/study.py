@@ -15,18 +15,25 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from hubvib.foundation.errors import SceneError
 from hubvib.lumped import natural_modes
 from hubvib.signal.mesh_curves import fe_mesh_curves
 from hubvib.studies.crack_sweep import ACCURACY
 
-from .indicators import GearOrders, INDICATORS, indicators, residual
+from .contact import force_ratio, mesh_names
+from .errors import load_sharing
+from .indicators import INDICATORS, GearOrders
 from .mesh_curves import MeshCurves
 from .mesh_phase import design_phasing, design_teeth
 from .options import SignalOptions
-from .sensor import add_noise, sampled, sensor_signal
+from .records import indicator_run, summarise
+from .roc import detection_rates
+from .sensor import sampled, sensor_signal
+from .sensors import sensor_rows
 from .simulation import Simulation, carrier_speed, simulate, steps_per_revolution
-from .spectral import (HarmonicRule, OrderSpectrum, SidebandRule, angle_domain, order_spectrum,
-                       top_harmonics)
+from .speed import SpeedProfile, angle_from_tacho
+from .spectral import (HarmonicRule, OrderSpectrum, PlanetErrorRule, SidebandRule,
+                       non_multiple_fraction, order_spectrum, top_harmonics)
 
 #: labelled lines listed per depth
 TOP_LINES = 12
@@ -57,6 +64,11 @@ class DepthSignal:
         The largest lines of ``spectrum`` with their labels.
     seconds : float
         Wall time of the simulation [s].
+    non_multiple_fraction : float
+        Energy share of the carrier orders that are not multiples of N [-].
+    contact : dict
+        Per mesh: smallest total/static force of the linear model and the fraction of
+        the revolution spent separated in the piecewise model [-].
     """
 
     depth: float
@@ -68,12 +80,12 @@ class DepthSignal:
     values: list = field(default_factory=list)
     lines: list = field(default_factory=list)
     seconds: float = 0.0
+    non_multiple_fraction: float = 0.0
+    contact: dict = field(default_factory=dict)
 
     def summary(self) -> dict:
         """Mean and standard deviation of each indicator over the seeds."""
-        table = np.array([[getattr(v, name) for name in INDICATORS] for v in self.values])
-        return {name: {"mean": float(table[:, i].mean()), "std": float(table[:, i].std())}
-                for i, name in enumerate(INDICATORS)}
+        return summarise(self.values, INDICATORS)
 
 
 @dataclass
@@ -94,10 +106,15 @@ class SignalStudy:
     crack_tooth: int = 0
 
     ring_teeth: int = 64
+    load_sharing: list = field(default_factory=list)
+    sensors: list = field(default_factory=list)
+    roc: dict | None = None
+    tacho: np.ndarray | None = None
 
     @property
     def gear(self) -> GearOrders:
-        return GearOrders(self.ring_teeth, self.n_planets, self.options.mesh_harmonics)
+        return GearOrders(self.ring_teeth, self.n_planets, self.options.mesh_harmonics,
+                          self.options.indicator_max_order)
 
     def monotone(self) -> list[dict]:
         """Indicators whose seed-mean moves the same way at every depth step."""
@@ -114,11 +131,13 @@ class SignalStudy:
         return out
 
 
-def harmonic_rules(n_planets: int, design) -> list[HarmonicRule]:
+def harmonic_rules(n_planets: int, design, errors: bool = False) -> list[HarmonicRule]:
     """Labels of carrier orders: mesh harmonics, planet-pass / cracked-tooth sidebands
-    (multiples of N around them), planet-pass orders, shaft orders; else unexplained."""
+    (multiples of N around them), planet-pass orders, shaft orders, and with ``errors``
+    the other integer orders (planet errors, load sharing); else unexplained."""
     teeth = design_teeth(design)
     z_r, z_s, z_p = teeth["ring"], teeth["sun"], teeth["planet"]
+    extra = [PlanetErrorRule(z_r, n_planets)] if errors else []
     return [
         HarmonicRule("z_r", z_r, meaning="ring mesh harmonic"),
         SidebandRule("z_r", z_r, n_planets, "N",
@@ -127,7 +146,7 @@ def harmonic_rules(n_planets: int, design) -> list[HarmonicRule]:
         HarmonicRule("carrier", 1, 2, meaning="carrier shaft order"),
         HarmonicRule("sun", (z_s + z_r) / z_s, 3, meaning="sun shaft order (relative)"),
         HarmonicRule("planet", abs(1 - z_r / z_p), 3, meaning="planet spin order"),
-    ]
+    ] + extra + extra
 
 
 def curves_for(scene, options: SignalOptions, progress=None) -> list[MeshCurves]:
@@ -160,8 +179,21 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
         curves = curves_for(scene, options, progress)
     phasing = design_phasing(scene.design)
     tooth = scene.crack.tooth if scene.crack is not None else 0
-    gear = GearOrders(teeth["ring"], params.n_planets, options.mesh_harmonics)
-    rules = harmonic_rules(params.n_planets, scene.design)
+    gear = GearOrders(teeth["ring"], params.n_planets, options.mesh_harmonics,
+                      options.indicator_max_order)
+    try:
+        options.errors.per_planet(params.n_planets)
+    except ValueError as exc:
+        raise SceneError(str(exc)) from None
+    if options.roc_records and options.noise_level == 0:
+        raise SceneError("[signal] noise_level = 0 with roc_records > 0: every record is the "
+                         "same, no detection rate; allowed: noise_level > 0 or roc_records = 0")
+    depth_list = scene.crack.depths if scene.crack is not None else (0.0,)
+    if options.roc_records and depth_list[0] != 0.0:
+        raise SceneError(f"[crack] depths = {list(depth_list)}: detection rates need the "
+                         f"intact case 0.0 first; allowed: depths starting at 0.0, or "
+                         f"[signal] roc_records = 0")
+    rules = harmonic_rules(params.n_planets, scene.design, options.errors.any())
     depths, sims = [], []
     for c in curves:
         started = time.perf_counter()
@@ -171,25 +203,50 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
         spectrum = _below_nyquist(order_spectrum(revolution), sim, options)
         depths.append(DepthSignal(c.depth, revolution, spectrum, np.empty(0), np.empty(0),
                                   lines=top_harmonics(spectrum, rules, TOP_LINES),
-                                  seconds=time.perf_counter() - started))
+                                  seconds=time.perf_counter() - started,
+                                  non_multiple_fraction=non_multiple_fraction(
+                                      spectrum, params.n_planets),
+                                  contact=contact_summary(sim)))
     carrier_hz = sims[0].carrier_speed / (2 * math.pi)
     duration = options.revolutions / carrier_hz
-    clean = [sampled(d.revolution, carrier_hz, options.sample_rate_hz, duration) for d in depths]
+    speed = SpeedProfile(carrier_hz, options.speed_fluctuation, options.speed_fluctuation_hz)
+    varying = speed if options.speed_fluctuation else None
+    clean = [sampled(d.revolution, carrier_hz, options.sample_rate_hz, duration, varying)
+             for d in depths]
+    pulses = speed.pulses(clean[0][0][-1], options.tacho_pulses_per_revolution)
+    angle = angle_from_tacho(pulses, clean[0][0], options.tacho_pulses_per_revolution) \
+        if varying else \
+        2 * math.pi * carrier_hz * clean[0][0]
     noise_rms = options.noise_level * float(np.sqrt(np.mean(clean[0][1] ** 2)))
     points = 2 ** int(math.ceil(math.log2(options.sample_rate_hz / carrier_hz)))
-    variances = []
-    for d, (t, values) in zip(depths, clean):
-        records = [add_noise(values, noise_rms, seed) for seed in range(options.noise_seeds)]
-        d.time, d.record = t, records[0]
-        angle = 2 * math.pi * carrier_hz * t
-        d.tsa = [angle_domain(angle, r, points).synchronous_average() for r in records]
-        variances += [float(np.var(residual(tsa, gear))) for tsa in d.tsa]
-        d.values = [indicators(tsa, gear, variances) for tsa in d.tsa]
+    first, tsas, values = indicator_run(clean, angle, points, gear, noise_rms,
+                                        range(options.noise_seeds))
+    for d, (t, _), record, tsa, v in zip(depths, clean, first, tsas, values):
+        d.time, d.record, d.tsa, d.values = t, record, tsa, v
     study = SignalStudy(scene.name, options, carrier_hz, carrier_hz * teeth["ring"],
                         params.n_planets, sims[0].step, sims[0].steps_per_revolution, points,
                         noise_rms, depths, crack_tooth=tooth, ring_teeth=teeth["ring"])
     study.checks = _checks(study, params, curves[0], phasing, options, teeth["sun"])
+    study.load_sharing = [float(v) for v in load_sharing(sims[0].dynamics.static_force,
+                                                          params.n_planets)]
+    study.tacho = pulses
+    if options.roc_records:
+        study.roc = detection_rates([d.depth for d in depths], clean, angle, points, gear,
+                                    noise_rms, options.roc_records, options.false_alarm_rate)
+    study.sensors = [sensor_rows(sims, [d.depth for d in depths], offset, tooth, gear, options,
+                                 (varying, angle), points, noise_rms)
+                     for offset in options.sensor_angles_from_crack_deg]
     return study
+
+
+def contact_summary(sim: Simulation) -> dict:
+    """Per mesh: the smallest total/static force ratio of the linear model and the fraction
+    of the revolution separated in the piecewise contact model [-]."""
+    names = mesh_names(sim.dynamics.n_planets)
+    return {"min_force_ratio": dict(zip(names, map(float, sim.linear_min_force_ratio))),
+            "separated_fraction": dict(zip(names, map(float, sim.separated))),
+            "min_force_ratio_after": dict(zip(names, map(float, force_ratio(
+                sim.dynamics, sim.forces).min(axis=0))))}
 
 
 def _below_nyquist(spectrum: OrderSpectrum, sim: Simulation,
@@ -234,7 +291,11 @@ def _checks(study: SignalStudy, params, intact: MeshCurves, phasing, options, su
     top = options.mesh_harmonics * study.ring_teeth + SER_REACH * n
     out = {"non_multiple_of_N_relative": float(amplitude[off].max() / amplitude.max())
            if off.any() else 0.0}
-    if params.equally_spaced():
+    if params.equally_spaced() and params.n_planets == 3 and params.c_s == 0:
+        out["load_sharing_rule"] = (
+            "floating sun, three planets: the sun's force balance leaves only equal mesh "
+            "forces, whatever the pin-hole errors (Kahraman 1994)")
+    if params.equally_spaced() and not options.errors.any():
         out["cancellation_rule"] = (
             "equally spaced planets: only carrier orders that are multiples of N reach a "
             "sensor fixed on the ring (McFadden & Smith 1985; Parker & Lin 2004)")
