@@ -1,5 +1,6 @@
 """Ring-gear profile, mesh and crack checks (sources and tolerances in each assertion)."""
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -322,3 +323,25 @@ def test_external_gear_body_rejects_bad_input():
         GearBody(raba118.planet(), 0.07)
     with pytest.raises(GearGeometryError, match="crack"):
         ring_mesh(raba118.gear_body("sun"), Crack(0, 1e-3))
+
+
+def _ignored_signals() -> int:
+    """The kernel's mask of ignored signals for this process (Linux /proc)."""
+    line = next(l for l in Path("/proc/self/status").read_text().splitlines()
+                if l.startswith("SigIgn:"))
+    return int(line.split()[1], 16)
+
+
+@pytest.mark.skipif(not Path("/proc/self/status").exists(), reason="needs Linux /proc")
+def test_gmsh_session_keeps_sigpipe_ignored():
+    """gmsh.initialize resets SIGPIPE to its default (kill the process); Python ignores it so
+    that a write to a closed pipe raises BrokenPipeError.  The session puts it back."""
+    import signal
+
+    from hubvib.meshing.session import gmsh_model
+
+    bit = 1 << (signal.SIGPIPE - 1)
+    assert _ignored_signals() & bit, "Python ignores SIGPIPE at start-up"
+    with gmsh_model():
+        assert _ignored_signals() & bit, "SIGPIPE no longer ignored inside a gmsh session"
+    assert _ignored_signals() & bit, "SIGPIPE no longer ignored after a gmsh session"

@@ -4,12 +4,27 @@ from __future__ import annotations
 import contextlib
 import itertools
 import os
+import signal
+import threading
 
 _counter = itertools.count()
 
 
 class MeshingError(RuntimeError):
     """gmsh could not build a mesh; the message names the parameters that failed."""
+
+
+def _restore_sigpipe() -> None:
+    """Put back the SIGPIPE disposition Python set at start-up (ignored, so that a write to a
+    closed pipe raises BrokenPipeError).  ``gmsh.initialize`` resets it to the default, which
+    kills the whole process on such a write (exit 141): a test run or a pool whose worker
+    died would vanish without a word.  Python still reports the old handler, so it is
+    installed again as it is; only the main thread may do so."""
+    if not hasattr(signal, "SIGPIPE") or threading.current_thread() is not threading.main_thread():
+        return
+    handler = signal.getsignal(signal.SIGPIPE)
+    if handler is not None:
+        signal.signal(signal.SIGPIPE, handler)
 
 
 @contextlib.contextmanager
@@ -26,6 +41,7 @@ def gmsh_model(name: str = "hubvib"):
     owner = not gmsh.isInitialized()
     if owner:
         gmsh.initialize(readConfigFiles=False, interruptible=False)
+        _restore_sigpipe()
     model = f"{name}-{next(_counter)}"
     try:
         log = bool(os.environ.get("HUBVIB_GMSH_LOG"))  # set to see gmsh's own messages
