@@ -1,0 +1,307 @@
+"""Every figure the hubvib docs quote, generated: no number in docs/*.md is typed by hand.
+
+``table(name)`` returns the Markdown of one generated table (the pages hold the marker
+``<!-- gen: name -->``, replaced by ``docs/hooks.py`` at build time); ``console(argv)``
+runs one ``hubvib`` command in-process and returns a console block with its output.
+
+Two kinds of source:
+
+* computed now by the library (lumped spectra, the Raba 118/76 validation, the stability
+  table, the design check, the series mounting, batched solves): cheap and deterministic;
+* read from files in ``docs/data/`` that a named ``hubvib`` command wrote (benchmark timings,
+  the FE stiffness table, the default crack study, the 15-minute 3D crack-growth scene); each
+  such table says which command regenerates its file (``DATA_SOURCES``) and when it ran.
+
+Run ``python docs/generate.py NAME`` to print one table.
+"""
+from __future__ import annotations
+
+import contextlib
+import csv
+import io
+import json
+import math
+import os
+import shlex
+import shutil
+import sys
+import tempfile
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+DATA = Path(__file__).resolve().parent / "data"
+
+# file in docs/data -> the command that (re)writes it; the provenance line of every table
+# read from a file names it
+DATA_SOURCES = {
+    "benchmark_quick.json": "hubvib benchmark --quick --json > docs/data/benchmark_quick.json",
+    "stiffness_10mm.json": "hubvib stiffness --crack-depth 10e-3 --json "
+                           "> docs/data/stiffness_10mm.json",
+    "raba118_crack/": "hubvib run raba118_crack --out docs/data/raba118_crack "
+                      "(then keep the CSV/JSON files)",
+    "raba118_crack_3d/": "hubvib run raba118_crack_3d --out docs/data/raba118_crack_3d "
+                         "(then keep stiffness_3d.csv and results.json)",
+}
+
+
+# ---------------------------------------------------------------- helpers
+
+def markdown_table(header: list[str], rows: list[list], align: str | None = None) -> str:
+    """A Markdown table; ``align`` is one character per column, ``l`` or ``r``."""
+    align = align or "l" * len(header)
+    rule = ["---:" if a == "r" else "---" for a in align]
+    lines = ["| " + " | ".join(header) + " |", "|" + "|".join(rule) + "|"]
+    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
+    return "\n".join(lines)
+
+
+def provenance(name: str, measured: str | None = None) -> str:
+    when = f", measured {measured}" if measured else ""
+    return f"\n\n*Source: `docs/data/{name}`{when}; regenerate with `{DATA_SOURCES[name]}`.*"
+
+
+def _meta(name: str) -> dict:
+    path = DATA / f"{name}.meta.json"
+    return json.loads(path.read_text()) if path.exists() else {}
+
+
+def _g(value: float, digits: int = 4) -> str:
+    return f"{value:.{digits}g}"
+
+
+# ---------------------------------------------------------------- lumped model
+
+def lumped_spectrum() -> str:
+    """The energy-consistent spectrum of the Raba 118/76 preset, with the c_ru shift and
+    the relative sensitivity of every mode."""
+    from hubvib import lumped
+
+    params = lumped.raba118()
+    spectrum = lumped.natural_modes(params)
+    shift = lumped.frequency_shift(params, "c_ru", 1e5)
+    sens = lumped.frequency_sensitivity(params, "c_ru")
+    rows = [[i + 1, spectrum.kind[i], spectrum.multiplicity[i], f"{w:.2f}",
+             f"{w / (2 * math.pi):.2f}", f"{shift.percent[i]:+.2f}", f"{sens.relative[i]:.3g}"]
+            for i, w in enumerate(spectrum.omega)]
+    return markdown_table(["mode", "type", "multiplicity", "ω [rad/s]", "f [Hz]",
+                           "shift, c_ru 1e6 → 1e5 N/m [%]", "(dω/ω)/(dk/k) for c_ru"],
+                          rows, "rlrrrrr")
+
+
+def raba_validation() -> str:
+    """Published spectrum against the printed (indefinite) matrix and the energy model."""
+    from hubvib.validation.raba118 import validate
+
+    rows = [[r["mode"], f"{r['published_rad_s']:.0f}",
+             f"{r['printed_rad_s']:.1f}" + (" (λ<0)" if r["printed_lambda_sign"] == "-" else ""),
+             f"{r['printed_vs_published_percent']:+.3f}", r["kind"], f"{r['energy_rad_s']:.1f}"]
+            for r in validate().rows]
+    return markdown_table(["#", "published [rad/s]", "printed matrix", "deviation [%]", "type",
+                           "energy model"], rows, "rrrrlr")
+
+
+def raba_summary() -> str:
+    """The headline figures of ``hubvib validate raba118``."""
+    from hubvib.validation.raba118 import PUBLISHED_TOLERANCE, validate
+
+    result = validate()
+    negative = ", ".join(f"{v:.4g}" for v in result.negative_eigenvalues)
+    rows = [
+        ["largest deviation, printed matrix against the published values",
+         f"{100 * result.printed_max_deviation:.3f} % (tolerance {100 * PUBLISHED_TOLERANCE:g} %)"],
+        ["negative eigenvalues of the printed matrix [rad²/s²]",
+         f"{len(result.negative_eigenvalues)}: {negative}"],
+        ["ω₁ at c_ru = 1e6 over ω₁ at 1e5 N/m", f"{result.fig4_ratio_first:.3g}"],
+        ["ω₂ at c_ru = 1e6 over ω₂ at 1e5 N/m", f"{result.fig4_ratio_second:.3g}"],
+        ["theory checks passed", f"{sum(c.passed for c in result.theory)} of {len(result.theory)}"],
+    ]
+    return markdown_table(["figure", "value"], rows, "lr")
+
+
+def stability() -> str:
+    """Error against the 50-digit mpmath reference per case and solver, and the time of
+    the default solver, measured while the docs are built."""
+    from hubvib.validation.stability import run
+
+    rows = [r for r in run(repeats=5) if not math.isnan(r.max_error)]
+    methods = list(dict.fromkeys(r.method for r in rows))
+    cases = list(dict.fromkeys(r.case for r in rows))
+    by = {(r.case, r.method): r for r in rows}
+    out = [[case] + [f"{by[case, m].max_error:.1e}" for m in methods]
+           + [f"{1e3 * by[case, methods[0]].seconds:.2f}"] for case in cases]
+    header = ["case"] + [f"{m}{' (default)' if i == 0 else ''}" for i, m in enumerate(methods)]
+    return markdown_table(header + [f"time, {methods[0]} [ms]"], out,
+                          "l" + "r" * (len(methods) + 1)) + (
+        "\n\n*Computed while these docs were built (`hubvib.validation.stability.run`); the "
+        "times are medians of 5 calls on the build machine.*")
+
+
+def batch() -> str:
+    """The batched solve of the worked example in *Crack detection*."""
+    from hubvib import lumped
+    from hubvib.lumped.batch import batch_frequencies
+
+    values = np.geomspace(1e5, 1e7, 10_000)
+    result = batch_frequencies(lumped.raba118(), {"c_ru": values})
+    exact = [lumped.natural_modes(lumped.raba118().replace(c_ru=v)).omega[0] / (2 * math.pi)
+             for v in values[[0, -1]]]
+    rows = [[f"{v:.0e}", f"{b:.2f}", f"{e:.2f}"]
+            for v, b, e in zip(values[[0, -1]], result.frequency_hz[[0, -1], 0], exact)]
+    return markdown_table(["c_ru [N/m]", "mode 1, batch [Hz]", "mode 1, natural_modes [Hz]"],
+                          rows, "rrr")
+
+
+# ---------------------------------------------------------------- design and detection
+
+def series_mounting() -> str:
+    """The paper's soft mounting in series with the FE ring body (the example's numbers)."""
+    from hubvib.detection.series import identify_mount, series
+
+    body = _stiffness()["c_ru_N_m"]
+    cracked = body * (1 + _stiffness_change("c_ru"))
+    mount = identify_mount(1e6, body)
+    rows = [["FE ring body c_ru, intact / 10 mm crack [N/m]", f"{body:.4g} / {cracked:.4g}"],
+            ["mounting identified so that the total is 1e6 [N/m]", f"{mount:.6g}"],
+            ["change of the total c_ru with the 10 mm crack",
+             f"{series(mount, cracked) / series(mount, body) - 1:.2g}"],
+            ["change of the ring body's c_ru", f"{cracked / body - 1:.3g}"]]
+    return markdown_table(["figure", "value"], rows, "lr") + provenance("stiffness_10mm.json")
+
+
+# ---------------------------------------------------------------- files written by commands
+
+@lru_cache(maxsize=None)
+def _benchmark() -> dict:
+    return json.loads((DATA / "benchmark_quick.json").read_text())
+
+
+def _benchmark_note() -> str:
+    meta = _meta("benchmark_quick.json")
+    return provenance("benchmark_quick.json", meta.get("measured")) + (
+        f" *{meta['machine']}.*" if "machine" in meta else "")
+
+
+def benchmark_fe() -> str:
+    """The FE and lumped speed figures of the committed ``hubvib benchmark --quick`` run."""
+    b = _benchmark()
+    rows = [
+        [f"2D c_ru, mesh + FE ({b['c_ru_2d_dofs']:,} DOFs, error {b['c_ru_2d_rel_error']:.1e} "
+         f"against the {b['c_ru_2d_reference']})", f"{b['c_ru_2d_previous_seconds']:.2f} s",
+         f"{b['c_ru_2d_seconds']:.2f} s", f"{b['c_ru_2d_speedup']:.2f}"],
+        ["the same, FE only", "", "", f"{b['c_ru_2d_fe_speedup']:.2f}"],
+        [f"crack case: c_ru, c_r, engaged c_rp, 2 levels (scale {b['crack_case_scale']:g})",
+         f"{b['crack_case_previous_seconds']:.2f} s", f"{b['crack_case_seconds']:.2f} s",
+         f"{b['crack_case_speedup']:.2f}"],
+        ["lumped spectra, batched against one at a time (points/s)",
+         f"{1 / b['lumped']['single_seconds_per_point']:.0f}",
+         f"{b['lumped']['points_per_second']:.0f}", f"{b['lumped']['speedup']:.0f}"],
+    ]
+    skipped = ", ".join(k.removesuffix("_skipped").replace("_", " ") for k in b
+                        if k.endswith("_skipped") and b[k])
+    return markdown_table(["figure", "before (previous path)", "now", "ratio"], rows, "lrrr") + (
+        f"\n\nShared against separate solves differ by {b['crack_case_max_rel_difference']:.1e}; "
+        f"the previous 2D path gives the same c_ru to {b['c_ru_2d_previous_max_rel_difference']:.1e}; "
+        f"batched against Jacobi: {b['lumped']['max_relative_difference']:.1e}. "
+        f"Not in this run ({'--quick' if b['quick'] else 'full'}): {skipped}."
+        + _benchmark_note())
+
+
+def benchmark_signal() -> str:
+    """Cost and accuracy of the ways to compute the sensor signal."""
+    s = _benchmark()["signal"]
+    rows = [
+        ["periodic steady state, one revolution, record extended (what `hubvib signal` does)",
+         f"{s['periodic_s']:.2f}", "reference"],
+        ["the same, at a quarter of the step", f"{s['periodic_quarter_step_s']:.2f}",
+         f"{100 * s['periodic_quarter_step_error']:.2g} %"],
+        [f"average acceleration, all {s['revolutions']} revolutions marched",
+         f"{s['newmark_s']:.2f}", f"{100 * s['newmark_error']:.2g} %"],
+        [f"`scipy.integrate.solve_ivp` {s['solve_ivp_method']}, rtol {s['solve_ivp_rtol']:g} "
+         f"({s['solve_ivp_evaluations']:,} right-hand-side evaluations)",
+         f"{s['solve_ivp_s']:.2f}", f"{100 * s['solve_ivp_error']:.2g} %"],
+    ]
+    return markdown_table(["way", "time [s]", "error of the sensor signal"], rows, "lrr") + (
+        f"\n\n{s['revolutions']} carrier revolutions, {s['steps_per_revolution']:,} steps per "
+        f"revolution (h = {s['time_step_s']:.3g} s), recorded at {s['sample_rate_hz']:g} Hz "
+        f"({s['samples_per_mesh_period']:.1f} samples per mesh period); errors relative to the "
+        "largest signal value, against the Richardson extrapolation of the h and h/2 steady "
+        "states." + _benchmark_note())
+
+
+@lru_cache(maxsize=None)
+def _stiffness() -> dict:
+    return json.loads((DATA / "stiffness_10mm.json").read_text())
+
+
+def _stiffness_change(name: str) -> float:
+    data = _stiffness()
+    return data[f"{name}_cracked_N_m"] / data[f"{name}_N_m"] - 1 if (
+        f"{name}_cracked_N_m" in data) else data[f"{name}_change"]
+
+
+def stiffness() -> str:
+    """``hubvib stiffness --crack-depth 10e-3 --json``: every stiffness with its error."""
+    data = _stiffness()
+    rows = []
+    for key, value in data.items():
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            rows.append([f"`{key}`", _g(value, 5)])
+    return markdown_table(["key", "value"], rows, "lr") + provenance("stiffness_10mm.json")
+
+
+def _csv(path: Path) -> list[dict]:
+    with path.open(newline="") as handle:
+        return list(csv.DictReader(handle))
+
+
+def crack_3d() -> str:
+    """The change of the solid ring body's c_ru over depth x half-length (3D scene)."""
+    rows = _csv(DATA / "raba118_crack_3d" / "stiffness_3d.csv")
+    return markdown_table(list(rows[0]), [list(r.values()) for r in rows]) + provenance(
+        "raba118_crack_3d/", _meta("raba118_crack_3d").get("measured"))
+
+
+# ---------------------------------------------------------------- entry points
+
+TABLES = {name: function for name, function in list(globals().items())
+          if callable(function) and not name.startswith("_") and function.__module__ == __name__
+          and name not in {"markdown_table", "provenance", "table", "console"}}
+
+
+@lru_cache(maxsize=None)
+def table(name: str) -> str:
+    """The Markdown of generated table ``name`` (a ``KeyError`` names the known ones)."""
+    if name not in TABLES:
+        raise KeyError(f"no generated table {name!r}; known: {', '.join(sorted(TABLES))}")
+    return TABLES[name]()
+
+
+def console(argv: list[str], expected: int = 0) -> str:
+    """``hubvib ARGS`` run in-process in a scratch folder holding ``docs/data/inputs``; a
+    console block with the command and what it printed (stdout, then stderr)."""
+    from hubvib.cli import main
+
+    if not argv or argv[0] != "hubvib":
+        raise ValueError(f"a cli marker runs hubvib, not {argv[:1]}")
+    out, err = io.StringIO(), io.StringIO()
+    folder = Path(tempfile.mkdtemp(prefix="hubvib-docs-cli-"))
+    here = Path.cwd()
+    try:
+        shutil.copytree(DATA / "inputs", folder, dirs_exist_ok=True)
+        os.chdir(folder)
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            code = main(argv[1:])
+    finally:
+        os.chdir(here)
+        shutil.rmtree(folder, ignore_errors=True)
+    if code != expected:
+        raise RuntimeError(f"exit {code}, expected {expected}: {err.getvalue().strip()}")
+    text = (out.getvalue() + err.getvalue()).rstrip()
+    return f"```console\n$ {shlex.join(argv)}\n{text}\n```"
+
+
+if __name__ == "__main__":
+    for name in sys.argv[1:] or sorted(TABLES):
+        print(f"## {name}\n\n{table(name)}\n")
