@@ -67,6 +67,11 @@ def _meta(name: str) -> dict:
     return json.loads(path.read_text()) if path.exists() else {}
 
 
+def _small(value: float, digits: int = 3) -> str:
+    """``0`` for round-off (|x| < 1e-12), else ``digits`` significant digits."""
+    return "0" if abs(value) < 1e-12 else f"{value:.{digits}g}"
+
+
 def _g(value: float, digits: int = 4) -> str:
     return f"{value:.{digits}g}"
 
@@ -83,7 +88,7 @@ def lumped_spectrum() -> str:
     shift = lumped.frequency_shift(params, "c_ru", 1e5)
     sens = lumped.frequency_sensitivity(params, "c_ru")
     rows = [[i + 1, spectrum.kind[i], spectrum.multiplicity[i], f"{w:.2f}",
-             f"{w / (2 * math.pi):.2f}", f"{shift.percent[i]:+.2f}", f"{sens.relative[i]:.3g}"]
+             f"{w / (2 * math.pi):.2f}", f"{shift.percent[i]:+.2f}", _small(sens.relative[i])]
             for i, w in enumerate(spectrum.omega)]
     return markdown_table(["mode", "type", "multiplicity", "ω [rad/s]", "f [Hz]",
                            "shift, c_ru 1e6 → 1e5 N/m [%]", "(dω/ω)/(dk/k) for c_ru"],
@@ -155,11 +160,16 @@ def batch() -> str:
 
 # ---------------------------------------------------------------- design and detection
 
+def design_file() -> str:
+    """The example design file ``docs/data/inputs/demo.toml``, as the commands read it."""
+    return f"```toml\n{(DATA / 'inputs' / 'demo.toml').read_text().rstrip()}\n```"
+
+
 def series_mounting() -> str:
     """The paper's soft mounting in series with the FE ring body (the example's numbers)."""
     from hubvib.detection.series import identify_mount, series
 
-    body = _stiffness()["c_ru_N_m"]
+    body = _stiffness()["intact"]["c_ru"]["value_N_m"]
     cracked = body * (1 + _stiffness_change("c_ru"))
     mount = identify_mount(1e6, body)
     rows = [["FE ring body c_ru, intact / 10 mm crack [N/m]", f"{body:.4g} / {cracked:.4g}"],
@@ -167,7 +177,8 @@ def series_mounting() -> str:
             ["change of the total c_ru with the 10 mm crack",
              f"{series(mount, cracked) / series(mount, body) - 1:.2g}"],
             ["change of the ring body's c_ru", f"{cracked / body - 1:.3g}"]]
-    return markdown_table(["figure", "value"], rows, "lr") + provenance("stiffness_10mm.json")
+    return markdown_table(["figure", "value"], rows, "lr") + provenance(
+        "stiffness_10mm.json", _meta("stiffness_10mm.json").get("measured"))
 
 
 # ---------------------------------------------------------------- files written by commands
@@ -213,11 +224,11 @@ def benchmark_signal() -> str:
     s = _benchmark()["signal"]
     rows = [
         ["periodic steady state, one revolution, record extended (what `hubvib signal` does)",
-         f"{s['periodic_s']:.2f}", "reference"],
+         f"{s['periodic_s']:.2f}", f"{100 * s['newmark_error']:.2g} %"],
         ["the same, at a quarter of the step", f"{s['periodic_quarter_step_s']:.2f}",
          f"{100 * s['periodic_quarter_step_error']:.2g} %"],
         [f"average acceleration, all {s['revolutions']} revolutions marched",
-         f"{s['newmark_s']:.2f}", f"{100 * s['newmark_error']:.2g} %"],
+         f"{s['newmark_s']:.2f}", f"{100 * s['newmark_error']:.2g} % (the same steady state)"],
         [f"`scipy.integrate.solve_ivp` {s['solve_ivp_method']}, rtol {s['solve_ivp_rtol']:g} "
          f"({s['solve_ivp_evaluations']:,} right-hand-side evaluations)",
          f"{s['solve_ivp_s']:.2f}", f"{100 * s['solve_ivp_error']:.2g} %"],
@@ -232,23 +243,54 @@ def benchmark_signal() -> str:
 
 @lru_cache(maxsize=None)
 def _stiffness() -> dict:
-    return json.loads((DATA / "stiffness_10mm.json").read_text())
+    return json.loads((DATA / "stiffness_10mm.json").read_text())["cases"]
 
 
 def _stiffness_change(name: str) -> float:
-    data = _stiffness()
-    return data[f"{name}_cracked_N_m"] / data[f"{name}_N_m"] - 1 if (
-        f"{name}_cracked_N_m" in data) else data[f"{name}_change"]
+    """Relative change of ``c_ru`` or ``c_r`` with the 10 mm crack of the committed run."""
+    cases = _stiffness()
+    return cases["crack 0.01 m"][name]["value_N_m"] / cases["intact"][name]["value_N_m"] - 1
 
 
 def stiffness() -> str:
-    """``hubvib stiffness --crack-depth 10e-3 --json``: every stiffness with its error."""
-    data = _stiffness()
+    """``hubvib stiffness --crack-depth 10e-3 --json``: every stiffness of the intact ring with
+    its error, range over the cycle and independent checks; then the crack's changes."""
+    intact = _stiffness()["intact"]
     rows = []
-    for key, value in data.items():
-        if isinstance(value, (int, float)) and not isinstance(value, bool):
-            rows.append([f"`{key}`", _g(value, 5)])
-    return markdown_table(["key", "value"], rows, "lr") + provenance("stiffness_10mm.json")
+    for name in ("c_ru", "c_r", "c_sp", "c_rp"):
+        q = intact[name]
+        spread = (f"{q['min_N_m']:.3g}..{q['max_N_m']:.3g}" if "min_N_m" in q else "")
+        if "contact_ratio" in q:
+            spread += f" (ε = {q['contact_ratio']:.3g})"
+        check = ""
+        if "analytic_N_m" in q:
+            check = (f"analytical {q['analytic_N_m']:.3g} ({q['value_N_m'] / q['analytic_N_m'] - 1:+.0%}); "
+                     f"ISO 6336-1 c_γα b {q['iso_c_gamma_N_m']:.3g} "
+                     f"({q['value_N_m'] / q['iso_c_gamma_N_m'] - 1:+.0%}"
+                     f"{'' if q['iso_in_range'] else ', shifts outside ISO fitted range'})")
+        rows.append([f"`{name}`", f"{q['value_N_m']:.4g}",
+                     f"{100 * q['error_N_m'] / q['value_N_m']:.2g} %", spread, check])
+    for name in ("c_p", "c_c"):
+        q = intact[name]
+        rows.append([f"`{name}`", f"{q['tangent_N_m']:.3g} tangent, {q['secant_N_m']:.3g} secant",
+                     "formula", f"at {q['load_N'] / 1e3:.3g} kN", f"{q['rollers']} rollers"])
+    table = markdown_table(["", "value [N/m]", "±", "over the cycle / load", "independent check"],
+                           rows, "lrrll")
+    cracked = _stiffness()["crack 0.01 m"]
+    rp = cracked["c_rp"]
+    changes = [
+        ["`c_ru` (mean over carrier positions)", f"{_stiffness_change('c_ru'):+.2%}"],
+        ["`c_r`", f"{_stiffness_change('c_r'):+.2%}"],
+        ["highest `c_ru` over carrier positions",
+         f"{cracked['c_ru']['max_N_m'] / intact['c_ru']['max_N_m'] - 1:+.2%}"],
+        ["`c_rp` while the cracked tooth is engaged, mean",
+         f"{rp['engaged_N_m'] / rp['engaged_intact_N_m'] - 1:+.2%}"],
+        ["`c_rp` while the cracked tooth is engaged, minimum",
+         f"{rp['engaged_min_N_m'] / rp['engaged_intact_min_N_m'] - 1:+.2%}"],
+    ]
+    return (table + "\n\nWhat a 10 mm root crack changes:\n\n"
+            + markdown_table(["stiffness", "change"], changes, "lr")
+            + provenance("stiffness_10mm.json", _meta("stiffness_10mm.json").get("measured")))
 
 
 def _csv(path: Path) -> list[dict]:
