@@ -68,6 +68,15 @@ def test_generated_tables_are_the_library_figures():
         generate.console(["hubvib", "design", "check", "demo4.toml"])
 
 
+@pytest.mark.parametrize("page", sorted(p.name for p in DOCS.glob("*.md")
+                                         if "```python" in p.read_text()))
+def test_python_blocks_of_the_pages_run(page, capsys):
+    """Every ``python`` code block of a page runs as shown (house style: docs code is run)."""
+    for block in re.findall(r"```python\n(.*?)```", (DOCS / page).read_text(), re.S):
+        exec(compile(block, page, "exec"), {})
+    assert capsys.readouterr().out, f"{page}: the blocks print what their comments describe"
+
+
 @pytest.mark.slow
 def test_site_builds_in_strict_mode(tmp_path):
     mkdocs = pytest.importorskip("mkdocs")
