@@ -37,6 +37,8 @@ DATA = Path(__file__).resolve().parent / "data"
 DATA_SOURCES = {
     "raba118_signal/": "hubvib signal raba118_signal --out docs/data/raba118_signal "
                        "(then keep report.md, results.json and indicators_summary.csv)",
+    "convergence/": "hubvib convergence QUANTITY --out docs/data/convergence "
+                    "(QUANTITY: c_ru; keep convergence_c_ru.csv)",
     "benchmark_quick.json": "hubvib benchmark --quick --json > docs/data/benchmark_quick.json",
     "stiffness_10mm.json": "hubvib stiffness --crack-depth 10e-3 --json "
                            "> docs/data/stiffness_10mm.json",
@@ -292,6 +294,54 @@ def stiffness() -> str:
     return (table + "\n\nWhat a 10 mm root crack changes:\n\n"
             + markdown_table(["stiffness", "change"], changes, "lr")
             + provenance("stiffness_10mm.json", _meta("stiffness_10mm.json").get("measured")))
+
+
+def _convergence_rows(path: Path) -> list[list]:
+    import csv
+
+    with path.open(newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    return [[f"{float(r['scale']):.3g}", f"{int(float(r['dofs'])):,}",
+             f"{float(r['seconds_total']):.2f}", f"{float(r['value']):.6g}",
+             f"{float(r['relative_error']):.2g}" if float(r["relative_error"]) else "(reference)"]
+            for r in rows]
+
+
+def _convergence(path: Path) -> str:
+    return markdown_table(["scale", "DOFs", "mesh + assembly + solve [s]", "value",
+                           "relative error"], _convergence_rows(path), "rrrrr")
+
+
+def _live_convergence(quantity: str, reference: str) -> str:
+    from hubvib.validation.convergence import run_study
+
+    folder = Path(tempfile.mkdtemp(prefix="hubvib-docs-conv-"))
+    try:
+        table = run_study(quantity, folder, progress=lambda *args: None)
+        return _convergence(table) + (
+            f"\n\n*Computed while these docs were built (`hubvib convergence {quantity}`); "
+            f"the reference is {reference}.*")
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def convergence_annulus() -> str:
+    """``hubvib convergence annulus``, run while the docs are built (a few seconds): curved P2
+    against the exact k_theta [N m/rad] of the annulus in torsion."""
+    return _live_convergence("annulus", "the exact solution")
+
+
+def convergence_edge_crack() -> str:
+    """``hubvib convergence edge_crack``, run while the docs are built (seconds): the
+    compliance of the edge-cracked strip."""
+    return _live_convergence("edge_crack", "the Brown-Srawley handbook integral (the fit "
+                             "itself holds to 2e-3)")
+
+
+def convergence_c_ru() -> str:
+    """``hubvib convergence c_ru`` from its committed table [N/m]."""
+    return _convergence(DATA / "convergence" / "convergence_c_ru.csv") + provenance(
+        "convergence/", _meta("convergence").get("measured"))
 
 
 def report_section(folder: str, heading: str) -> str:
