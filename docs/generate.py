@@ -37,8 +37,8 @@ DATA = Path(__file__).resolve().parent / "data"
 DATA_SOURCES = {
     "raba118_signal/": "hubvib signal raba118_signal --out docs/data/raba118_signal "
                        "(then keep report.md, results.json and indicators_summary.csv)",
-    "convergence/": "hubvib convergence QUANTITY --out docs/data/convergence "
-                    "(QUANTITY: c_ru; keep convergence_c_ru.csv)",
+    "convergence/": "hubvib convergence c_ru --out docs/data/convergence "
+                    "(then keep convergence_c_ru.csv)",
     "benchmark_quick.json": "hubvib benchmark --quick --json > docs/data/benchmark_quick.json",
     "stiffness_10mm.json": "hubvib stiffness --crack-depth 10e-3 --json "
                            "> docs/data/stiffness_10mm.json",
