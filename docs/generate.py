@@ -344,6 +344,19 @@ def convergence_c_ru() -> str:
         "convergence/", _meta("convergence").get("measured"))
 
 
+def meshing_2d() -> str:
+    """2D Raba ring meshing time against element count, intact and cracked, measured while
+    the docs are built (``hubvib.validation.benchmark.mesh_table``)."""
+    from hubvib.validation.benchmark import mesh_table
+
+    rows = [[r["case"], f"{r['tooth_size_mm']:g}", f"{r['elements']:,}", f"{r['nodes_p2']:,}",
+             f"{r['seconds']:.2f}"] for r in mesh_table()]
+    return markdown_table(["2D ring (P2)", "tooth element size [mm]", "triangles", "nodes",
+                           "time [s]"], rows, "lrrrr") + (
+        "\n\n*Measured while these docs were built (one gmsh thread); times follow the "
+        "build machine's load.*")
+
+
 def report_section(folder: str, heading: str) -> str:
     """One ``## heading`` section of the ``report.md`` a scene wrote into ``docs/data/folder``
     (the report's text is generated from the run's data), without its pictures."""
