@@ -3,12 +3,15 @@ from __future__ import annotations
 
 import time
 
+from hubvib.design import preset_names
 from hubvib.fem.solvers import SOLVERS
+
 
 def add_parser(sub) -> None:
     p = sub.add_parser("stiffness", help="every stiffness of the lumped model: FE c_ru, c_r, "
                        "c_sp, c_rp; bearing c_p, c_c")
-    p.add_argument("--preset", default="raba118", choices=["raba118", "hub4"])
+    p.add_argument("--preset", default="raba118", choices=preset_names(),
+                   help="a registered design preset (hubvib.design.PRESETS)")
     p.add_argument("--design", metavar="FILE.toml",
                    help="a reducer design file (replaces --preset)")
     p.add_argument("--crack-depth", type=float, default=0.0, metavar="D",
@@ -23,7 +26,7 @@ def add_parser(sub) -> None:
 
 
 def bearings(design) -> dict:
-    from hubvib.design.build import bearing_stiffness
+    from hubvib.build.stages import bearing_stiffness
 
     started = time.perf_counter()
     rows = bearing_stiffness(design)
@@ -36,8 +39,8 @@ def bearings(design) -> dict:
 def run(args) -> int:
     import math
 
-    from hubvib.output import json_text
-    from hubvib.design.build import gear_body, material, ring_gear
+    from hubvib.foundation.output import json_text
+    from hubvib.build.stages import gear_body, material, ring_gear
     from hubvib.fem.estimate import estimate_mesh, estimate_ring
     from hubvib.meshing.crack import Crack
 

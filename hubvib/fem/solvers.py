@@ -27,7 +27,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from hubvib.blas import blas_threads
+from hubvib.foundation.blas import blas_threads
 
 SOLVERS = ("auto", "superlu", "pardiso", "amg")
 DIRECT_LIMIT = 60_000  # [DOF] 3D systems below this factorise fast enough with SuperLU

@@ -31,7 +31,7 @@ from typing import Mapping
 
 import numpy as np
 
-from hubvib.blas import blas_thread_counts, blas_threads
+from hubvib.foundation.blas import blas_thread_counts, blas_threads
 
 from .eigensolve import rigid_body_count, solve_network
 from .network import SpringNetwork, mass_diagonal, spring_network

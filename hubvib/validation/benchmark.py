@@ -184,7 +184,7 @@ def ring_2d(scale: float = C_RU_2D_SCALE, reference_scales=REFERENCE_SCALES,
     interleaved; its error against the reference from the uniform levels
     ``reference_scales`` (``convergence.reference_value``)."""
     from hubvib.fem.ring_stiffness import ring_stiffness
-    from hubvib.meshing import raba118
+    from hubvib.build import raba118
     from hubvib.meshing.levels import ring_options
     from hubvib.meshing.ring_mesh import ring_mesh
 
@@ -233,7 +233,7 @@ def crack_case(scale: float = 1.0, depth: float = CRACK_DEPTH, progress=None) ->
 
     from hubvib.fem.estimate import estimate_crack_case, estimate_ring
     from hubvib.fem.tooth_stiffness import engaged_ring_mesh
-    from hubvib.meshing import raba118
+    from hubvib.build import raba118
     from hubvib.meshing.crack import Crack
     from hubvib.meshing.levels import scaled_options
     from hubvib.meshing.ring_mesh import ring_mesh
@@ -287,7 +287,7 @@ def solid_race(options=None, crack=None, folder=None, mesh=None, calculix=True,
     from hubvib.fem.elasticity import supported
     from hubvib.fem.ring_stiffness import mesh_force_load, planet_teeth, reduced_torsional_stiffness
     from hubvib.fem.solid import solid_model
-    from hubvib.meshing import raba118
+    from hubvib.build import raba118
     from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
 
     from . import calculix as ccx
@@ -342,7 +342,7 @@ def solid_figures(progress=None) -> dict:
     """The 3D race on the default solid level: ours against CalculiX and against the
     previous FE path, same mesh and loads; ours and CalculiX twice, interleaved, each the
     faster of its two runs."""
-    from hubvib.meshing import raba118
+    from hubvib.build import raba118
     from hubvib.meshing.levels import SOLID_LEVELS, solid_options
     from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
 
@@ -398,7 +398,7 @@ def memory_figures(progress=None) -> dict:
     import tempfile
     from pathlib import Path
 
-    from hubvib.meshing import raba118
+    from hubvib.build import raba118
     from hubvib.meshing.levels import SOLID_LEVELS, solid_options
     from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
 
@@ -414,7 +414,7 @@ def memory_figures(progress=None) -> dict:
                            ("previous", "previous_ring_fe(ring_gear(), mesh, [0], "
                                         "translation=False)")):
             code = ("from hubvib.meshing.fe_mesh import FEMesh; "
-                    "from hubvib.meshing.raba118 import ring_gear; "
+                    "from hubvib.build.raba118 import ring_gear; "
                     "from hubvib.validation.benchmark import solid_race, previous_ring_fe; "
                     f"mesh = FEMesh.load({str(path)!r}); {call}")
             out[f"solid_solve_peak_memory_gb{'' if name == 'ours' else '_previous'}"] = \
@@ -542,7 +542,7 @@ def readme_test_command(progress=None) -> dict:
 
 def mesh_table() -> list[dict]:
     """2D Raba ring meshing time against element count, intact and cracked."""
-    from hubvib.meshing import raba118
+    from hubvib.build import raba118
     from hubvib.meshing.crack import Crack
     from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
 
@@ -563,7 +563,9 @@ def solid_mesh_table() -> list[dict]:
     """3D Raba ring (P2 tetrahedra) meshing time against element count, with and without cracks."""
     from dataclasses import replace
 
-    from hubvib.meshing import measure, raba118
+    from hubvib.build import raba118
+
+    from hubvib.meshing import measure
     from hubvib.meshing.crack import Crack, CrackFront
     from hubvib.meshing.ring_mesh_3d import SOLID_OPTIONS, ring_mesh_3d
 
@@ -609,7 +611,7 @@ def ring_table() -> list[dict]:
     """c_ru and c_r of the Raba ring, intact and with a 10 mm root crack, on the default
     mesh with the error estimated against a mesh twice as coarse (``hubvib stiffness``)."""
     from hubvib.fem.estimate import estimate_ring
-    from hubvib.meshing import raba118
+    from hubvib.build import raba118
     from hubvib.meshing.crack import Crack
 
     ring = raba118.ring_gear()

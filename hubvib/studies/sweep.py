@@ -10,8 +10,8 @@ import numpy as np
 from hubvib.lumped import FrequencyShift, Spectrum, frequency_sensitivity, frequency_shift, natural_modes
 from hubvib.lumped.sensitivity import Sensitivity
 
-from .output import save_figure, write_csv, write_json, write_text
-from .scene import Scene
+from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.studies.scene import Scene
 
 
 @dataclass

@@ -13,7 +13,7 @@ each other up are softer than the solid tooth, so the slice ratio overstates the
 crack's effect on c_rp.
 
 Per half-length the lumped and detection stages and the report are those of the
-plane study (``hubvib.crack_study``), in a folder of their own.
+plane study (``hubvib.studies.crack_study``), in a folder of their own.
 """
 from __future__ import annotations
 
@@ -23,13 +23,13 @@ from pathlib import Path
 
 import numpy as np
 
-from .crack_study import (CrackStudyResult, crack_study_from_fe, json_safe, provenance,
+from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe, provenance,
                           write_crack_study)
-from .crack_sweep import run_fe_cases
-from .engines import Execution
+from hubvib.studies.crack_sweep import run_fe_cases
+from hubvib.runtime.engines import Execution
 from hubvib.fem.estimate import USABLE_QUALITY
-from .output import save_figure, write_csv, write_json, write_text
-from .scene import Scene
+from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.studies.scene import Scene
 
 #: slices of the face width in the slice method
 SLICES = 512
@@ -216,8 +216,8 @@ def _is_raba(design) -> bool:
 
 
 def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str]) -> str:
-    from .crack_sweep import case_label
-    from .detection.numbers import percent
+    from hubvib.studies.crack_sweep import case_label
+    from hubvib.detection.numbers import percent
 
     scene, sweep = result.scene, result.scene.crack
     info = provenance()

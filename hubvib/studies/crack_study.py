@@ -19,12 +19,12 @@ import numpy as np
 from hubvib.lumped import Spectrum, frequency_sensitivity, natural_modes
 from hubvib.lumped.tracking import match
 
-from .crack_sweep import run_fe_cases
-from .engines import Execution
-from .detection.model import CrackModel
-from .detection.numbers import depth_mm, percent, sensitivity, shift_hz
-from .output import save_figure, write_csv, write_json, write_text
-from .scene import Scene
+from hubvib.studies.crack_sweep import run_fe_cases
+from hubvib.runtime.engines import Execution
+from hubvib.detection.model import CrackModel
+from hubvib.detection.numbers import depth_mm, percent, sensitivity, shift_hz
+from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.studies.scene import Scene
 
 #: a mode "follows" a stiffness when its relative sensitivity exceeds this
 SENSITIVE = 0.01
@@ -151,9 +151,9 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
         omega[k] = spectra[k].omega[order]
     study = None
     if detection:
-        from .detection.carrier import mesh_timing
-        from .detection.options import detection_options
-        from .detection.study import detection_study
+        from hubvib.detection.carrier import mesh_timing
+        from hubvib.detection.options import detection_options
+        from hubvib.detection.study import detection_study
 
         options = detection_options(scene)
         timing = timing or mesh_timing(scene.crack.reducer, options.carrier_speed)
@@ -187,7 +187,7 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
         "frequencies": result.frequency_rows()})))
     plots = []
     if scene.plots:
-        from .detection import plots as figures
+        from hubvib.detection import plots as figures
 
         name = scene.name
         plots = [save_figure(figures.relative_shift_figure(name, result.depths, result.omega,
@@ -253,16 +253,16 @@ def provenance() -> dict:
     try:
         version = metadata.version("hubvib")
     except metadata.PackageNotFoundError:
-        from . import __version__ as version
+        from hubvib import __version__ as version
     return {"hubvib_version": version,
             "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")}
 
 
 def rendered_depth(sweep) -> float:
     """The deepest crack of the sweep that still has a tip (not through the rim) [m]."""
-    from hubvib.design.build import ring_gear
+    from hubvib.build.stages import ring_gear
 
-    from .crack_sweep import crack_of
+    from hubvib.studies.crack_sweep import crack_of
 
     ring = ring_gear(sweep.reducer)
     open_ended = [d for d in sweep.depths if d > 0 and not crack_of(sweep, d).is_through(ring)]
@@ -272,10 +272,10 @@ def rendered_depth(sweep) -> float:
 def _render_modes(scene: Scene, spectrum, folder: Path) -> list[Path]:
     """Every elastic lumped mode (``render.render_modes``), from the render cache when the
     same spectrum was rendered before."""
-    from .render_cache import array_digest, cached_render
+    from hubvib.render.cache import array_digest, cached_render
 
     def render(target):
-        from .render import render_modes
+        from hubvib.render.modes import render_modes
 
         return render_modes(scene.params, spectrum, target, gif=scene.gif, vtm=scene.vtm)
 
@@ -288,9 +288,9 @@ def _render_modes(scene: Scene, spectrum, folder: Path) -> list[Path]:
 def _render_fe(scene: Scene, folder: Path) -> list[Path]:
     """The FE ring at the rendered depth (``fe_render``), from the render cache when the
     same design, crack and mesh were rendered by this FE stage before."""
-    from .crack_sweep import ACCURACY, crack_of
-    from .fe_cache import fe_version
-    from .render_cache import cached_render
+    from hubvib.studies.crack_sweep import ACCURACY, crack_of
+    from hubvib.runtime.fe_cache import fe_version
+    from hubvib.render.cache import cached_render
     from hubvib.meshing.levels import scaled_options
 
     depth = rendered_depth(scene.crack)
@@ -298,7 +298,7 @@ def _render_fe(scene: Scene, folder: Path) -> list[Path]:
     options = scaled_options(ACCURACY[scene.crack.accuracy])
 
     def render(target):
-        from .fe_render import render_fe, ring_fields
+        from hubvib.render.fe import render_fe, ring_fields
 
         return render_fe(ring_fields(scene.crack.reducer, crack, options), target,
                          vtu=scene.vtm)
@@ -311,7 +311,7 @@ def _render_fe(scene: Scene, folder: Path) -> list[Path]:
 
 def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
                  fe_renders: list[str] = ()) -> str:
-    from .detection import report as sections
+    from hubvib.detection import report as sections
 
     scene, sweep, model, study = result.scene, result.scene.crack, result.model, result.detection
     intact = result.fe[0]
