@@ -11,8 +11,8 @@ coarse).
 import matplotlib.pyplot as plt
 import numpy as np
 
+from hubvib.build import raba118
 from hubvib.fem.estimate import estimate_ring
-from hubvib.meshing import raba118
 from hubvib.meshing.crack import Crack
 
 ring = raba118.ring_gear()
