@@ -9,7 +9,8 @@ Two kinds of source:
 * computed now by the library (lumped spectra, the Raba 118/76 validation, the stability
   table, the design check, the series mounting, batched solves): cheap and deterministic;
 * read from files in ``docs/data/`` that a named ``hubvib`` command wrote (benchmark timings,
-  the FE stiffness table, the default crack study and its report); each
+  the FE stiffness table, the default crack study, the signal scene and the c_ru
+  convergence); each
   such table says which command regenerates its file (``DATA_SOURCES``) and when it ran.
 
 Run ``python docs/generate.py NAME`` to print one table.
@@ -39,7 +40,7 @@ DATA_SOURCES = {
                        "(then keep report.md, results.json and indicators_summary.csv)",
     "convergence/": "hubvib convergence c_ru --out docs/data/convergence "
                     "(then keep convergence_c_ru.csv)",
-    "benchmark_quick.json": "hubvib benchmark --quick --json > docs/data/benchmark_quick.json",
+    "benchmark.json": "hubvib benchmark --json > docs/data/benchmark.json",
     "stiffness_10mm.json": "hubvib stiffness --crack-depth 10e-3 --json "
                            "> docs/data/stiffness_10mm.json",
     "raba118_crack/": "hubvib run raba118_crack --out docs/data/raba118_crack "
@@ -188,12 +189,12 @@ def series_mounting() -> str:
 
 @lru_cache(maxsize=None)
 def _benchmark() -> dict:
-    return json.loads((DATA / "benchmark_quick.json").read_text())
+    return json.loads((DATA / "benchmark.json").read_text())
 
 
 def _benchmark_note() -> str:
-    meta = _meta("benchmark_quick.json")
-    return provenance("benchmark_quick.json", meta.get("measured")) + (
+    meta = _meta("benchmark.json")
+    return provenance("benchmark.json", meta.get("measured")) + (
         f" *{meta['machine']}.*" if "machine" in meta else "")
 
 
@@ -218,8 +219,48 @@ def benchmark_fe() -> str:
         f"\n\nShared against separate solves differ by {b['crack_case_max_rel_difference']:.1e}; "
         f"the previous 2D path gives the same c_ru to {b['c_ru_2d_previous_max_rel_difference']:.1e}; "
         f"batched against Jacobi: {b['lumped']['max_relative_difference']:.1e}. "
-        f"Not in this run ({'--quick' if b['quick'] else 'full'}): {skipped}."
+        + (f"Not in this run (--quick): {skipped}." if skipped else "")
         + _benchmark_note())
+
+
+def benchmark_full() -> str:
+    """The figures only a full ``hubvib benchmark`` measures: the 3D race against CalculiX and
+    the previous path, peak memory, the main job fresh and cached, the test command."""
+    b = _benchmark()
+
+    def row(label, before, now, ratio, unit="s"):
+        if now is None:
+            return None
+        fmt = (lambda v: f"{v:.3g} {unit}" if v is not None else "")
+        return [label, fmt(before), fmt(now), f"{ratio:.3g}" if ratio else ""]
+
+    dofs = f" ({b['solid_dofs']:,} DOFs)" if b.get("solid_dofs") else ""
+    rows = [
+        row(f"3D c_ru: model + loads + solve{dofs}, against the previous path",
+            b.get("solid_previous_seconds"), b.get("solid_seconds"), b.get("solid_previous_speedup")),
+        row("3D c_ru: CalculiX 2.20 on the same mesh and loads", b.get("calculix_seconds"),
+            b.get("solid_seconds"), b.get("calculix_speedup")),
+        row("peak memory, 3D solve", b.get("solid_solve_peak_memory_gb_previous"),
+            b.get("solid_solve_peak_memory_gb"), b.get("solid_solve_memory_ratio"), "GB"),
+        row("peak memory, `hubvib stiffness --solid`", None, b.get("solid_peak_memory_gb"), None,
+            "GB"),
+        row("main job (`hubvib run`): empty cache, then FE cases and renders cached",
+            b.get("main_job_fresh_seconds"), b.get("main_job_cached_seconds"),
+            (b["main_job_fresh_seconds"] / b["main_job_cached_seconds"])
+            if b.get("main_job_cached_seconds") else None),
+        row("default test command (`python -m pytest`)", None, b.get("tests_seconds"), None),
+    ]
+    rows = [r for r in rows if r]
+    notes = []
+    if b.get("calculix_max_rel_difference") is not None:
+        notes.append(f"CalculiX's displacements differ from ours by "
+                     f"{b['calculix_max_rel_difference']:.1e} of the largest (its print "
+                     f"precision) and its c_ru by {b['calculix_c_ru_rel_difference']:.1e}.")
+    if b.get("tests_summary"):
+        notes.append(f"The test command printed: `{b['tests_summary']}`.")
+    notes += [f"Skipped: {v}." for k, v in b.items() if k.endswith("_skipped") and v]
+    return (markdown_table(["figure", "before (baseline)", "now", "ratio"], rows, "lrrr")
+            + ("\n\n" + " ".join(notes) if notes else "") + _benchmark_note())
 
 
 def benchmark_signal() -> str:
