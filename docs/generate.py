@@ -387,8 +387,8 @@ def convergence_c_ru() -> str:
 
 def meshing_2d() -> str:
     """2D Raba ring meshing time against element count, intact and cracked, measured while
-    the docs are built (``hubvib.validation.benchmark.mesh_table``)."""
-    from hubvib.validation.benchmark import mesh_table
+    the docs are built (``hubvib.benchmarks.tables.mesh_table``)."""
+    from hubvib.benchmarks.tables import mesh_table
 
     rows = [[r["case"], f"{r['tooth_size_mm']:g}", f"{r['elements']:,}", f"{r['nodes_p2']:,}",
              f"{r['seconds']:.2f}"] for r in mesh_table()]
