@@ -1,0 +1,522 @@
+"""Every figure the hubvib docs quote, generated: no number in docs/*.md is typed by hand.
+
+``table(name)`` returns the Markdown of one generated table (the pages hold the marker
+``<!-- gen: name -->``, replaced by ``docs/hooks.py`` at build time); ``console(argv)``
+runs one ``hubvib`` command in-process and returns a console block with its output.
+
+Two kinds of source:
+
+* computed now by the library (lumped spectra, the Raba 118/76 validation, the stability
+  table, the design check, the series mounting, batched solves): cheap and deterministic;
+* read from files in ``docs/data/`` that a named ``hubvib`` command wrote (benchmark timings,
+  the FE stiffness table, the default crack study, the signal scene and the c_ru
+  convergence); each
+  such table says which command regenerates its file (``DATA_SOURCES``) and when it ran.
+
+Run ``python docs/generate.py NAME`` to print one table.
+"""
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import math
+import os
+import shlex
+import shutil
+import sys
+import tempfile
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+DATA = Path(__file__).resolve().parent / "data"
+
+# file in docs/data -> the command that (re)writes it; the provenance line of every table
+# read from a file names it
+DATA_SOURCES = {
+    "raba118_signal/": "hubvib signal raba118_signal --out docs/data/raba118_signal "
+                       "(then keep report.md, results.json and indicators_summary.csv)",
+    "convergence/": "hubvib convergence c_ru --out docs/data/convergence "
+                    "(then keep convergence_c_ru.csv)",
+    "benchmark.json": "hubvib benchmark --json > docs/data/benchmark.json",
+    "stiffness_10mm.json": "hubvib stiffness --crack-depth 10e-3 --json "
+                           "> docs/data/stiffness_10mm.json",
+    "raba118_crack/": "hubvib run raba118_crack --out docs/data/raba118_crack "
+                      "(then keep report.md, results.json, detectability_map.csv and pod.csv)",
+}
+
+
+# ---------------------------------------------------------------- helpers
+
+def markdown_table(header: list[str], rows: list[list], align: str | None = None) -> str:
+    """A Markdown table; ``align`` is one character per column, ``l`` or ``r``."""
+    align = align or "l" * len(header)
+    rule = ["---:" if a == "r" else "---" for a in align]
+    lines = ["| " + " | ".join(header) + " |", "|" + "|".join(rule) + "|"]
+    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
+    return "\n".join(lines)
+
+
+def provenance(name: str, measured: str | None = None) -> str:
+    when = f", measured {measured}" if measured else ""
+    return f"\n\n*Source: `docs/data/{name}`{when}; regenerate with `{DATA_SOURCES[name]}`.*"
+
+
+def _meta(name: str) -> dict:
+    path = DATA / f"{name}.meta.json"
+    return json.loads(path.read_text()) if path.exists() else {}
+
+
+def _small(value: float, digits: int = 3) -> str:
+    """``0`` for round-off (|x| < 1e-12), else ``digits`` significant digits."""
+    return "0" if abs(value) < 1e-12 else f"{value:.{digits}g}"
+
+
+def _g(value: float, digits: int = 4) -> str:
+    return f"{value:.{digits}g}"
+
+
+# ---------------------------------------------------------------- lumped model
+
+def lumped_spectrum() -> str:
+    """The energy-consistent spectrum of the Raba 118/76 preset, with the c_ru shift and
+    the relative sensitivity of every mode."""
+    from hubvib import lumped
+
+    params = lumped.raba118()
+    spectrum = lumped.natural_modes(params)
+    shift = lumped.frequency_shift(params, "c_ru", 1e5)
+    sens = lumped.frequency_sensitivity(params, "c_ru")
+    rows = [[i + 1, spectrum.kind[i], spectrum.multiplicity[i], f"{w:.2f}",
+             f"{w / (2 * math.pi):.2f}", f"{shift.percent[i]:+.2f}", _small(sens.relative[i])]
+            for i, w in enumerate(spectrum.omega)]
+    return markdown_table(["mode", "type", "multiplicity", "ω [rad/s]", "f [Hz]",
+                           "shift, c_ru 1e6 → 1e5 N/m [%]", "(dω/ω)/(dk/k) for c_ru"],
+                          rows, "rlrrrrr")
+
+
+def raba_validation() -> str:
+    """Published spectrum against the printed (indefinite) matrix and the energy model."""
+    from hubvib.validation.raba118 import validate
+
+    rows = [[r["mode"], f"{r['published_rad_s']:.0f}",
+             f"{r['printed_rad_s']:.1f}" + (" (λ<0)" if r["printed_lambda_sign"] == "-" else ""),
+             f"{r['printed_vs_published_percent']:+.3f}", r["kind"], f"{r['energy_rad_s']:.1f}"]
+            for r in validate().rows]
+    return markdown_table(["#", "published [rad/s]", "printed matrix", "deviation [%]", "type",
+                           "energy model"], rows, "rrrrlr")
+
+
+def raba_summary() -> str:
+    """The headline figures of ``hubvib validate raba118``."""
+    from hubvib.validation.raba118 import PUBLISHED_TOLERANCE, validate
+
+    result = validate()
+    negative = ", ".join(f"{v:.4g}" for v in result.negative_eigenvalues)
+    rows = [
+        ["largest deviation, printed matrix against the published values",
+         f"{100 * result.printed_max_deviation:.3f} % (tolerance {100 * PUBLISHED_TOLERANCE:g} %)"],
+        ["negative eigenvalues of the printed matrix [rad²/s²]",
+         f"{len(result.negative_eigenvalues)}: {negative}"],
+        ["ω₁ at c_ru = 1e5 N/m over ω₁ at 1e6 N/m (lowered by a factor)",
+         f"{result.fig4_ratio_first:.3g} ({1 / result.fig4_ratio_first:.3g}×)"],
+        ["ω₂ at c_ru = 1e5 N/m over ω₂ at 1e6 N/m (lowered by a factor)",
+         f"{result.fig4_ratio_second:.3g} ({1 / result.fig4_ratio_second:.3g}×)"],
+        ["theory checks passed", f"{sum(c.passed for c in result.theory)} of {len(result.theory)}"],
+    ]
+    return markdown_table(["figure", "value"], rows, "lr")
+
+
+def stability() -> str:
+    """Error against the 50-digit mpmath reference per case and solver, and the time of
+    the default solver, measured while the docs are built."""
+    from hubvib.validation.stability import run
+
+    rows = [r for r in run(repeats=5) if not math.isnan(r.max_error)]
+    methods = list(dict.fromkeys(r.method for r in rows))
+    cases = list(dict.fromkeys(r.case for r in rows))
+    by = {(r.case, r.method): r for r in rows}
+    out = [[case] + [f"{by[case, m].max_error:.1e}" for m in methods]
+           + [f"{1e3 * by[case, methods[0]].seconds:.2f}"] for case in cases]
+    header = ["case"] + [f"{m}{' (default)' if i == 0 else ''}" for i, m in enumerate(methods)]
+    return markdown_table(header + [f"time, {methods[0]} [ms]"], out,
+                          "l" + "r" * (len(methods) + 1)) + (
+        "\n\n*Computed while these docs were built (`hubvib.validation.stability.run`); the "
+        "times are medians of 5 calls on the build machine.*")
+
+
+def batch() -> str:
+    """The batched solve of the worked example in *Crack detection*."""
+    from hubvib import lumped
+    from hubvib.lumped.batch import batch_frequencies
+
+    values = np.geomspace(1e5, 1e7, 10_000)
+    result = batch_frequencies(lumped.raba118(), {"c_ru": values})
+    exact = [lumped.natural_modes(lumped.raba118().replace(c_ru=v)).omega[0] / (2 * math.pi)
+             for v in values[[0, -1]]]
+    rows = [[f"{v:.0e}", f"{b:.2f}", f"{e:.2f}"]
+            for v, b, e in zip(values[[0, -1]], result.frequency_hz[[0, -1], 0], exact)]
+    return markdown_table(["c_ru [N/m]", "mode 1, batch [Hz]", "mode 1, natural_modes [Hz]"],
+                          rows, "rrr")
+
+
+# ---------------------------------------------------------------- design and detection
+
+def design_file() -> str:
+    """The example design file ``docs/data/inputs/demo.toml``, as the commands read it."""
+    return f"```toml\n{(DATA / 'inputs' / 'demo.toml').read_text().rstrip()}\n```"
+
+
+def series_mounting() -> str:
+    """The paper's soft mounting in series with the FE ring body (the example's numbers)."""
+    from hubvib.detection.series import identify_mount, series
+
+    body = _stiffness()["intact"]["c_ru"]["value_N_m"]
+    cracked = body * (1 + _stiffness_change("c_ru"))
+    mount = identify_mount(1e6, body)
+    rows = [["FE ring body c_ru, intact / 10 mm crack [N/m]", f"{body:.4g} / {cracked:.4g}"],
+            ["mounting identified so that the total is 1e6 [N/m]", f"{mount:.6g}"],
+            ["change of the total c_ru with the 10 mm crack",
+             f"{series(mount, cracked) / series(mount, body) - 1:.2g}"],
+            ["change of the ring body's c_ru", f"{cracked / body - 1:.3g}"]]
+    return markdown_table(["figure", "value"], rows, "lr") + provenance(
+        "stiffness_10mm.json", _meta("stiffness_10mm.json").get("measured"))
+
+
+# ---------------------------------------------------------------- files written by commands
+
+@lru_cache(maxsize=None)
+def _benchmark() -> dict:
+    return json.loads((DATA / "benchmark.json").read_text())
+
+
+def _benchmark_note() -> str:
+    meta = _meta("benchmark.json")
+    return provenance("benchmark.json", meta.get("measured")) + (
+        f" *{meta['machine']}.*" if "machine" in meta else "")
+
+
+def benchmark_fe() -> str:
+    """The FE and lumped speed figures of the committed ``hubvib benchmark --quick`` run."""
+    b = _benchmark()
+    rows = [
+        [f"2D c_ru, mesh + FE ({b['c_ru_2d_dofs']:,} DOFs, error {b['c_ru_2d_rel_error']:.1e} "
+         f"against the {b['c_ru_2d_reference']})", f"{b['c_ru_2d_previous_seconds']:.2f} s",
+         f"{b['c_ru_2d_seconds']:.2f} s", f"{b['c_ru_2d_speedup']:.2f}"],
+        ["the same, FE only", "", "", f"{b['c_ru_2d_fe_speedup']:.2f}"],
+        [f"crack case: c_ru, c_r, engaged c_rp, 2 levels (scale {b['crack_case_scale']:g})",
+         f"{b['crack_case_previous_seconds']:.2f} s", f"{b['crack_case_seconds']:.2f} s",
+         f"{b['crack_case_speedup']:.2f}"],
+        ["lumped spectra, batched against one at a time (points/s)",
+         f"{1 / b['lumped']['single_seconds_per_point']:.0f}",
+         f"{b['lumped']['points_per_second']:.0f}", f"{b['lumped']['speedup']:.0f}"],
+    ]
+    skipped = ", ".join(k.removesuffix("_skipped").replace("_", " ") for k in b
+                        if k.endswith("_skipped") and b[k])
+    return markdown_table(["figure", "before (previous path)", "now", "ratio"], rows, "lrrr") + (
+        f"\n\nShared against separate solves differ by {b['crack_case_max_rel_difference']:.1e}; "
+        f"the previous 2D path gives the same c_ru to {b['c_ru_2d_previous_max_rel_difference']:.1e}; "
+        f"batched against Jacobi: {b['lumped']['max_relative_difference']:.1e}. "
+        + (f"Not in this run (--quick): {skipped}." if skipped else "")
+        + _benchmark_note())
+
+
+def benchmark_full() -> str:
+    """The figures only a full ``hubvib benchmark`` measures: the 3D race against CalculiX and
+    the previous path, peak memory, the main job fresh and cached, the test command."""
+    b = _benchmark()
+
+    def row(label, before, now, ratio, unit="s"):
+        if now is None:
+            return None
+        fmt = (lambda v: f"{v:.3g} {unit}" if v is not None else "")
+        return [label, fmt(before), fmt(now), f"{ratio:.3g}" if ratio else ""]
+
+    dofs = f" ({b['solid_dofs']:,} DOFs)" if b.get("solid_dofs") else ""
+    rows = [
+        row(f"3D c_ru: model + loads + solve{dofs}, against the previous path",
+            b.get("solid_previous_seconds"), b.get("solid_seconds"), b.get("solid_previous_speedup")),
+        row("3D c_ru: CalculiX 2.20 on the same mesh and loads", b.get("calculix_seconds"),
+            b.get("solid_seconds"), b.get("calculix_speedup")),
+        row("peak memory, 3D solve", b.get("solid_solve_peak_memory_gb_previous"),
+            b.get("solid_solve_peak_memory_gb"), b.get("solid_solve_memory_ratio"), "GB"),
+        row("peak memory, `hubvib stiffness --solid`", None, b.get("solid_peak_memory_gb"), None,
+            "GB"),
+        row("main job (`hubvib run`): empty cache, then FE cases and renders cached",
+            b.get("main_job_fresh_seconds"), b.get("main_job_cached_seconds"),
+            (b["main_job_fresh_seconds"] / b["main_job_cached_seconds"])
+            if b.get("main_job_cached_seconds") else None),
+        row("default test command (`python -m pytest`)", None, b.get("tests_seconds"), None),
+    ]
+    rows = [r for r in rows if r]
+    notes = []
+    if b.get("calculix_max_rel_difference") is not None:
+        notes.append(f"CalculiX's displacements differ from ours by "
+                     f"{b['calculix_max_rel_difference']:.1e} of the largest (its print "
+                     f"precision) and its c_ru by {b['calculix_c_ru_rel_difference']:.1e}.")
+    if b.get("tests_summary"):
+        notes.append(f"The test command printed: `{b['tests_summary']}`.")
+    notes += [f"Skipped: {v}." for k, v in b.items() if k.endswith("_skipped") and v]
+    return (markdown_table(["figure", "before (baseline)", "now", "ratio"], rows, "lrrr")
+            + ("\n\n" + " ".join(notes) if notes else "") + _benchmark_note())
+
+
+def benchmark_signal() -> str:
+    """Cost and accuracy of the ways to compute the sensor signal."""
+    s = _benchmark()["signal"]
+    rows = [
+        ["periodic steady state, one revolution, record extended (what `hubvib signal` does)",
+         f"{s['periodic_s']:.2f}", f"{100 * s['newmark_error']:.2g} %"],
+        ["the same, at a quarter of the step", f"{s['periodic_quarter_step_s']:.2f}",
+         f"{100 * s['periodic_quarter_step_error']:.2g} %"],
+        [f"average acceleration, all {s['revolutions']} revolutions marched",
+         f"{s['newmark_s']:.2f}", f"{100 * s['newmark_error']:.2g} % (the same steady state)"],
+        [f"`scipy.integrate.solve_ivp` {s['solve_ivp_method']}, rtol {s['solve_ivp_rtol']:g} "
+         f"({s['solve_ivp_evaluations']:,} right-hand-side evaluations)",
+         f"{s['solve_ivp_s']:.2f}", f"{100 * s['solve_ivp_error']:.2g} %"],
+    ]
+    return markdown_table(["way", "time [s]", "error of the sensor signal"], rows, "lrr") + (
+        f"\n\n{s['revolutions']} carrier revolutions, {s['steps_per_revolution']:,} steps per "
+        f"revolution (h = {s['time_step_s']:.3g} s), recorded at {s['sample_rate_hz']:g} Hz "
+        f"({s['samples_per_mesh_period']:.1f} samples per mesh period); errors relative to the "
+        "largest signal value, against the Richardson extrapolation of the h and h/2 steady "
+        "states." + _benchmark_note())
+
+
+@lru_cache(maxsize=None)
+def _stiffness() -> dict:
+    return json.loads((DATA / "stiffness_10mm.json").read_text())["cases"]
+
+
+def _stiffness_change(name: str) -> float:
+    """Relative change of ``c_ru`` or ``c_r`` with the 10 mm crack of the committed run."""
+    cases = _stiffness()
+    return cases["crack 0.01 m"][name]["value_N_m"] / cases["intact"][name]["value_N_m"] - 1
+
+
+def stiffness() -> str:
+    """``hubvib stiffness --crack-depth 10e-3 --json``: every stiffness of the intact ring with
+    its error, range over the cycle and independent checks; then the crack's changes."""
+    intact = _stiffness()["intact"]
+    rows = []
+    for name in ("c_ru", "c_r", "c_sp", "c_rp"):
+        q = intact[name]
+        spread = (f"{q['min_N_m']:.3g}..{q['max_N_m']:.3g}" if "min_N_m" in q else "")
+        if "contact_ratio" in q:
+            spread += f" (ε = {q['contact_ratio']:.3g})"
+        check = ""
+        if "analytic_N_m" in q:
+            check = (f"analytical {q['analytic_N_m']:.3g} ({q['value_N_m'] / q['analytic_N_m'] - 1:+.0%}); "
+                     f"ISO 6336-1 c_γα b {q['iso_c_gamma_N_m']:.3g} "
+                     f"({q['value_N_m'] / q['iso_c_gamma_N_m'] - 1:+.0%}"
+                     f"{'' if q['iso_in_range'] else ', shifts outside ISO fitted range'})")
+        rows.append([f"`{name}`", f"{q['value_N_m']:.4g}",
+                     f"{100 * q['error_N_m'] / q['value_N_m']:.2g} %", spread, check])
+    for name in ("c_p", "c_c"):
+        q = intact[name]
+        rows.append([f"`{name}`", f"{q['tangent_N_m']:.3g} tangent, {q['secant_N_m']:.3g} secant",
+                     "formula", f"at {q['load_N'] / 1e3:.3g} kN", f"{q['rollers']} rollers"])
+    table = markdown_table(["", "value [N/m]", "±", "over the cycle / load", "independent check"],
+                           rows, "lrrll")
+    cracked = _stiffness()["crack 0.01 m"]
+    rp = cracked["c_rp"]
+    changes = [
+        ["`c_ru` (mean over carrier positions)", f"{_stiffness_change('c_ru'):+.2%}"],
+        ["`c_r`", f"{_stiffness_change('c_r'):+.2%}"],
+        ["highest `c_ru` over carrier positions",
+         f"{cracked['c_ru']['max_N_m'] / intact['c_ru']['max_N_m'] - 1:+.2%}"],
+        ["`c_rp` while the cracked tooth is engaged, mean",
+         f"{rp['engaged_N_m'] / rp['engaged_intact_N_m'] - 1:+.2%}"],
+        ["`c_rp` while the cracked tooth is engaged, minimum",
+         f"{rp['engaged_min_N_m'] / rp['engaged_intact_min_N_m'] - 1:+.2%}"],
+    ]
+    return (table + "\n\nWhat a 10 mm root crack changes:\n\n"
+            + markdown_table(["stiffness", "change"], changes, "lr")
+            + provenance("stiffness_10mm.json", _meta("stiffness_10mm.json").get("measured")))
+
+
+def _convergence_rows(path: Path) -> list[list]:
+    import csv
+
+    with path.open(newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    return [[f"{float(r['scale']):.3g}", f"{int(float(r['dofs'])):,}",
+             f"{float(r['seconds_total']):.2f}", f"{float(r['value']):.6g}",
+             f"{float(r['relative_error']):.2g}" if float(r["relative_error"]) else "(reference)"]
+            for r in rows]
+
+
+def _convergence(path: Path) -> str:
+    return markdown_table(["scale", "DOFs", "mesh + assembly + solve [s]", "value",
+                           "relative error"], _convergence_rows(path), "rrrrr")
+
+
+def _live_convergence(quantity: str, reference: str) -> str:
+    from hubvib.validation.convergence import run_study
+
+    folder = Path(tempfile.mkdtemp(prefix="hubvib-docs-conv-"))
+    try:
+        table = run_study(quantity, folder, progress=lambda *args: None)
+        return _convergence(table) + (
+            f"\n\n*Computed while these docs were built (`hubvib convergence {quantity}`); "
+            f"the reference is {reference}.*")
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def convergence_annulus() -> str:
+    """``hubvib convergence annulus``, run while the docs are built (a few seconds): curved P2
+    against the exact k_theta [N m/rad] of the annulus in torsion."""
+    return _live_convergence("annulus", "the exact solution")
+
+
+def convergence_edge_crack() -> str:
+    """``hubvib convergence edge_crack``, run while the docs are built (seconds): the
+    compliance of the edge-cracked strip."""
+    return _live_convergence("edge_crack", "the Brown-Srawley handbook integral (the fit "
+                             "itself holds to 2e-3)")
+
+
+def convergence_c_ru() -> str:
+    """``hubvib convergence c_ru`` from its committed table [N/m]."""
+    return _convergence(DATA / "convergence" / "convergence_c_ru.csv") + provenance(
+        "convergence/", _meta("convergence").get("measured"))
+
+
+def meshing_2d() -> str:
+    """2D Raba ring meshing time against element count, intact and cracked, measured while
+    the docs are built (``hubvib.benchmarks.tables.mesh_table``)."""
+    from hubvib.benchmarks.tables import mesh_table
+
+    rows = [[r["case"], f"{r['tooth_size_mm']:g}", f"{r['elements']:,}", f"{r['nodes_p2']:,}",
+             f"{r['seconds']:.2f}"] for r in mesh_table()]
+    return markdown_table(["2D ring (P2)", "tooth element size [mm]", "triangles", "nodes",
+                           "time [s]"], rows, "lrrrr") + (
+        "\n\n*Measured while these docs were built (one gmsh thread); times follow the "
+        "build machine's load.*")
+
+
+def report_section(folder: str, heading: str) -> str:
+    """One ``## heading`` section of the ``report.md`` a scene wrote into ``docs/data/folder``
+    (the report's text is generated from the run's data), without its pictures."""
+    report = (DATA / folder / "report.md").read_text()
+    marker = f"\n## {heading}\n"
+    if marker not in report:
+        raise KeyError(f"docs/data/{folder}/report.md has no section {heading!r}")
+    body = report.split(marker, 1)[1].split("\n## ", 1)[0]
+    body = body.split("\n### Plots\n", 1)[0]
+    body = "\n".join(line for line in body.splitlines() if not line.startswith("!["))
+    run = json.loads((DATA / folder / "results.json").read_text())
+    when = (f"{run['date']}, hubvib {run['hubvib_version']}" if "date" in run
+            else _meta(folder).get("measured"))
+    return body.strip() + provenance(f"{folder}/", when)
+
+
+def signal_report() -> str:
+    """The vibration signature of the shipped signal scene (``hubvib signal``)."""
+    return report_section("raba118_signal", "Vibration signature")
+
+
+def crack_study_short_answer() -> str:
+    """The short answer of the default scene (``hubvib run``)."""
+    return report_section("raba118_crack", "Short answer")
+
+
+def crack_study_detectability() -> str:
+    """Smallest detectable depth against the mounting stiffness, default scene."""
+    return report_section("raba118_crack", "Detectability against the ring mounting")
+
+
+def crack_study_threshold() -> str:
+    """The detection threshold and the POD set-up of the default scene."""
+    return report_section("raba118_crack", "Detection threshold and probability of detection")
+
+
+def crack_study_carrier() -> str:
+    """When the cracked tooth is in mesh and what a record sees, default scene."""
+    return report_section("raba118_crack", "Carrier position")
+
+
+def crack_study_stiffness() -> str:
+    """FE stiffness against crack depth of the default scene."""
+    return report_section("raba118_crack", "FE stiffness against crack depth")
+
+
+# ---------------------------------------------------------------- seed companions
+
+BALL49_SNIPPET = """\
+import math, numpy as np
+from hubvib.companion.harmonics import position_locked_periods
+deg = {1: 0.20, 2: 0.08, 6: 0.05, 12: 0.12, 294: 0.02}
+T = position_locked_periods({k: math.radians(a) for k, a in deg.items()}, 2048, 3, 1500 / 49)
+np.savetxt('ball49.csv', T, header='period_s', comments='', fmt='%.15e')
+"""
+
+
+def harmonics_ball49() -> str:
+    """The synthetic two-stage ball reducer record of the seed-000 page, written by
+    ``BALL49_SNIPPET`` and analysed by ``hubvib harmonics``."""
+    def prepare(folder):
+        here = Path.cwd()
+        os.chdir(folder)
+        try:
+            exec(compile(BALL49_SNIPPET, "ball49 snippet", "exec"), {})
+        finally:
+            os.chdir(here)
+
+    snippet = f"```python\n{BALL49_SNIPPET}```\n\n"
+    return snippet + console(["hubvib", "harmonics", "--periods", "ball49.csv",
+                              "--pulses-per-rev", "2048", "--z1", "1", "--z2", "6",
+                              "--stages", "2", "--top", "6"], prepare=prepare)
+
+
+# ---------------------------------------------------------------- entry points
+
+TABLES = {name: function for name, function in list(globals().items())
+          if callable(function) and not name.startswith("_") and function.__module__ == __name__
+          and name not in {"markdown_table", "provenance", "table", "console"}}
+
+
+@lru_cache(maxsize=None)
+def table(name: str) -> str:
+    """The Markdown of generated table ``name`` (a ``KeyError`` names the known ones)."""
+    if name not in TABLES:
+        raise KeyError(f"no generated table {name!r}; known: {', '.join(sorted(TABLES))}")
+    return TABLES[name]()
+
+
+def console(argv: list[str], expected: int = 0, prepare=None) -> str:
+    """``hubvib ARGS`` run in-process in a scratch folder holding ``docs/data/inputs``; a
+    console block with the command and what it printed (stdout, then stderr).
+    ``prepare(folder)``, when given, writes further input files first."""
+    from hubvib.cli import main
+
+    if not argv or argv[0] != "hubvib":
+        raise ValueError(f"a cli marker runs hubvib, not {argv[:1]}")
+    out, err = io.StringIO(), io.StringIO()
+    folder = Path(tempfile.mkdtemp(prefix="hubvib-docs-cli-"))
+    here = Path.cwd()
+    try:
+        shutil.copytree(DATA / "inputs", folder, dirs_exist_ok=True)
+        if prepare:
+            prepare(folder)
+        os.chdir(folder)
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            try:
+                code = main(argv[1:])
+            except SystemExit as stop:  # argparse's --help and usage errors exit
+                code = stop.code if isinstance(stop.code, int) else 2
+    finally:
+        os.chdir(here)
+        shutil.rmtree(folder, ignore_errors=True)
+    if code != expected:
+        raise RuntimeError(f"exit {code}, expected {expected}: {err.getvalue().strip()}")
+    text = (out.getvalue() + err.getvalue()).rstrip()
+    return f"```console\n$ {shlex.join(argv)}\n{text}\n```"
+
+
+if __name__ == "__main__":
+    for name in sys.argv[1:] or sorted(TABLES):
+        print(f"## {name}\n\n{table(name)}\n")

@@ -1,0 +1,76 @@
+"""MkDocs hooks of the hubvib documentation (``hooks:`` in mkdocs.yml).
+
+* ``on_config``: lays out the installed package the way it imports (``hubvib.lumped`` from
+  ``lumped/``, ...: pyproject's ``package-dir``) as a tree of symbolic links in a scratch
+  folder, so that mkdocstrings reads every docstring statically under its import path.
+* ``on_page_markdown``: replaces each generated-figure marker by what the library computes
+  now, so no figure in the docs is typed by hand:
+
+  - ``<!-- gen: NAME -->``: the table ``NAME`` of ``docs/generate.py``;
+  - ``<!-- cli: hubvib ARGS [; exit=N] -->``: the command run in-process (``hubvib.cli.main``)
+    in a scratch folder holding ``docs/data/inputs``, shown as a console block with its
+    output; a different exit code than ``N`` (default 0) fails the build.
+
+An unknown marker, a table that raises or a command that fails stops the build.
+"""
+from __future__ import annotations
+
+import atexit
+import re
+import shlex
+import shutil
+import sys
+import tempfile
+import tomllib
+from pathlib import Path
+
+from mkdocs.exceptions import PluginError
+from mkdocs.plugins import event_priority
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import generate  # noqa: E402  (docs/generate.py, beside this file)
+
+MARKER = re.compile(r"<!--\s*(gen|cli):\s*(.*?)\s*-->")
+
+
+def source_tree(root: Path = ROOT) -> Path:
+    """A folder whose ``hubvib/`` is the package as it installs: ``hubvib/*`` plus each
+    ``package-dir`` entry of pyproject.toml linked under its dotted name."""
+    folder = Path(tempfile.mkdtemp(prefix="hubvib-docs-src-"))
+    atexit.register(shutil.rmtree, folder, True)
+    package = folder / "hubvib"
+    package.mkdir()
+    for entry in (root / "hubvib").iterdir():
+        if entry.name != "__pycache__":
+            (package / entry.name).symlink_to(entry)
+    tool = tomllib.loads((root / "pyproject.toml").read_text())["tool"]["setuptools"]
+    for name, where in tool.get("package-dir", {}).items():
+        parts = name.split(".")
+        if parts[0] == "hubvib" and len(parts) == 2 and not (package / parts[1]).exists():
+            (package / parts[1]).symlink_to(root / where)
+    return folder
+
+
+@event_priority(100)  # before mkdocstrings reads its handler options
+def on_config(config):
+    handlers = config["plugins"]["mkdocstrings"].config.setdefault("handlers", {})
+    python = handlers.setdefault("python", {})
+    python["paths"] = [str(source_tree())] + list(python.get("paths", []))
+    return config
+
+
+def on_page_markdown(markdown, page, config, files):
+    def expand(match):
+        kind, body = match.groups()
+        try:
+            if kind == "gen":
+                return generate.table(body)
+            command, _, expected = body.partition(";")
+            expected = int(expected.split("=")[1]) if expected.strip() else 0
+            return generate.console(shlex.split(command), expected)
+        except Exception as exc:  # any failure of a figure fails the build, naming the page
+            raise PluginError(f"{page.file.src_path}: {match.group(0)}: {exc}") from exc
+
+    return MARKER.sub(expand, markdown)
