@@ -118,12 +118,15 @@ class CrackPathResult:
 
 
 def crack_path(design: ReducerDesign, options: GrowthOptions = GrowthOptions(),
-               out: Path | None = None) -> CrackPathResult:
-    """Grow the root crack of ``design`` (see the module docstring); with ``out``, write
-    ``crack_path.png``, ``crack_step_NN.vtu`` per step and ``crack_path.json`` there, all
-    or nothing."""
+               out: Path | None = None, tooth: int | None = None) -> CrackPathResult:
+    """Grow the root crack of ``design`` at ``tooth`` (default ``cracked_tooth``, see the
+    module docstring); with ``out``, write ``crack_path.png``, ``crack_step_NN.vtu`` per
+    step and ``crack_path.json`` there, all or nothing."""
     ring = loaded_ring(design)
-    tooth = cracked_tooth(ring)
+    if tooth is None:
+        tooth = cracked_tooth(ring)
+    elif isinstance(tooth, bool) or not isinstance(tooth, int) or not 0 <= tooth < ring.teeth:
+        raise ValueError(f"tooth = {tooth!r}, allowed integers 0..{ring.teeth - 1}")
     force = mesh_force(design)
     steel = material(design)
     if out is None:

@@ -130,6 +130,7 @@ def test_kinked_path_mesh_has_both_faces_along_the_path(ring):
     (["crack-path", "--steps", "0"], "--steps = 0, allowed 1..200"),
     (["crack-path", "--step", "nan"], "--step = nan m, allowed 1e-5..1e-2 m"),
     (["crack-path", "--design", "/nonexistent.toml"], "nonexistent.toml"),
+    (["crack-path", "--tooth", "64"], "tooth = 64, allowed integers 0..63"),
 ])
 def test_crack_path_bad_input(capsys, tmp_path, argv, message):
     assert main(argv + ["--out", str(tmp_path / "out")]) == 2

@@ -19,6 +19,8 @@ def add_parser(sub) -> None:
                    help=f"most growth steps (FE solutions), 1..{MAX_STEPS}; default 40")
     p.add_argument("--step", type=float, default=0.5e-3, metavar="DA",
                    help="crack extension per step [m], 1e-5..1e-2; default 5e-4")
+    p.add_argument("--tooth", type=int, default=None, metavar="K",
+                   help="cracked ring tooth; default the one midway between two support pads")
     p.add_argument("--out", type=Path, default=Path("hubvib-out/crack-path"))
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
@@ -36,7 +38,7 @@ def run(args) -> int:
         raise ValueError(f"--step = {args.step!r} m, allowed 1e-5..1e-2 m")
     design = design_from_argument(args.design or args.preset)
     options = GrowthOptions(step=args.step, initial_depth=args.step, max_steps=args.steps)
-    result = crack_path(design, options, args.out)
+    result = crack_path(design, options, args.out, args.tooth)
     info = result.to_dict()
     if args.json:
         print(json_text(info))
