@@ -524,7 +524,7 @@ def readme_test_command(progress=None) -> dict:
     from pathlib import Path
 
     say = progress or (lambda line: None)
-    root = Path(__file__).resolve().parents[1]
+    root = Path(__file__).resolve().parents[2]
     if not (root / "tests").is_dir() or not (root / "pyproject.toml").is_file():
         return {"tests_seconds": None, "tests_skipped": "no source checkout (tests/)"}
     started = time.perf_counter()
