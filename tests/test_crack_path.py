@@ -174,19 +174,22 @@ def test_path_independent_of_step_size():
 
 @pytest.mark.slow
 def test_backup_ratio_trend_of_lewicki_and_ballarini():
-    """Variants of the Raba ring with thinner rims: backup ratio 0.3 fractures through the
-    rim, 1.0 through the tooth, as Lewicki & Ballarini (1997, NASA TM-107229) predicted and
-    tested (3.3 and 1.0 tooth, 0.3 rim)."""
+    """Variants of the Raba ring with other rims, Lewicki & Ballarini (1997, NASA TM-107229:
+    backup ratios 3.3 and 1.0 tooth fracture, 0.3 rim fracture, predicted and tested):
+    midway between support pads (tooth 5) 0.3 breaks the rim and 3.3 the tooth; over a pad
+    (tooth 0, the rim held beneath) 1.0 breaks the tooth too."""
     height = tooth_height(ring_gear(RABA))
     found = {}
-    for ratio in (min(LEWICKI_RIM), min(LEWICKI_TOOTH)):
+    for ratio, tooth in ((min(LEWICKI_RIM), None), (max(LEWICKI_TOOTH), None),
+                         (min(LEWICKI_TOOTH), 0)):
         design = replace(RABA, name=f"raba118_mB{ratio:g}", rim=RimSpec(thickness=ratio * height))
-        result = _grow(design, 0.5e-3)
+        result = crack_path(design, GrowthOptions(step=0.5e-3, mesh=COARSE), tooth=tooth)
         assert result.backup_ratio == pytest.approx(ratio, rel=1e-9)
         assert result.growth.severed, f"backup ratio {ratio}: the crack severs within 40 steps"
-        found[ratio] = result.growth.fracture
-    assert found == {0.3: "rim", 1.0: "tooth"}, (
-        f"fracture by backup ratio {found} vs Lewicki & Ballarini 1997: 0.3 rim, 1.0 tooth")
+        found[(ratio, result.tooth)] = result.growth.fracture
+    assert found == {(0.3, 5): "rim", (3.3, 5): "tooth", (1.0, 0): "tooth"}, (
+        f"fracture by (backup ratio, tooth) {found} vs Lewicki & Ballarini 1997: 0.3 rim, "
+        "1.0 and 3.3 tooth")
 
 
 @pytest.mark.slow
