@@ -182,5 +182,7 @@ def grow_crack(ring: RingGear, tooth: int, force: float, material: Material = Ma
         tip = crack.tip + options.step * heading
         if surface_gap(ring, tooth, tip) < 0.5 * options.step:
             return CrackGrowth(crack, tuple(steps), leaves.surface, True, leaves)
+        if index == options.max_steps - 1:
+            break
         crack = crack.extended(tip)
     return CrackGrowth(crack, tuple(steps), leaves.surface, False, leaves)
