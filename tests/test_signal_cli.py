@@ -6,10 +6,14 @@ import numpy as np
 import pytest
 
 from hubvib.cli import main
-from hubvib.scene import SceneError
+from hubvib.studies.scene import SceneError
 from hubvib.signal import study as signal_study
 from hubvib.signal.mesh_curves import synthetic_curves
 from hubvib.signal.options import SignalOptions, parse_signal_table
+from hubvib.design import preset_design
+
+RABA = preset_design("raba118")  # the reference case (hubvib.design.presets)
+
 
 SCENE = """
 [reducer]
@@ -58,7 +62,7 @@ def test_sample_rate_is_checked_against_the_scenes_own_mesh_frequency():
     """Nyquist: fs >= 2 k f_mesh with f_mesh = z_r f_s z_s / (z_s + z_r) of the scene's design
     (Raba 64/26 at 1500 rpm and k = 3: 2 x 3 x 64 x 25 x 26/90 = 2773.33 Hz; hub4 80/24:
     2 x 3 x 80 x 25 x 24/104 = 2769.23 Hz)."""
-    from hubvib.scene import parse_scene
+    from hubvib.studies.scene import parse_scene
 
     for design, needed in (('[reducer]\npreset = "raba118"', "2773.33"),
                            ('[design]\npreset = "hub4"', "2769.23")):
@@ -72,7 +76,7 @@ def fake_fe(monkeypatch):
     """Synthetic mesh curves instead of the FE stage (constant tooth compliances)."""
     def curves(scene, options, progress=None):
         p = scene.params
-        return [synthetic_curves(crack_factor=1 + 40 * d, depth=d).to_preset(p.c_sp, p.c_rp)
+        return [synthetic_curves(RABA, crack_factor=1 + 40 * d, depth=d).to_preset(p.c_sp, p.c_rp)
                 for d in scene.crack.depths]
     monkeypatch.setattr(signal_study, "curves_for", curves)
 

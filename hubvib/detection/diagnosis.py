@@ -287,7 +287,7 @@ def diagnose_scene(scene, measured: Measured, progress: bool = True,
                    workers: int = 2) -> tuple[Diagnosis, Reference]:
     """Diagnosis of ``measured`` against the crack study of ``scene`` (FE cases from the
     cache or computed, then the Monte Carlo reference)."""
-    from hubvib.crack_sweep import run_fe_cases
+    from hubvib.studies.crack_sweep import run_fe_cases
 
     from .carrier import mesh_timing
     from .model import CrackModel

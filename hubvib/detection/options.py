@@ -23,6 +23,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, fields
 
+from hubvib.foundation.errors import SceneError
+
 
 @dataclass(frozen=True)
 class DetectionOptions:
@@ -99,8 +101,6 @@ _KEYS = {
 
 def parse_detection_table(table: dict) -> DetectionOptions:
     """Validate a ``[detection]`` table; raise SceneError naming the key, value and range."""
-    from hubvib.scene import SceneError
-
     unknown = set(table) - set(_KEYS)
     if unknown:
         raise SceneError(f"unknown key(s) {sorted(unknown)} at [detection]; allowed: "

@@ -1,6 +1,6 @@
 """Sparse symmetric positive definite solvers for ``K u = f``, chosen by problem size.
 
-Measured on 2 cores (``validation/benchmark.py`` and fe_facts.md, 3D elasticity
+Measured on 2 cores (``hubvib/benchmarks/`` and fe_facts.md, 3D elasticity
 ~3e5 DOF): SuperLU does not finish in 330 s (13 GB), smoothed-aggregation AMG
 with the rigid-body near-null space as CG preconditioner takes 7-15 s (1 GB),
 PARDISO in SPD mode ~10 s (2.5 GB).  On node blocks PARDISO is also twice as
@@ -27,7 +27,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from hubvib.blas import blas_threads
+from hubvib.foundation.blas import blas_threads
 
 SOLVERS = ("auto", "superlu", "pardiso", "amg")
 DIRECT_LIMIT = 60_000  # [DOF] 3D systems below this factorise fast enough with SuperLU

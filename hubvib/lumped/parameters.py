@@ -5,9 +5,9 @@ import dataclasses
 import math
 from dataclasses import dataclass
 
-STIFFNESS_FIELDS = ("c_sp", "c_rp", "c_p", "c_c", "c_r", "c_s", "c_su", "c_cu", "c_ru")
-MASS_FIELDS = ("m_s", "m_c", "m_r", "m_p", "mu_s", "mu_c", "mu_r", "mu_p")
-DIAMETER_FIELDS = ("d_s", "d_c", "d_r", "d_p")
+from hubvib.design.fields import DIAMETER_FIELDS, MASS_FIELDS, STIFFNESS_FIELDS
+from hubvib.foundation.errors import InputError
+
 ANGLE_TOLERANCE = 1e-9  # [rad] two planets closer than this are the same planet
 #: most planets a stage may have: real stages have 3..12; the eigensolver's cost grows as
 #: N^3 (one shift sweep, one BLAS thread, 2 cores: 0.19 s at N = 12, 0.70 s at N = 32)
@@ -17,7 +17,7 @@ MAX_PLANETS = 32
 MAX_ANGLE = 2 * math.pi
 
 
-class ParameterError(ValueError):
+class ParameterError(InputError):
     """A parameter is outside its allowed range; the message names it."""
 
 

@@ -1,7 +1,13 @@
-"""Named parameter sets: the lumped model of each design preset (``hubvib.design``)."""
+"""The lumped model of a registered design preset, kept here as the convenience the
+README's worked example uses (``lumped.raba118()``, ``lumped.preset("hub4")``).
+
+The model is built from the design one layer up (``hubvib.build.lumped_preset``); this
+module is the one import from a stage to the build layer, named as the exception in the
+import-linter contracts (pyproject.toml) and imported only when called.
+"""
 from __future__ import annotations
 
-from functools import lru_cache
+from hubvib.design.presets import PRESETS
 
 from .parameters import ParameterError, PlanetaryParameters
 
@@ -24,20 +30,10 @@ def hub4() -> PlanetaryParameters:
     return preset("hub4")
 
 
-PRESETS = {"raba118": raba118, "hub4": hub4}
-
-
 def preset(name: str) -> PlanetaryParameters:
-    """Parameters of a named preset (see ``PRESETS``)."""
+    """Parameters of a registered design preset (``hubvib.design.PRESETS``)."""
     if name not in PRESETS:
         raise ParameterError(f"unknown preset {name!r}; available: {sorted(PRESETS)}")
-    return _from_design(name)
+    from hubvib.build import lumped_preset  # the build layer sits above this stage
 
-
-@lru_cache(maxsize=None)
-def _from_design(name: str) -> PlanetaryParameters:
-    """The lumped model of the named design preset (built once; parameters are frozen)."""
-    from hubvib.design.build import lumped_parameters
-    from hubvib.design.presets import preset_design
-
-    return lumped_parameters(preset_design(name))
+    return lumped_preset(name)

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hubvib.output import atomic_path
+from hubvib.foundation.output import atomic_path
 
 from .fe_mesh import GMSH_TO_VTK_TETRA10, FEMesh
 

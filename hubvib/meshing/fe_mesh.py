@@ -77,7 +77,7 @@ class FEMesh:
         if self.cell_quality is not None:
             arrays["cell_quality"] = self.cell_quality
         meta = json.dumps({"cell_type": self.cell_type, "info": self.info})
-        from hubvib.output import atomic_path
+        from hubvib.foundation.output import atomic_path
 
         with atomic_path(path) as tmp, open(tmp, "wb") as handle:
             np.savez(handle, meta=np.array(meta), **arrays)

@@ -14,6 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hubvib.design.involute import involute, inverse_involute
+
 MIN_TIP_THICKNESS = 0.2  # [module] below this a tooth counts as pointed
 
 
@@ -21,28 +23,10 @@ class GearGeometryError(ValueError):
     """Gear parameters that give no valid tooth; the message names the parameter."""
 
 
-def involute(angle):
-    """inv(a) = tan(a) - a [rad]."""
-    return np.tan(angle) - angle
-
-
 def rotation(angle: float) -> np.ndarray:
     """2x2 matrix turning plane vectors counter-clockwise by ``angle`` [rad]."""
     c, s = math.cos(angle), math.sin(angle)
     return np.array([[c, -s], [s, c]])
-
-
-def inverse_involute(value: float) -> float:
-    """Pressure angle a in [0, pi/2) with inv(a) = value (Newton, to machine precision)."""
-    if not value >= 0:
-        raise ValueError(f"inverse_involute({value!r}): the involute function is >= 0")
-    a = (3 * value) ** (1 / 3) if value < 1 else math.atan(value + 1)
-    for _ in range(60):
-        step = (math.tan(a) - a - value) / math.tan(a) ** 2 if a > 0 else 0.0
-        a -= step
-        if abs(step) <= 1e-16 * max(a, 1e-300):
-            break
-    return a
 
 
 @dataclass(frozen=True)

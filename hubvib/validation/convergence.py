@@ -41,7 +41,7 @@ UNITS = {"c_ru": "N/m", "c_r": "N/m", "c_sp": "N/m", "c_rp": "N/m", "annulus": "
 def _ring_level(scale: float, which: str) -> dict:
     from hubvib.fem.ring_stiffness import ring_stiffness
     from hubvib.meshing.levels import scaled_options
-    from hubvib.meshing import raba118
+    from hubvib.build import raba118
     from hubvib.meshing.ring_mesh import ring_mesh
 
     ring = raba118.ring_gear()
@@ -56,7 +56,7 @@ def _ring_level(scale: float, which: str) -> dict:
 def _mesh_level(scale: float, which: str) -> dict:
     from hubvib.fem.tooth_stiffness import reducer_mesh_stiffness
     from hubvib.meshing.levels import scaled_options
-    from hubvib.meshing import raba118
+    from hubvib.build import raba118
 
     result = reducer_mesh_stiffness(raba118.gear_body("sun"), raba118.gear_body("planet"),
                                     raba118.ring_gear(), scaled_options(scale))[which]

@@ -110,7 +110,7 @@ def paired_modes(printed_kind, energy_kind) -> list[int]:
 
 def write_report(result: RabaValidation, out: Path) -> RabaValidation:
     """Write spectrum.csv, theory.csv, summary.json and fig4_c_ru_sweep.png to ``out``."""
-    from hubvib.output import save_figure, write_csv, write_json
+    from hubvib.foundation.output import save_figure, write_csv, write_json
 
     out = Path(out)
     result.files = [

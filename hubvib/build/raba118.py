@@ -4,41 +4,33 @@ from __future__ import annotations
 
 from functools import lru_cache
 
+from hubvib.build import stages
+from hubvib.design.presets import preset_design
+
 
 @lru_cache(maxsize=1)
 def design():
-    from hubvib.design.presets import raba118
-
-    return raba118()
+    """The Raba 118/76 design (``hubvib.design.presets``)."""
+    return preset_design("raba118")
 
 
 def sun():
-    from hubvib.design.build import spur_gears
-
-    return spur_gears(design())[0]
+    return stages.spur_gears(design())[0]
 
 
 def planet():
-    from hubvib.design.build import spur_gears
-
-    return spur_gears(design())[1]
+    return stages.spur_gears(design())[1]
 
 
 def ring():
-    from hubvib.design.build import spur_gears
-
-    return spur_gears(design())[2]
+    return stages.spur_gears(design())[2]
 
 
 def ring_gear(supports=None, fillet: str = "trochoid"):
     """The ring with its rim (outer diameter from the paper's 6.8 kg) and supports."""
-    from hubvib.design.build import ring_gear as build
-
-    return build(design(), supports, fillet)
+    return stages.ring_gear(design(), supports, fillet)
 
 
 def gear_body(name: str):
     """Sun or planet body on its bore (``name`` = ``"sun"`` or ``"planet"``)."""
-    from hubvib.design.build import gear_body as build
-
-    return build(design(), name)
+    return stages.gear_body(design(), name)

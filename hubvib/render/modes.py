@@ -146,7 +146,7 @@ def _draw(plotter, meshes: dict, reference: dict, label: str):
 
 def write_atomically(path: Path, write) -> Path:
     """``write(tmp)`` into a temporary file that replaces ``path`` when it succeeds."""
-    from .output import atomic_path
+    from hubvib.foundation.output import atomic_path
 
     with atomic_path(path) as tmp:
         write(tmp)

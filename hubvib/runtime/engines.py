@@ -21,13 +21,15 @@ import warnings
 from contextlib import contextmanager
 from dataclasses import dataclass
 
+from hubvib.foundation.errors import InputError, SceneError
+
 ENGINES = ("local", "dask")
 #: the oldest dask.distributed with every API used here (Client.map, as_completed,
 #: LocalCluster(dashboard_address=None))
 MIN_DISTRIBUTED = (2022, 1)
 
 
-class EngineError(ValueError):
+class EngineError(InputError):
     """The engine cannot run the cases; the message names the setting or the case."""
 
 
@@ -45,8 +47,6 @@ class Execution:
 
 def parse_execution_table(table: dict) -> Execution:
     """The scene's ``[execution]`` table, checked."""
-    from .scene import SceneError
-
     allowed = {"engine", "scheduler", "workers", "timeout_s"}
     unknown = sorted(set(table) - allowed)
     if unknown:
@@ -158,7 +158,7 @@ def _environment(values: dict):
 def _run_pool(function, items, on_result, workers) -> list:
     from concurrent.futures import as_completed
 
-    from .process_pool import worker_pool
+    from hubvib.runtime.process_pool import worker_pool
 
     failures = []
     with worker_pool(min(workers, len(items))) as pool:

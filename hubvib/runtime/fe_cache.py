@@ -68,7 +68,7 @@ def write_entry(path: Path, inputs: dict, result: dict) -> None:
     A result holding NaN or infinity is refused (``ValueError`` naming the keys), and
     a folder that cannot be written raises ``CacheFolderError``: one line, no traceback.
     """
-    from .output import write_json
+    from hubvib.foundation.output import write_json
 
     try:
         checksum = _checksum(inputs, result)

@@ -17,7 +17,11 @@ from __future__ import annotations
 
 import math
 
-from .model import DesignError, ReducerDesign
+from hubvib.build import stages as build
+from hubvib.design.model import DesignError, ReducerDesign
+from hubvib.fem.mesh_cycle import GearPair
+from hubvib.meshing.gear import GearGeometryError, involute
+
 
 #: allowed difference of the two working centre distances [m]
 CENTRE_DISTANCE_TOLERANCE = 1e-6
@@ -29,10 +33,6 @@ ASSEMBLY_TOLERANCE = 1e-6
 
 def check_assembly(design: ReducerDesign) -> None:
     """Raise ``DesignError`` for the first rule the design breaks (see the module doc)."""
-    from hubvib.meshing.gear import GearGeometryError, involute
-
-    from . import build
-
     try:
         sun, planet, ring = build.spur_gears(design)
     except GearGeometryError as exc:
@@ -104,11 +104,6 @@ def _check_planet_gap(design: ReducerDesign, planet, a_w: float) -> None:
 
 
 def _check_meshes(design: ReducerDesign) -> None:
-    from hubvib.fem.mesh_cycle import GearPair
-    from hubvib.meshing.gear import GearGeometryError
-
-    from . import build
-
     try:
         sun, planet = build.gear_body(design, "sun"), build.gear_body(design, "planet")
         ring = build.ring_gear(design)
@@ -127,9 +122,6 @@ def _check_meshes(design: ReducerDesign) -> None:
 def summary(design: ReducerDesign) -> dict:
     """What follows from a design that assembles: distances, angles, contact ratios,
     masses and the lumped fields the geometry gives (SI)."""
-    from hubvib.fem.mesh_cycle import GearPair
-
-    from . import build
 
     a_sp, a_rp = build.centre_distances(design)
     alpha_s, alpha_r = build.working_angles(design)

@@ -10,8 +10,10 @@ import os
 import tempfile
 from pathlib import Path
 
+from hubvib.foundation.errors import InputError
 
-class CacheError(ValueError):
+
+class CacheError(InputError):
     """The cache folder cannot be written; the message names it and how to fix it."""
 
 

@@ -19,8 +19,8 @@ import sys
 from functools import lru_cache
 from pathlib import Path, PurePosixPath
 
-from .fe_cache import canonical
-from .output import atomic_folder
+from hubvib.runtime.fe_cache import canonical
+from hubvib.foundation.output import atomic_folder
 
 MANIFEST = "manifest.json"
 
@@ -31,7 +31,7 @@ def render_version() -> str:
     from importlib import metadata
 
     digest = hashlib.sha256()
-    for name in ("render.py", "fe_render.py"):
+    for name in ("modes.py", "fe.py"):
         digest.update((Path(__file__).parent / name).read_bytes())
     for package in ("pyvista", "vtk"):
         try:

@@ -1,11 +1,24 @@
 """From a design to what each stage needs: gears and bodies (meshing), material and
-bearing stiffness (FE), and the lumped model's parameters (SI)."""
+bearing stiffness (FE), and the lumped model's parameters (SI).
+
+The build layer sits above the stages (meshing, fem, lumped) and below validation and
+the app: a design (``hubvib.design``, pure data) never imports a stage, and a stage never
+imports a design's builder."""
 from __future__ import annotations
 
 import math
 from functools import lru_cache
 
-from .model import DesignError, ReducerDesign
+from hubvib.design.model import DesignError, ReducerDesign
+from hubvib.fem.bearing import RollerBearing
+from hubvib.fem.iso6336 import iso_stiffness
+from hubvib.fem.material import Material
+from hubvib.fem.mesh_cycle import GearPair
+from hubvib.lumped.parameters import ParameterError, PlanetaryParameters
+from hubvib.meshing.gear import SpurGear, centre_distance, working_pressure_angle
+from hubvib.meshing.gear_body import GearBody
+from hubvib.meshing.ring_gear import RingGear, Supports, outer_diameter_for_mass
+
 
 #: bore of a sun or planet whose design gives none, as a fraction of its root diameter
 DEFAULT_BORE_FRACTION = 0.4
@@ -15,8 +28,6 @@ MOUNTING_FIELDS = ("c_ru", "c_r", "c_su", "c_cu")
 
 def spur_gears(design: ReducerDesign):
     """Sun, planet, ring as ``SpurGear`` (ISO 53 rack, the design's module and shifts)."""
-    from hubvib.meshing.gear import SpurGear
-
     common = dict(module=design.module, pressure_angle=design.pressure_angle,
                   face_width=design.face_width)
     return (SpurGear(design.sun.teeth, profile_shift=design.sun.shift, **common),
@@ -27,16 +38,12 @@ def spur_gears(design: ReducerDesign):
 
 def working_angles(design: ReducerDesign) -> tuple[float, float]:
     """Working pressure angles of the sun-planet and ring-planet meshes [rad] (ISO 21771)."""
-    from hubvib.meshing.gear import working_pressure_angle
-
     sun, planet, ring = spur_gears(design)
     return working_pressure_angle(sun, planet), working_pressure_angle(planet, ring)
 
 
 def centre_distances(design: ReducerDesign) -> tuple[float, float]:
     """Working centre distances of the sun-planet and ring-planet pairs [m]."""
-    from hubvib.meshing.gear import centre_distance
-
     sun, planet, ring = spur_gears(design)
     return centre_distance(sun, planet), centre_distance(planet, ring)
 
@@ -53,8 +60,6 @@ def ring_gear(design: ReducerDesign, supports=None, fillet: str = "trochoid"):
 
 @lru_cache(maxsize=16)
 def _ring_gear(design, supports, fillet):
-    from hubvib.meshing.ring_gear import RingGear, Supports, outer_diameter_for_mass
-
     ring = spur_gears(design)[2]
     if supports is None:
         s = design.supports
@@ -74,7 +79,6 @@ def _ring_gear(design, supports, fillet):
 def gear_body(design: ReducerDesign, name: str):
     """The sun or planet on its bore (``meshing.GearBody``), loaded at the sun-planet
     working pressure angle."""
-    from hubvib.meshing.gear_body import GearBody
 
     if name not in ("sun", "planet"):
         raise DesignError(f"gear body {name!r}; allowed: sun, planet")
@@ -88,8 +92,6 @@ def gear_body(design: ReducerDesign, name: str):
 
 def material(design: ReducerDesign):
     """The FE material (``fem.Material``)."""
-    from hubvib.fem.material import Material
-
     m = design.material
     return Material(m.E, m.nu, m.density)
 
@@ -112,7 +114,6 @@ def bearing_stiffness(design: ReducerDesign) -> dict[str, dict]:
 
     Only the bearings the design gives are in the result.
     """
-    from hubvib.fem.bearing import RollerBearing
 
     out = {}
     for name, spec, default_load in (("c_p", design.planet_bearing, planet_bearing_load),
@@ -168,9 +169,6 @@ def derived_lumped_fields(design: ReducerDesign, skip=()) -> dict[str, float]:
     if not {"m_s", "m_p", "m_r", "m_c", "mu_s", "mu_p", "mu_r", "mu_c"} <= set(skip):
         out.update(mass_properties(design))
     if not {"c_sp", "c_rp"} <= set(skip):
-        from hubvib.fem.iso6336 import iso_stiffness
-        from hubvib.fem.mesh_cycle import GearPair
-
         sun, planet = gear_body(design, "sun"), gear_body(design, "planet")
         for key, first, second, p, w in (
                 ("c_sp", sun, planet, sun_gear, planet_gear),
@@ -191,7 +189,6 @@ def lumped_parameters(design: ReducerDesign):
     bearings' tangent stiffness; c_ru, c_r, c_su, c_cu (the mountings and shafts) must
     be in the ``lumped`` table.
     """
-    from hubvib.lumped import ParameterError, PlanetaryParameters
 
     given = design.lumped_fields
     fields = derived_lumped_fields(design, skip=given) | given

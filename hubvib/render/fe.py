@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .render import write_atomically, offscreen_plotter
+from hubvib.render.modes import write_atomically, offscreen_plotter
 
 MODES = 4
 MAGNIFIED = 0.03  # largest drawn displacement as a fraction of the ring's outer radius
@@ -38,7 +38,7 @@ class RingFields:
 def ring_fields(design, crack=None, options=None, modes: int = MODES) -> RingFields:
     """Solve the design's ring under its planet mesh forces (at the design's sun torque)
     and for its lowest ``modes``."""
-    from hubvib.design.build import material, mesh_force, ring_gear
+    from hubvib.build.stages import material, mesh_force, ring_gear
     from hubvib.fem.elasticity import plane_model, solve
     from hubvib.fem.modal import lowest_modes
     from hubvib.fem.ring_stiffness import mesh_force_load, planet_teeth

@@ -9,13 +9,13 @@ to its root lands does not depend on where the supports are).
 ``model = "solid"``: one case per depth and half-length, a semi-elliptic root
 crack centred on the face width in the solid ring (``c_ru``, ``c_r``); its
 ``c_rp`` ratio comes from the plane cases of the same depths by the slice method
-(``hubvib.crack_growth``).
+(``hubvib.studies.crack_growth``).
 
-Every case is cached (``hubvib.fe_cache``: keyed on the design, the crack, the
+Every case is cached (``hubvib.runtime.fe_cache``: keyed on the design, the crack, the
 mesh level and the FE stage's source; checked before it is used), written
 atomically by the calling process when it finishes.  A sweep killed at any point
 resumes without losing or recomputing a finished case.  Cases run in worker
-processes or on a Dask cluster (``hubvib.engines``).
+processes or on a Dask cluster (``hubvib.runtime.engines``).
 """
 from __future__ import annotations
 
@@ -23,10 +23,10 @@ import sys
 from dataclasses import asdict, dataclass
 
 
-from .engines import Execution, check_reachable, run_cases
-from .progress import progress as hubvib_progress
-from . import fe_cache
-from .fe_cache import (CacheEntryError, case_lock, entry_key, finite_positive, read_entry,
+from hubvib.runtime.engines import Execution, check_reachable, run_cases
+from hubvib.runtime.progress import progress as hubvib_progress
+from hubvib.runtime import fe_cache
+from hubvib.runtime.fe_cache import (CacheEntryError, case_lock, entry_key, finite_positive, read_entry,
                        write_entry)
 
 APPLY = ("series", "ratio", "direct")
@@ -101,12 +101,11 @@ class CrackSweep:
 
     @property
     def reducer(self):
-        """The design (Raba 118/76 when none is given)."""
-        if self.design is not None:
-            return self.design
-        from hubvib.meshing.raba118 import design
-
-        return design()
+        """The design whose ring is cracked (``design``; no default reducer)."""
+        if self.design is None:
+            raise ValueError("CrackSweep.design is None; give the reducer design "
+                             "(e.g. hubvib.design.preset_design(\"raba118\"))")
+        return self.design
 
 
 def crack_of(sweep: CrackSweep, depth: float):
@@ -151,7 +150,7 @@ def fe_case(sweep: CrackSweep, case) -> dict:
     stiffness."""
     import time
 
-    from hubvib.design.build import gear_body, material, ring_gear
+    from hubvib.build.stages import gear_body, material, ring_gear
     from hubvib.fem.estimate import estimate_crack_case
 
     started = time.perf_counter()

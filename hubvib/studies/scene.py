@@ -60,23 +60,25 @@ from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 
+from hubvib.detection.options import parse_detection_table
+from hubvib.foundation.errors import SceneError
 from hubvib.lumped import METHODS, ParameterError, PlanetaryParameters, field_names
+from hubvib.meshing.crack import STARTS
+from hubvib.runtime.engines import parse_execution_table
+from hubvib.runtime.params_input import load_parameters
+from hubvib.signal.options import parse_signal_table
+from hubvib.studies.crack_sweep import ACCURACY, APPLY, MAX_DEPTHS, MODELS, CrackSweep
 
 PARAMETER_NAMES = field_names()
 
-from hubvib.meshing.crack import STARTS
-
-from .crack_sweep import ACCURACY, APPLY, MAX_DEPTHS, MODELS, CrackSweep
-from .params_input import load_parameters
-
-#: optional tables parsed by the module that uses them: table -> "module:function".
-#: The function takes the table (a dict) and returns a frozen options object, raising
-#: SceneError that names the key and the allowed range; the object is in
-#: ``Scene.tables[name]``.  A new table = its parser + one line here.
+#: optional tables parsed by the module that uses them: table -> parser.  The parser
+#: takes the table (a dict) and returns a frozen options object, raising SceneError that
+#: names the key and the allowed range; the object is in ``Scene.tables[name]``.  A new
+#: table = its parser + one line here.
 EXTENSION_TABLES = {
-    "signal": "hubvib.signal.options:parse_signal_table",
-    "detection": "hubvib.detection.options:parse_detection_table",
-    "execution": "hubvib.engines:parse_execution_table",
+    "signal": parse_signal_table,
+    "detection": parse_detection_table,
+    "execution": parse_execution_table,
 }
 
 ALLOWED = {
@@ -87,10 +89,6 @@ ALLOWED = {
               "workers", "c_ru_mount", "c_r_mount", "model", "half_lengths"},
     "output": {"folder", "plots", "renders", "gif", "vtm"},
 }
-
-
-class SceneError(ValueError):
-    """The scene file is invalid; the message names the key and what is allowed."""
 
 
 @dataclass(frozen=True)
@@ -110,6 +108,14 @@ class Scene:
     vtm: bool = False
     design: object = None
     tables: dict = field(default_factory=dict, compare=False)
+
+    @property
+    def kind(self) -> str:
+        """The study this scene runs (``hubvib.studies.kinds.STUDIES``): "sweep" (no
+        [crack] table), "crack" ([crack] model = "plane") or "growth" (model = "solid")."""
+        if self.crack is None:
+            return "sweep"
+        return "growth" if self.crack.model == "solid" else "crack"
 
 
 #: the shipped scene ``hubvib run`` runs without an argument
@@ -147,7 +153,7 @@ def load_scene(path: Path | str | None = None) -> Scene:
     path = Path(path)
     if not path.exists() and path.suffix != ".toml" and path.parent == Path("."):
         return parse_scene(shipped_scene_text(path.name), path.name)
-    from .params_input import read_text_file
+    from hubvib.runtime.params_input import read_text_file
 
     return parse_scene(read_text_file(path, "scene", SceneError), path.stem, path.parent)
 
@@ -172,9 +178,9 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
     design = _design(data, reducer, base)
     try:
         if "design" in data:
-            from hubvib.design.build import lumped_parameters
+            from hubvib.build.stages import lumped_parameters
 
-            from .params_input import apply_overrides
+            from hubvib.runtime.params_input import apply_overrides
 
             params = apply_overrides(lumped_parameters(design), overrides)
         else:
@@ -239,7 +245,8 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
 
 def _design(data, reducer, base: Path | None):
     """The scene's design: its [design] table, else the [reducer] preset's design."""
-    from hubvib.design import DesignError, PRESETS, load_design, parse_design, preset_design
+    from hubvib.build import load_design, parse_design
+    from hubvib.design import DesignError, PRESETS, preset_design
 
     preset = _string(reducer, "reducer", "preset", "raba118")
     try:
@@ -264,7 +271,7 @@ def _design(data, reducer, base: Path | None):
 
 def _check_consistent(design, params) -> None:
     """Refuse lumped parameters that contradict the design (N, angles, diameters)."""
-    from hubvib.design.build import derived_lumped_fields
+    from hubvib.build.stages import derived_lumped_fields
 
     if design is None:
         return
@@ -292,12 +299,9 @@ GEOMETRIC = ("d_s", "d_c", "d_r", "d_p", "alpha_s", "alpha_r")
 
 
 def _extension(key: str, table):
-    import importlib
-
     if not isinstance(table, dict):
         raise SceneError(f"[{key}] must be a table, got {table!r}")
-    module, _, function = EXTENSION_TABLES[key].partition(":")
-    return getattr(importlib.import_module(module), function)(table)
+    return EXTENSION_TABLES[key](table)
 
 
 def _crack(table, design) -> CrackSweep:
@@ -389,10 +393,10 @@ def _checked_depths(sweep: CrackSweep, through: bool) -> CrackSweep:
     """Validate every depth against the design's ring (no meshing) and add the through depth."""
     from dataclasses import replace
 
-    from hubvib.design.build import ring_gear
+    from hubvib.build.stages import ring_gear
     from hubvib.meshing.gear import GearGeometryError
 
-    from .crack_sweep import crack_of
+    from hubvib.studies.crack_sweep import crack_of
 
     if sweep.tooth >= sweep.reducer.ring.teeth:
         raise SceneError(f"[crack] tooth = {sweep.tooth}; allowed 0..{sweep.reducer.ring.teeth - 1} "
