@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from hubvib.cli import main
-from hubvib.crack_path import (LEWICKI_RIM, LEWICKI_TOOTH, crack_path, cracked_tooth,
+from hubvib.studies.crack_path import (LEWICKI_RIM, LEWICKI_TOOTH, crack_path, cracked_tooth,
                                loaded_ring, single_contact_radius)
-from hubvib.design.build import gear_body, ring_gear
+from hubvib.build.stages import gear_body, ring_gear
 from hubvib.design.model import RimSpec
 from hubvib.design.presets import raba118
 from hubvib.fem.crack_propagation import GrowthError, GrowthOptions
@@ -188,7 +188,7 @@ def test_ring_sif_independent_of_domain_and_mesh():
     interaction integral over annuli of outer radius 0.1, 0.2 and 0.3 mm, on the growth's
     coarse mesh and on a mesh twice as fine at the tip and 1.5 x finer elsewhere, agree
     within 1 % of |K| (K_I) and 2 % of |K| (K_II); the kink angles within 1 deg."""
-    from hubvib.design.build import material, mesh_force
+    from hubvib.build.stages import material, mesh_force
     from hubvib.fem.elasticity import plane_model, solve
     from hubvib.fem.fracture import interaction_integral
     from hubvib.fem.ring_stiffness import mesh_force_load

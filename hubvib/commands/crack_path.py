@@ -3,7 +3,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from hubvib.output import json_text
+from hubvib.design import preset_names
+from hubvib.foundation.output import json_text
 
 #: most growth steps the command accepts
 MAX_STEPS = 200
@@ -12,7 +13,8 @@ MAX_STEPS = 200
 def add_parser(sub) -> None:
     p = sub.add_parser("crack-path", help="grow the ring's root crack by LEFM (K_I, K_II, "
                        "maximum tangential stress) until it severs the tooth or the rim")
-    p.add_argument("--preset", default="raba118", choices=["raba118", "hub4"])
+    p.add_argument("--preset", default="raba118", choices=preset_names(),
+                   help="a registered design preset (hubvib.design.PRESETS)")
     p.add_argument("--design", metavar="FILE.toml",
                    help="a reducer design file (replaces --preset)")
     p.add_argument("--steps", type=int, default=40, metavar="N",
@@ -27,7 +29,7 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from hubvib.crack_path import crack_path
+    from hubvib.studies.crack_path import crack_path
     from hubvib.fem.crack_propagation import GrowthOptions
 
     from .design import design_from_argument

@@ -1,7 +1,7 @@
 """The path a ring-gear root crack takes, predicted by LEFM for a design (SI inside).
 
 The design gives the ring, its supports, the material and the planet's mesh force
-(``design.build.mesh_force``).  The load sits at the worst point of the mesh cycle for the
+(``hubvib.build.stages.mesh_force``).  The load sits at the worst point of the mesh cycle for the
 ring tooth's root: the highest point of single tooth contact on the ring, the single-pair
 contact nearest the ring's tip (largest bending arm), from the planet-ring path of contact
 (``fem.mesh_cycle.GearPair``).  The cracked tooth is the one midway between two support
@@ -18,16 +18,15 @@ import math
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-import numpy as np
-
-from hubvib.design.build import gear_body, material, mesh_force, ring_gear
+from hubvib.build.stages import gear_body, material, mesh_force, ring_gear
 from hubvib.design.model import ReducerDesign
 from hubvib.fem.crack_propagation import CrackGrowth, GrowthOptions, grow_crack
 from hubvib.fem.mesh_cycle import GearPair
-from hubvib.meshing.crack_path import backup_ratio, tooth_height, tooth_outline
+from hubvib.meshing.crack_path import backup_ratio, tooth_height
+from hubvib.meshing.export import write_vtu
 from hubvib.meshing.ring_gear import RingGear
-
-from .output import json_text, output_set, save_figure, write_text
+from hubvib.foundation.output import json_text, output_set, write_text
+from hubvib.render.crack_path import render_path
 
 #: Lewicki & Ballarini 1997 (NASA TM-107229): backup ratios 3.3 and 1.0 gave tooth
 #: fractures, 0.3 rim fractures, 0.5 both (rim in the tests), predicted and tested
@@ -132,8 +131,6 @@ def crack_path(design: ReducerDesign, options: GrowthOptions = GrowthOptions(),
     if out is None:
         growth = grow_crack(ring, tooth, force, steel, options)
         return CrackPathResult(design.name, growth, ring, tooth, force, options)
-    from hubvib.meshing.export import write_vtu
-
     out = Path(out)
     names = []
     with output_set(out) as staged:
@@ -144,48 +141,12 @@ def crack_path(design: ReducerDesign, options: GrowthOptions = GrowthOptions(),
         growth = grow_crack(ring, tooth, force, steel, options, on_step=write)
         names.append("crack_path.png")
         result = CrackPathResult(design.name, growth, ring, tooth, force, options)
-        render_path(result, staged / names[-1])
+        verb = "severs the" if growth.severed else "heads for the"
+        render_path(ring, tooth, growth.path, staged / names[-1],
+                    f"{design.name}: backup ratio {result.backup_ratio:.2f}, crack {verb} "
+                    f"{growth.fracture} ({len(growth.steps)} steps of {1e3 * options.step:g} mm)")
         names.append("crack_path.json")
         files = tuple(str(out / n) for n in names)
         result = replace(result, files=files)
         write_text(staged / names[-1], json_text(result.to_dict()) + "\n")
     return result
-
-
-def render_path(result: CrackPathResult, path: Path) -> Path:
-    """The crack path on the cracked tooth and its neighbours, with the rim (PNG)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    ring, tooth, growth = result.ring, result.tooth, result.growth
-    fig, ax = plt.subplots(figsize=(7, 6))
-    for k in range(tooth - 2, tooth + 3):
-        outline = tooth_outline(ring, k % ring.teeth)
-        ax.plot(*outline.T, color="0.2", lw=1)
-    pitch = 2 * math.pi / ring.teeth
-    centre = ring.tooth_angle(tooth)
-    arc = np.linspace(centre - 2.5 * pitch, centre + 2.5 * pitch, 100)
-    ax.plot(ring.outer_radius * np.cos(arc), ring.outer_radius * np.sin(arc), color="0.2", lw=1)
-    label = "support pad"
-    for lo, hi in ring.supports.arcs():
-        held = np.linspace(lo, hi, 50)
-        near = np.abs(np.angle(np.exp(1j * (held - centre)))) < 2.5 * pitch
-        if np.any(near):
-            ax.plot(ring.outer_radius * np.cos(held[near]), ring.outer_radius *
-                    np.sin(held[near]), color="tab:blue", lw=4, label=label)
-            label = None
-    points = growth.path
-    ax.plot(*points.T, color="red", lw=1.5, marker=".", ms=3, label="crack path")
-    load, _ = ring.load_point(tooth)
-    ax.plot(*load, "g^", label="mesh force (single contact)")
-    ax.set_aspect("equal")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
-    verb = "severs the" if growth.severed else "heads for the"
-    ax.set_title(f"{result.design}: backup ratio {result.backup_ratio:.2f}, crack {verb} "
-                 f"{growth.fracture} ({len(growth.steps)} steps of "
-                 f"{1e3 * result.options.step:g} mm)", fontsize=10)
-    ax.legend(loc="best", fontsize=8)
-    return save_figure(fig, path)
