@@ -266,3 +266,31 @@ def test_crack_path_cli_json_and_files(capsys, tmp_path):
     assert names == ["crack_path.json", "crack_path.png", "crack_step_00.vtu",
                      "crack_step_01.vtu"]
     assert json.loads((out / "crack_path.json").read_text())["path_m"] == data["path_m"]
+
+
+@pytest.mark.slow
+def test_predicted_path_shows_in_c_rp_not_in_c_ru():
+    """docs/crack_path.md: the default scene's tooth (0), grown 6 mm along its predicted
+    path, against the radial crack of the same length (fem.crack_level, coarse sizes): the
+    predicted crack lowers the cracked tooth's mean c_rp more, and moves c_ru and c_r less."""
+    from hubvib.build.stages import material
+    from hubvib.fem.crack_level import crack_level
+    from hubvib.meshing.ring_mesh import ring_mesh
+
+    grown = crack_path(RABA, GrowthOptions(step=0.5e-3, mesh=COARSE, max_steps=12), tooth=0)
+    path = grown.growth.crack
+    assert path.depth == pytest.approx(6e-3, rel=1e-9)
+    ring, planet, steel = ring_gear(RABA), gear_body(RABA, "planet"), material(RABA)
+    intact = crack_level(ring, planet, None, ring_mesh(ring, None, COARSE), COARSE, steel,
+                         solver="superlu")
+    radial_crack = Crack(0, path.depth)
+    levels = {name: crack_level(ring, planet, crack, mesh, COARSE, steel, solver="superlu")
+              for name, crack, mesh in (
+                  ("predicted", path, path_ring_mesh(ring, path, COARSE)),
+                  ("radial", radial_crack, ring_mesh(ring, radial_crack, COARSE)))}
+    c_rp = {k: v.engaged.mean_ratio for k, v in levels.items()}
+    c_ru = {k: abs(1 - v.ring.c_ru / intact.ring.c_ru) for k, v in levels.items()}
+    c_r = {k: abs(1 - v.ring.c_r / intact.ring.c_r) for k, v in levels.items()}
+    assert c_rp["predicted"] < c_rp["radial"] < 1, f"mean c_rp ratios {c_rp}"
+    assert c_ru["predicted"] < c_ru["radial"], f"|c_ru change| {c_ru}"
+    assert c_r["predicted"] < c_r["radial"], f"|c_r change| {c_r}"
