@@ -65,11 +65,6 @@ class StressIntensity:
     cells: int
 
     @property
-    def energy_release_rate_factor(self) -> float:
-        """K_I^2 + K_II^2 [Pa^2 m] (G = this / E')."""
-        return self.k_i ** 2 + self.k_ii ** 2
-
-    @property
     def kink_angle(self) -> float:
         """Maximum-tangential-stress kink angle [rad] (``mts_angle``)."""
         return mts_angle(self.k_i, self.k_ii)

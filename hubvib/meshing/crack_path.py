@@ -23,8 +23,8 @@ from .crack import Crack
 from .fe_mesh import FEMesh
 from .gear import GearGeometryError, rotation
 from .ring_gear import RingGear
-from .ring_mesh import INVOLUTE_POINTS, FILLET_POINTS, MeshOptions, RingBuilder, run_builder, \
-    with_info
+from .ring_mesh import (FILLET_POINTS, INVOLUTE_POINTS, MeshOptions, RingBuilder,
+                        check_load_patch, run_builder, with_info)
 from .session import gmsh_model
 
 #: the two ways a root crack can sever the ring
@@ -118,8 +118,6 @@ def path_ring_mesh(ring: RingGear, crack: PathCrack,
             raise GearGeometryError(
                 f"crack path point {point.tolist()} m is {gap:.3g} m from the ring's surface "
                 f"(allowed > the tip size {options.tip_size:g} m, inside the body)")
-    from .ring_mesh import check_load_patch
-
     check_load_patch(ring, options)
     started = time.perf_counter()
     with gmsh_model("ring-path") as gmsh:
