@@ -163,7 +163,7 @@ def interaction_integral(model: PlaneModel, u: np.ndarray, tip, direction, r_out
         raise FractureError(f"no cell within r_out = {r_out:g} m of the tip {tip.tolist()}")
     basis = skfem.CellBasis(fe, model.basis.elem, intorder=QUADRATURE, elements=near)
     grad = basis.interpolate(u).grad  # (2, 2, cells, points): d u_i / d x_j, global frame
-    x = basis.global_coordinates().value  # (2, cells, points)
+    x = np.asarray(basis.global_coordinates())  # (2, cells, points)
     weight = basis.dx
 
     rot = np.array([e1, e2])          # local = rot @ global
