@@ -23,8 +23,9 @@ def add_parser(sub) -> None:
                    help="crack extension per step [m], 1e-5..1e-2; default 5e-4")
     p.add_argument("--tooth", type=int, default=None, metavar="K",
                    help="cracked ring tooth; default the one midway between two support pads")
-    p.add_argument("--out", type=Path, default=Path("hubvib-out/crack-path"))
-    p.add_argument("--json", action="store_true")
+    p.add_argument("--out", type=Path, default=Path("hubvib-out/crack-path"),
+                   help="folder for crack_path.png, crack_step_NN.vtu and crack_path.json")
+    p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.set_defaults(handler=run)
 
 
