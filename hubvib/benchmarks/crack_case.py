@@ -2,7 +2,15 @@
 ones (same meshes, same intact reference curves)."""
 from __future__ import annotations
 
+import functools
 import time
+
+from hubvib.build import raba118
+from hubvib.fem.estimate import estimate_crack_case, estimate_ring
+from hubvib.fem.tooth_stiffness import engaged_ring_mesh
+from hubvib.meshing.crack import Crack
+from hubvib.meshing.levels import scaled_options
+from hubvib.meshing.ring_mesh import ring_mesh
 
 #: crack depth of the crack-case figure [m]
 CRACK_DEPTH = 10e-3
@@ -12,15 +20,6 @@ def crack_case(scale: float = 1.0, depth: float = CRACK_DEPTH, progress=None) ->
     """A crack case of the sweep (c_ru, c_r, engaged c_rp ratio; fine and coarse level) with
     one factorisation per level against separate ones, same meshes (made beforehand) and
     the same intact reference curves (computed beforehand)."""
-    import functools
-
-    from hubvib.fem.estimate import estimate_crack_case, estimate_ring
-    from hubvib.fem.tooth_stiffness import engaged_ring_mesh
-    from hubvib.build import raba118
-    from hubvib.meshing.crack import Crack
-    from hubvib.meshing.levels import scaled_options
-    from hubvib.meshing.ring_mesh import ring_mesh
-
     ring, planet = raba118.ring_gear(), raba118.gear_body("planet")
     crack = Crack(0, depth)
     mesher = functools.lru_cache(maxsize=4)(ring_mesh)

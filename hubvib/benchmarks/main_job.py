@@ -2,18 +2,16 @@
 cache, then again with its FE cases and renders cached."""
 from __future__ import annotations
 
+import json
+import os
+import subprocess
+import sys
+import tempfile
 import time
 
 def main_job(progress=None) -> dict:
     """``hubvib run`` (the default scene) in a subprocess from an empty cache, then again
     with its FE cases and renders cached [s]."""
-    import os
-    import subprocess
-    import sys
-    import tempfile
-
-    import json
-
     say = progress or (lambda line: None)
     out = {"main_job_fresh_seconds": None, "main_job_cached_seconds": None}
     with tempfile.TemporaryDirectory() as folder:

@@ -2,15 +2,21 @@
 the previous path's (each in a fresh process)."""
 from __future__ import annotations
 
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+from hubvib.build import raba118
+from hubvib.meshing.levels import SOLID_LEVELS, solid_options
+from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
+
 
 
 def peak_memory_gb(argv: list[str]) -> float:
     """Peak resident memory [GB] of the command ``argv``, run alone in a fresh process
     (``resource.getrusage(RUSAGE_CHILDREN).ru_maxrss`` of a wrapper, so that no other
     child of this process counts)."""
-    import subprocess
-    import sys
-
     wrapper = ("import resource, subprocess, sys; "
                "done = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL); "
                "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss "
@@ -26,14 +32,6 @@ def peak_memory_gb(argv: list[str]) -> float:
 def memory_figures(progress=None) -> dict:
     """Peak memory of ``hubvib stiffness --solid`` and of the 3D solve alone, ours and the
     previous path's, on the default solid level (each in its own process)."""
-    import sys
-    import tempfile
-    from pathlib import Path
-
-    from hubvib.build import raba118
-    from hubvib.meshing.levels import SOLID_LEVELS, solid_options
-    from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
-
     say = progress or (lambda line: None)
     out = {"solid_peak_memory_gb": peak_memory_gb(
         [sys.executable, "-m", "hubvib.cli", "stiffness", "--solid", "--json"])}

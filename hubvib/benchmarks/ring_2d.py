@@ -7,6 +7,11 @@ import time
 
 import numpy as np
 
+from hubvib.build import raba118
+from hubvib.fem.ring_stiffness import ring_stiffness
+from hubvib.meshing.levels import ring_options
+from hubvib.meshing.ring_mesh import ring_mesh
+from hubvib.validation.convergence import compute_level, reference_value
 from hubvib.validation.previous_fe import previous_ring_fe
 
 #: the 2D c_ru level of the headline figure (``levels.ring_options``): the cheapest found
@@ -24,13 +29,6 @@ def ring_2d(scale: float = C_RU_2D_SCALE, reference_scales=REFERENCE_SCALES,
     the faster of ``repeats`` runs) against the previous FE path on the same mesh,
     interleaved; its error against the reference from the uniform levels
     ``reference_scales`` (``convergence.reference_value``)."""
-    from hubvib.fem.ring_stiffness import ring_stiffness
-    from hubvib.build import raba118
-    from hubvib.meshing.levels import ring_options
-    from hubvib.meshing.ring_mesh import ring_mesh
-
-    from hubvib.validation.convergence import compute_level, reference_value
-
     say = progress or (lambda line: None)
     ring = raba118.ring_gear()
     started = time.perf_counter()

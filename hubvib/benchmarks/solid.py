@@ -2,10 +2,19 @@
 path, same mesh and nodal loads."""
 from __future__ import annotations
 
+import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
 
+from hubvib.build import raba118
+from hubvib.fem.elasticity import supported
+from hubvib.fem.ring_stiffness import mesh_force_load, planet_teeth, reduced_torsional_stiffness
+from hubvib.fem.solid import solid_model
+from hubvib.meshing.levels import SOLID_LEVELS, solid_options
+from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
+from hubvib.validation import calculix as ccx
 from hubvib.validation.previous_fe import previous_ring_fe
 
 def solid_race(options=None, crack=None, folder=None, mesh=None, calculix=True,
@@ -14,17 +23,6 @@ def solid_race(options=None, crack=None, folder=None, mesh=None, calculix=True,
     same mesh and nodal loads: times per stage and the agreement of the displacements.
     ``mesh`` (a solid ring mesh) skips the meshing; ``previous`` also times the previous
     FE path on it.  ``speedup`` = CalculiX's time / ours (model, loads, solve, c_ru)."""
-    import tempfile
-    from pathlib import Path
-
-    from hubvib.fem.elasticity import supported
-    from hubvib.fem.ring_stiffness import mesh_force_load, planet_teeth, reduced_torsional_stiffness
-    from hubvib.fem.solid import solid_model
-    from hubvib.build import raba118
-    from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
-
-    from hubvib.validation import calculix as ccx
-
     ring = raba118.ring_gear()
     started = time.perf_counter()
     mesh = mesh or ring_mesh_3d(ring, crack, options=options)
@@ -75,10 +73,6 @@ def solid_figures(progress=None) -> dict:
     """The 3D race on the default solid level: ours against CalculiX and against the
     previous FE path, same mesh and loads; ours and CalculiX twice, interleaved, each the
     faster of its two runs."""
-    from hubvib.build import raba118
-    from hubvib.meshing.levels import SOLID_LEVELS, solid_options
-    from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
-
     say = progress or (lambda line: None)
     mesh = ring_mesh_3d(raba118.ring_gear(), None, options=solid_options(*SOLID_LEVELS[-1]))
     first = solid_race(mesh=mesh, calculix=True, previous=True)

@@ -2,17 +2,23 @@
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 
 import numpy as np
 
 from hubvib.benchmarks.solid import solid_race
+from hubvib.build import raba118
+from hubvib.fem.annulus import exact_k_theta, fe_k_theta
+from hubvib.fem.estimate import estimate_ring
+from hubvib.fem.material import Material
+from hubvib.meshing import measure
+from hubvib.meshing.crack import Crack, CrackFront
+from hubvib.meshing.levels import SOLID_LEVELS, SOLID_REFERENCE, solid_options
+from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
+from hubvib.meshing.ring_mesh_3d import SOLID_OPTIONS, ring_mesh_3d
 
 def mesh_table() -> list[dict]:
     """2D Raba ring meshing time against element count, intact and cracked."""
-    from hubvib.build import raba118
-    from hubvib.meshing.crack import Crack
-    from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
-
     ring = raba118.ring_gear()
     rows = []
     for size, tooth in ((4e-3, 1e-3), (2e-3, 0.5e-3), (1e-3, 0.25e-3)):
@@ -28,14 +34,6 @@ def mesh_table() -> list[dict]:
 
 def solid_mesh_table() -> list[dict]:
     """3D Raba ring (P2 tetrahedra) meshing time against element count, with and without cracks."""
-    from dataclasses import replace
-
-    from hubvib.build import raba118
-
-    from hubvib.meshing import measure
-    from hubvib.meshing.crack import Crack, CrackFront
-    from hubvib.meshing.ring_mesh_3d import SOLID_OPTIONS, ring_mesh_3d
-
     ring = raba118.ring_gear()
     cases = (("intact", None, CrackFront()),
              ("through-width crack 6 mm", Crack(0, 6e-3), CrackFront()),
@@ -58,9 +56,6 @@ def solid_mesh_table() -> list[dict]:
 
 def annulus_table() -> list[dict]:
     """Annulus in torsion: relative error of k_theta against the exact value, and time."""
-    from hubvib.fem.annulus import exact_k_theta, fe_k_theta
-    from hubvib.fem.material import Material
-
     a, b, t, steel = 0.08, 0.1, 0.01, Material()
     exact = exact_k_theta(a, b, t, steel)
     rows = []
@@ -77,10 +72,6 @@ def annulus_table() -> list[dict]:
 def ring_table() -> list[dict]:
     """c_ru and c_r of the Raba ring, intact and with a 10 mm root crack, on the default
     mesh with the error estimated against a mesh twice as coarse (``hubvib stiffness``)."""
-    from hubvib.fem.estimate import estimate_ring
-    from hubvib.build import raba118
-    from hubvib.meshing.crack import Crack
-
     ring = raba118.ring_gear()
     rows = []
     for name, crack in (("intact", None), ("root crack 10 mm", Crack(0, 10e-3))):
@@ -97,8 +88,6 @@ def solid_table() -> list[dict]:
     a finer reference level (Richardson is unreliable here: the levels refine rim, teeth
     and load patches by different factors, and the differences do not shrink
     geometrically)."""
-    from hubvib.meshing.levels import SOLID_LEVELS, SOLID_REFERENCE, solid_options
-
     rows = [dict(level=i, **solid_race(solid_options(*sizes)))
             for i, sizes in enumerate(SOLID_LEVELS)]
     reference = solid_race(solid_options(*SOLID_REFERENCE), calculix=False)

@@ -1,14 +1,13 @@
 """Figure: the README's test command (``python -m pytest``) timed in the source checkout."""
 from __future__ import annotations
 
+import subprocess
+import sys
 import time
+from pathlib import Path
 
 def readme_test_command(progress=None) -> dict:
     """The README's test command (``python -m pytest``) in the source checkout [s]."""
-    import subprocess
-    import sys
-    from pathlib import Path
-
     say = progress or (lambda line: None)
     root = Path(__file__).resolve().parents[2]
     if not (root / "tests").is_dir() or not (root / "pyproject.toml").is_file():

@@ -27,6 +27,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from hubvib.fem.pardiso import Pardiso, PardisoError
 from hubvib.foundation.blas import blas_threads
 
 SOLVERS = ("auto", "superlu", "pardiso", "amg")
@@ -140,8 +141,6 @@ class _PardisoFactor(Factor):
         self._pardiso = self._factorise(single)
 
     def _factorise(self, single: bool):
-        from .pardiso import Pardiso, PardisoError
-
         try:
             factor = Pardiso(*self._matrix, single=single)
         except PardisoError as error:

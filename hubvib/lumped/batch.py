@@ -32,10 +32,11 @@ from typing import Mapping
 import numpy as np
 
 from hubvib.foundation.blas import blas_thread_counts, blas_threads
+from hubvib.lumped.spectrum import natural_modes
 
 from .eigensolve import rigid_body_count, solve_network
 from .network import SpringNetwork, mass_diagonal, spring_network
-from .parameters import MASS_FIELDS, STIFFNESS_FIELDS, ParameterError, PlanetaryParameters
+from .parameters import MASS_FIELDS, ParameterError, PlanetaryParameters, STIFFNESS_FIELDS
 
 #: bound on the relative error of omega above which a point is solved more accurately
 TOLERANCE = 1e-10
@@ -219,8 +220,6 @@ def benchmark_batch(params: PlanetaryParameters, points: int = 10_000, single: i
         (against Jacobi on the ``single`` points), ``blas_threads`` (during the
         batch; empty when no OpenBLAS was found).
     """
-    from .spectrum import natural_modes
-
     rng = np.random.default_rng(seed)
     changes = {name: getattr(params, name) * np.exp(0.1 * rng.standard_normal(points))
                for name in STIFFNESS_FIELDS if getattr(params, name) > 0}

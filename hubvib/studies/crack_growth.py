@@ -24,13 +24,15 @@ from pathlib import Path
 
 import numpy as np
 
-from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe, provenance,
-                          write_crack_study)
-from hubvib.studies.crack_sweep import run_fe_cases
-from hubvib.runtime.engines import Execution
+from hubvib.design.presets import raba118
+from hubvib.detection.numbers import percent
 from hubvib.fem.estimate import USABLE_QUALITY
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.runtime.engines import Execution
 from hubvib.runtime.progress import stage
+from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe,
+                                        provenance, write_crack_study)
+from hubvib.studies.crack_sweep import case_label, run_fe_cases
 from hubvib.studies.scene import Scene
 from hubvib.studies.study import Study
 
@@ -213,15 +215,10 @@ def change_figure(name: str, grid: list[dict]):
 
 
 def _is_raba(design) -> bool:
-    from hubvib.design.presets import raba118
-
     return design.fingerprint() == raba118().fingerprint()
 
 
 def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str]) -> str:
-    from hubvib.studies.crack_sweep import case_label
-    from hubvib.detection.numbers import percent
-
     scene, sweep = result.scene, result.scene.crack
     info = provenance()
     width = sweep.reducer.face_width

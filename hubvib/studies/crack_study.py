@@ -10,25 +10,33 @@ the mounting stiffness, the carrier position) is :mod:`hubvib.detection`.
 """
 from __future__ import annotations
 
+import datetime
 import math
 import time
 from dataclasses import asdict, dataclass, field
+from importlib import metadata
 from pathlib import Path
 
 import numpy as np
 
-from hubvib.lumped import Spectrum, frequency_sensitivity, natural_modes
-from hubvib.lumped.tracking import match
-
-from hubvib.studies.crack_sweep import run_fe_cases
-from hubvib.runtime.engines import Execution
+from hubvib.build.stages import ring_gear
+from hubvib.detection import report as sections
 from hubvib.detection.model import CrackModel
 from hubvib.detection.numbers import depth_mm, percent, sensitivity, shift_hz
-from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
 from hubvib.detection.options import DetectionOptions
+from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.lumped import Spectrum, frequency_sensitivity, natural_modes
+from hubvib.lumped.tracking import match
+from hubvib.meshing.levels import scaled_options
+from hubvib.render.cache import array_digest, cached_render
+from hubvib.render.fe import render_fe, ring_fields
+from hubvib.render.modes import render_modes
+from hubvib.runtime.engines import Execution
+from hubvib.runtime.fe_cache import fe_version
 from hubvib.runtime.progress import stage
 from hubvib.signal.report import write_signal_study
 from hubvib.signal.study import run_signal_study
+from hubvib.studies.crack_sweep import ACCURACY, crack_of, run_fe_cases
 from hubvib.studies.scene import Scene
 from hubvib.studies.study import Study
 
@@ -253,9 +261,6 @@ def json_safe(value):
 
 def provenance() -> dict:
     """hubvib version and the date of the run (UTC)."""
-    import datetime
-    from importlib import metadata
-
     try:
         version = metadata.version("hubvib")
     except metadata.PackageNotFoundError:
@@ -266,10 +271,6 @@ def provenance() -> dict:
 
 def rendered_depth(sweep) -> float:
     """The deepest crack of the sweep that still has a tip (not through the rim) [m]."""
-    from hubvib.build.stages import ring_gear
-
-    from hubvib.studies.crack_sweep import crack_of
-
     ring = ring_gear(sweep.reducer)
     open_ended = [d for d in sweep.depths if d > 0 and not crack_of(sweep, d).is_through(ring)]
     return max(open_ended, default=max(sweep.depths))
@@ -278,11 +279,7 @@ def rendered_depth(sweep) -> float:
 def _render_modes(scene: Scene, spectrum, folder: Path) -> list[Path]:
     """Every elastic lumped mode (``render.render_modes``), from the render cache when the
     same spectrum was rendered before."""
-    from hubvib.render.cache import array_digest, cached_render
-
     def render(target):
-        from hubvib.render.modes import render_modes
-
         return render_modes(scene.params, spectrum, target, gif=scene.gif, vtm=scene.vtm)
 
     inputs = {"params": scene.params.to_dict(), "omega": array_digest(spectrum.omega),
@@ -294,18 +291,11 @@ def _render_modes(scene: Scene, spectrum, folder: Path) -> list[Path]:
 def _render_fe(scene: Scene, folder: Path) -> list[Path]:
     """The FE ring at the rendered depth (``fe_render``), from the render cache when the
     same design, crack and mesh were rendered by this FE stage before."""
-    from hubvib.studies.crack_sweep import ACCURACY, crack_of
-    from hubvib.runtime.fe_cache import fe_version
-    from hubvib.render.cache import cached_render
-    from hubvib.meshing.levels import scaled_options
-
     depth = rendered_depth(scene.crack)
     crack = crack_of(scene.crack, depth) if depth > 0 else None
     options = scaled_options(ACCURACY[scene.crack.accuracy])
 
     def render(target):
-        from hubvib.render.fe import render_fe, ring_fields
-
         return render_fe(ring_fields(scene.crack.reducer, crack, options), target,
                          vtu=scene.vtm)
 
@@ -317,8 +307,6 @@ def _render_fe(scene: Scene, folder: Path) -> list[Path]:
 
 def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
                  fe_renders: list[str] = ()) -> str:
-    from hubvib.detection import report as sections
-
     scene, sweep, model, study = result.scene, result.scene.crack, result.model, result.detection
     intact = result.fe[0]
     info = provenance()

@@ -8,11 +8,16 @@ from __future__ import annotations
 import time
 
 import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from hubvib.fem.material import Material
+from hubvib.fem.ring_stiffness import default_carrier_teeth, planet_teeth
+from hubvib.meshing.to_skfem import to_skfem
 
 def previous_assembly(basis, lam: float, mu: float):
     """Elasticity stiffness [N/m] as assembled before the node-block assembly: one
     (row, column, value) triplet per element-matrix entry, sorted and summed by scipy."""
-    import scipy.sparse as sp
     import skfem
 
     scalar = skfem.CellBasis(basis.mesh, basis.elem.elem, quadrature=basis.quadrature)
@@ -45,13 +50,8 @@ def previous_ring_fe(ring, mesh, carrier_teeth=None, n_planets: int = 3,
                      translation: bool = True) -> dict:
     """c_ru at the carrier positions (and c_r) [N/m] on ``mesh`` by the previous FE path,
     with its wall times [s] per stage (``assembly``, ``loads``, ``solve``, ``measure``)."""
-    import scipy.sparse as sp
-    import scipy.sparse.linalg as spla
     import skfem
 
-    from hubvib.fem.material import Material
-    from hubvib.fem.ring_stiffness import default_carrier_teeth, planet_teeth
-    from hubvib.meshing.to_skfem import to_skfem
 
     material = Material()
     dim, order = mesh.dim, mesh.order
