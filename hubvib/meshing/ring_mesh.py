@@ -360,4 +360,43 @@ class RingBuilder:
             points_of["crack_tip"] = index[tip_nodes]
             points_of["crack_mouth"] = np.nonzero(
                 np.hypot(*(mesh.points - self.path[0]).T) < 1e-12 * self.ring.outer_radius)[0]
+            twins = [points_of["crack_mouth"]]
+            if self.crack.is_through(self.ring):
+                twins.append(np.nonzero(np.hypot(*(mesh.points - self.path[-1]).T)
+                                        < 1e-12 * self.ring.outer_radius)[0])
+            mesh = replace(mesh, boundaries=facets_on_cells(mesh, twins))
         return replace(mesh, points_of=points_of)
+
+
+def facets_on_cells(mesh: FEMesh, twins: list) -> dict:
+    """The boundary groups with each facet that ends at a split crack end (mouth, or the
+    outer end of a through crack) on the copy of that node its cell uses.
+
+    gmsh's Crack plugin gives one side's cells a copy of the crack-end node and decides
+    which line elements of the surface there follow by a side test; for a crack at a
+    shallow angle to the surface (e.g. +60 deg from the radial) it can put the flank
+    element on the wrong copy, so the facet is no edge of any cell."""
+    cells = mesh.cells[:, :3]
+    groups = {}
+    for name, facets in mesh.boundaries.items():
+        if name.startswith("crack_") or len(facets) == 0:
+            groups[name] = facets
+            continue
+        facets = facets.copy()
+        for pair in twins:
+            if len(pair) != 2:
+                continue
+            for row in np.nonzero(np.isin(facets[:, :2], pair).any(axis=1))[0]:
+                ends = facets[row, :2]
+                if _is_cell_edge(cells, *ends):
+                    continue
+                swapped = np.where(ends == pair[0], pair[1],
+                                   np.where(ends == pair[1], pair[0], ends))
+                if _is_cell_edge(cells, *swapped):
+                    facets[row, :2] = swapped
+        groups[name] = facets
+    return groups
+
+
+def _is_cell_edge(cells: np.ndarray, a: int, b: int) -> bool:
+    return bool(np.any((cells == a).any(axis=1) & (cells == b).any(axis=1)))
