@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from hubvib.foundation.files import MAX_TABLE_BYTES, read_text
 from hubvib.signal.spectral import (HarmonicRule, LabelledHarmonic, OrderSpectrum, angle_domain,
                                     order_spectrum, top_harmonics)
 
@@ -212,11 +213,7 @@ def read_periods(path: Path) -> np.ndarray:
     """Pulse periods [s] from a CSV: one number per line (first column), optionally under a
     header naming the column: ``period``/``period_s`` (default) or ``timestamp``/``time_s``
     (then the periods are the differences).  Blank lines and ``#`` comments are skipped."""
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ValueError(f"--periods {str(path)!r}: cannot read it ({exc})") from None
+    text = read_text(path, "--periods", ValueError, kind="CSV", max_bytes=MAX_TABLE_BYTES)
     kind, values = "periods", []
     for number, line in enumerate(text.splitlines(), 1):
         field_ = line.split("#", 1)[0].split(",")[0].strip()

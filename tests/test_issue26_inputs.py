@@ -1,0 +1,134 @@
+"""Issue 26, items 1-5: every file input through one guarded reader, physical ranges
+checked before computing, errors that name the file, line or key, and contradictions
+refused.  Each test names the issue item it covers; each failed before its fix."""
+from __future__ import annotations
+
+import json
+import os
+import threading
+import warnings
+from pathlib import Path
+
+import pytest
+
+from hubvib.cli import main
+from hubvib.foundation.errors import InputError
+from hubvib.foundation.files import read_bytes, read_text
+from hubvib.runtime.fe_cache import CacheEntryError, read_entry
+
+
+def _fails(capsys, argv, *pieces):
+    """``main(argv)`` exits 2 with one line on stderr holding every piece; nothing else
+    on stderr (no warning text)."""
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("hubvib: error: "), err
+    for piece in pieces:
+        assert piece in lines[0], f"{piece!r} not in {lines[0]!r}"
+    return lines[0]
+
+
+def _bounded(call, fifo: Path | None = None):
+    """Run ``call()`` in a thread; if it is still blocked after 20 s (the bug: a FIFO is
+    opened for reading and waits for a writer forever), unblock it by opening the FIFO for
+    writing, and fail."""
+    done = threading.Event()
+    result = {}
+
+    def target():
+        try:
+            result["value"] = call()
+        except BaseException as exc:  # noqa: BLE001 - handed to the test thread
+            result["error"] = exc
+        finally:
+            done.set()
+
+    thread = threading.Thread(target=target, daemon=True)
+    thread.start()
+    if not done.wait(20):
+        if fifo is not None:
+            os.close(os.open(fifo, os.O_WRONLY | os.O_NONBLOCK))
+        pytest.fail("the reader blocked on a FIFO (issue 26 item 1)")
+    if "error" in result:
+        raise result["error"]
+    return result["value"]
+
+
+@pytest.fixture
+def fifo(tmp_path):
+    path = tmp_path / "input.fifo"
+    os.mkfifo(path)
+    return path
+
+
+INPUTS = {  # the flag and the words that name it in the error line
+    "design": (["spectrum", "--design"], "design file"),
+    "measured": (["diagnose", "--scene", "raba118", "--measured"], "--measured"),
+    "periods": (["harmonics", "--pulses-per-rev", "4", "--z2", "10", "--periods"], "--periods"),
+    "params": (["spectrum", "--params"], "parameters file"),
+}
+
+
+@pytest.mark.parametrize("source", ["fifo", "dev-zero", "symlink to dev-zero"])
+@pytest.mark.parametrize("name", INPUTS)
+def test_every_file_input_refuses_devices_and_pipes(name, source, fifo, tmp_path, capsys):
+    """Item 1: --design, --measured, --periods (and --params) refuse a FIFO at once (it
+    blocked forever) and /dev/zero (MemoryError) with one line naming the flag and file."""
+    argv, words = INPUTS[name]
+    path = {"fifo": fifo, "dev-zero": Path("/dev/zero")}.get(source)
+    if path is None:
+        path = tmp_path / "zero.csv"
+        path.symlink_to("/dev/zero")
+    code = _bounded(lambda: main([*argv, str(path)]), fifo)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1, err
+    assert f"{words} {str(path)!r} is not a regular file" in err[0], err[0]
+
+
+def test_scene_design_file_key_refuses_a_fifo(fifo, tmp_path, capsys):
+    """Item 1: ``[design] file =`` in a scene goes through the same reader."""
+    scene = tmp_path / "s.toml"
+    scene.write_text(f'[design]\nfile = "{fifo}"\n', encoding="utf-8")
+    code = _bounded(lambda: main(["run", str(scene), "--out", str(tmp_path / "out")]), fifo)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and "is not a regular file" in err[-1], err
+
+
+@pytest.mark.parametrize("source", ["fifo", "symlink to dev-zero"])
+def test_cache_entry_that_is_a_device_is_recomputed_not_read(source, fifo, tmp_path):
+    """Item 1: an FE cache entry that is a FIFO or a symlink to /dev/zero is 'unreadable'
+    (recomputed), not a hang or a MemoryError."""
+    path = fifo if source == "fifo" else tmp_path / "entry.json"
+    if source != "fifo":
+        path.symlink_to("/dev/zero")
+    with pytest.raises(CacheEntryError, match="unreadable .*not a regular file"):
+        _bounded(lambda: read_entry(path, {"a": 1}), fifo)
+
+
+def test_render_cache_file_symlinked_to_a_device_is_rendered_again(tmp_path, capsys):
+    """Item 1: a render-cache file replaced by a symlink to /dev/zero fails its check (one
+    notice, rendered again) instead of reading forever."""
+    from hubvib.render.cache import _verified
+
+    entry = tmp_path / "entry"
+    entry.mkdir()
+    (entry / "a.png").symlink_to("/dev/zero")
+    (entry / "manifest.json").write_text(json.dumps(
+        {"files": {"a.png": "0" * 64}, "returned": ["a.png"]}), encoding="utf-8")
+    assert _bounded(lambda: _verified(entry, notice=True)) is None
+    assert "not a regular file" in capsys.readouterr().err
+
+
+def test_reader_limits_and_messages(tmp_path):
+    """Item 1 and 4: the one reader bounds the size and names file and line of bad bytes."""
+    big = tmp_path / "big.csv"
+    big.write_bytes(b"1\n" * 600)
+    with pytest.raises(InputError, match=r"--periods .*big.csv' is larger than 1000 bytes"):
+        read_text(big, "--periods", kind="CSV", max_bytes=1000)
+    assert len(read_bytes(big, "x", max_bytes=1200)) == 1200
+    latin = tmp_path / "latin.csv"
+    latin.write_bytes(b"period_s\n0.1\n0.\xe9\n")
+    with pytest.raises(InputError, match=r"latin.csv' is not UTF-8 text \(line 3, byte 15"):
+        read_text(latin, "--periods", kind="CSV")
+    assert read_text(big, "x", kind="CSV").count("\n") == 600
