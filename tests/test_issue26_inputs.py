@@ -132,3 +132,77 @@ def test_reader_limits_and_messages(tmp_path):
     with pytest.raises(InputError, match=r"latin.csv' is not UTF-8 text \(line 3, byte 15"):
         read_text(latin, "--periods", kind="CSV")
     assert read_text(big, "x", kind="CSV").count("\n") == 600
+
+
+# -- item 2: physical ranges checked before computing; no warning text -------------------
+
+def _periods(tmp_path, value, count=16):
+    path = tmp_path / "periods.csv"
+    path.write_text("period_s\n" + f"{value}\n" * count, encoding="utf-8")
+    return str(path)
+
+
+def test_mode_number_too_large_for_numpy_is_one_line(tmp_path, capsys):
+    """Item 2: mode = 99999999999999999999999 in --measured ended in OverflowError."""
+    path = tmp_path / "m.csv"
+    path.write_text("frequency_hz,mode\n50,99999999999999999999999\n", encoding="utf-8")
+    _fails(capsys, ["diagnose", "--scene", "raba118", "--measured", str(path)],
+           "line 2: mode = '99999999999999999999999'", "1..10000")
+
+
+@pytest.mark.parametrize("flags, message", [
+    (["--stages", "1000"], "--stages = 1000; allowed: an integer 1..20"),
+    (["--stages", "20", "--z2", "10000"], "allowed: a total ratio <= 1e+12"),
+])
+def test_harmonics_stage_count_bounded_before_computing(flags, message, tmp_path, capsys):
+    """Item 2: --stages 1000 overflowed (OverflowError) in the engagement orders."""
+    _fails(capsys, ["harmonics", "--periods", _periods(tmp_path, 0.01), "--pulses-per-rev",
+                    "4", "--z2", "6", *flags], message)
+
+
+@pytest.mark.parametrize("value", ["1e308", "1e-320"])
+def test_periods_outside_physical_range_refused_without_warnings(value, tmp_path, capsys):
+    """Item 2: periods of 1e308 s printed numpy RuntimeWarnings before an error naming
+    nothing (``y must contain only finite values``)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # any numpy warning fails the test
+        _fails(capsys, ["harmonics", "--periods", _periods(tmp_path, value),
+                        "--pulses-per-rev", "4", "--z2", "6"],
+               "--periods: period 1", "allowed: 1e-09..86400 s")
+
+
+def test_torus_screw_speed_bounded(capsys):
+    """Item 2: --input-speed-rpm 1e300 overflowed Phi4 (OverflowError)."""
+    _fails(capsys, ["torus-screw", "--input-speed-rpm", "1e300"], "--input-speed-rpm",
+           "0..1e+06")
+
+
+@pytest.mark.parametrize("ratio", ["1e300", "1001"])
+def test_efficiency_ratio_bounded(ratio, capsys):
+    """Item 2: --ratio 1e300 exited 0 printing R = -inf."""
+    _fails(capsys, ["efficiency", "--ratio", ratio], "--ratio", "2..1000")
+
+
+def test_efficiency_largest_ratio_still_finite(capsys):
+    """Item 2: the bound is not too tight: i = 1000 gives finite R, A and eta; R grows
+    like i (eq. 12: R ~ i d_c / (2 pi) x ..., 12.39 m for 15 mm balls, computed here)."""
+    assert main(["efficiency", "--ratio", "1000", "--json"]) == 0
+    text = capsys.readouterr().out
+    assert "Infinity" not in text and "NaN" not in text, "non-finite value at i = 1000"
+
+
+# -- item 8: negative contact forces ----------------------------------------------------
+
+def test_torus_screw_negative_contact_force_refused(capsys):
+    """Item 8: alpha1 = 89.999, alpha3 = 0.001 deg printed N3 = -40.6 N without a word."""
+    _fails(capsys, ["torus-screw", "--alpha1-deg", "89.999", "--alpha3-deg", "0.001"],
+           "outside the force model's validity", "N3 = -40.61 N < 0", "--alpha1-deg")
+
+
+def test_torus_screw_paper_point_still_solves(capsys):
+    """Item 8: the paper's operating point keeps positive contact forces (paper: N1 =
+    160.61 N, N3 = 844.47 N cylindrical; this model 162.1, 844.2 as its doctest says)."""
+    assert main(["torus-screw", "--fingers", "cylindrical", "--json"]) == 0
+    forces = json.loads(capsys.readouterr().out)["results"][0]
+    assert forces["N1_n"] == pytest.approx(160.61, rel=0.01), "N1 vs seed 002 table, 1 %"
+    assert forces["N3_n"] == pytest.approx(844.47, rel=0.01), "N3 vs seed 002 table, 1 %"

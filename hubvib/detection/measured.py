@@ -111,8 +111,8 @@ def _value(source, number, name, cell):
         except ValueError:
             raise MeasuredError(f"{where}, but it must be a mode number (an integer >= 1)"
                                 ) from None
-        if value < 1:
-            raise MeasuredError(f"{where}, but it must be a mode number (an integer >= 1)")
+        if not 1 <= value <= 10_000:  # a model has 9 + 3N <= 45 modes; bounded before numpy
+            raise MeasuredError(f"{where}, but it must be a mode number (an integer 1..10000)")
         return value
     try:
         value = float(cell)
