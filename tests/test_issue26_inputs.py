@@ -206,3 +206,28 @@ def test_torus_screw_paper_point_still_solves(capsys):
     forces = json.loads(capsys.readouterr().out)["results"][0]
     assert forces["N1_n"] == pytest.approx(160.61, rel=0.01), "N1 vs seed 002 table, 1 %"
     assert forces["N3_n"] == pytest.approx(844.47, rel=0.01), "N3 vs seed 002 table, 1 %"
+
+
+# -- item 5: --set after --design contradicting the design ------------------------------
+
+@pytest.mark.parametrize("setting, message", [
+    ("n_planets=3", "--set: 3 planets, but the design 'hub4' has n_planets = 4"),
+    ("d_r=0.5", "--set: d_r = 0.5, but the design 'hub4' gives d_r = 0.187938524"),
+    ("theta_deg=0,90,180,271", "--set: planet 4 at 271 deg, but the design 'hub4' puts it "
+                               "at 270 deg"),
+])
+def test_spectrum_design_refuses_a_contradicting_set(setting, message, capsys):
+    """Item 5: accepted without a word, while a scene refused the same contradiction
+    (d_r = 0.187938524 m is the base diameter the hub4 design derives, as the scene's
+    check reports it)."""
+    _fails(capsys, ["spectrum", "--design", "hub4", "--set", setting], message)
+
+
+def test_spectrum_design_accepts_a_set_the_design_leaves_open(capsys):
+    """Item 5: a mounting stiffness the geometry does not give still overrides; c_ru
+    lowered by 10^4 lowers the first (rotational) frequency."""
+    assert main(["spectrum", "--design", "hub4", "--json"]) == 0
+    base = json.loads(capsys.readouterr().out)["modes"][0]["omega_rad_s"]
+    assert main(["spectrum", "--design", "hub4", "--set", "c_ru=1e4", "--json"]) == 0
+    soft = json.loads(capsys.readouterr().out)["modes"][0]["omega_rad_s"]
+    assert soft < base, f"c_ru = 1e4 N/m should lower mode 1: {soft} vs {base} rad/s"
