@@ -231,3 +231,39 @@ def test_spectrum_design_accepts_a_set_the_design_leaves_open(capsys):
     assert main(["spectrum", "--design", "hub4", "--set", "c_ru=1e4", "--json"]) == 0
     soft = json.loads(capsys.readouterr().out)["modes"][0]["omega_rad_s"]
     assert soft < base, f"c_ru = 1e4 N/m should lower mode 1: {soft} vs {base} rad/s"
+
+
+# -- item 7: [signal] revolutions, the documented minimum --------------------------------
+
+def test_signal_revolutions_minimum_is_checked_before_the_work():
+    """Item 7: revolutions = 1 (then the documented minimum) failed after the FE and the
+    time integration with "allowed: >= 1"; it is now refused when the scene is parsed,
+    and the minimum stated is one that works."""
+    from hubvib.foundation.errors import SceneError
+    from hubvib.signal.options import parse_signal_table
+
+    with pytest.raises(SceneError, match=r"\[signal\] revolutions = 1; allowed: a finite "
+                                         r"number in \[2, 10000\]"):
+        parse_signal_table({"revolutions": 1})
+    assert parse_signal_table({"revolutions": 2}).revolutions == 2.0
+
+
+@pytest.mark.parametrize("revolutions, whole", [(1.0, 0), (2.0, 1), (10.0, 9)])
+def test_signal_record_holds_one_whole_revolution_less_than_asked(revolutions, whole):
+    """Item 7, why the minimum is 2: ``sampled`` gives 0 <= t < duration, so the
+    angle-domain record of R revolutions holds R - 1 whole ones (computed here with the
+    pipeline's own functions on a pure order-3 signal)."""
+    import math
+
+    import numpy as np
+
+    from hubvib.signal.sensor import sampled
+    from hubvib.signal.spectral import angle_domain
+
+    revolution = np.sin(3 * 2 * math.pi * np.arange(64) / 64)
+    t, values = sampled(revolution, 5.0, 2000.0, revolutions / 5.0)
+    if whole == 0:
+        with pytest.raises(ValueError, match="allowed: >= 1"):
+            angle_domain(2 * math.pi * 5.0 * t, values, 64)
+    else:
+        assert angle_domain(2 * math.pi * 5.0 * t, values, 64).revolutions == whole
