@@ -21,6 +21,7 @@ import warnings
 from contextlib import contextmanager
 from dataclasses import dataclass
 
+from hubvib.foundation.blas import blas_threads
 from hubvib.foundation.errors import InputError, SceneError
 
 ENGINES = ("local", "dask")
@@ -76,8 +77,9 @@ def run_cases(function, items: list, on_result, execution: Execution, workers: i
     A case that raises does not stop the others; afterwards one ``EngineError``
     names every failed case and its message.  Pool and Dask workers run one BLAS
     thread each (``SINGLE_THREADED``), so both engines give the same numbers to the
-    last digit; with one worker the local engine runs the cases in this process,
-    with its BLAS threads.
+    last digit; with one worker (or one case left, as after a killed run) the local
+    engine runs the cases in this process, with its BLAS limited to one thread as
+    well: same threads, same digits.
     """
     if not items:
         return
@@ -126,7 +128,8 @@ def _run_here(function, items, on_result) -> list:
     failures = []
     for item in items:
         try:
-            result = function(item)
+            with blas_threads(1):  # as in a pool worker (SINGLE_THREADED): the same digits
+                result = function(item)
         except Exception as exc:  # noqa: BLE001 - reported per case, as with a pool
             failures.append((item, f"{type(exc).__name__}: {exc}"))
             continue
