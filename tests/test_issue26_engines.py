@@ -42,3 +42,50 @@ def test_in_process_cases_restore_the_threads_after():
     here = _collect(["c"], workers=1)
     assert set(here["c"][1]) <= {1}
     assert blas_thread_counts() == before
+
+
+@pytest.fixture
+def silent_server():
+    """A loopback address that accepts TCP connections and never answers (another
+    service, a stopped process): ``Client()`` hung on it for ever."""
+    import socket
+    import threading
+
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(8)
+    accepted, stop = [], threading.Event()
+
+    def serve():
+        while not stop.is_set():
+            try:
+                accepted.append(server.accept()[0])
+            except OSError:
+                return
+
+    thread = threading.Thread(target=serve, daemon=True)
+    thread.start()
+    yield f"tcp://127.0.0.1:{server.getsockname()[1]}", accepted
+    stop.set()
+    server.close()
+    for conn in accepted:
+        conn.close()
+
+
+@pytest.mark.slow  # two 1 s timeouts and the import of dask.distributed: ~3 s
+def test_scheduler_that_accepts_but_never_answers_fails_within_the_timeout(silent_server):
+    """Item 9: the connection is accepted, the handshake never answered: before, ``timeout_s``
+    bounded only the connect and the run hung (measured: > 60 s at timeout_s = 2); now one
+    EngineError naming the address and the timeout."""
+    pytest.importorskip("distributed")
+    from hubvib.runtime.engines import EngineError, check_reachable, parse_execution_table
+
+    address, accepted = silent_server
+    execution = parse_execution_table({"engine": "dask", "scheduler": address, "timeout_s": 1})
+    with pytest.raises(EngineError, match="accepts the connection but did not answer within "
+                                          "1 s"):
+        check_reachable(execution)
+    delivered = []
+    with pytest.raises(EngineError, match=address):
+        run_cases(abs, [1, 2], lambda item, value: delivered.append(item), execution, 2)
+    assert accepted and delivered == []

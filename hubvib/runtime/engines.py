@@ -95,8 +95,15 @@ def run_cases(function, items: list, on_result, execution: Execution, workers: i
 
 
 def check_reachable(execution: Execution) -> None:
-    """``EngineError`` unless the scheduler (if any) accepts a TCP connection within the
-    timeout: checked before anything is written."""
+    """``EngineError`` unless the scheduler (if any) answers within the timeout: checked
+    before anything is written.
+
+    The whole handshake is bounded, not only the TCP connection: an address that
+    accepts the connection but never answers (another service, a stopped process)
+    hung ``Client()`` for ever.  For ``tcp://`` the scheduler is asked for its
+    identity (dask.distributed's ``identity`` message); for ``tls://`` (which needs the
+    cluster's certificates) the TCP connection is checked.
+    """
     import socket
     from urllib.parse import urlsplit
 
@@ -111,6 +118,35 @@ def check_reachable(execution: Execution) -> None:
     except (OSError, ValueError) as exc:
         raise EngineError(f"[execution] scheduler = {execution.scheduler!r} did not answer "
                           f"within {execution.timeout:g} s ({exc})") from None
+    if execution.scheduler.startswith("tcp://") and distributed_version_ok()[0]:
+        _check_identity(execution)
+
+
+def _check_identity(execution: Execution) -> None:
+    """The scheduler answers dask's ``identity`` message within ``execution.timeout``."""
+    import asyncio
+
+    from distributed.comm import connect
+
+    async def identity():
+        comm = await connect(execution.scheduler, timeout=execution.timeout)
+        try:
+            await comm.write({"op": "identity", "reply": True})
+            return await comm.read()
+        finally:
+            comm.abort()
+
+    try:
+        reply = asyncio.run(asyncio.wait_for(identity(), execution.timeout))
+    except (OSError, TimeoutError, asyncio.TimeoutError, ValueError, TypeError) as exc:
+        why = "no answer to the handshake" if isinstance(exc, (TimeoutError,
+                                                               asyncio.TimeoutError)) else exc
+        raise EngineError(f"[execution] scheduler = {execution.scheduler!r} accepts the "
+                          f"connection but did not answer within {execution.timeout:g} s "
+                          f"({why}): is it a Dask scheduler?") from None
+    if not (isinstance(reply, dict) and reply.get("type") == "Scheduler"):
+        raise EngineError(f"[execution] scheduler = {execution.scheduler!r} answered, but not "
+                          f"as a Dask scheduler (identity {str(reply)[:80]!r})")
 
 
 def _failure_text(failures: list) -> str:
@@ -238,6 +274,7 @@ def _run_dask(function, items, on_result, execution: Execution, workers: int) ->
                                        dashboard_address=None, silence_logs=logging.CRITICAL)
             client = Client(cluster)
         else:
+            check_reachable(execution)  # the whole handshake bounded, not only the connect
             try:
                 client = Client(execution.scheduler, timeout=execution.timeout)
             except (OSError, TimeoutError) as exc:
