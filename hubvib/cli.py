@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import signal
 import sys
 
 EXIT_ERROR = 2
@@ -18,6 +19,34 @@ EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE, what a shell reports for `yes | head -1
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run the command line ``argv`` (default ``sys.argv[1:]``); return the exit code.
+
+    Called as the program (``argv`` None), a Ctrl-C after the last point where Python
+    could still turn it into ``KeyboardInterrupt`` here is ignored: it used to escape
+    ``main`` (1 run in 25 killed by the signal instead of exit 130).
+    """
+    try:
+        try:
+            return _main(argv)
+        finally:
+            if argv is None:
+                _ignore_interrupts()
+    except KeyboardInterrupt:  # came while main was returning: still one line, exit 130
+        if argv is None:
+            _ignore_interrupts()
+        _say("hubvib: interrupted")
+        return EXIT_INTERRUPTED
+
+
+def _ignore_interrupts() -> None:
+    """From here on SIGINT changes nothing (the process is about to exit)."""
+    try:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    except ValueError:  # not the main thread: nothing to do
+        pass
+
+
+def _main(argv: list[str] | None) -> int:
     # everything, imports included, inside the try: Ctrl-C at any moment is one line
     try:
         from hubvib.meshing.session import MeshingError

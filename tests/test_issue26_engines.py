@@ -89,3 +89,57 @@ def test_scheduler_that_accepts_but_never_answers_fails_within_the_timeout(silen
     with pytest.raises(EngineError, match=address):
         run_cases(abs, [1, 2], lambda item, value: delivered.append(item), execution, 2)
     assert accepted and delivered == []
+
+
+def test_ctrl_c_while_the_output_lock_is_taken_leaves_no_lock_file(tmp_path, monkeypatch):
+    """Item 10: a Ctrl-C between creating ``.hubvib.lock`` and the block that removes it
+    left an empty lock file.  The SIGINT is sent (to this process, as a terminal does)
+    from inside the lock's own write, deterministically in that window."""
+    import os
+    import signal
+
+    from hubvib.foundation import output
+
+    real_write = os.write
+
+    def write_then_interrupt(fd, data):
+        os.kill(os.getpid(), signal.SIGINT)
+        return real_write(fd, data)
+
+    reached = []
+    with pytest.raises(KeyboardInterrupt):
+        monkeypatch.setattr(os, "write", write_then_interrupt)
+        try:
+            with output.folder_lock(tmp_path):
+                reached.append("inside")
+        finally:
+            monkeypatch.undo()
+    assert not (tmp_path / output.LOCK_NAME).exists(), "the lock file was left behind"
+    assert reached == [], "the interrupt is raised before the locked block runs"
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_a_late_ctrl_c_cannot_escape_main_as_a_program(monkeypatch):
+    """Item 10: called as the program (argv None), a SIGINT that arrives as main returns
+    is ignored instead of escaping (the process then died by the signal, not exit 130,
+    1 run in 25).  Here it is sent from the command itself, as it returns."""
+    import signal
+    import sys
+
+    from hubvib import cli
+
+    monkeypatch.setattr(sys, "argv", ["hubvib", "spectrum", "--json"])
+    real = cli._main
+
+    def returns_while_interrupted(argv):
+        code = real(argv)
+        signal.raise_signal(signal.SIGINT)  # the handler runs at the next check
+        return code
+
+    monkeypatch.setattr(cli, "_main", returns_while_interrupted)
+    previous = signal.getsignal(signal.SIGINT)
+    try:
+        assert cli.main() in (0, 130)  # never KeyboardInterrupt out of main
+        assert signal.getsignal(signal.SIGINT) is signal.SIG_IGN
+    finally:
+        signal.signal(signal.SIGINT, previous)
