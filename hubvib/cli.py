@@ -9,6 +9,7 @@ program stopped by SIGPIPE).  No traceback for any of these.
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import signal
 import sys
@@ -48,19 +49,21 @@ def _ignore_interrupts() -> None:
 
 def _main(argv: list[str] | None) -> int:
     # everything, imports included, inside the try: Ctrl-C at any moment is one line
+    as_json = False  # with --json an error is also a JSON object on stdout
     try:
         from hubvib.meshing.session import MeshingError
 
         args = _parser().parse_args(argv)
+        as_json = bool(getattr(args, "json", False))
         try:
             code = args.handler(args)
             sys.stdout.flush()  # a closed pipe shows here, not in the interpreter's exit
             return code
         except (ValueError, MeshingError) as exc:  # ParameterError, SceneError, CacheError...
-            return _error(exc)
+            return _error(exc, as_json)
         except ModuleNotFoundError as exc:
             return _error(f"{exc.name} is not installed; this command needs the FE extras: "
-                          "pip install \"hubvib[fem]\"")
+                          "pip install \"hubvib[fem]\"", as_json)
     except KeyboardInterrupt:
         _say("hubvib: interrupted")
         return EXIT_INTERRUPTED
@@ -69,13 +72,20 @@ def _main(argv: list[str] | None) -> int:
         return EXIT_BROKEN_PIPE
     except OSError as exc:  # hubvib.foundation.output.OutputError names the file; others say what failed
         if type(exc).__str__ is not OSError.__str__:
-            return _error(exc)
+            return _error(exc, as_json)
         where = f"{exc.filename!r}: " if exc.filename else ""
-        return _error(f"{where}{exc.strerror or exc}")
+        return _error(f"{where}{exc.strerror or exc}", as_json)
 
 
-def _error(message) -> int:
+def _error(message, as_json: bool = False) -> int:
+    """One line ``hubvib: error: ...`` on stderr; with ``--json`` also
+    ``{"error": ..., "exit_code": 2}`` on stdout (a script reading stdout sees why)."""
     _say(f"hubvib: error: {message}")
+    if as_json:
+        try:
+            print(json.dumps({"error": str(message), "exit_code": EXIT_ERROR}), flush=True)
+        except (OSError, ValueError):
+            pass  # stdout itself is gone
     return EXIT_ERROR
 
 

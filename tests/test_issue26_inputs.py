@@ -267,3 +267,77 @@ def test_signal_record_holds_one_whole_revolution_less_than_asked(revolutions, w
             angle_domain(2 * math.pi * 5.0 * t, values, 64)
     else:
         assert angle_domain(2 * math.pi * 5.0 * t, values, 64).revolutions == whole
+
+
+# -- item 15: console and text ------------------------------------------------------------
+
+def test_sweep_console_shows_hz_beside_rad_s(tmp_path, capsys):
+    """Item 15: sweep scenes printed rad/s only, crack scenes Hz: both now; mode 1 of the
+    Raba preset is 336.454 rad/s (README worked example) = 53.548 Hz (omega / 2 pi)."""
+    assert main(["run", "raba118_c_ru", "--out", str(tmp_path / "o")]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert "base [Hz]" in lines[1] and "base [rad/s]" in lines[1], lines[1]
+    assert lines[2].split()[2:4] == ["53.548", "336.454"], lines[2]
+
+
+def test_scene_descriptions_are_whole_sentences(capsys):
+    """Item 15: ``hubvib scenes`` cut descriptions after the first line, mid-sentence."""
+    assert main(["scenes", "--json"]) == 0
+    scenes = json.loads(capsys.readouterr().out)["scenes"]
+    assert scenes["raba118_c_ru"].endswith("Lumped only: no FE stage."), scenes["raba118_c_ru"]
+    assert scenes["raba118_five_planets"].endswith("when the ring softens."), scenes
+    for name, what in scenes.items():
+        assert what.endswith((".", ")")), f"{name}: {what!r} ends mid-sentence"
+
+
+def test_tip_interference_names_the_design_keys(tmp_path, capsys):
+    """Item 15: zero profile shifts said "GearPair.first: the path of contact runs below
+    the form circle"; now the gear and the keys that fix it (shifts 0.2/0.2/0.6 of the
+    same teeth assemble, checked here)."""
+    text = ("[design]\nn_planets = 3\nmodule = 2.5e-3\nface_width = 0.03\n"
+            "sun = {{ teeth = 20, shift = {} }}\nplanet = {{ teeth = 31, shift = {} }}\n"
+            "ring = {{ teeth = 82, shift = {}, rim_thickness = 0.012 }}\n")
+    zero, shifted = tmp_path / "zero.toml", tmp_path / "shifted.toml"
+    zero.write_text(text.format(0, 0, 0), encoding="utf-8")
+    shifted.write_text(text.format(0.2, 0.2, 0.6), encoding="utf-8")
+    line = _fails(capsys, ["design", "check", str(zero)], "ring-planet mesh",
+                  "below the planet's form circle (r = 36.8950 mm)", "design.planet.shift")
+    assert "GearPair" not in line
+    assert main(["design", "check", str(shifted)]) == 0
+
+
+def test_missing_bearing_suggests_keys_that_exist():
+    """Item 15: the message suggested planet_bearing / carrier_bearing, which are not
+    design-file keys; the keys are [design.bearings] planet / carrier."""
+    from hubvib.build import lumped_parameters
+    from hubvib.design import DesignError, read_design
+
+    with pytest.raises(DesignError) as info:
+        lumped_parameters(read_design(_design_without_bearings()))
+    assert "[design.bearings] planet" in str(info.value)
+    assert "planet_bearing" not in str(info.value)
+
+
+def _design_without_bearings() -> Path:
+    import tempfile
+
+    folder = Path(tempfile.mkdtemp())
+    path = folder / "nobearing.toml"
+    path.write_text("[design]\nn_planets = 3\nmodule = 2.5e-3\nface_width = 0.03\n"
+                    "sun = { teeth = 20, shift = 0.2 }\nplanet = { teeth = 31, shift = 0.2 }\n"
+                    "ring = { teeth = 82, shift = 0.6, rim_thickness = 0.012 }\n"
+                    "[design.lumped]\nc_ru = 1e6\nc_r = 1e8\nc_su = 1e6\nc_cu = 1e6\n",
+                    encoding="utf-8")
+    return path
+
+
+@pytest.mark.parametrize("argv", [["spectrum", "--set", "c_ru=-1", "--json"],
+                                  ["efficiency", "--ratio", "1e300", "--json"]])
+def test_json_errors_are_a_json_object_on_stdout(argv, capsys):
+    """Item 15: with --json an error left stdout empty; now one JSON object with the same
+    message, and the one line on stderr (exit 2)."""
+    assert main(argv) == 2
+    captured = capsys.readouterr()
+    data = json.loads(captured.out)
+    assert data["exit_code"] == 2
+    assert captured.err.strip() == f"hubvib: error: {data['error']}"

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import importlib.util
+import math
 import sys
 import time
 from pathlib import Path
@@ -125,13 +126,15 @@ def _print_lumped(scene, result, folder: Path, files: list[Path], as_json: bool)
         return 0
     print(f"scene {scene.name!r}: {scene.parameter} {result.base_value:.6g} -> "
           f"{', '.join(f'{v:.3g}' for v in scene.values)}")
-    print(f"{'mode':>4} {'type':<13} {'base [rad/s]':>13} {'shift at last value [%]':>24}  "
-          f"first value shifting >= {scene.threshold_percent:g} %")
+    # both units: the crack scenes print Hz, the lumped model's own unit is rad/s
+    print(f"{'mode':>4} {'type':<13} {'base [Hz]':>11} {'base [rad/s]':>13} "
+          f"{'shift at last value [%]':>24}  first value shifting >= "
+          f"{scene.threshold_percent:g} %")
     last = result.shifts[-1]
     for r in result.detection():
         first = "not reached" if r["detectable_at"] is None else f"{r['detectable_at']:.4g}"
-        print(f"{r['mode']:>4} {r['kind']:<13} {r['omega_base_rad_s']:>13.3f} "
-              f"{last.percent[r['mode'] - 1]:>24.3f}  {first}")
+        print(f"{r['mode']:>4} {r['kind']:<13} {r['omega_base_rad_s'] / (2 * math.pi):>11.3f} "
+              f"{r['omega_base_rad_s']:>13.3f} {last.percent[r['mode'] - 1]:>24.3f}  {first}")
     print(f"\nreport: {folder / 'report.md'}")
     return 0
 

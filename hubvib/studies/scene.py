@@ -116,12 +116,20 @@ DEFAULT_SCENE = "raba118_crack"
 
 
 def shipped_scenes() -> dict[str, str]:
-    """Every shipped scene: name -> its first comment line (what it studies)."""
+    """Every shipped scene: name -> what it studies, its leading comment lines up to the
+    first that ends a sentence (``.`` or ``)``), joined into one line (the first line
+    alone cut sentences in two)."""
     out = {}
     for entry in sorted(resources.files("hubvib.scenes").iterdir(), key=lambda e: e.name):
         if entry.name.endswith(".toml"):
-            first = entry.read_text(encoding="utf-8").splitlines()[0]
-            out[entry.name[:-5]] = first.lstrip("# ").strip()
+            lines = []
+            for line in entry.read_text(encoding="utf-8").splitlines():
+                if not line.startswith("#"):
+                    break
+                lines.append(line.lstrip("# ").strip())
+                if lines[-1].endswith((".", ")")):
+                    break
+            out[entry.name[:-5]] = " ".join(part for part in lines if part)
     return out
 
 
