@@ -341,3 +341,15 @@ def test_json_errors_are_a_json_object_on_stdout(argv, capsys):
     data = json.loads(captured.out)
     assert data["exit_code"] == 2
     assert captured.err.strip() == f"hubvib: error: {data['error']}"
+
+
+# -- item 6: part-width cracks in the signal study ---------------------------------------------
+
+def test_signal_refuses_the_solid_scenes_part_width_cracks(tmp_path, capsys):
+    """Item 6: ``hubvib signal raba118_crack_3d`` exited 0, simulating the semi-elliptic
+    cracks as through-width ones; now refused before any FE work, naming the key."""
+    out = tmp_path / "out"
+    _fails(capsys, ["signal", "raba118_crack_3d", "--out", str(out)],
+           "[crack] model = 'solid' gives semi-elliptic part-width cracks",
+           "allowed for a signal study: [crack] model = \"plane\"")
+    assert not out.exists()
