@@ -34,6 +34,11 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 from scipy.stats import chi2, norm
 
+from hubvib.detection.carrier import mesh_timing
+from hubvib.detection.model import CrackModel
+from hubvib.detection.options import detection_options
+from hubvib.studies.crack_sweep import run_fe_cases
+
 from .measured import Measured, MeasuredError
 from .uncertainty import draw, nominal, observed_frequencies
 
@@ -287,12 +292,6 @@ def diagnose_scene(scene, measured: Measured, progress: bool = True,
                    workers: int = 2) -> tuple[Diagnosis, Reference]:
     """Diagnosis of ``measured`` against the crack study of ``scene`` (FE cases from the
     cache or computed, then the Monte Carlo reference)."""
-    from hubvib.studies.crack_sweep import run_fe_cases
-
-    from .carrier import mesh_timing
-    from .model import CrackModel
-    from .options import detection_options
-
     if scene.crack is None:
         raise ValueError(f"--scene {scene.name!r} has no [crack] study: diagnosis needs the "
                          "crack sweep it compares the measurement with")

@@ -32,6 +32,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import brentq
 
+from hubvib.lumped import natural_modes
+
 from .numbers import ROUND_OFF
 from .uncertainty import draw, nominal, observed_frequencies
 
@@ -222,8 +224,6 @@ def pod_study(model, options, timing, samples: int | None = None, model_baseline
     seed : int, optional
         Default ``options.seed``.
     """
-    from hubvib.lumped import natural_modes
-
     n = samples or options.samples
     rng = np.random.default_rng(options.seed if seed is None else seed)
     fraction, long = timing.engaged_fraction, timing.long_record(options.record_length)

@@ -21,6 +21,8 @@ from __future__ import annotations
 
 import ctypes
 import functools
+import glob
+import sys
 
 import numpy as np
 
@@ -50,10 +52,8 @@ class PardisoError(ArithmeticError):
 @functools.cache
 def _library():
     """MKL's ``pardiso`` entry point: ``libmkl_rt`` beside the interpreter (or the base
-    interpreter of a virtual environment) where pip puts it, else wherever pypardiso's loader finds it (a recursive search, ~1 s)."""
-    import glob
-    import sys
-
+    interpreter of a virtual environment) where pip puts it, else wherever pypardiso's
+    loader finds it (a recursive search, ~1 s)."""
     library = None
     # a virtual environment's prefix holds no libraries: look beside the base interpreter too
     found = [p for prefix in dict.fromkeys((sys.prefix, sys.base_prefix))

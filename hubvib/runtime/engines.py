@@ -13,16 +13,21 @@ Workers compute and return results; the calling process alone writes them
 """
 from __future__ import annotations
 
+import asyncio
 import logging
 import math
 import os
+import socket
 import threading
 import warnings
+from concurrent.futures import as_completed
 from contextlib import contextmanager
 from dataclasses import dataclass
+from urllib.parse import urlsplit
 
 from hubvib.foundation.blas import blas_threads
 from hubvib.foundation.errors import InputError, SceneError
+from hubvib.runtime.process_pool import worker_pool
 
 ENGINES = ("local", "dask")
 #: the oldest dask.distributed with every API used here (Client.map, as_completed,
@@ -104,9 +109,6 @@ def check_reachable(execution: Execution) -> None:
     identity (dask.distributed's ``identity`` message); for ``tls://`` (which needs the
     cluster's certificates) the TCP connection is checked.
     """
-    import socket
-    from urllib.parse import urlsplit
-
     if execution.engine != "dask" or execution.scheduler is None or not \
             execution.scheduler.startswith(("tcp://", "tls://")):
         return
@@ -124,8 +126,6 @@ def check_reachable(execution: Execution) -> None:
 
 def _check_identity(execution: Execution) -> None:
     """The scheduler answers dask's ``identity`` message within ``execution.timeout``."""
-    import asyncio
-
     from distributed.comm import connect
 
     async def identity():
@@ -195,10 +195,6 @@ def _environment(values: dict):
 
 
 def _run_pool(function, items, on_result, workers) -> list:
-    from concurrent.futures import as_completed
-
-    from hubvib.runtime.process_pool import worker_pool
-
     failures = []
     with worker_pool(min(workers, len(items))) as pool:
         with _environment(SINGLE_THREADED):  # the workers are spawned on submit
