@@ -353,3 +353,22 @@ def test_signal_refuses_the_solid_scenes_part_width_cracks(tmp_path, capsys):
            "[crack] model = 'solid' gives semi-elliptic part-width cracks",
            "allowed for a signal study: [crack] model = \"plane\"")
     assert not out.exists()
+
+
+# -- item 4: errors that name the file and line ----------------------------------------------
+
+@pytest.mark.parametrize("content, words", [
+    (b"scale,value\n1.0,\xe9\n", "is not UTF-8 text (line 2, byte 16 is 0xe9)"),
+    (b"scale,value\nabc,1\n", "line 2: {'scale': 'abc', 'value': '1'} is not a level"),
+    (b"scale,value\n1,2,3\n", "line 2:"),
+])
+def test_damaged_convergence_levels_file_is_named(content, words, tmp_path, capsys):
+    """Item 4: a damaged levels file of a resumed convergence study said only "'utf-8'
+    codec can't decode byte 0xe9 in position 16" (or "could not convert string to
+    float: 'abc'"); now the file, the line and what to do, before any level is computed."""
+    out = tmp_path / "cv"
+    out.mkdir()
+    levels = out / "convergence_c_ru.levels.csv"
+    levels.write_bytes(content)
+    _fails(capsys, ["convergence", "c_ru", "--out", str(out)],
+           f"convergence levels file {str(levels)!r}", words)
