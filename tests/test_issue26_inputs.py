@@ -372,3 +372,28 @@ def test_damaged_convergence_levels_file_is_named(content, words, tmp_path, caps
     levels.write_bytes(content)
     _fails(capsys, ["convergence", "c_ru", "--out", str(out)],
            f"convergence levels file {str(levels)!r}", words)
+
+
+# -- item 12: what the cache checksum guards against ------------------------------------------
+
+def test_cache_checksum_has_no_key(tmp_path):
+    """Item 12: an entry edited and re-summed is trusted: the checksum guards against
+    damage, not tampering.  docs/reliability.md says so; this test keeps that true."""
+    import hashlib
+
+    from hubvib.runtime import fe_cache
+
+    inputs, path = {"case": 1}, tmp_path / "entry.json"
+    fe_cache.write_entry(path, inputs, {"c_ru_N_m": 1.0e10})
+    data = json.loads(path.read_text(encoding="utf-8"))
+    data["result"]["c_ru_N_m"] = 2.0e10  # edited ...
+    with pytest.raises(CacheEntryError, match="checksum mismatch"):
+        path.write_text(json.dumps(data), encoding="utf-8")
+        read_entry(path, inputs)  # ... is caught while the sum is stale
+    data["checksum"] = hashlib.sha256(fe_cache.canonical(  # ... and re-summed: no key needed
+        [fe_cache.FORMAT, fe_cache.FORMAT_VERSION, fe_cache.fe_version(), inputs,
+         data["result"]]).encode()).hexdigest()
+    path.write_text(json.dumps(data), encoding="utf-8")
+    assert read_entry(path, inputs) == {"c_ru_N_m": 2.0e10}
+    page = (Path(__file__).parents[1] / "docs" / "reliability.md").read_text(encoding="utf-8")
+    assert "guards against damage, not tampering" in page.replace("\n", " ")
