@@ -143,3 +143,51 @@ def test_a_late_ctrl_c_cannot_escape_main_as_a_program(monkeypatch):
         assert signal.getsignal(signal.SIGINT) is signal.SIG_IGN
     finally:
         signal.signal(signal.SIGINT, previous)
+
+
+class _Lines:
+    """A stream that is not a terminal and records whole lines; ``arrived`` is set at the
+    first one (the test waits on it, not on a sleep)."""
+
+    def __init__(self):
+        import threading
+
+        self.lines, self.arrived = [], threading.Event()
+
+    def write(self, text):
+        self.lines += [line for line in text.splitlines() if line]
+        if self.lines:
+            self.arrived.set()
+
+    def flush(self):
+        pass
+
+    def isatty(self):
+        return False
+
+
+def test_work_without_a_count_says_it_is_working_off_a_terminal():
+    """Item 14: off a terminal plots and renders ran 32 s without a line; ``working``
+    prints one at least every HEARTBEAT_S (5 s) until the work ends, and none after."""
+    from hubvib.runtime.progress import HEARTBEAT_S, working
+
+    assert HEARTBEAT_S <= 5.0, "the issue's bound: a line at least every 5 s of work"
+    stream = _Lines()
+    with working("plots", every=0.01, stream=stream):
+        assert stream.arrived.wait(30), "no heartbeat line within 30 s"
+    count = len(stream.lines)
+    assert stream.lines[0].startswith("hubvib: plots: working, ")
+    with working("quiet", every=3600, stream=stream):
+        pass  # ends at once: no line, and the thread is joined
+    assert len(stream.lines) == count
+
+
+def test_working_is_silent_on_a_terminal():
+    """Item 14: on a terminal the bars and the command's own output say enough."""
+    from hubvib.runtime.progress import working
+
+    stream = _Lines()
+    stream.isatty = lambda: True
+    with working("plots", every=0.001, stream=stream):
+        pass
+    assert stream.lines == []

@@ -29,7 +29,7 @@ from hubvib.detection.numbers import percent
 from hubvib.fem.estimate import USABLE_QUALITY
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
 from hubvib.runtime.engines import Execution
-from hubvib.runtime.progress import stage
+from hubvib.runtime.progress import stage, working
 from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe,
                                         provenance, write_crack_study)
 from hubvib.studies.crack_sweep import case_label, run_fe_cases
@@ -298,11 +298,13 @@ def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str])
 
 def _run(scene: Scene, staged: Path) -> CrackGrowthResult:
     started = time.perf_counter()
-    result = run_crack_growth(scene)
+    with working("FE stage and lumped spectra"):
+        result = run_crack_growth(scene)
     stage(f"FE stage ({result.computed} of {len(result.rows) + len(result.plane)} cases "
           f"computed) and lumped spectra of {len(result.studies)} half-lengths", started)
     started = time.perf_counter()
-    write_crack_growth(result, staged)
+    with working("tables, plots and reports"):
+        write_crack_growth(result, staged)
     stage("tables, plots and reports", started)
     return result
 

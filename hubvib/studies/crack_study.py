@@ -33,7 +33,7 @@ from hubvib.render.fe import render_fe, ring_fields
 from hubvib.render.modes import render_modes
 from hubvib.runtime.engines import Execution
 from hubvib.runtime.fe_cache import fe_version
-from hubvib.runtime.progress import stage
+from hubvib.runtime.progress import stage, working
 from hubvib.signal.report import write_signal_study
 from hubvib.signal.study import run_signal_study
 from hubvib.studies.crack_sweep import ACCURACY, crack_of, run_fe_cases
@@ -415,16 +415,21 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
 
 def _run(scene: Scene, staged: Path) -> CrackStudyResult:
     started = time.perf_counter()
-    result = run_crack_study(scene)
+    with working("FE stage and lumped spectra"):
+        result = run_crack_study(scene)
     stage(f"FE stage ({result.computed} of {len(result.fe)} cases computed) and lumped "
           "spectra", started)
     started = time.perf_counter()
     if "signal" in scene.tables:  # the vibration signature beside the frequency study
-        study = run_signal_study(scene)
+        with working("signals"):
+            study = run_signal_study(scene)
         stage(f"signals of {len(study.depths)} crack depth(s)", started)
-        signal_files = write_signal_study(study, staged / "signal", plots=scene.plots)["files"]
+        with working("signal tables and plots"):
+            signal_files = write_signal_study(study, staged / "signal",
+                                              plots=scene.plots)["files"]
         started = time.perf_counter()
-    write_crack_study(result, staged)
+    with working("tables, plots, renders and report"):
+        write_crack_study(result, staged)
     if "signal" in scene.tables:
         report = staged / "report.md"
         write_text(report, report.read_text(encoding="utf-8") + SIGNAL_SECTION)

@@ -12,7 +12,7 @@ from hubvib.lumped import FrequencyShift, Spectrum, frequency_sensitivity, frequ
 from hubvib.lumped.sensitivity import Sensitivity
 
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
-from hubvib.runtime.progress import stage
+from hubvib.runtime.progress import stage, working
 from hubvib.studies.scene import Scene
 from hubvib.studies.study import Study
 
@@ -176,10 +176,12 @@ def _shift_figure(result: StudyResult):
 
 def _run(scene: Scene, staged: Path) -> StudyResult:
     started = time.perf_counter()
-    result = run_study(scene)
+    with working("lumped spectra and shifts"):
+        result = run_study(scene)
     stage(f"lumped spectra and shifts of {len(scene.values)} values", started)
     started = time.perf_counter()
-    write_study(result, staged)
+    with working("tables and report"):
+        write_study(result, staged)
     stage(f"tables{', plots' if scene.plots else ''} and report", started)
     return result
 
