@@ -397,3 +397,36 @@ def test_cache_checksum_has_no_key(tmp_path):
     assert read_entry(path, inputs) == {"c_ru_N_m": 2.0e10}
     page = (Path(__file__).parents[1] / "docs" / "reliability.md").read_text(encoding="utf-8")
     assert "guards against damage, not tampering" in page.replace("\n", " ")
+
+
+# -- item 13: every figure in a report has a caption ------------------------------------------
+
+def _uncaptioned(report: str) -> list[str]:
+    lines = report.splitlines()
+    return [line for i, line in enumerate(lines) if line.startswith("![")
+            and not (i + 2 < len(lines) and lines[i + 2].startswith("*")
+                     and lines[i + 2].endswith("*"))]
+
+
+def test_every_figure_of_a_report_has_a_caption(tmp_path, capsys):
+    """Item 13: figures came without a word on what they show; each now has a caption
+    line under it (the lumped sweep's report, run here)."""
+    assert main(["run", "raba118_c_ru", "--out", str(tmp_path / "o")]) == 0
+    report = (tmp_path / "o" / "report.md").read_text(encoding="utf-8")
+    assert report.count("![") == 2 and _uncaptioned(report) == [], report
+
+
+def test_captions_cover_every_figure_name_and_state_the_drawn_scale():
+    """Item 13: a figure without a caption is an error (found when its report is built);
+    the stated magnifications are those the renders use."""
+    from hubvib.render import captions
+    from hubvib.render.fe import MAGNIFIED
+    from hubvib.render.modes import AMPLITUDE
+
+    with pytest.raises(KeyError, match="no caption"):
+        captions.caption("new_figure.png")
+    assert captions.FE_MAGNIFIED == MAGNIFIED
+    assert f"{100 * AMPLITUDE:g} % of the ring radius" in captions.caption("renders/mode_01.gif")
+    assert "3 % of the outer radius" in captions.caption("renders/fe_ring_mode_02.png")
+    for name in ("pod.png", "carrier_position.png", "fe_crack_tip.png", "tsa.png"):
+        assert captions.figure_lines(name)[2] == f"*{captions.CAPTIONS[name]}*"

@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.render.captions import figure_lines
 
 from .indicators import INDICATORS
 from .sensor import write_signal_csv, write_wav
@@ -176,7 +177,7 @@ def report(study: SignalStudy, pictures: list[str]) -> str:
         lines.append(f"| {line.order:g} | {line.order * study.carrier_hz:.1f} | "
                      f"{line.amplitude:.4g} | {line.label} |")
     if pictures:
-        lines += ["", "### Plots", ""] + [f"![{p}]({p})" for p in pictures]
+        lines += ["", "### Plots", ""] + [x for p in pictures for x in figure_lines(p)]
     return "\n".join(lines) + "\n"
 
 

@@ -28,6 +28,7 @@ from hubvib.design.presets import raba118
 from hubvib.detection.numbers import percent
 from hubvib.fem.estimate import USABLE_QUALITY
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.render.captions import figure_lines
 from hubvib.runtime.engines import Execution
 from hubvib.runtime.progress import stage, working
 from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe,
@@ -267,7 +268,7 @@ def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str])
             f"{r['c_rp_slice_ratio']:.4f} | "
             f"{r['plane_through_c_rp_ratio']:.4f} | {r['min_sicn']:.3g} | "
             f"{r['poor_cells']} | {r['dofs']} | {r['fe_seconds']:.0f} |")
-    lines += [""] + [f"![{p}]({p})" for p in plots] + [""]
+    lines += [""] + [x for p in plots for x in figure_lines(p)]
     lines += [
         "## Assumptions", "",
         "- Solid ring: curved quadratic tetrahedra, supports clamped, every planet's mesh "

@@ -29,6 +29,7 @@ from hubvib.lumped import Spectrum, frequency_sensitivity, natural_modes
 from hubvib.lumped.tracking import match
 from hubvib.meshing.levels import scaled_options
 from hubvib.render.cache import array_digest, cached_render
+from hubvib.render.captions import figure_lines
 from hubvib.render.fe import render_fe, ring_fields
 from hubvib.render.modes import render_modes
 from hubvib.runtime.engines import Execution
@@ -236,7 +237,7 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
 
 def _image(name: str, plots: list[str]) -> list[str]:
     """Markdown lines showing ``name`` when it was written."""
-    return [f"![{name}]({name})", ""] if name in plots else []
+    return figure_lines(name) if name in plots else []
 
 
 def _pod_modes(study) -> list[int]:
@@ -394,9 +395,10 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
     shown = {"detectability_map.png", "pod.png", "carrier_position.png"}
     rest = [n for n in plots if n not in shown]
     if rest:
-        lines += ["", "## Plots", ""] + [f"![{n}]({n})" for n in rest]
+        lines += ["", "## Plots", ""] + [x for n in rest for x in figure_lines(n)]
     if renders:
-        lines += ["", "## Mode shapes (intact)", ""] + [f"![{n}]({n})" for n in renders]
+        lines += ["", "## Mode shapes (intact)", ""] + [x for n in renders
+                                                          for x in figure_lines(n)]
     if fe_renders:
         shown, deepest = rendered_depth(sweep), max(sweep.depths)
         why = ("" if math.isclose(shown, deepest) else
@@ -409,7 +411,7 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
                   f"{sweep.reducer.sun_torque:g} N m sun torque (planet 1 on the cracked "
                   "tooth), von Mises stress; then its lowest modes on the clamped supports "
                   "(plane stress, deformation magnified).", ""]
-        lines += [f"![{n}]({n})" for n in fe_renders]
+        lines += [x for n in fe_renders for x in figure_lines(n)]
     return "\n".join(lines) + "\n"
 
 

@@ -12,6 +12,7 @@ from hubvib.lumped import FrequencyShift, Spectrum, frequency_sensitivity, frequ
 from hubvib.lumped.sensitivity import Sensitivity
 
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.render.captions import figure_lines
 from hubvib.runtime.progress import stage, working
 from hubvib.studies.scene import Scene
 from hubvib.studies.study import Study
@@ -128,7 +129,7 @@ def report_markdown(result: StudyResult, plot_names: list[str]) -> str:
         lines.append(f"| {r['mode']} | {r['kind']} | {value} | {there} | "
                      f"{r['relative_sensitivity']:.4g} |")
     if plot_names:
-        lines += ["", "## Plots", ""] + [f"![{n}]({n})" for n in plot_names]
+        lines += ["", "## Plots", ""] + [x for n in plot_names for x in figure_lines(n)]
     return "\n".join(lines) + "\n"
 
 
