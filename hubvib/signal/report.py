@@ -8,6 +8,7 @@ import numpy as np
 
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
 from hubvib.render.captions import figure_lines
+from hubvib.render.html import write_html_report
 
 from .indicators import INDICATORS
 from .sensor import write_signal_csv, write_wav
@@ -107,6 +108,7 @@ def write_signal_study(study: SignalStudy, folder: Path, plots: bool = True) -> 
                     save_figure(_tsa_figure(study), folder / "tsa.png")]
     files += pictures
     files.append(write_text(folder / "report.md", report(study, [p.name for p in pictures])))
+    files.append(write_html_report(folder))
     files.append(folder / "results.json")
 
     def rel(paths):

@@ -29,6 +29,7 @@ from hubvib.detection.numbers import percent
 from hubvib.fem.estimate import USABLE_QUALITY
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
 from hubvib.render.captions import figure_lines
+from hubvib.render.html import write_html_reports
 from hubvib.runtime.engines import Execution
 from hubvib.runtime.progress import stage, working
 from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe,
@@ -306,6 +307,7 @@ def _run(scene: Scene, staged: Path) -> CrackGrowthResult:
     started = time.perf_counter()
     with working("tables, plots and reports"):
         write_crack_growth(result, staged)
+        result.files += [p for p in write_html_reports(staged) if p not in result.files]
     stage("tables, plots and reports", started)
     return result
 

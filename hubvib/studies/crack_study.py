@@ -30,6 +30,7 @@ from hubvib.lumped.tracking import match
 from hubvib.meshing.levels import scaled_options
 from hubvib.render.cache import array_digest, cached_render
 from hubvib.render.captions import figure_lines
+from hubvib.render.html import write_html_reports
 from hubvib.render.fe import render_fe, ring_fields
 from hubvib.render.modes import render_modes
 from hubvib.runtime.engines import Execution
@@ -436,6 +437,7 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
         report = staged / "report.md"
         write_text(report, report.read_text(encoding="utf-8") + SIGNAL_SECTION)
         result.files += [staged / "signal" / f for f in signal_files]
+    result.files += [p for p in write_html_reports(staged) if p not in result.files]
     stage("tables, plots, renders and report", started)
     return result
 

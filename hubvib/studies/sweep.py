@@ -13,6 +13,7 @@ from hubvib.lumped.sensitivity import Sensitivity
 
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
 from hubvib.render.captions import figure_lines
+from hubvib.render.html import write_html_reports
 from hubvib.runtime.progress import stage, working
 from hubvib.studies.scene import Scene
 from hubvib.studies.study import Study
@@ -183,6 +184,7 @@ def _run(scene: Scene, staged: Path) -> StudyResult:
     started = time.perf_counter()
     with working("tables and report"):
         write_study(result, staged)
+        result.files += [p for p in write_html_reports(staged) if p not in result.files]
     stage(f"tables{', plots' if scene.plots else ''} and report", started)
     return result
 
