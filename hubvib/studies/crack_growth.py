@@ -331,7 +331,7 @@ def _lines(scene: Scene, result: CrackGrowthResult, folder: Path) -> list[str]:
                    f"{r['c_rp_slice_ratio']:>10.4f}")
     out.append("+-: fine minus coarse level; 1/2 poor: the change with the cells of min SICN "
                "< 0.1 at half stiffness (take the larger)")
-    out.append(f"\nreport: {folder / 'report.md'}")
+    out.append(f"\nreport: {folder / 'report.md'} (in a browser: {folder / 'report.html'})")
     return out
 
 

@@ -472,7 +472,7 @@ def _lines(scene: Scene, result: CrackStudyResult, folder: Path) -> list[str]:
         out.append(f"{r['mode']:>4} {r['kind']:<13} {r['frequency_intact_hz']:>13.3f} "
                    f"{percent(r['shift_at_deepest_percent']):>21} {r['follows']:>10}  "
                    f"{'not detectable' if depth is None else f'{depth:.3g} mm'}{where}")
-    out.append(f"\nreport: {folder / 'report.md'}")
+    out.append(f"\nreport: {folder / 'report.md'} (in a browser: {folder / 'report.html'})")
     return out
 
 

@@ -207,7 +207,7 @@ def _lines(scene: Scene, result: StudyResult, folder: Path) -> list[str]:
         omega = r["omega_base_rad_s"]
         out.append(f"{r['mode']:>4} {r['kind']:<13} {omega / (2 * math.pi):>11.3f} "
                    f"{omega:>13.3f} {last.percent[r['mode'] - 1]:>24.3f}  {first}")
-    out.append(f"\nreport: {folder / 'report.md'}")
+    out.append(f"\nreport: {folder / 'report.md'} (in a browser: {folder / 'report.html'})")
     return out
 
 
