@@ -9,6 +9,7 @@ program stopped by SIGPIPE).  No traceback for any of these.
 from __future__ import annotations
 
 import argparse
+import ctypes
 import json
 import os
 import signal
@@ -40,10 +41,20 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _ignore_interrupts() -> None:
-    """From here on SIGINT changes nothing (the process is about to exit)."""
+    """From here on SIGINT changes nothing (the process is about to exit).
+
+    Also clears CPython's "unhandled KeyboardInterrupt" flag: a Ctrl-C that ran through
+    code an extension module runs with ``PyRun_*`` while being imported (then caught
+    here) leaves it set, and ``python -m hubvib.cli`` then died by SIGINT after exit 130
+    was chosen (13 of 40 interrupts in the first second); an empty ``PyRun_*`` resets it.
+    """
     try:
         signal.signal(signal.SIGINT, signal.SIG_IGN)
     except ValueError:  # not the main thread: nothing to do
+        return
+    try:
+        ctypes.pythonapi.PyRun_SimpleString(b"")
+    except (AttributeError, OSError):  # not CPython
         pass
 
 

@@ -191,3 +191,39 @@ def test_working_is_silent_on_a_terminal():
     with working("plots", every=0.001, stream=stream):
         pass
     assert stream.lines == []
+
+
+PROGRAM = """
+import ctypes, sys
+from hubvib import cli
+
+def interrupted_import(argv):
+    # a Ctrl-C inside code an extension runs with PyRun_String while being imported,
+    # caught as main catches it
+    run = ctypes.pythonapi.PyRun_String
+    run.restype, run.argtypes = ctypes.py_object, [ctypes.c_char_p, ctypes.c_int,
+                                                   ctypes.py_object, ctypes.py_object]
+    try:
+        run(b"raise KeyboardInterrupt", 257, {}, {})  # 257: Py_file_input
+    except KeyboardInterrupt:
+        cli._say("hubvib: interrupted")
+        return cli.EXIT_INTERRUPTED
+    return 0
+
+cli._main = interrupted_import
+sys.exit(cli.main())
+"""
+
+
+def test_python_m_exits_130_after_a_ctrl_c_during_the_imports(tmp_path):
+    """Item 10: ``python -m hubvib.cli`` interrupted while importing printed the one line
+    and chose exit 130, then CPython killed it by SIGINT (a flag left by the interrupted
+    PyRun_* call; 13 of 40 storm runs).  The same path, made deterministic."""
+    import subprocess
+    import sys
+
+    (tmp_path / "interrupted_program.py").write_text(PROGRAM, encoding="utf-8")
+    run = subprocess.run([sys.executable, "-m", "interrupted_program"], cwd=tmp_path,
+                         capture_output=True, text=True, timeout=120)
+    assert run.returncode == 130 and run.stderr == "hubvib: interrupted\n", \
+        (run.returncode, run.stderr)
