@@ -9,7 +9,10 @@ program stopped by SIGPIPE).  No traceback for any of these.
 from __future__ import annotations
 
 import argparse
+import ctypes
+import json
 import os
+import signal
 import sys
 
 EXIT_ERROR = 2
@@ -18,20 +21,60 @@ EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE, what a shell reports for `yes | head -1
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run the command line ``argv`` (default ``sys.argv[1:]``); return the exit code.
+
+    Called as the program (``argv`` None), a Ctrl-C after the last point where Python
+    could still turn it into ``KeyboardInterrupt`` here is ignored: it used to escape
+    ``main`` (1 run in 25 killed by the signal instead of exit 130).
+    """
+    try:
+        try:
+            return _main(argv)
+        finally:
+            if argv is None:
+                _ignore_interrupts()
+    except KeyboardInterrupt:  # came while main was returning: still one line, exit 130
+        if argv is None:
+            _ignore_interrupts()
+        _say("hubvib: interrupted")
+        return EXIT_INTERRUPTED
+
+
+def _ignore_interrupts() -> None:
+    """From here on SIGINT changes nothing (the process is about to exit).
+
+    Also clears CPython's "unhandled KeyboardInterrupt" flag: a Ctrl-C that ran through
+    code an extension module runs with ``PyRun_*`` while being imported (then caught
+    here) leaves it set, and ``python -m hubvib.cli`` then died by SIGINT after exit 130
+    was chosen (13 of 40 interrupts in the first second); an empty ``PyRun_*`` resets it.
+    """
+    try:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    except ValueError:  # not the main thread: nothing to do
+        return
+    try:
+        ctypes.pythonapi.PyRun_SimpleString(b"")
+    except (AttributeError, OSError):  # not CPython
+        pass
+
+
+def _main(argv: list[str] | None) -> int:
     # everything, imports included, inside the try: Ctrl-C at any moment is one line
+    as_json = False  # with --json an error is also a JSON object on stdout
     try:
         from hubvib.meshing.session import MeshingError
 
         args = _parser().parse_args(argv)
+        as_json = bool(getattr(args, "json", False))
         try:
             code = args.handler(args)
             sys.stdout.flush()  # a closed pipe shows here, not in the interpreter's exit
             return code
         except (ValueError, MeshingError) as exc:  # ParameterError, SceneError, CacheError...
-            return _error(exc)
+            return _error(exc, as_json)
         except ModuleNotFoundError as exc:
             return _error(f"{exc.name} is not installed; this command needs the FE extras: "
-                          "pip install \"hubvib[fem]\"")
+                          "pip install \"hubvib[fem]\"", as_json)
     except KeyboardInterrupt:
         _say("hubvib: interrupted")
         return EXIT_INTERRUPTED
@@ -40,13 +83,20 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_BROKEN_PIPE
     except OSError as exc:  # hubvib.foundation.output.OutputError names the file; others say what failed
         if type(exc).__str__ is not OSError.__str__:
-            return _error(exc)
+            return _error(exc, as_json)
         where = f"{exc.filename!r}: " if exc.filename else ""
-        return _error(f"{where}{exc.strerror or exc}")
+        return _error(f"{where}{exc.strerror or exc}", as_json)
 
 
-def _error(message) -> int:
+def _error(message, as_json: bool = False) -> int:
+    """One line ``hubvib: error: ...`` on stderr; with ``--json`` also
+    ``{"error": ..., "exit_code": 2}`` on stdout (a script reading stdout sees why)."""
     _say(f"hubvib: error: {message}")
+    if as_json:
+        try:
+            print(json.dumps({"error": str(message), "exit_code": EXIT_ERROR}), flush=True)
+        except (OSError, ValueError):
+            pass  # stdout itself is gone
     return EXIT_ERROR
 
 

@@ -188,7 +188,7 @@ def test_scene_contradicting_its_design_is_refused():
     from hubvib.studies.scene import SceneError, parse_scene
 
     crack = "[crack]\ndepths = [0.0, 0.003]\n"
-    with pytest.raises(SceneError, match="give 5 planets, but the design 'raba118' has "
+    with pytest.raises(SceneError, match="5 planets, but the design 'raba118' has "
                                          "n_planets = 3"):
         parse_scene("[reducer]\npreset = \"raba118\"\n[reducer.parameters]\nn_planets = 5\n"
                     + crack, "x")

@@ -140,7 +140,7 @@ def test_bad_measured_csv_exits_2_naming_the_line(cli, capsys, text, message):
 def test_missing_file_and_scene_without_crack(tmp_path, capsys):
     assert main(["diagnose", "--scene", "raba118_c_ru", "--measured",
                  str(tmp_path / "none.csv")]) == 2
-    assert "cannot read it" in capsys.readouterr().err
+    assert "cannot read --measured" in capsys.readouterr().err
     path = tmp_path / "m.csv"
     path.write_text("frequency_hz\n53.5\n")
     assert main(["diagnose", "--scene", "raba118_c_ru", "--measured", str(path)]) == 2

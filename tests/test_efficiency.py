@@ -240,9 +240,9 @@ def test_efficiency_figure_has_one_curve_per_ratio():
 
 
 @pytest.mark.parametrize("argv, message", [
-    (["--ratio", "1"], "ratio i (--ratio) must be a whole number >= 2"),
-    (["--ratio", "2.5"], "ratio i (--ratio) must be a whole number >= 2"),
-    (["--ratio", "nan"], "ratio i (--ratio) must be a whole number >= 2"),
+    (["--ratio", "1"], "ratio i (--ratio) must be a whole number in 2..1000"),
+    (["--ratio", "2.5"], "ratio i (--ratio) must be a whole number in 2..1000"),
+    (["--ratio", "nan"], "ratio i (--ratio) must be a whole number in 2..1000"),
     (["--ratio", "5", "--f1", "-0.01"], "friction coefficient f1 (--f1) must be in [0, 1)"),
     (["--ratio", "5", "--f2", "1"], "friction coefficient f2 (--f2) must be in [0, 1)"),
     (["--ratio", "5", "--f3", "1.5"], "friction coefficient f3 (--f3) must be in [0, 1)"),

@@ -45,7 +45,7 @@ def test_defaults_and_a_valid_table():
     ("sun_speed_rpm", float("nan"), "sun_speed_rpm = nan"),
     ("sun_torque_N_m", 0, "[signal] sun_torque_N_m = 0; allowed"),
     ("sun_torque_N_m", float("nan"), "sun_torque_N_m = nan"),
-    ("revolutions", 0.5, "[signal] revolutions = 0.5; allowed: a finite number in [1, 10000]"),
+    ("revolutions", 0.5, "[signal] revolutions = 0.5; allowed: a finite number in [2, 10000]"),
     ("damping_ratio", 1.0, "[signal] damping_ratio = 1.0; allowed: a finite number in [0, 1)"),
     ("damping_ratio", -0.01, "damping_ratio = -0.01"),
     ("sensor_angle_deg", float("inf"), "[signal] sensor_angle_deg = inf; allowed: a finite"),

@@ -16,6 +16,7 @@ Each failure raises ``DesignError`` naming the key and the allowed range:
 from __future__ import annotations
 
 import math
+import re
 
 from hubvib.build import stages as build
 from hubvib.design.model import DesignError, ReducerDesign
@@ -113,10 +114,30 @@ def _check_meshes(design: ReducerDesign) -> None:
         try:
             ratio = GearPair(first, second).contact_ratio
         except GearGeometryError as exc:
-            raise DesignError(f"{label} mesh: {exc}") from None
+            raise DesignError(_mesh_message(label, exc)) from None
         if ratio < 1:
             raise DesignError(f"{label} mesh: contact ratio {ratio:.4f}; allowed >= 1 "
                               "(design.*.teeth, .shift, pressure_angle_deg)")
+
+
+def _mesh_message(label: str, exc: GearGeometryError) -> str:
+    """The mesh error in the design's keys: which gear, and what would fix it (the FE
+    stage's message names ``GearPair.first/second``; its source is left unchanged, since
+    any edit there invalidates every FE cache entry)."""
+    found = re.match(r"GearPair\.(first|second): the path of contact runs below the form "
+                     r"circle \(r = ([0-9.eE+-]+) m\)", str(exc))
+    if found is None:
+        return f"{label} mesh: {exc}"
+    body, form_radius = found.group(1), float(found.group(2))
+    gears = dict(zip(("first", "second"), label.split("-")[::-1] if label == "ring-planet"
+                     else label.split("-")))
+    gear, other = gears[body], gears["second" if body == "first" else "first"]
+    return (f"{label} mesh: the path of contact runs below the {gear}'s form circle "
+            f"(r = {1e3 * form_radius:.4f} mm): the {other}'s tips would cut into the "
+            f"{gear}'s flanks (tip interference); allowed: a path of contact inside both form "
+            f"circles: give the gears positive profile shifts (design.{gear}.shift, with "
+            f"design.sun/planet/ring .shift chosen for equal centre distances) or change "
+            f".teeth")
 
 
 def summary(design: ReducerDesign) -> dict:

@@ -197,7 +197,8 @@ def lumped_parameters(design: ReducerDesign):
         raise DesignError(
             f"design {design.name!r}: the lumped model needs {', '.join(f'lumped.{k}' for k in missing)}"
             " [N/m] (mountings, shafts and bearings the geometry does not give; bearings may be "
-            "given as planet_bearing / carrier_bearing instead of c_p / c_c)")
+            "given as [design.bearings] planet = {...} / carrier = {...} instead of lumped.c_p "
+            "/ lumped.c_c)")
     try:
         return PlanetaryParameters(theta=design.angles, **fields)
     except (ParameterError, TypeError) as exc:

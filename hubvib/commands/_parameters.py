@@ -33,6 +33,7 @@ def parameters(args):
     """The lumped parameters the options describe (``--design`` replaces ``--preset``)."""
     if args.design is None:
         return load_parameters(args.preset, args.params, parse_set(args.set))
+    from hubvib.build.consistency import check_consistent
     from hubvib.build.stages import lumped_parameters
     from hubvib.runtime.params_input import apply_overrides
 
@@ -40,5 +41,7 @@ def parameters(args):
 
     if args.params is not None:
         raise ValueError("--design and --params both give the reducer; use one")
-    return apply_overrides(lumped_parameters(design_from_argument(args.design)),
-                           parse_set(args.set))
+    design = design_from_argument(args.design)
+    params = apply_overrides(lumped_parameters(design), parse_set(args.set))
+    check_consistent(design, params, "--set", ValueError)
+    return params

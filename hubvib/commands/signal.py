@@ -51,6 +51,6 @@ def run(args) -> int:
     monotone = data["monotone_indicators"]
     print("monotone with depth: " + (", ".join(f"{m['indicator']} ({m['direction']})"
                                               for m in monotone) or "none"))
-    print(f"\nreport: {folder / 'report.md'}")
+    print(f"\nreport: {folder / 'report.md'} (in a browser: {folder / 'report.html'})")
     return 0
 

@@ -25,10 +25,19 @@ from pathlib import Path
 
 import numpy as np
 
+from hubvib.foundation.files import MAX_TABLE_BYTES, read_text
 from hubvib.signal.spectral import (HarmonicRule, LabelledHarmonic, OrderSpectrum, angle_domain,
                                     order_spectrum, top_harmonics)
 
 UNITS = {"deg": 180 / math.pi, "arcmin": 60 * 180 / math.pi, "rad": 1.0}
+
+
+#: physical bounds, checked before computing (1e308 s or 1000 stages overflowed)
+MAX_PERIODS = 10_000      # periods of a track (z1, z2)
+MAX_STAGES = 20
+MAX_RATIO = 1e12          # total ratio [-]
+MIN_PERIOD_S = 1e-9       # [s] a 1 GHz pulse rate
+MAX_PERIOD_S = 86_400.0   # [s] one pulse a day
 
 
 @dataclass(frozen=True)
@@ -50,10 +59,14 @@ class GearTrain:
     stages: int = 1
 
     def __post_init__(self):
-        for name, low in (("z1", 1), ("z2", 1), ("stages", 1)):
+        for name, high in (("z1", MAX_PERIODS), ("z2", MAX_PERIODS), ("stages", MAX_STAGES)):
             value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, int) or value < low:
-                raise ValueError(f"--{name} = {value!r}; allowed: an integer >= {low}")
+            if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= high:
+                raise ValueError(f"--{name} = {value!r}; allowed: an integer 1..{high}")
+        if self.stage_ratio ** self.stages > MAX_RATIO:  # checked before any order is formed
+            raise ValueError(f"--stages {self.stages} of ({self.z1} + {self.z2}) / {self.z1} "
+                             f"give a ratio of {self.stage_ratio ** self.stages:.3g}; allowed: "
+                             f"a total ratio <= {MAX_RATIO:.0e} (lower --stages or --z2)")
 
     @property
     def stage_ratio(self) -> float:
@@ -140,10 +153,11 @@ def kinematic_error(periods, pulses_per_rev: int) -> KinematicError:
             pulses_per_rev < 4:
         raise ValueError(f"--pulses-per-rev = {pulses_per_rev!r}; allowed: an integer >= 4")
     T = np.asarray(periods, dtype=float)
-    bad = np.flatnonzero(~(np.isfinite(T) & (T > 0)))
+    bad = np.flatnonzero(~((T >= MIN_PERIOD_S) & (T <= MAX_PERIOD_S)))  # NaN fails both
     if bad.size:
-        raise ValueError(f"--periods: period {bad[0] + 1} = {float(T[bad[0]])!r} s; allowed: a finite "
-                         "number > 0")
+        raise ValueError(f"--periods: period {bad[0] + 1} = {float(T[bad[0]])!r} s; allowed: "
+                         f"{MIN_PERIOD_S:g}..{MAX_PERIOD_S:g} s (a pulse period of a turning "
+                         "output)")
     R = T.size // pulses_per_rev
     if R < 2:
         raise ValueError(f"--periods: {T.size} periods = {T.size / pulses_per_rev:.3g} output "
@@ -212,11 +226,7 @@ def read_periods(path: Path) -> np.ndarray:
     """Pulse periods [s] from a CSV: one number per line (first column), optionally under a
     header naming the column: ``period``/``period_s`` (default) or ``timestamp``/``time_s``
     (then the periods are the differences).  Blank lines and ``#`` comments are skipped."""
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ValueError(f"--periods {str(path)!r}: cannot read it ({exc})") from None
+    text = read_text(path, "--periods", ValueError, kind="CSV", max_bytes=MAX_TABLE_BYTES)
     kind, values = "periods", []
     for number, line in enumerate(text.splitlines(), 1):
         field_ = line.split("#", 1)[0].split(",")[0].strip()

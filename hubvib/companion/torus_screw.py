@@ -38,6 +38,8 @@ PAPER_FINGER_SPACING_M = 0.010
 
 #: Largest row-scaled condition number of A accepted before the system counts as singular.
 MAX_CONDITION = 1e12
+#: Highest input speed [min^-1] (a physical bound: 1e300 overflowed Phi4 = m4 omega2^2 R2)
+MAX_INPUT_RPM = 1e6
 
 
 @dataclass(frozen=True)
@@ -113,9 +115,9 @@ class TorusScrewGear:
 
     def centrifugal_force_n(self, input_speed_rpm: float) -> float:
         """Phi4 = m4 omega2^2 R2 at the input speed n1 [min^-1] [N]; omega2 = omega1 / u."""
-        if not (math.isfinite(input_speed_rpm) and input_speed_rpm >= 0.0):
-            raise ValueError(f"input speed (--input-speed-rpm) must be >= 0, "
-                             f"got {input_speed_rpm:g}")
+        if not (math.isfinite(input_speed_rpm) and 0.0 <= input_speed_rpm <= MAX_INPUT_RPM):
+            raise ValueError(f"input speed (--input-speed-rpm) must be in 0..{MAX_INPUT_RPM:g} "
+                             f"min^-1, got {input_speed_rpm:g}")
         omega2 = 2.0 * math.pi * input_speed_rpm / 60.0 / self.ratio
         return self.roller_mass_kg * omega2 ** 2 * self.carrier_radius_m
 
@@ -263,7 +265,9 @@ def roller_forces(gear: TorusScrewGear, point: OperatingPoint, fingers: str,
     Raises
     ------
     ValueError
-        When A is singular for these angles (row-scaled condition number > MAX_CONDITION).
+        When A is singular for these angles (row-scaled condition number > MAX_CONDITION),
+        or a contact force N1 or N3 comes out negative (the geometry is outside the
+        model's validity: a contact that pulls).
 
     Examples
     --------
@@ -286,6 +290,14 @@ def roller_forces(gear: TorusScrewGear, point: OperatingPoint, fingers: str,
             f"{MAX_CONDITION:.0e}); change --alpha1-deg, --alpha3-deg, --phi2-deg or "
             f"--finger-spacing")
     n1, n3, s2p, s2pp, m42 = (float(x) for x in np.linalg.solve(a, b))
+    if n1 < 0 or n3 < 0:  # a track can only push on the finger: the contact would open
+        raise ValueError(
+            f"alpha1 = {math.degrees(point.alpha1_rad):g} deg, alpha3 = "
+            f"{math.degrees(point.alpha3_rad):g} deg, phi2 = {math.degrees(point.phi2_rad):g} "
+            f"deg ({fingers} fingers) is outside the force model's validity: eqs. (14)-(18) "
+            f"give the contact force {'N1' if n1 < 0 else 'N3'} = {min(n1, n3):.4g} N < 0 (a "
+            f"track can only push, so that contact would lift off); change --alpha1-deg, "
+            f"--alpha3-deg or --phi2-deg")
     m1 = gear.rollers * n1 * math.cos(gamma) * math.sin(point.alpha1_rad) * gear.carrier_radius_m
     eta = gear.output_torque_n_m / (m1 * gear.ratio) if m1 > 0 else None
     return RollerForces(fingers, gamma, n1, n3, s2p, s2pp, m42, m1, eta, det, condition)

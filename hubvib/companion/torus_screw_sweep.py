@@ -8,9 +8,12 @@ row.
 from __future__ import annotations
 
 import csv
+import io
 import math
 from dataclasses import dataclass
 from pathlib import Path
+
+from hubvib.foundation.files import read_text
 
 from .torus_screw import (PAPER_FINGER_SPACING_M, OperatingPoint, RollerForces, TorusScrewGear,
                           roller_forces)
@@ -38,9 +41,8 @@ def read_lift_table(path: Path) -> tuple[tuple[float, float, float], ...]:
         Missing file or columns, a non-numeric or non-finite cell, or no rows.
     """
     path = Path(path)
-    if not path.is_file():
-        raise ValueError(f"lift table (--lift-table) {path}: no such file")
-    with path.open(newline="", encoding="utf-8") as handle:
+    text = read_text(path, "lift table (--lift-table)", ValueError, kind="CSV")
+    with io.StringIO(text, newline="") as handle:
         reader = csv.DictReader(handle)
         missing = [c for c in LIFT_TABLE_COLUMNS if c not in (reader.fieldnames or [])]
         if missing:

@@ -30,6 +30,8 @@ import math
 import tomllib
 from pathlib import Path
 
+from hubvib.foundation.files import read_text
+
 from .fields import DIAMETER_FIELDS, MASS_FIELDS, STIFFNESS_FIELDS
 from .model import (BearingSpec, DesignError, GearSpec, MaterialSpec, ReducerDesign, RimSpec,
                     SupportSpec)
@@ -61,19 +63,11 @@ def read_design(path: Path) -> ReducerDesign:
     The assembly rules need the stages' geometry and are checked one layer up
     (``hubvib.build.load_design``)."""
     path = Path(path)
+    text = read_text(path, "design file", DesignError, kind="TOML", max_bytes=MAX_FILE_BYTES)
     try:
-        if path.is_dir():
-            raise DesignError(f"design file {str(path)!r} is a directory")
-        with open(path, "rb") as handle:
-            raw = handle.read(MAX_FILE_BYTES + 1)
-    except OSError as exc:
-        raise DesignError(f"cannot read design file {str(path)!r}: {exc.strerror}") from None
-    if len(raw) > MAX_FILE_BYTES:
-        raise DesignError(f"design file {str(path)!r} is larger than {MAX_FILE_BYTES} bytes")
-    try:
-        data = tomllib.loads(raw.decode("utf-8"))
-    except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
-        raise DesignError(f"design file {str(path)!r} is not UTF-8 TOML: {exc}") from None
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DesignError(f"design file {str(path)!r} is not valid TOML: {exc}") from None
     if set(data) != {"design"}:
         raise DesignError(f"design file {str(path)!r}: expected one [design] table, found "
                           f"{sorted(data) or 'nothing'}")

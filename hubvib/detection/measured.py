@@ -20,6 +20,8 @@ from pathlib import Path
 
 import numpy as np
 
+from hubvib.foundation.files import read_text
+
 COLUMNS = ("frequency_hz", "mode", "baseline_hz")
 
 
@@ -55,12 +57,7 @@ class Measured:
 def read_measured(path: Path | str) -> Measured:
     """Read and validate a measured-frequency CSV (see the module docstring)."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise MeasuredError(f"--measured {str(path)!r}: cannot read it "
-                            f"({getattr(exc, 'strerror', None) or exc})") from None
-    return parse_measured(text, path.name)
+    return parse_measured(read_text(path, "--measured", MeasuredError, kind="CSV"), path.name)
 
 
 def parse_measured(text: str, source: str = "measured.csv") -> Measured:
@@ -114,8 +111,8 @@ def _value(source, number, name, cell):
         except ValueError:
             raise MeasuredError(f"{where}, but it must be a mode number (an integer >= 1)"
                                 ) from None
-        if value < 1:
-            raise MeasuredError(f"{where}, but it must be a mode number (an integer >= 1)")
+        if not 1 <= value <= 10_000:  # a model has 9 + 3N <= 45 modes; bounded before numpy
+            raise MeasuredError(f"{where}, but it must be a mode number (an integer 1..10000)")
         return value
     try:
         value = float(cell)

@@ -51,10 +51,14 @@ class PardisoError(ArithmeticError):
 
 @functools.cache
 def _library():
-    """MKL's ``pardiso`` entry point: ``libmkl_rt`` beside the interpreter where pip puts it,
-    else wherever pypardiso's loader finds it (a recursive search, ~1 s)."""
+    """MKL's ``pardiso`` entry point: ``libmkl_rt`` beside the interpreter (or the base
+    interpreter of a virtual environment) where pip puts it, else wherever pypardiso's
+    loader finds it (a recursive search, ~1 s)."""
     library = None
-    for path in sorted(glob.glob(f"{sys.prefix}/lib/libmkl_rt.so*"), key=len):
+    # a virtual environment's prefix holds no libraries: look beside the base interpreter too
+    found = [p for prefix in dict.fromkeys((sys.prefix, sys.base_prefix))
+             for p in sorted(glob.glob(f"{prefix}/lib/libmkl_rt.so*"), key=len)]
+    for path in found:
         try:
             library = ctypes.CDLL(path)
             break

@@ -39,26 +39,36 @@ def blas_thread_counts() -> list[int]:
     return [get() for get, _ in _handles()]
 
 
-@functools.lru_cache(maxsize=1)
 def _handles() -> tuple:
+    """(get, set) thread-count functions of every OpenBLAS and MKL loaded now: the maps
+    are read on each call, so a library loaded later (MKL with PARDISO) is found too."""
     try:
         with open("/proc/self/maps", encoding="utf-8") as maps:
-            paths = sorted({line.split()[-1] for line in maps if "openblas" in
-                            os.path.basename(line.split()[-1]).lower()})
+            paths = sorted({line.split()[-1] for line in maps
+                            if _is_blas(os.path.basename(line.split()[-1]).lower())})
     except OSError:
         return ()
-    handles = []
-    for path in paths:
-        try:
-            library = ctypes.CDLL(path)
-        except OSError:
-            continue
-        for name in (f"{p}_{{}}_num_threads{s}" for p in _PREFIXES for s in _SUFFIXES):
-            get = getattr(library, name.format("get"), None)
-            set_threads = getattr(library, name.format("set"), None)
-            if get is not None and set_threads is not None:
-                get.restype = ctypes.c_int
-                set_threads.argtypes = [ctypes.c_int]
-                handles.append((get, set_threads))
-                break
-    return tuple(handles)
+    return tuple(h for path in paths if (h := _library_handles(path)) is not None)
+
+
+def _is_blas(name: str) -> bool:
+    return "openblas" in name or name.startswith("libmkl_rt")
+
+
+@functools.lru_cache(maxsize=None)
+def _library_handles(path: str):
+    try:
+        library = ctypes.CDLL(path)
+    except OSError:
+        return None
+    pairs = [(f"{p}_get_num_threads{s}", f"{p}_set_num_threads{s}")
+             for p in _PREFIXES for s in _SUFFIXES]
+    pairs.append(("MKL_Get_Max_Threads", "MKL_Set_Num_Threads"))  # libmkl_rt (PARDISO)
+    for get_name, set_name in pairs:
+        get = getattr(library, get_name, None)
+        set_threads = getattr(library, set_name, None)
+        if get is not None and set_threads is not None:
+            get.restype = ctypes.c_int
+            set_threads.argtypes = [ctypes.c_int]
+            return get, set_threads
+    return None

@@ -212,6 +212,24 @@ def folder_lock(folder: Path, wait: bool = False):
         yield
         return
     path = Path(folder) / LOCK_NAME
+    # a Ctrl-C between creating the file and the try below left an empty lock file
+    # behind: it waits until then (not while waiting for another run: that stays stoppable)
+    held = _InterruptsHeld(active=not wait)
+    try:
+        fd = _take_lock(path, folder, wait, fcntl)
+    except BaseException:
+        held.release()
+        raise
+    try:
+        held.release()  # a Ctrl-C that came meanwhile is raised here, inside the try
+        yield
+    finally:
+        path.unlink(missing_ok=True)
+        os.close(fd)
+
+
+def _take_lock(path: Path, folder: Path, wait: bool, fcntl) -> int:
+    """The descriptor of the lock file at ``path``, locked and holding this pid."""
     while True:
         try:
             fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
@@ -234,11 +252,33 @@ def folder_lock(folder: Path, wait: bool = False):
         os.close(fd)
     os.ftruncate(fd, 0)
     os.write(fd, f"{os.getpid()}\n".encode("ascii"))
-    try:
-        yield
-    finally:
-        path.unlink(missing_ok=True)
-        os.close(fd)
+    return fd
+
+
+class _InterruptsHeld:
+    """SIGINT recorded instead of raised until :meth:`release` (main thread only; Python
+    runs signal handlers in the main thread whichever thread the kernel picked)."""
+
+    def __init__(self, active: bool = True):
+        self.pending = False
+        self.active = active and threading.current_thread() is threading.main_thread()
+        if self.active:
+            self.previous = signal.signal(signal.SIGINT, self._record)
+
+    def _record(self, signum, frame):
+        self.pending = True
+
+    def release(self) -> None:
+        """Restore the previous handler; act on a SIGINT that came meanwhile."""
+        if not self.active:
+            return
+        self.active, previous = False, self.previous
+        signal.signal(signal.SIGINT, previous if previous is not None else signal.SIG_DFL)
+        if self.pending:
+            if callable(previous):
+                previous(signal.SIGINT, None)  # default_int_handler: KeyboardInterrupt
+            elif previous != signal.SIG_IGN:
+                raise KeyboardInterrupt
 
 
 @contextmanager

@@ -22,6 +22,7 @@ from pathlib import Path, PurePosixPath
 
 import numpy as np
 
+from hubvib.foundation.files import MAX_TABLE_BYTES, read_bytes, read_text
 from hubvib.foundation.output import atomic_folder
 from hubvib.meshing.cache import root_folder
 from hubvib.runtime.fe_cache import canonical
@@ -91,13 +92,15 @@ def _verified(entry: Path, notice: bool = False) -> dict | None:
     if not manifest.exists():
         return None
     try:
-        listed = json.loads(manifest.read_text(encoding="utf-8"))
+        listed = json.loads(read_text(manifest, "manifest", ValueError, "JSON"))
         files, returned = listed["files"], listed["returned"]
         if not (isinstance(files, dict) and files and isinstance(returned, list) and returned
                 and all(map(_safe, files)) and set(returned) <= set(files)):
             raise ValueError("the manifest does not list the rendered files")
         for name, digest in files.items():
-            if hashlib.sha256((entry / name).read_bytes()).hexdigest() != digest:
+            data = read_bytes(entry / name, name, ValueError, "rendered",
+                              max_bytes=MAX_TABLE_BYTES)
+            if hashlib.sha256(data).hexdigest() != digest:
                 raise ValueError(f"{name}: checksum differs")
         return listed
     except (OSError, ValueError, KeyError, TypeError) as exc:

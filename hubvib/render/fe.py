@@ -8,6 +8,7 @@ deformation is magnified, by the factor printed on the image.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -94,6 +95,40 @@ def _outline(fields: RingFields):
     return _grid(fields, fields.displacement, 0.0, {}).extract_feature_edges()
 
 
+#: a vertical colour bar at the right with its title above the ticks (a horizontal bar's
+#: title overlapped its tick labels)
+_BAR = {"color": "black", "vertical": True, "position_x": 0.86, "position_y": 0.1,
+        "height": 0.7, "width": 0.06, "title_font_size": 14, "label_font_size": 12,
+        "n_labels": 5, "fmt": "%.3g"}
+
+
+def _label(plotter, text: str) -> None:
+    """Black text on a white, mostly opaque box in the upper left: readable on any colour
+    of the mesh under it (the crack-tip close-up's title was black on dark navy)."""
+    actor = plotter.add_text(text, position="upper_left", font_size=10, color="black")
+    prop = actor.GetTextProperty()
+    prop.SetBackgroundColor(1.0, 1.0, 1.0)
+    prop.SetBackgroundOpacity(0.85)
+
+
+def _scale_bar(plotter, centre) -> None:
+    """A white bar of a round length [mm] in the lower left of the ``TIP_VIEW`` window,
+    labelled: the close-up's length scale."""
+    import pyvista as pv
+
+    length = 10 ** math.floor(math.log10(0.5 * TIP_VIEW))  # [m]
+    if 2 * length <= 0.5 * TIP_VIEW:
+        length *= 2
+    x0, y0 = centre[0] - 0.85 * TIP_VIEW, centre[1] - 0.85 * TIP_VIEW
+    bar = pv.Line((x0, y0, 0.01), (x0 + length, y0, 0.01))
+    plotter.add_mesh(bar, color="white", line_width=6)
+    plotter.add_mesh(bar, color="black", line_width=2)
+    plotter.add_point_labels([(x0 + length / 2, y0 + 0.06 * TIP_VIEW, 0.01)],
+                             [f"{1e3 * length:g} mm"], font_size=14, text_color="black",
+                             shape_color="white", shape_opacity=0.85, show_points=False,
+                             always_visible=True)
+
+
 def _picture(path: Path, draw, centre=None) -> Path:
     """Draw, look along -z (at ``centre`` with a ``TIP_VIEW`` window if given), save."""
     def write(tmp):
@@ -121,13 +156,13 @@ def render_fe(fields: RingFields, folder: Path, vtu: bool = False) -> list[Path]
              f"deformation x{scale:.0f}")
     colour = dict(scalars="von Mises [MPa]", cmap="turbo",
                   clim=(0.0, float(np.percentile(mpa, 99.5))),
-                  scalar_bar_args={"title": "von Mises [MPa]", "color": "black"})
+                  scalar_bar_args=_BAR | {"title": "von Mises [MPa]"})
     outline = _outline(fields)
 
     def whole(plotter):
         plotter.add_mesh(outline, color="#bbbbbb", line_width=1)
         plotter.add_mesh(loaded, **colour)
-        plotter.add_text(title, position="upper_left", font_size=10, color="black")
+        _label(plotter, title + "\ngrey: undeformed outline")
 
     files = [_picture(folder / "fe_ring_loaded.png", whole)]
     if fields.crack_tip is not None:
@@ -138,8 +173,8 @@ def render_fe(fields: RingFields, folder: Path, vtu: bool = False) -> list[Path]
         def tip(plotter):
             plotter.add_mesh(loaded, show_edges=True, edge_color="#333333",
                              **dict(colour, clim=(0.0, float(np.percentile(near, 99)))))
-            plotter.add_text(f"{fields.label}: crack tip, deformation x{scale:.0f}",
-                             position="upper_left", font_size=10, color="black")
+            _label(plotter, f"{fields.label}: crack tip, deformation x{scale:.0f}")
+            _scale_bar(plotter, centre)
 
         files.append(_picture(folder / "fe_crack_tip.png", tip, centre))
     for k, (shape, hz) in enumerate(zip(fields.mode_shapes, fields.mode_hz)):
@@ -149,10 +184,10 @@ def render_fe(fields: RingFields, folder: Path, vtu: bool = False) -> list[Path]
         def mode(plotter, grid=grid, k=k, hz=hz):
             plotter.add_mesh(outline, color="#bbbbbb", line_width=1)
             plotter.add_mesh(grid, scalars="displacement (normalised)", cmap="viridis",
-                             scalar_bar_args={"title": "displacement (normalised)", "color": "black"})
-            plotter.add_text(f"{fields.label}\nFE mode {k + 1} on clamped supports: "
-                             f"{hz:.1f} Hz", position="upper_left", font_size=10,
-                             color="black")
+                             scalar_bar_args=_BAR | {"title": "displacement / largest"})
+            _label(plotter, f"{fields.label}\nFE mode {k + 1} on clamped supports: "
+                   f"{hz:.1f} Hz\ncolour: displacement / largest; grey: undeformed "
+                   f"outline; largest displacement drawn as {100 * MAGNIFIED:g} % of the outer radius")
 
         files.append(_picture(folder / f"fe_ring_mode_{k + 1:02d}.png", mode))
     if vtu:

@@ -22,6 +22,9 @@ AMPLITUDE = 0.08
 TOOTH_PITCH = 10.2e-3   # [m] arc between drawn teeth (module 3.25 mm: pi m)
 THICKNESS = 0.02        # [m] plate thickness, for shading only
 SIZE = (900, 900)       # [px]
+#: what the colours, the grey outline and the scale of a mode render mean (in the picture)
+LEGEND = (f"sun orange, planets green, ring purple, carrier grey; grey outline: at rest; "
+          f"largest displacement drawn as {100 * AMPLITUDE:g} % of the ring radius")
 
 
 def _toothed_outline(radius: float, teeth: int, depth: float) -> np.ndarray:
@@ -162,7 +165,7 @@ def render_mode(params, spectrum, index: int, folder: Path, gif: bool = False,
     shape = spectrum.shapes[:, index]
     omega = spectrum.omega[index]
     label = (f"mode {index + 1}: {omega / (2 * math.pi):.2f} Hz ({omega:.1f} rad/s), "
-             f"{spectrum.kind[index]}")
+             f"{spectrum.kind[index]}\n{LEGEND}")
     reference = deformed_bodies(params, shape, 0.0)
     stem = f"mode_{index + 1:02d}"
     files = []

@@ -13,6 +13,7 @@ Workers compute and return results; the calling process alone writes them
 """
 from __future__ import annotations
 
+import asyncio
 import logging
 import math
 import os
@@ -24,6 +25,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from urllib.parse import urlsplit
 
+from hubvib.foundation.blas import blas_threads
 from hubvib.foundation.errors import InputError, SceneError
 from hubvib.runtime.process_pool import worker_pool
 
@@ -80,8 +82,9 @@ def run_cases(function, items: list, on_result, execution: Execution, workers: i
     A case that raises does not stop the others; afterwards one ``EngineError``
     names every failed case and its message.  Pool and Dask workers run one BLAS
     thread each (``SINGLE_THREADED``), so both engines give the same numbers to the
-    last digit; with one worker the local engine runs the cases in this process,
-    with its BLAS threads.
+    last digit; with one worker (or one case left, as after a killed run) the local
+    engine runs the cases in this process, with its BLAS limited to one thread as
+    well: same threads, same digits.
     """
     if not items:
         return
@@ -97,8 +100,15 @@ def run_cases(function, items: list, on_result, execution: Execution, workers: i
 
 
 def check_reachable(execution: Execution) -> None:
-    """``EngineError`` unless the scheduler (if any) accepts a TCP connection within the
-    timeout: checked before anything is written."""
+    """``EngineError`` unless the scheduler (if any) answers within the timeout: checked
+    before anything is written.
+
+    The whole handshake is bounded, not only the TCP connection: an address that
+    accepts the connection but never answers (another service, a stopped process)
+    hung ``Client()`` for ever.  For ``tcp://`` the scheduler is asked for its
+    identity (dask.distributed's ``identity`` message); for ``tls://`` (which needs the
+    cluster's certificates) the TCP connection is checked.
+    """
     if execution.engine != "dask" or execution.scheduler is None or not \
             execution.scheduler.startswith(("tcp://", "tls://")):
         return
@@ -110,6 +120,33 @@ def check_reachable(execution: Execution) -> None:
     except (OSError, ValueError) as exc:
         raise EngineError(f"[execution] scheduler = {execution.scheduler!r} did not answer "
                           f"within {execution.timeout:g} s ({exc})") from None
+    if execution.scheduler.startswith("tcp://") and distributed_version_ok()[0]:
+        _check_identity(execution)
+
+
+def _check_identity(execution: Execution) -> None:
+    """The scheduler answers dask's ``identity`` message within ``execution.timeout``."""
+    from distributed.comm import connect
+
+    async def identity():
+        comm = await connect(execution.scheduler, timeout=execution.timeout)
+        try:
+            await comm.write({"op": "identity", "reply": True})
+            return await comm.read()
+        finally:
+            comm.abort()
+
+    try:
+        reply = asyncio.run(asyncio.wait_for(identity(), execution.timeout))
+    except (OSError, TimeoutError, asyncio.TimeoutError, ValueError, TypeError) as exc:
+        why = "no answer to the handshake" if isinstance(exc, (TimeoutError,
+                                                               asyncio.TimeoutError)) else exc
+        raise EngineError(f"[execution] scheduler = {execution.scheduler!r} accepts the "
+                          f"connection but did not answer within {execution.timeout:g} s "
+                          f"({why}): is it a Dask scheduler?") from None
+    if not (isinstance(reply, dict) and reply.get("type") == "Scheduler"):
+        raise EngineError(f"[execution] scheduler = {execution.scheduler!r} answered, but not "
+                          f"as a Dask scheduler (identity {str(reply)[:80]!r})")
 
 
 def _failure_text(failures: list) -> str:
@@ -127,7 +164,8 @@ def _run_here(function, items, on_result) -> list:
     failures = []
     for item in items:
         try:
-            result = function(item)
+            with blas_threads(1):  # as in a pool worker (SINGLE_THREADED): the same digits
+                result = function(item)
         except Exception as exc:  # noqa: BLE001 - reported per case, as with a pool
             failures.append((item, f"{type(exc).__name__}: {exc}"))
             continue
@@ -232,6 +270,7 @@ def _run_dask(function, items, on_result, execution: Execution, workers: int) ->
                                        dashboard_address=None, silence_logs=logging.CRITICAL)
             client = Client(cluster)
         else:
+            check_reachable(execution)  # the whole handshake bounded, not only the connect
             try:
                 client = Client(execution.scheduler, timeout=execution.timeout)
             except (OSError, TimeoutError) as exc:

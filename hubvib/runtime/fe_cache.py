@@ -23,6 +23,7 @@ from pathlib import Path
 import hubvib.fem
 import hubvib.meshing
 from hubvib.fem.estimate import SCHEMA_VERSION
+from hubvib.foundation.files import MAX_TABLE_BYTES, read_text
 from hubvib.foundation.output import write_json
 
 FORMAT = "hubvib-fe-cache"
@@ -93,15 +94,14 @@ def read_entry(path: Path, inputs: dict, check=None) -> dict:
     replaced, so computing the case would be lost work).
     """
     try:
-        text = path.read_text(encoding="utf-8")
-    except (FileNotFoundError, NotADirectoryError):  # a missing folder: case_lock reports it
-        raise CacheEntryError("missing") from None
-    except IsADirectoryError:
-        raise CacheFolderError(f"the FE cache entry {path} is a folder; remove it") from None
-    except OSError as exc:
-        raise CacheEntryError(f"unreadable ({exc.strerror or exc})") from None
-    except UnicodeDecodeError:
-        raise CacheEntryError("unreadable (not UTF-8 text)") from None
+        text = read_text(path, "entry", CacheEntryError, kind="JSON",
+                         max_bytes=MAX_TABLE_BYTES)
+    except CacheEntryError as exc:
+        if not path.exists():  # a missing folder: case_lock reports it
+            raise CacheEntryError("missing") from None
+        if path.is_dir():
+            raise CacheFolderError(f"the FE cache entry {path} is a folder; remove it") from None
+        raise CacheEntryError(f"unreadable ({exc})") from None
     try:
         data = json.loads(text)
     except (ValueError, RecursionError):

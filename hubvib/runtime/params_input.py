@@ -14,19 +14,15 @@ A parameters file is a regular UTF-8 TOML file of at most ``MAX_FILE_BYTES``.
 """
 from __future__ import annotations
 
-import codecs
 import math
-import os
-import stat
 import tomllib
 from pathlib import Path
 
+from hubvib.foundation.files import MAX_FILE_BYTES, read_text
 from hubvib.lumped import ParameterError, PlanetaryParameters, equally_spaced_angles, field_names, preset
 
 CONVENIENCE_KEYS = ("n_planets", "theta_deg", "alpha_w_deg")
 TUPLE_KEYS = ("theta", "theta_deg", "c_rp_factors")
-#: largest parameters (or scene) file read [bytes]; a real one is well under 10 kB
-MAX_FILE_BYTES = 1 << 20
 #: keys that say the same thing and must not both be given by one source
 _EXCLUSIVE = (("theta", "theta_deg"), ("alpha_w_deg", "alpha_s"), ("alpha_w_deg", "alpha_r"))
 
@@ -105,43 +101,10 @@ def read_toml_file(path: Path, what: str = "parameters file", error=ParameterErr
 
 
 def read_text_file(path: Path, what: str = "parameters file", error=ParameterError) -> str:
-    """The UTF-8 text of ``path``; every refusal names ``what`` and the file.
-
-    Only a regular file of at most ``MAX_FILE_BYTES`` is read (not a directory,
-    device or pipe: ``/dev/zero`` would never end); a UTF-8 byte-order mark is
-    skipped, UTF-16 and binary files are refused.
-
-    Raises
-    ------
-    error
-        (default :class:`ParameterError`) with a one-line message.
-    """
-    name = f"{what} {str(path)!r}"
-    try:
-        info = os.stat(path)
-    except OSError as exc:
-        raise error(f"cannot read {name}: {exc.strerror}") from None
-    if stat.S_ISDIR(info.st_mode):
-        raise error(f"{name} is a directory, not a TOML file")
-    if not stat.S_ISREG(info.st_mode):
-        raise error(f"{name} is not a regular file (a device, pipe or socket)")
-    try:
-        with open(path, "rb") as handle:
-            data = handle.read(MAX_FILE_BYTES + 1)  # bounded even if the size lied (/proc)
-    except OSError as exc:
-        raise error(f"cannot read {name}: {exc.strerror}") from None
-    if len(data) > MAX_FILE_BYTES:
-        raise error(f"{name} is larger than {MAX_FILE_BYTES} bytes, the most a TOML "
-                    "file may hold here")
-    if data.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
-        raise error(f"{name} is UTF-16 text; TOML must be UTF-8 (save it as UTF-8)")
-    if b"\0" in data:
-        raise error(f"{name} is a binary file (it holds NUL bytes), not TOML text")
-    try:
-        return data.decode("utf-8").removeprefix("\ufeff")
-    except UnicodeDecodeError as exc:
-        raise error(f"{name} is not UTF-8 text (byte {exc.start} is "
-                    f"0x{data[exc.start]:02x}); TOML must be UTF-8") from None
+    """The UTF-8 text of a TOML file ``path``, read by the one guarded reader
+    (:func:`hubvib.foundation.files.read_text`: regular files of at most
+    ``MAX_FILE_BYTES`` only); every refusal names ``what`` and the file."""
+    return read_text(path, what, error, kind="TOML", max_bytes=MAX_FILE_BYTES)
 
 
 def _check_exclusive(overrides: dict) -> None:

@@ -11,12 +11,23 @@ per update, so a long run is never silent for minutes::
     stage("lumped spectra", started)   # hubvib: lumped spectra done (0.3 s)
 
 ``stage`` lines appear only when stderr is not a terminal (on a terminal the
-command's own output and the bars say enough).
+command's own output and the bars say enough).  Work that gives no count of its own
+(plots, renders, reports, the lumped sweep) runs under ``working``: off a terminal a
+line at least every ``HEARTBEAT_S`` seconds, so a log never stays silent::
+
+    with working("tables, plots, renders and report"):
+        write_crack_study(result, staged)
+    # hubvib: tables, plots, renders and report: working, 5 s
 """
 from __future__ import annotations
 
 import sys
+import threading
 import time
+from contextlib import contextmanager
+
+#: longest silence off a terminal while ``working`` [s]
+HEARTBEAT_S = 5.0
 
 
 def interactive(stream=None) -> bool:
@@ -102,6 +113,30 @@ def stage(what: str, started: float | None = None, stream=None) -> None:
         return
     took = "" if started is None else f" ({time.perf_counter() - started:.1f} s)"
     _say(f"hubvib: {what} done{took}", stream)
+
+
+@contextmanager
+def working(what: str, every: float = HEARTBEAT_S, stream=None):
+    """Off a terminal, ``hubvib: <what>: working, <seconds> s`` every ``every`` seconds
+    [s] until the block ends (a daemon thread that waits on an event, stopped and joined
+    when the block ends, however it ends); on a terminal nothing."""
+    if interactive(stream):
+        yield
+        return
+    done = threading.Event()
+    started = time.perf_counter()
+
+    def beat():
+        while not done.wait(every):
+            _say(f"hubvib: {what}: working, {time.perf_counter() - started:.0f} s", stream)
+
+    thread = threading.Thread(target=beat, name="progress-heartbeat", daemon=True)
+    thread.start()
+    try:
+        yield
+    finally:
+        done.set()
+        thread.join()
 
 
 def _say(line: str, stream) -> None:

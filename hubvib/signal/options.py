@@ -6,7 +6,7 @@ Scene keys (all optional; defaults shown)::
     sun_speed_rpm = 1500.0        # input (sun) speed [min^-1]; the carrier turns at
                                   # z_s / (z_s + z_r) of it, the ring is fixed
     sun_torque_N_m = 1000.0       # input torque on the sun [N m] (sets the mesh load)
-    revolutions = 10.0            # recorded duration in carrier revolutions (>= 1)
+    revolutions = 10.0            # recorded duration in carrier revolutions (>= 2)
     sample_rate_hz = 20000.0      # >= 2 x mesh_harmonics x mesh frequency
     mesh_harmonics = 3            # highest mesh harmonic analysed (indicators, checks)
     sensor_angle_deg = 0.0        # accelerometer position on the ring, from planet 1's
@@ -64,8 +64,9 @@ class SignalOptions:
     sun_torque_N_m : float
         Input torque on the sun [N m], > 0.
     revolutions : float
-        Recorded duration in carrier revolutions [-], >= 1 (rounded down to whole
-        revolutions for the time-synchronous average).
+        Recorded duration in carrier revolutions [-], >= 2 (the samples end one sample
+        before the duration, and the time-synchronous average takes the whole
+        revolutions among them).
     sample_rate_hz : float
         Sample rate of the sensor signal [Hz].
     mesh_harmonics : int
@@ -181,7 +182,9 @@ def kinematics(sun_speed_rpm: float, design) -> tuple[float, float]:
 _NUMBERS = {  # key: (low, high, low closed, high closed)
     "sun_speed_rpm": (0.0, math.inf, False, False),
     "sun_torque_N_m": (0.0, math.inf, False, False),
-    "revolutions": (1.0, 1e4, True, True),
+    # >= 2: the samples run 0 <= t < duration, so one revolution is a sample short of the
+    # whole revolution the time-synchronous average needs (1 failed after all the work)
+    "revolutions": (2.0, 1e4, True, True),
     "sample_rate_hz": (0.0, 1e7, False, True),
     "sensor_angle_deg": (-math.inf, math.inf, False, False),
     "damping_ratio": (0.0, 1.0, True, False),

@@ -7,6 +7,8 @@ from pathlib import Path
 import numpy as np
 
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.render.captions import figure_lines
+from hubvib.render.html import write_html_report
 
 from .indicators import INDICATORS
 from .sensor import write_signal_csv, write_wav
@@ -116,6 +118,7 @@ def write_signal_study(study: SignalStudy, folder: Path, plots: bool = True) -> 
                     save_figure(_tsa_figure(study), folder / "tsa.png")]
     files += pictures
     files.append(write_text(folder / "report.md", report(study, [p.name for p in pictures])))
+    files.append(write_html_report(folder))
     files.append(folder / "results.json")
 
     def rel(paths):
@@ -221,7 +224,7 @@ def report(study: SignalStudy, pictures: list[str]) -> str:
         lines.append(f"| {line.order:g} | {line.order * study.carrier_hz:.1f} | "
                      f"{line.amplitude:.4g} | {line.label} |")
     if pictures:
-        lines += ["", "### Plots", ""] + [f"![{p}]({p})" for p in pictures]
+        lines += ["", "### Plots", ""] + [x for p in pictures for x in figure_lines(p)]
     return "\n".join(lines) + "\n"
 
 

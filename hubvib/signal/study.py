@@ -161,6 +161,21 @@ def curves_for(scene, options: SignalOptions, progress=None) -> list[MeshCurves]
     return fe
 
 
+def check_crack_model(scene) -> None:
+    """``SceneError`` for a scene whose cracks the signal study cannot model: its mesh
+    curves come from the plane FE tooth (a crack through the whole face width), so the
+    solid model's semi-elliptic part-width cracks would be simulated as through-width
+    cracks (issue 26: ``hubvib signal raba118_crack_3d`` did so and exited 0)."""
+    sweep = scene.crack
+    if sweep is not None and sweep.model != "plane":
+        raise SceneError(
+            f"scene {scene.name!r}: [crack] model = {sweep.model!r} gives semi-elliptic "
+            f"part-width cracks (half_lengths {', '.join(f'{1e3 * c:g}' for c in sweep.half_lengths)}"
+            f" mm), but the signal study's mesh stiffness comes from the plane FE tooth, a "
+            f"crack through the whole face width; allowed for a signal study: [crack] "
+            f"model = \"plane\" (e.g. the scene raba118_signal)")
+
+
 def run_signal_study(scene, curves: list[MeshCurves] | None = None,
                      options: SignalOptions | None = None, progress=None) -> SignalStudy:
     """Run the study of ``scene`` (its ``[signal]`` and ``[crack]`` tables).
@@ -168,6 +183,7 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
     ``curves`` (one per depth, already scaled) replace the FE curves, e.g. in tests.
     Nothing is written here; every input error is raised before any output exists.
     """
+    check_crack_model(scene)
     options = options or scene.tables.get("signal") or SignalOptions()
     params = scene.params
     teeth = design_teeth(scene.design)

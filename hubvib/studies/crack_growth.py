@@ -28,8 +28,10 @@ from hubvib.design.presets import raba118
 from hubvib.detection.numbers import percent
 from hubvib.fem.estimate import USABLE_QUALITY
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.render.captions import figure_lines
+from hubvib.render.html import write_html_reports
 from hubvib.runtime.engines import Execution
-from hubvib.runtime.progress import stage
+from hubvib.runtime.progress import stage, working
 from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe,
                                         provenance, write_crack_study)
 from hubvib.studies.crack_sweep import case_label, run_fe_cases
@@ -267,7 +269,7 @@ def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str])
             f"{r['c_rp_slice_ratio']:.4f} | "
             f"{r['plane_through_c_rp_ratio']:.4f} | {r['min_sicn']:.3g} | "
             f"{r['poor_cells']} | {r['dofs']} | {r['fe_seconds']:.0f} |")
-    lines += [""] + [f"![{p}]({p})" for p in plots] + [""]
+    lines += [""] + [x for p in plots for x in figure_lines(p)]
     lines += [
         "## Assumptions", "",
         "- Solid ring: curved quadratic tetrahedra, supports clamped, every planet's mesh "
@@ -298,11 +300,14 @@ def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str])
 
 def _run(scene: Scene, staged: Path) -> CrackGrowthResult:
     started = time.perf_counter()
-    result = run_crack_growth(scene)
+    with working("FE stage and lumped spectra"):
+        result = run_crack_growth(scene)
     stage(f"FE stage ({result.computed} of {len(result.rows) + len(result.plane)} cases "
           f"computed) and lumped spectra of {len(result.studies)} half-lengths", started)
     started = time.perf_counter()
-    write_crack_growth(result, staged)
+    with working("tables, plots and reports"):
+        write_crack_growth(result, staged)
+        result.files += [p for p in write_html_reports(staged) if p not in result.files]
     stage("tables, plots and reports", started)
     return result
 
@@ -326,7 +331,7 @@ def _lines(scene: Scene, result: CrackGrowthResult, folder: Path) -> list[str]:
                    f"{r['c_rp_slice_ratio']:>10.4f}")
     out.append("+-: fine minus coarse level; 1/2 poor: the change with the cells of min SICN "
                "< 0.1 at half stiffness (take the larger)")
-    out.append(f"\nreport: {folder / 'report.md'}")
+    out.append(f"\nreport: {folder / 'report.md'} (in a browser: {folder / 'report.html'})")
     return out
 
 

@@ -29,11 +29,13 @@ from hubvib.lumped import Spectrum, frequency_sensitivity, natural_modes
 from hubvib.lumped.tracking import match
 from hubvib.meshing.levels import scaled_options
 from hubvib.render.cache import array_digest, cached_render
+from hubvib.render.captions import figure_lines
+from hubvib.render.html import write_html_reports
 from hubvib.render.fe import render_fe, ring_fields
 from hubvib.render.modes import render_modes
 from hubvib.runtime.engines import Execution
 from hubvib.runtime.fe_cache import fe_version
-from hubvib.runtime.progress import stage
+from hubvib.runtime.progress import stage, working
 from hubvib.signal.report import write_signal_study
 from hubvib.signal.study import run_signal_study
 from hubvib.studies.crack_sweep import ACCURACY, crack_of, run_fe_cases
@@ -236,7 +238,7 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
 
 def _image(name: str, plots: list[str]) -> list[str]:
     """Markdown lines showing ``name`` when it was written."""
-    return [f"![{name}]({name})", ""] if name in plots else []
+    return figure_lines(name) if name in plots else []
 
 
 def _pod_modes(study) -> list[int]:
@@ -394,9 +396,10 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
     shown = {"detectability_map.png", "pod.png", "carrier_position.png"}
     rest = [n for n in plots if n not in shown]
     if rest:
-        lines += ["", "## Plots", ""] + [f"![{n}]({n})" for n in rest]
+        lines += ["", "## Plots", ""] + [x for n in rest for x in figure_lines(n)]
     if renders:
-        lines += ["", "## Mode shapes (intact)", ""] + [f"![{n}]({n})" for n in renders]
+        lines += ["", "## Mode shapes (intact)", ""] + [x for n in renders
+                                                          for x in figure_lines(n)]
     if fe_renders:
         shown, deepest = rendered_depth(sweep), max(sweep.depths)
         why = ("" if math.isclose(shown, deepest) else
@@ -409,26 +412,32 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
                   f"{sweep.reducer.sun_torque:g} N m sun torque (planet 1 on the cracked "
                   "tooth), von Mises stress; then its lowest modes on the clamped supports "
                   "(plane stress, deformation magnified).", ""]
-        lines += [f"![{n}]({n})" for n in fe_renders]
+        lines += [x for n in fe_renders for x in figure_lines(n)]
     return "\n".join(lines) + "\n"
 
 
 def _run(scene: Scene, staged: Path) -> CrackStudyResult:
     started = time.perf_counter()
-    result = run_crack_study(scene)
+    with working("FE stage and lumped spectra"):
+        result = run_crack_study(scene)
     stage(f"FE stage ({result.computed} of {len(result.fe)} cases computed) and lumped "
           "spectra", started)
     started = time.perf_counter()
     if "signal" in scene.tables:  # the vibration signature beside the frequency study
-        study = run_signal_study(scene)
+        with working("signals"):
+            study = run_signal_study(scene)
         stage(f"signals of {len(study.depths)} crack depth(s)", started)
-        signal_files = write_signal_study(study, staged / "signal", plots=scene.plots)["files"]
+        with working("signal tables and plots"):
+            signal_files = write_signal_study(study, staged / "signal",
+                                              plots=scene.plots)["files"]
         started = time.perf_counter()
-    write_crack_study(result, staged)
+    with working("tables, plots, renders and report"):
+        write_crack_study(result, staged)
     if "signal" in scene.tables:
         report = staged / "report.md"
         write_text(report, report.read_text(encoding="utf-8") + SIGNAL_SECTION)
         result.files += [staged / "signal" / f for f in signal_files]
+    result.files += [p for p in write_html_reports(staged) if p not in result.files]
     stage("tables, plots, renders and report", started)
     return result
 
@@ -463,7 +472,7 @@ def _lines(scene: Scene, result: CrackStudyResult, folder: Path) -> list[str]:
         out.append(f"{r['mode']:>4} {r['kind']:<13} {r['frequency_intact_hz']:>13.3f} "
                    f"{percent(r['shift_at_deepest_percent']):>21} {r['follows']:>10}  "
                    f"{'not detectable' if depth is None else f'{depth:.3g} mm'}{where}")
-    out.append(f"\nreport: {folder / 'report.md'}")
+    out.append(f"\nreport: {folder / 'report.md'} (in a browser: {folder / 'report.html'})")
     return out
 
 

@@ -61,7 +61,8 @@ from importlib import resources
 from pathlib import Path
 
 from hubvib.build import load_design, parse_design
-from hubvib.build.stages import derived_lumped_fields, ring_gear
+from hubvib.build.consistency import check_consistent
+from hubvib.build.stages import ring_gear
 from hubvib.design import DesignError, PRESETS, preset_design
 from hubvib.detection.options import parse_detection_table
 from hubvib.foundation.errors import SceneError
@@ -127,12 +128,20 @@ DEFAULT_SCENE = "raba118_crack"
 
 
 def shipped_scenes() -> dict[str, str]:
-    """Every shipped scene: name -> its first comment line (what it studies)."""
+    """Every shipped scene: name -> what it studies, its leading comment lines up to the
+    first that ends a sentence (``.`` or ``)``), joined into one line (the first line
+    alone cut sentences in two)."""
     out = {}
     for entry in sorted(resources.files("hubvib.scenes").iterdir(), key=lambda e: e.name):
         if entry.name.endswith(".toml"):
-            first = entry.read_text(encoding="utf-8").splitlines()[0]
-            out[entry.name[:-5]] = first.lstrip("# ").strip()
+            lines = []
+            for line in entry.read_text(encoding="utf-8").splitlines():
+                if not line.startswith("#"):
+                    break
+                lines.append(line.lstrip("# ").strip())
+                if lines[-1].endswith((".", ")")):
+                    break
+            out[entry.name[:-5]] = " ".join(part for part in lines if part)
     return out
 
 
@@ -192,7 +201,7 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
     except (ParameterError, ValueError) as exc:
         raise SceneError(f"[reducer]: {exc}") from None
     if "crack" in data or "design" in data:
-        _check_consistent(design, params)
+        check_consistent(design, params, "[reducer.parameters]", SceneError)
 
     crack = _crack(data["crack"], design) if "crack" in data else None
     if crack is not None and ("parameter" in study or "values" in study):
@@ -267,33 +276,6 @@ def _design(data, reducer, base: Path | None):
         return parse_design(table, default_name="design")
     except DesignError as exc:
         raise SceneError(f"[design]: {exc}") from None
-
-
-def _check_consistent(design, params) -> None:
-    """Refuse lumped parameters that contradict the design (N, angles, diameters)."""
-    if design is None:
-        return
-    n = len(params.theta)
-    if n != design.n_planets:
-        raise SceneError(f"[reducer.parameters] give {n} planets, but the design "
-                         f"{design.name!r} has n_planets = {design.n_planets}")
-    for i, (a, b) in enumerate(zip(params.theta, design.angles)):
-        if abs(math.remainder(a - b, 2 * math.pi)) > 1e-9:
-            raise SceneError(f"[reducer.parameters] planet {i + 1} at {math.degrees(a):.6g} deg, "
-                             f"but the design {design.name!r} puts it at "
-                             f"{math.degrees(b):.6g} deg")
-    given = design.lumped_fields
-    derived = derived_lumped_fields(design, skip=set(PARAMETER_NAMES) - set(GEOMETRIC))
-    for key in GEOMETRIC:
-        expected = given.get(key, derived.get(key))
-        value = getattr(params, key)
-        if expected is not None and abs(value - expected) > 1e-9 * abs(expected):
-            raise SceneError(f"[reducer.parameters] {key} = {value:.9g}, but the design "
-                             f"{design.name!r} gives {key} = {expected:.9g}")
-
-
-#: lumped fields that follow from the design's geometry
-GEOMETRIC = ("d_s", "d_c", "d_r", "d_p", "alpha_s", "alpha_r")
 
 
 def _extension(key: str, table):

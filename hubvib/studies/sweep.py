@@ -12,7 +12,9 @@ from hubvib.lumped import FrequencyShift, Spectrum, frequency_sensitivity, frequ
 from hubvib.lumped.sensitivity import Sensitivity
 
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
-from hubvib.runtime.progress import stage
+from hubvib.render.captions import figure_lines
+from hubvib.render.html import write_html_reports
+from hubvib.runtime.progress import stage, working
 from hubvib.studies.scene import Scene
 from hubvib.studies.study import Study
 
@@ -128,7 +130,7 @@ def report_markdown(result: StudyResult, plot_names: list[str]) -> str:
         lines.append(f"| {r['mode']} | {r['kind']} | {value} | {there} | "
                      f"{r['relative_sensitivity']:.4g} |")
     if plot_names:
-        lines += ["", "## Plots", ""] + [f"![{n}]({n})" for n in plot_names]
+        lines += ["", "## Plots", ""] + [x for n in plot_names for x in figure_lines(n)]
     return "\n".join(lines) + "\n"
 
 
@@ -176,10 +178,13 @@ def _shift_figure(result: StudyResult):
 
 def _run(scene: Scene, staged: Path) -> StudyResult:
     started = time.perf_counter()
-    result = run_study(scene)
+    with working("lumped spectra and shifts"):
+        result = run_study(scene)
     stage(f"lumped spectra and shifts of {len(scene.values)} values", started)
     started = time.perf_counter()
-    write_study(result, staged)
+    with working("tables and report"):
+        write_study(result, staged)
+        result.files += [p for p in write_html_reports(staged) if p not in result.files]
     stage(f"tables{', plots' if scene.plots else ''} and report", started)
     return result
 
@@ -192,14 +197,17 @@ def _summary(scene: Scene, result: StudyResult, folder: Path, files: list) -> di
 def _lines(scene: Scene, result: StudyResult, folder: Path) -> list[str]:
     out = [f"scene {scene.name!r}: {scene.parameter} {result.base_value:.6g} -> "
            f"{', '.join(f'{v:.3g}' for v in scene.values)}",
-           f"{'mode':>4} {'type':<13} {'base [rad/s]':>13} {'shift at last value [%]':>24}  "
-           f"first value shifting >= {scene.threshold_percent:g} %"]
+           # both units: the crack scenes print Hz, the lumped model's own unit is rad/s
+           f"{'mode':>4} {'type':<13} {'base [Hz]':>11} {'base [rad/s]':>13} "
+           f"{'shift at last value [%]':>24}  first value shifting >= "
+           f"{scene.threshold_percent:g} %"]
     last = result.shifts[-1]
     for r in result.detection():
         first = "not reached" if r["detectable_at"] is None else f"{r['detectable_at']:.4g}"
-        out.append(f"{r['mode']:>4} {r['kind']:<13} {r['omega_base_rad_s']:>13.3f} "
-                   f"{last.percent[r['mode'] - 1]:>24.3f}  {first}")
-    out.append(f"\nreport: {folder / 'report.md'}")
+        omega = r["omega_base_rad_s"]
+        out.append(f"{r['mode']:>4} {r['kind']:<13} {omega / (2 * math.pi):>11.3f} "
+                   f"{omega:>13.3f} {last.percent[r['mode'] - 1]:>24.3f}  {first}")
+    out.append(f"\nreport: {folder / 'report.md'} (in a browser: {folder / 'report.html'})")
     return out
 
 

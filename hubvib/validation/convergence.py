@@ -16,6 +16,7 @@ finishes; a rerun skips the levels already written (resume).
 from __future__ import annotations
 
 import csv
+import io
 import math
 import time
 from pathlib import Path
@@ -28,6 +29,7 @@ from hubvib.fem.edge_crack import fe_rotation_compliance, handbook_added_complia
 from hubvib.fem.material import Material
 from hubvib.fem.ring_stiffness import ring_stiffness
 from hubvib.fem.tooth_stiffness import reducer_mesh_stiffness
+from hubvib.foundation.files import MAX_FILE_BYTES, read_text
 from hubvib.meshing.levels import scaled_options
 from hubvib.meshing.ring_mesh import ring_mesh
 
@@ -182,10 +184,27 @@ def run_study(quantity: str, folder: Path, scales=None, progress=print) -> Path:
 
 
 def _read(path: Path) -> list[dict]:
+    """The finished levels of a resumed study (rows without a value are recomputed);
+    a damaged file is refused naming it, the line and what to do (it said only
+    ``'utf-8' codec can't decode byte 0xe9``)."""
     if not path.exists():
         return []
-    with open(path, newline="") as handle:
-        return [r for r in csv.DictReader(handle) if r.get("value")]
+    what = "convergence levels file"
+    text = read_text(path, what, ValueError, kind="CSV", max_bytes=MAX_FILE_BYTES)
+    rows = []
+    for line, row in enumerate(csv.DictReader(io.StringIO(text, newline="")), start=2):
+        if not row.get("value"):
+            continue
+        try:
+            cells = {k: float(v) for k, v in row.items() if v not in ("", None)}
+        except (TypeError, ValueError, AttributeError):
+            cells = None
+        if cells is None or None in row or "scale" not in cells or not all(
+                math.isfinite(v) for v in cells.values()):
+            raise ValueError(f"{what} {str(path)!r} line {line}: {dict(row)} is not a level of "
+                             f"finite numbers; delete the file to compute every level again")
+        rows.append(row)
+    return rows
 
 
 def _append(path: Path, row: dict) -> None:

@@ -1,0 +1,84 @@
+"""One caption per figure a report shows: what it shows, its colours and magnification.
+
+Reports embed figures with :func:`figure_lines`, which adds the caption line under the
+image; a figure without a caption here is a ``KeyError`` (tests render every report
+and so find a new figure that nobody described).  Keys are file names without folders;
+mode renders are matched by their pattern (``mode_NN``, ``fe_ring_mode_NN``).
+"""
+from __future__ import annotations
+
+import re
+from pathlib import PurePosixPath
+
+from hubvib.render.modes import AMPLITUDE
+
+#: the FE renders' magnification (``hubvib.render.fe.MAGNIFIED``, which imports the FE
+#: stage: a test keeps the two equal)
+FE_MAGNIFIED = 0.03
+
+CAPTIONS = {
+    "frequency_vs_parameter.png": "Natural frequency [rad/s] of every mode against the swept "
+                                  "parameter, both axes logarithmic; one line per mode.",
+    "shift_percent.png": "Frequency shift [%] of every mode against the swept parameter (log "
+                         "axis); the dotted line is the detection threshold.",
+    "frequency_vs_depth.png": "Relative frequency shift [%] of each mode against crack depth "
+                              "[mm], planet 1 on the cracked tooth.",
+    "shift_vs_depth.png": "Frequency drop a record sees [Hz] of each mode against crack depth "
+                          "[mm] (log axis); the black line is the alarm threshold.",
+    "pod.png": "Probability of detection against crack depth [mm] per mode; dashed: the "
+               "required POD, dotted: the false-alarm rate.",
+    "detectability_map.png": "Smallest detectable crack depth [mm] against the mounting "
+                             "stiffness swept [N/m] (log axis).",
+    "carrier_position.png": "Frequency change [%] of each mode that moves against the "
+                            "carrier angle, over one passage of planet 1 across the cracked "
+                            "tooth (deepest crack): marked line at the mean mesh ratio, dotted "
+                            "at its minimum; the shaded band is the time the cracked tooth is "
+                            "in mesh.",
+    "c_ru_change.png": "Change of c_ru and c_r against the intact ring [%] over the crack "
+                       "depth at its deepest point [mm]: one line per half-length "
+                       "(semi-elliptic), and the plane crack through the face width.",
+    "fe_ring_loaded.png": "The FE ring under the planets' mesh forces: colour is von Mises "
+                          "stress [MPa] (scale at the right), grey the undeformed outline, "
+                          "deformation magnified as stated in the picture.",
+    "fe_crack_tip.png": "Close-up of the crack tip with the mesh: colour is von Mises stress "
+                        "[MPa], the bar at the lower left gives the length scale, "
+                        "deformation magnified as stated in the picture.",
+    "order_spectrum.png": "Amplitude [m/s²] of the sensor signal against carrier order, with "
+                          "a zoom around the mesh order z_r.",
+    "spectrogram.png": "Spectrogram of the sensor signal of the deepest crack: frequency "
+                       "[Hz] against time [s].",
+    "indicators.png": "Condition indicators against crack depth [mm], divided by their "
+                      "intact mean; the band is ± 2 standard deviations over noise seeds.",
+    "tsa.png": "Time-synchronous average of the sensor signal [m/s²] over one carrier "
+               "revolution against the carrier angle [deg].",
+}
+_PATTERNS = (
+    (re.compile(r"fe_ring_mode_(\d+)\.png"),
+     "FE ring mode {n} on its clamped supports: colour is the displacement magnitude "
+     "relative to its largest value, grey the undeformed outline; the largest displacement "
+     f"is drawn as {100 * FE_MAGNIFIED:g} % of the outer radius."),
+    (re.compile(r"mode_(\d+)\.(png|gif)"),
+     "Mode {n} of the lumped model: sun orange, planets green, ring purple, carrier grey, "
+     f"moved by the mode (largest displacement drawn as {100 * AMPLITUDE:g} % of the ring "
+     "radius); the grey outlines are the bodies at rest."),
+    (re.compile(r"convergence_(\w+)\.png"),
+     "Relative error of {n} against DOFs on log-log axes."),
+)
+
+
+def caption(name: str) -> str:
+    """The caption of the figure file ``name`` (a path or a file name)."""
+    base = PurePosixPath(str(name)).name
+    if base in CAPTIONS:
+        return CAPTIONS[base]
+    for pattern, text in _PATTERNS:
+        found = pattern.fullmatch(base)
+        if found:
+            number = found.group(1)
+            return text.format(n=int(number) if number.isdigit() else number)
+    raise KeyError(f"figure {base!r} has no caption in hubvib.render.captions")
+
+
+def figure_lines(path: str) -> list[str]:
+    """Markdown lines showing the figure ``path`` with its caption, then a blank line."""
+    return [f"![{PurePosixPath(str(path)).name}]({path})", "", f"*{caption(path)}*", ""]
