@@ -1,6 +1,18 @@
 """Issue 21: the layers hold (import-linter contracts in pyproject.toml) and no module
-imports itself back through others (grimp's graph, imports inside functions included)."""
+imports itself back through others (grimp's graph, imports inside functions included).
+
+The stage folders (fem/, meshing/, lumped/, validation/) sit at the repository root and
+install as subpackages of hubvib (pyproject ``package-dir``).  import-linter and grimp walk
+one package folder, so the checks run on the house assembled as it installs: every package
+folder copied to its dotted place under a temporary ``hubvib/``, imported from there in a
+fresh interpreter.
+"""
+import json
+import os
+import shutil
+import subprocess
 import sys
+import tomllib
 from pathlib import Path
 
 import pytest
@@ -8,14 +20,43 @@ import pytest
 ROOT = Path(__file__).parents[1]
 
 
-def test_import_linter_contracts_are_kept(capsys, monkeypatch):
-    from importlinter.cli import lint_imports
+@pytest.fixture(scope="module")
+def house(tmp_path_factory) -> Path:
+    """A folder holding ``hubvib/`` laid out as the wheel installs it (Python files only)."""
+    config = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
+    folders = config["package-dir"]
+    out = tmp_path_factory.mktemp("house")
+    for package in config["packages"]:
+        parent = next((p for p in sorted(folders, key=len, reverse=True)
+                       if package == p or package.startswith(p + ".")), None)
+        rest = package[len(parent):].lstrip(".").replace(".", "/") if parent else package
+        source = ROOT / folders[parent] / rest if parent else ROOT / rest
+        target = out / package.replace(".", "/")
+        target.mkdir(parents=True, exist_ok=True)
+        for file in source.glob("*.py"):
+            shutil.copy2(file, target / file.name)
+    return out
 
-    monkeypatch.chdir(ROOT)
-    code = lint_imports(config_filename=str(ROOT / "pyproject.toml"), no_cache=True)
-    out = capsys.readouterr().out
-    assert code == 0, f"import-linter (pyproject.toml [tool.importlinter]):\n{out}"
-    assert "2 kept, 0 broken" in out, out
+
+def _in_house(house: Path, code: str, *args: str) -> subprocess.CompletedProcess:
+    """Run ``code`` in a fresh interpreter started in ``house``, so that hubvib is imported
+    from there (path entries come before the editable install's finder)."""
+    return subprocess.run([sys.executable, "-c", code, *args], cwd=house, capture_output=True, text=True,
+                          env={**os.environ, "PYTHONPATH": str(house)}, timeout=300)
+
+
+def test_house_is_the_installed_layout(house):
+    run = _in_house(house, "import hubvib.fem, hubvib.lumped; print(hubvib.fem.__file__)")
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.startswith(str(house)), run.stdout
+
+
+def test_import_linter_contracts_are_kept(house):
+    code = ("import sys\nfrom importlinter.cli import lint_imports\n"
+            "sys.exit(lint_imports(config_filename=sys.argv[1], no_cache=True))")
+    run = _in_house(house, code, str(ROOT / "pyproject.toml"))
+    assert run.returncode == 0, f"import-linter (pyproject.toml [tool.importlinter]):\n{run.stdout}{run.stderr}"
+    assert "2 kept, 0 broken" in run.stdout, run.stdout
 
 
 def _cycles(graph) -> list[list[str]]:
@@ -51,11 +92,24 @@ def _cycles(graph) -> list[list[str]]:
     return found
 
 
-def test_no_module_cycle():
-    grimp = pytest.importorskip("grimp")
-    graph = grimp.build_graph("hubvib", cache_dir=None)
-    assert len(graph.modules) > 100, "grimp must see every subpackage of hubvib/"
-    assert _cycles(graph) == [], "module import cycles (grimp, every import counted)"
+def test_no_module_cycle(house):
+    pytest.importorskip("grimp")
+    code = ("import json, grimp\ngraph = grimp.build_graph('hubvib', cache_dir=None)\n"
+            "print(json.dumps({m: sorted(graph.find_modules_directly_imported_by(m))"
+            " for m in graph.modules}))")
+    run = _in_house(house, code)
+    assert run.returncode == 0, run.stderr
+    edges = json.loads(run.stdout)
+
+    class Graph:
+        modules = set(edges)
+
+        def find_modules_directly_imported_by(self, m):
+            return edges[m]
+
+    assert len(edges) > 100, "grimp must see every subpackage of hubvib, the root folders too"
+    assert any(m.startswith("hubvib.fem.") for m in edges), "grimp does not see hubvib.fem"
+    assert _cycles(Graph()) == [], "module import cycles (grimp, every import counted)"
 
 
 def test_cycle_finder_finds_a_cycle():
