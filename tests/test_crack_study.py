@@ -46,7 +46,7 @@ SMALL = DetectionOptions(samples=200, map_samples=30, mount_points=3)
 
 def _synthetic_scene(apply: str):
     scene = load_scene(None)  # depths 0..21 mm and through the rim (24.66 mm)
-    return replace(scene, crack=replace(scene.crack, apply=apply), renders=False,
+    return replace(scene, study=replace(scene.study, apply=apply), renders=False,
                    tables={"detection": SMALL})
 
 

@@ -17,10 +17,10 @@ def add_parser(sub) -> None:
     p.set_defaults(handler=run)
 
 
-def _missing_extras(scene) -> str | None:
+def _missing_extras(scene, study) -> str | None:
     """What the scene needs that is not installed, as an error message."""
     needs = [("plots = true", "matplotlib", "report", scene.plots)]
-    if scene.crack is not None:
+    if study.fe:
         needs += [("[crack] (FE stage)", module, "fem", True)
                   for module in ("gmsh", "skfem")] + [("[crack]", "tqdm", "report", True)]
     needs += [("renders = true", module, "render", scene.renders)
@@ -38,14 +38,14 @@ def run(args) -> int:
     from hubvib.studies.scene import load_scene
 
     scene = load_scene(args.scene)
-    missing = _missing_extras(scene)
+    study = study_of(scene)
+    missing = _missing_extras(scene, study)
     if missing:
         print(f"hubvib: error: {missing}", file=sys.stderr)
         return 2
     folder = Path(args.out or scene.folder)
-    if scene.crack is not None:  # before any work: the FE results must have a place to go
+    if study.fe:  # before any work: the FE results must have a place to go
         check_writable("stiffness")
-    study = study_of(scene)
     # the folder is checked and locked before any work; the files go to a stage and
     # move into place together when all are written (printing comes after: a closed
     # stdout must not cost the files)

@@ -27,6 +27,7 @@ import numpy as np
 from hubvib.design.presets import raba118
 from hubvib.detection.numbers import percent
 from hubvib.fem.estimate import USABLE_QUALITY
+from hubvib.foundation.errors import SceneError
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
 from hubvib.render.captions import figure_lines
 from hubvib.render.html import write_html_reports
@@ -34,9 +35,9 @@ from hubvib.runtime.engines import Execution
 from hubvib.runtime.progress import stage, working
 from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe,
                                         provenance, write_crack_study)
-from hubvib.studies.crack_sweep import case_label, run_fe_cases
-from hubvib.studies.scene import Scene
-from hubvib.studies.study import Study
+from hubvib.studies.crack_sweep import CrackSweep, case_label, run_fe_cases
+from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
+from hubvib.studies.study import Scene, Study
 
 #: slices of the face width in the slice method
 SLICES = 512
@@ -335,5 +336,17 @@ def _lines(scene: Scene, result: CrackGrowthResult, folder: Path) -> list[str]:
     return out
 
 
+def parse_solid(data: dict, design, params) -> CrackSweep:
+    """The solid crack growth's ``[crack]`` table (and no lumped-sweep keys, no [signal])."""
+    sweep = parse_crack_table(data["crack"], design)
+    refuse_sweep_keys(data)
+    if "signal" in data:
+        raise SceneError("[signal] needs a plane crack study: the tooth curves of the signal "
+                         "are plane (remove [signal] or set [crack] model = \"plane\")")
+    return sweep
+
+
 #: the solid crack growth: [crack] model = "solid"
-CRACK_GROWTH = Study("growth", _run, _summary, _lines)
+CRACK_GROWTH = Study("growth", _run, _summary, _lines, parse_solid, tables=frozenset({"crack"}),
+                     selects=lambda data: crack_model(data) == "solid",
+                     selection='[crack] with model = "solid"', fe=True, renders=True)

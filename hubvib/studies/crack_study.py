@@ -38,9 +38,9 @@ from hubvib.runtime.fe_cache import fe_version
 from hubvib.runtime.progress import stage, working
 from hubvib.signal.report import write_signal_study
 from hubvib.signal.study import run_signal_study
-from hubvib.studies.crack_sweep import ACCURACY, crack_of, run_fe_cases
-from hubvib.studies.scene import Scene
-from hubvib.studies.study import Study
+from hubvib.studies.crack_sweep import ACCURACY, CrackSweep, crack_of, run_fe_cases
+from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
+from hubvib.studies.study import Scene, Study
 
 #: a mode "follows" a stiffness when its relative sensitivity exceeds this
 SENSITIVE = 0.01
@@ -476,5 +476,14 @@ def _lines(scene: Scene, result: CrackStudyResult, folder: Path) -> list[str]:
     return out
 
 
-#: the plane crack study: a scene with [crack] (model = "plane")
-CRACK_STUDY = Study("crack", _run, _summary, _lines)
+def parse_plane(data: dict, design, params) -> CrackSweep:
+    """The plane crack study's ``[crack]`` table (and no lumped-sweep keys)."""
+    sweep = parse_crack_table(data["crack"], design)
+    refuse_sweep_keys(data)
+    return sweep
+
+
+#: the plane crack study: a scene with [crack] (model = "plane", the default)
+CRACK_STUDY = Study("crack", _run, _summary, _lines, parse_plane, tables=frozenset({"crack"}),
+                    selects=lambda data: crack_model(data) != "solid",
+                    selection='[crack] with model = "plane"', fe=True, renders=True)

@@ -1,15 +1,15 @@
-"""The study registry: a scene's ``kind`` -> the study that runs it (``Study``).  A new
-study kind is its module (table parse, run, outputs, report, summary) and one entry here."""
+"""The shipped study kinds, registered (``hubvib.studies.study.STUDIES``): the lumped sweep,
+the plane crack study and the solid crack growth.  A new study kind is its module (tables,
+parse, run, outputs, report, summary) and one ``register_study`` line here, or a call
+wherever it is defined."""
 from __future__ import annotations
 
 from hubvib.studies.crack_growth import CRACK_GROWTH
 from hubvib.studies.crack_study import CRACK_STUDY
-from hubvib.studies.study import Study
+from hubvib.studies.study import STUDIES, Study, register_study, study_of
 from hubvib.studies.sweep import SWEEP
 
-STUDIES: dict[str, Study] = {study.kind: study for study in (SWEEP, CRACK_STUDY, CRACK_GROWTH)}
+for _study in (SWEEP, CRACK_STUDY, CRACK_GROWTH):
+    register_study(_study)
 
-
-def study_of(scene) -> Study:
-    """The registered study of the scene's kind."""
-    return STUDIES[scene.kind]
+__all__ = ["STUDIES", "Study", "register_study", "study_of"]

@@ -49,30 +49,34 @@ A scene is TOML with these tables (all keys shown; SI units)::
     vtm = false                   # ... and VTK files for ParaView: a multiblock per
                                   # lumped mode, the FE ring's fields as .vtu
 
-With ``[crack]`` the study is the crack sweep and ``[study]`` needs no
-``parameter``/``values``.
+Which study a scene runs is the one registered study kind its tables select
+(``hubvib.studies.study.select_study``): no study table, the lumped sweep of ``[study]``
+``parameter``/``values``; ``[crack]``, the plane crack study (model = "plane") or the solid
+crack growth (model = "solid"), and ``[study]`` needs no ``parameter``/``values``.  Each
+kind parses its own tables (``Scene.study``); this module checks the common ones.
 """
 from __future__ import annotations
 
 import math
 import tomllib
-from dataclasses import dataclass, field, replace
 from importlib import resources
 from pathlib import Path
 
 from hubvib.build import load_design, parse_design
 from hubvib.build.consistency import check_consistent
-from hubvib.build.stages import ring_gear
+from hubvib.build.stages import lumped_parameters
 from hubvib.design import DesignError, PRESETS, preset_design
 from hubvib.detection.options import parse_detection_table
 from hubvib.foundation.errors import SceneError
-from hubvib.lumped import METHODS, ParameterError, PlanetaryParameters, field_names
-from hubvib.meshing.crack import STARTS
-from hubvib.meshing.gear import GearGeometryError
+from hubvib.lumped import METHODS, ParameterError, field_names
 from hubvib.runtime.engines import parse_execution_table
-from hubvib.runtime.params_input import load_parameters, read_text_file
+from hubvib.runtime.params_input import apply_overrides, load_parameters, read_text_file
 from hubvib.signal.options import parse_signal_table
-from hubvib.studies.crack_sweep import ACCURACY, APPLY, CrackSweep, MAX_DEPTHS, MODELS, crack_of
+from hubvib.studies.kinds import STUDIES
+from hubvib.studies.study import Scene, check_keys, select_study, string_key, study_tables
+
+__all__ = ["DEFAULT_SCENE", "Scene", "SceneError", "STUDIES", "default_scene_text",
+           "load_scene", "parse_scene", "shipped_scene_text", "shipped_scenes"]
 
 PARAMETER_NAMES = field_names()
 
@@ -86,41 +90,13 @@ EXTENSION_TABLES = {
     "execution": parse_execution_table,
 }
 
+#: the keys of the common tables (each study kind checks its own tables' keys)
 ALLOWED = {
-    "": {"reducer", "design", "study", "crack", "output", *EXTENSION_TABLES},
+    "": {"reducer", "design", "study", "output", *EXTENSION_TABLES},
     "reducer": {"preset", "parameters"},
     "study": {"parameter", "values", "detection_threshold_percent", "method"},
-    "crack": {"depths", "through_rim", "tooth", "start", "angle_deg", "apply", "accuracy",
-              "workers", "c_ru_mount", "c_r_mount", "model", "half_lengths"},
     "output": {"folder", "plots", "renders", "gif", "vtm"},
 }
-
-
-@dataclass(frozen=True)
-class Scene:
-    name: str
-    params: PlanetaryParameters
-    parameter: str
-    values: tuple[float, ...]
-    threshold_percent: float
-    method: str
-    folder: Path
-    plots: bool
-    source: dict = field(repr=False, compare=False, default_factory=dict)
-    crack: CrackSweep | None = None
-    renders: bool = False
-    gif: bool = False
-    vtm: bool = False
-    design: object = None
-    tables: dict = field(default_factory=dict, compare=False)
-
-    @property
-    def kind(self) -> str:
-        """The study this scene runs (``hubvib.studies.kinds.STUDIES``): "sweep" (no
-        [crack] table), "crack" ([crack] model = "plane") or "growth" (model = "solid")."""
-        if self.crack is None:
-            return "sweep"
-        return "growth" if self.crack.model == "solid" else "crack"
 
 
 #: the shipped scene ``hubvib run`` runs without an argument
@@ -171,18 +147,21 @@ def load_scene(path: Path | str | None = None) -> Scene:
 
 
 def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
-    """Parse and check a scene's text; ``base`` is the folder of relative paths in it."""
+    """Parse and check a scene's text; ``base`` is the folder of relative paths in it.
+
+    The common tables are checked here; the registry says which study kind the scene's
+    tables select (``hubvib.studies.study.select_study``) and that kind parses its own."""
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"scene {name!r} is not valid TOML: {exc}") from None
-    _check_keys(data, "")
+    check_keys(data, "", ALLOWED[""] | study_tables())
     reducer = _table(data, "reducer")
     study = _table(data, "study")
     output = _table(data, "output")
-    _check_keys(reducer, "reducer")
-    _check_keys(study, "study")
-    _check_keys(output, "output")
+    for where, table in (("reducer", reducer), ("study", study), ("output", output)):
+        check_keys(table, where, ALLOWED[where])
+    kind = select_study(data)
 
     overrides = reducer.get("parameters", {})
     if not isinstance(overrides, dict):
@@ -190,37 +169,16 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
     design = _design(data, reducer, base)
     try:
         if "design" in data:
-            from hubvib.build.stages import lumped_parameters
-
-            from hubvib.runtime.params_input import apply_overrides
-
             params = apply_overrides(lumped_parameters(design), overrides)
         else:
-            params = load_parameters(_string(reducer, "reducer", "preset", "raba118"),
+            params = load_parameters(string_key(reducer, "reducer", "preset", "raba118"),
                                      overrides=overrides)
     except (ParameterError, ValueError) as exc:
         raise SceneError(f"[reducer]: {exc}") from None
-    if "crack" in data or "design" in data:
+    if kind.fe or "design" in data:
         check_consistent(design, params, "[reducer.parameters]", SceneError)
 
-    crack = _crack(data["crack"], design) if "crack" in data else None
-    if crack is not None and ("parameter" in study or "values" in study):
-        raise SceneError("[study] parameter and values are for a lumped sweep; a scene with "
-                         "[crack] sweeps the crack depth instead (remove them or the [crack] "
-                         "table)")
-    parameter = _string(study, "study", "parameter", "c_ru")
-    numeric = [f for f in field_names() if f not in ("theta", "c_rp_factors")]
-    if parameter not in numeric:
-        raise SceneError(f"[study] parameter = {parameter!r}; allowed: {', '.join(numeric)}")
-    values = study.get("values", [] if crack else None)
-    if not isinstance(values, list) or (crack is None and not values) or not all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) for v in values):
-        raise SceneError(f"[study] values = {values!r}, but it must be a non-empty list of numbers")
-    for i, v in enumerate(values):
-        try:
-            params.replace(**{parameter: float(v)})
-        except ParameterError as exc:
-            raise SceneError(f"[study] values[{i}]: {exc}") from None
+    options = kind.parse(data, design, params)
     threshold = study.get("detection_threshold_percent", 1.0)
     if isinstance(threshold, bool) or not isinstance(threshold, (int, float)) or not (
         math.isfinite(threshold) and threshold > 0
@@ -228,7 +186,7 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
         raise SceneError(
             f"[study] detection_threshold_percent = {threshold!r}, but it must be a number > 0"
         )
-    method = _string(study, "study", "method", "jacobi")
+    method = string_key(study, "study", "method", "jacobi")
     if method not in METHODS:
         raise SceneError(f"[study] method = {method!r}; allowed: {', '.join(METHODS)}")
     plots = output.get("plots", True)
@@ -241,23 +199,20 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
             raise SceneError(f"[output] {key} = {flags[key]!r}, but it must be true or false")
     if (flags["gif"] or flags["vtm"]) and not flags["renders"]:
         raise SceneError("[output] gif and vtm need renders = true")
-    if flags["renders"] and crack is None:
+    if flags["renders"] and not kind.renders:
         raise SceneError("[output] renders = true needs a [crack] study (it renders its modes)")
-    folder = Path(_string(output, "output", "folder", "hubvib-out"))
+    folder = Path(string_key(output, "output", "folder", "hubvib-out"))
     tables = {key: _extension(key, data[key]) for key in EXTENSION_TABLES if key in data}
-    if "signal" in tables and crack is not None and crack.model == "solid":
-        raise SceneError("[signal] needs a plane crack study: the tooth curves of the signal "
-                         "are plane (remove [signal] or set [crack] model = \"plane\")")
     for table in tables.values():  # checks that need the design (e.g. its mesh frequency)
         if hasattr(table, "check_design"):
             table.check_design(design)
-    return Scene(name, params, parameter, tuple(float(v) for v in values), float(threshold),
-                 method, folder, plots, data, crack, **flags, design=design, tables=tables)
+    return Scene(name, params, float(threshold), method, folder, plots, kind.kind, options,
+                 data, **flags, design=design, tables=tables)
 
 
 def _design(data, reducer, base: Path | None):
     """The scene's design: its [design] table, else the [reducer] preset's design."""
-    preset = _string(reducer, "reducer", "preset", "raba118")
+    preset = string_key(reducer, "reducer", "preset", "raba118")
     try:
         if "design" not in data:
             return preset_design(preset) if preset in PRESETS else None
@@ -284,154 +239,8 @@ def _extension(key: str, table):
     return EXTENSION_TABLES[key](table)
 
 
-def _crack(table, design) -> CrackSweep:
-    if not isinstance(table, dict):
-        raise SceneError(f"[crack] must be a table, got {table!r}")
-    _check_keys(table, "crack")
-    depths = table.get("depths", [0.0])
-    if isinstance(depths, list) and len(depths) > MAX_DEPTHS:
-        raise SceneError(f"[crack] depths: {len(depths)} values; allowed at most {MAX_DEPTHS}")
-    if not isinstance(depths, list) or not depths or not all(
-            isinstance(d, (int, float)) and not isinstance(d, bool) and math.isfinite(d)
-            for d in depths):
-        raise SceneError(f"[crack] depths = {depths!r}, but it must be a non-empty list of "
-                         "numbers [m]")
-    if depths[0] != 0 or any(b <= a for a, b in zip(depths[:-1], depths[1:])):
-        raise SceneError(f"[crack] depths = {depths!r}: allowed ascending values from 0 "
-                         "(the intact ring) [m]")
-    start = _string(table, "crack", "start", "root")
-    if start not in STARTS:
-        raise SceneError(f"[crack] start = {start!r}; allowed: {', '.join(STARTS)}")
-    apply = _string(table, "crack", "apply", "series")
-    if apply not in APPLY:
-        raise SceneError(f"[crack] apply = {apply!r}; allowed: {', '.join(APPLY)}")
-    accuracy = _string(table, "crack", "accuracy", "default")
-    if accuracy not in ACCURACY:
-        raise SceneError(f"[crack] accuracy = {accuracy!r}; allowed: {', '.join(ACCURACY)}")
-    integers = {}
-    for key, default, low, high in (("tooth", 0, 0, None), ("workers", 2, 1, 64)):
-        value = table.get(key, default)
-        if isinstance(value, bool) or not isinstance(value, int) or value < low or (
-                high is not None and value > high):
-            raise SceneError(f"[crack] {key} = {value!r}; allowed integers {low}.."
-                             f"{high if high is not None else ''}")
-        integers[key] = value
-    angle = table.get("angle_deg", 0.0)
-    if isinstance(angle, bool) or not isinstance(angle, (int, float)) or not abs(angle) <= 60:
-        raise SceneError(f"[crack] angle_deg = {angle!r}; allowed -60..60")
-    through = table.get("through_rim", False)
-    if not isinstance(through, bool):
-        raise SceneError(f"[crack] through_rim = {through!r}, but it must be true or false")
-    mounts = {}
-    for key in ("c_ru_mount", "c_r_mount"):
-        value = table.get(key)
-        if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))
-                                  or not (math.isfinite(value) and value > 0)):
-            raise SceneError(f"[crack] {key} = {value!r}; allowed: a finite stiffness > 0 [N/m]")
-        if value is not None and apply != "series":
-            raise SceneError(f"[crack] {key} is given, but it applies only with apply = "
-                             f"\"series\" (apply = {apply!r})")
-        mounts[key] = None if value is None else float(value)
-    model = _string(table, "crack", "model", "plane")
-    if model not in MODELS:
-        raise SceneError(f"[crack] model = {model!r}; allowed: {', '.join(MODELS)}")
-    sweep = CrackSweep(tuple(float(d) for d in depths), integers["tooth"], start,
-                       math.radians(angle), apply, accuracy, integers["workers"], **mounts,
-                       design=design, model=model,
-                       half_lengths=_half_lengths(table, model, start, through))
-    return _checked_depths(sweep, through)
-
-
-#: at most this many half-lengths in a solid sweep
-MAX_HALF_LENGTHS = 8
-#: allowed depth / half-length of a semi-elliptic crack (the shipped scene: 0.19..2.25)
-ASPECT_RATIOS = (0.125, 3.0)
-
-
-def _half_lengths(table, model, start, through) -> tuple[float, ...]:
-    """``[crack] half_lengths`` [m] of a solid sweep (the face width is checked with the
-    depths)."""
-    values = table.get("half_lengths")
-    if model == "plane":
-        if values is not None:
-            raise SceneError("[crack] half_lengths applies only with model = \"solid\" "
-                             "(a plane crack runs through the face width)")
-        return ()
-    if start != "root" or through:
-        raise SceneError(f"[crack] model = \"solid\" grows semi-elliptic root cracks inside "
-                         f"the rim: allowed start = \"root\" (got {start!r}) and through_rim "
-                         f"= false (got {str(through).lower()})")
-    if not isinstance(values, list) or not 1 <= len(values) <= MAX_HALF_LENGTHS or not all(
-            isinstance(c, (int, float)) and not isinstance(c, bool) and math.isfinite(c)
-            and c > 0 for c in values) or any(b <= a for a, b in zip(values[:-1], values[1:])):
-        raise SceneError(f"[crack] half_lengths = {values!r}; allowed: 1..{MAX_HALF_LENGTHS} "
-                         "ascending values > 0 [m] with model = \"solid\"")
-    return tuple(float(c) for c in values)
-
-
-def _checked_depths(sweep: CrackSweep, through: bool) -> CrackSweep:
-    """Validate every depth against the design's ring (no meshing) and add the through depth."""
-    if sweep.tooth >= sweep.reducer.ring.teeth:
-        raise SceneError(f"[crack] tooth = {sweep.tooth}; allowed 0..{sweep.reducer.ring.teeth - 1} "
-                         f"(the ring of {sweep.reducer.name!r} has {sweep.reducer.ring.teeth} teeth)")
-    ring = ring_gear(sweep.reducer)
-    depths = list(sweep.depths)
-    if sweep.half_lengths:
-        from hubvib.meshing.crack import MIN_LIGAMENT
-
-        limit = sweep.reducer.face_width / 2 - MIN_LIGAMENT
-        if sweep.half_lengths[-1] > limit:
-            raise SceneError(f"[crack] half_lengths = {list(sweep.half_lengths)!r}; allowed "
-                             f"values up to {limit:.6g} m (half the {sweep.reducer.face_width:g} "
-                             f"m face width less {1e3 * MIN_LIGAMENT:g} mm)")
-        if len(depths) < 2:
-            raise SceneError("[crack] depths = [0.0]: model = \"solid\" needs a depth > 0")
-        low, high = ASPECT_RATIOS
-        for depth in depths[1:]:
-            for half in sweep.half_lengths:
-                if not low <= depth / half <= high:
-                    raise SceneError(
-                        f"[crack] depth {depth!r} m with half_length {half!r} m: allowed "
-                        f"depth / half_length {low:g}..{high:g} (the front's ends curve with "
-                        "radius depth^2 / half_length or half_length^2 / depth, which the "
-                        "mesh must resolve)")
-    if through and sweep.start == "root":
-        try:
-            limit = crack_of(sweep, 0.0).through_depth(ring)
-        except GearGeometryError as exc:
-            raise SceneError(f"[crack]: {exc}") from None
-        if depths[-1] < limit:
-            depths.append(limit)
-    for i, depth in enumerate(depths):
-        try:
-            crack_of(sweep, depth).path(ring)
-        except GearGeometryError as exc:
-            raise SceneError(f"[crack] depths[{i}]: {exc}") from None
-        if sweep.model == "solid" and crack_of(sweep, depth).is_through(ring):
-            raise SceneError(f"[crack] depths[{i}] = {depth!r} m: a semi-elliptic crack must "
-                             f"stay inside the rim, allowed 0..{crack_of(sweep, 0.0).through_depth(ring):.6g} "
-                             "m (exclusive)")
-    return replace(sweep, depths=tuple(depths))
-
-
 def _table(data, key):
     value = data.get(key, {})
     if not isinstance(value, dict):
         raise SceneError(f"[{key}] must be a table, got {value!r}")
-    return value
-
-
-def _check_keys(table, where):
-    unknown = set(table) - ALLOWED[where]
-    if unknown:
-        place = f"[{where}]" if where else "top level"
-        raise SceneError(
-            f"unknown key(s) {sorted(unknown)} at {place}; allowed: {sorted(ALLOWED[where])}"
-        )
-
-
-def _string(table, where, key, default):
-    value = table.get(key, default)
-    if not isinstance(value, str):
-        raise SceneError(f"[{where}] {key} = {value!r}, but it must be a string")
     return value

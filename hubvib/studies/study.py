@@ -1,24 +1,140 @@
-"""What a study kind is: how it runs into an output folder, and what ``hubvib run`` says of
-its result (the ``--json`` object and the printed lines).  ``hubvib.studies.kinds`` is the
-registry; a scene's ``kind`` names its study."""
+"""What a study kind is, the registry of kinds, and the scene that carries one.
+
+A scene is a tagged union: the common part (reducer and design, ``[study]`` threshold and
+eigensolver, ``[output]``, the optional ``[detection]``/``[signal]``/``[execution]``
+tables) and exactly one study kind, named by ``Scene.kind``, whose parsed tables are
+``Scene.study``.  Each kind declares the scene tables that select it and parses them
+itself; ``select_study`` asks the registry which kind a scene's tables select.  A new study
+kind is its module and one ``register_study`` call (``hubvib.studies.kinds`` registers the
+shipped ones).  Library code: nothing here prints.
+"""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable
+
+from hubvib.foundation.errors import SceneError
+from hubvib.lumped import PlanetaryParameters
+from hubvib.studies.crack_sweep import CrackSweep
+
+
+def _always(data: dict) -> bool:
+    return True
 
 
 @dataclass(frozen=True)
 class Study:
     """One study kind.
 
+    ``tables`` are the scene tables that select it (and that it owns; none: the scene
+    has no other kind's table); ``selects(data)`` narrows the choice among kinds with the
+    same tables from the raw TOML (``selection`` says how, for the error messages).
+    ``parse(data, design, params)`` checks its tables (``SceneError`` naming the key and
+    the allowed range) and returns its frozen options, ``Scene.study``.
     ``run(scene, staged)`` computes and writes every file into the staged folder and
     returns the result (its ``files`` are the paths written); ``summary(scene, result,
     folder, files)`` is the ``hubvib run --json`` object; ``lines(scene, result, folder)``
-    are the printed lines.  Library code: nothing here prints.
+    are the printed lines.  ``fe``: the study runs the FE stage on the scene's design (it
+    needs the FE extra and a writable stiffness cache, and the lumped parameters must
+    agree with the design); ``renders``: it can render (``[output] renders``).
     """
 
     kind: str
     run: Callable[[Any, Path], Any]
     summary: Callable[[Any, Any, Path, list], dict]
     lines: Callable[[Any, Any, Path], list]
+    parse: Callable[[dict, Any, PlanetaryParameters], Any]
+    tables: frozenset = frozenset()
+    selects: Callable[[dict], bool] = _always
+    selection: str = ""
+    fe: bool = False
+    renders: bool = False
+
+    def describe(self) -> str:
+        """How a scene selects this kind, e.g. ``crack ([crack] with model = "plane")``."""
+        where = self.selection or (" + ".join(f"[{t}]" for t in sorted(self.tables))
+                                   or "no study table")
+        return f"{self.kind} ({where})"
+
+
+#: the registered study kinds: kind -> Study (``register_study`` adds one)
+STUDIES: dict[str, Study] = {}
+
+
+def register_study(study: Study) -> Study:
+    """Add a study kind to the registry; a kind name or a table set + selection taken by
+    another kind is refused (``ValueError``)."""
+    if study.kind in STUDIES:
+        raise ValueError(f"study kind {study.kind!r} is registered already")
+    STUDIES[study.kind] = study
+    return study
+
+
+def study_tables() -> set[str]:
+    """Every scene table that selects a registered study kind."""
+    return {table for study in STUDIES.values() for table in study.tables}
+
+
+def select_study(data: dict) -> Study:
+    """The one registered kind the scene's tables select; ``SceneError`` naming the tables
+    when none or several do."""
+    present = frozenset(key for key in data if key in study_tables())
+    matches = [s for s in STUDIES.values() if s.tables == present and s.selects(data)]
+    if len(matches) == 1:
+        return matches[0]
+    names = " + ".join(f"[{t}]" for t in sorted(present)) or "no study table"
+    kinds = "; ".join(s.describe() for s in STUDIES.values())
+    if not matches:
+        raise SceneError(f"no study kind is selected by {names}; allowed: one of {kinds}")
+    raise SceneError(f"{names} select several study kinds "
+                     f"({', '.join(s.kind for s in matches)}); registered: {kinds}")
+
+
+def study_of(scene: Scene) -> Study:
+    """The registered study of the scene's kind."""
+    return STUDIES[scene.kind]
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A parsed scene: what is common to every kind, and ``study``, the options of its
+    kind (``kind``) as that kind's ``parse`` returned them."""
+
+    name: str
+    params: PlanetaryParameters
+    threshold_percent: float
+    method: str
+    folder: Path
+    plots: bool
+    kind: str
+    study: Any
+    source: dict = field(repr=False, compare=False, default_factory=dict)
+    renders: bool = False
+    gif: bool = False
+    vtm: bool = False
+    design: object = None
+    tables: dict = field(default_factory=dict, compare=False)
+
+    @property
+    def crack(self) -> CrackSweep | None:
+        """The FE crack sweep of a crack study (its ``[crack]`` table), else ``None`` (what
+        the detection and signal modules read)."""
+        return self.study if isinstance(self.study, CrackSweep) else None
+
+
+def check_keys(table: dict, where: str, allowed) -> None:
+    """Refuse keys of a scene table (``where``: its name, "" the top level) not in
+    ``allowed``."""
+    unknown = set(table) - set(allowed)
+    if unknown:
+        place = f"[{where}]" if where else "top level"
+        raise SceneError(f"unknown key(s) {sorted(unknown)} at {place}; allowed: {sorted(allowed)}")
+
+
+def string_key(table: dict, where: str, key: str, default: str) -> str:
+    """``table[key]`` (``default`` when absent), refused unless a string."""
+    value = table.get(key, default)
+    if not isinstance(value, str):
+        raise SceneError(f"[{where}] {key} = {value!r}, but it must be a string")
+    return value

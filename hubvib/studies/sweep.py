@@ -8,15 +8,45 @@ from pathlib import Path
 
 import numpy as np
 
-from hubvib.lumped import FrequencyShift, Spectrum, frequency_sensitivity, frequency_shift, natural_modes
+from hubvib.foundation.errors import SceneError
+from hubvib.lumped import (FrequencyShift, ParameterError, PlanetaryParameters, Spectrum,
+                           field_names, frequency_sensitivity, frequency_shift, natural_modes)
 from hubvib.lumped.sensitivity import Sensitivity
 
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
 from hubvib.render.captions import figure_lines
 from hubvib.render.html import write_html_reports
 from hubvib.runtime.progress import stage, working
-from hubvib.studies.scene import Scene
-from hubvib.studies.study import Study
+from hubvib.studies.study import Scene, Study, string_key
+
+
+@dataclass(frozen=True)
+class SweepOptions:
+    """The ``[study]`` keys of a lumped sweep: the swept field and its modified values (in
+    the field's SI unit, e.g. [N/m] for a stiffness)."""
+
+    parameter: str
+    values: tuple[float, ...]
+
+
+def parse_sweep(data: dict, design, params: PlanetaryParameters) -> SweepOptions:
+    """``[study] parameter`` (a stiffness or mass field) and ``values`` (each a valid
+    modification of the scene's parameters)."""
+    study = data.get("study", {})
+    parameter = string_key(study, "study", "parameter", "c_ru")
+    numeric = [f for f in field_names() if f not in ("theta", "c_rp_factors")]
+    if parameter not in numeric:
+        raise SceneError(f"[study] parameter = {parameter!r}; allowed: {', '.join(numeric)}")
+    values = study.get("values")
+    if not isinstance(values, list) or not values or not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) for v in values):
+        raise SceneError(f"[study] values = {values!r}, but it must be a non-empty list of numbers")
+    for i, v in enumerate(values):
+        try:
+            params.replace(**{parameter: float(v)})
+        except ParameterError as exc:
+            raise SceneError(f"[study] values[{i}]: {exc}") from None
+    return SweepOptions(parameter, tuple(float(v) for v in values))
 
 
 @dataclass
@@ -29,7 +59,7 @@ class StudyResult:
 
     @property
     def base_value(self) -> float:
-        return float(getattr(self.scene.params, self.scene.parameter))
+        return float(getattr(self.scene.params, self.scene.study.parameter))
 
     def detection(self) -> list[dict]:
         """Per mode: the modified value nearest the baseline whose |shift| reaches the threshold."""
@@ -51,15 +81,16 @@ class StudyResult:
         rows = []
         for s in self.shifts:
             for row in s.rows():
-                rows.append({self.scene.parameter: s.modified_value, **row})
+                rows.append({self.scene.study.parameter: s.modified_value, **row})
         return rows
 
 
 def run_study(scene: Scene) -> StudyResult:
+    parameter = scene.study.parameter
     baseline = natural_modes(scene.params, scene.method)
-    shifts = [frequency_shift(scene.params, scene.parameter, v, method=scene.method)
-              for v in scene.values]
-    sensitivity = frequency_sensitivity(scene.params, scene.parameter, scene.method, baseline)
+    shifts = [frequency_shift(scene.params, parameter, v, method=scene.method)
+              for v in scene.study.values]
+    sensitivity = frequency_sensitivity(scene.params, parameter, scene.method, baseline)
     return StudyResult(scene, baseline, shifts, sensitivity)
 
 
@@ -73,7 +104,7 @@ def write_study(result: StudyResult, folder: Path) -> StudyResult:
         write_json(folder / "results.json", {
             "scene": result.scene.name,
             "parameters": result.scene.params.to_dict(),
-            "study_parameter": result.scene.parameter,
+            "study_parameter": result.scene.study.parameter,
             "baseline_value": result.base_value,
             "threshold_percent": result.scene.threshold_percent,
             "baseline_spectrum": result.baseline.rows(),
@@ -96,8 +127,9 @@ def report_markdown(result: StudyResult, plot_names: list[str]) -> str:
     lines = [
         f"# hubvib study: {scene.name}",
         "",
-        f"Reducer: N = {p.n_planets} planets, baseline {scene.parameter} = {result.base_value:.6g} "
-        f"(SI), modified values {', '.join(f'{v:.6g}' for v in scene.values)}.",
+        f"Reducer: N = {p.n_planets} planets, baseline {scene.study.parameter} = "
+        f"{result.base_value:.6g} "
+        f"(SI), modified values {', '.join(f'{v:.6g}' for v in scene.study.values)}.",
         "Stiffnesses are the numbers given by the scene (no FE stage ran).",
         "",
         "## Validation status",
@@ -115,9 +147,9 @@ def report_markdown(result: StudyResult, plot_names: list[str]) -> str:
     for r in result.baseline.rows():
         lines.append(f"| {r['mode']} | {r['omega_rad_s']:.2f} | {r['frequency_hz']:.3f} | "
                      f"{r['kind']} | {r['multiplicity']} |")
-    lines += ["", f"## Shift in percent per mode ({scene.parameter} as column)", ""]
-    header = "| mode | type | " + " | ".join(f"{v:.3g}" for v in scene.values) + " |"
-    lines += [header, "|---:|---|" + "---:|" * len(scene.values)]
+    lines += ["", f"## Shift in percent per mode ({scene.study.parameter} as column)", ""]
+    header = "| mode | type | " + " | ".join(f"{v:.3g}" for v in scene.study.values) + " |"
+    lines += [header, "|---:|---|" + "---:|" * len(scene.study.values)]
     for i, kind in enumerate(result.baseline.kind):
         cells = " | ".join(f"{s.percent[i]:+.3f}" for s in result.shifts)
         lines.append(f"| {i + 1} | {kind} | {cells} |")
@@ -149,7 +181,7 @@ def _frequency_figure(result: StudyResult):
                 label=f"{i + 1} {result.baseline.kind[i]}")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel(f"{result.scene.parameter} [SI]")
+    ax.set_xlabel(f"{result.scene.study.parameter} [SI]")
     ax.set_ylabel("natural frequency [rad/s]")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=6, ncol=2)
@@ -169,7 +201,7 @@ def _shift_figure(result: StudyResult):
                 label=f"{i + 1} {result.baseline.kind[i]}")
     ax.axhline(-result.scene.threshold_percent, color="k", ls=":", lw=0.8)
     ax.set_xscale("log")
-    ax.set_xlabel(f"{result.scene.parameter} [SI]")
+    ax.set_xlabel(f"{result.scene.study.parameter} [SI]")
     ax.set_ylabel("frequency shift [%]")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=6, ncol=2)
@@ -180,7 +212,7 @@ def _run(scene: Scene, staged: Path) -> StudyResult:
     started = time.perf_counter()
     with working("lumped spectra and shifts"):
         result = run_study(scene)
-    stage(f"lumped spectra and shifts of {len(scene.values)} values", started)
+    stage(f"lumped spectra and shifts of {len(scene.study.values)} values", started)
     started = time.perf_counter()
     with working("tables and report"):
         write_study(result, staged)
@@ -195,8 +227,8 @@ def _summary(scene: Scene, result: StudyResult, folder: Path, files: list) -> di
 
 
 def _lines(scene: Scene, result: StudyResult, folder: Path) -> list[str]:
-    out = [f"scene {scene.name!r}: {scene.parameter} {result.base_value:.6g} -> "
-           f"{', '.join(f'{v:.3g}' for v in scene.values)}",
+    out = [f"scene {scene.name!r}: {scene.study.parameter} {result.base_value:.6g} -> "
+           f"{', '.join(f'{v:.3g}' for v in scene.study.values)}",
            # both units: the crack scenes print Hz, the lumped model's own unit is rad/s
            f"{'mode':>4} {'type':<13} {'base [Hz]':>11} {'base [rad/s]':>13} "
            f"{'shift at last value [%]':>24}  first value shifting >= "
@@ -211,5 +243,6 @@ def _lines(scene: Scene, result: StudyResult, folder: Path) -> list[str]:
     return out
 
 
-#: the lumped sweep: a scene without [crack]
-SWEEP = Study("sweep", _run, _summary, _lines)
+#: the lumped sweep: a scene with no other kind's table
+SWEEP = Study("sweep", _run, _summary, _lines, parse_sweep,
+              selection="no study table: [study] parameter and values")
