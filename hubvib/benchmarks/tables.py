@@ -4,7 +4,6 @@ from __future__ import annotations
 import time
 from dataclasses import replace
 
-import numpy as np
 
 from hubvib.benchmarks.solid import solid_race
 from hubvib.build import raba118
