@@ -179,7 +179,11 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
         "mounting": {"apply": result.model.apply, "c_ru_mount_N_m": result.model.c_ru_mount,
                      "c_r_mount_N_m": result.model.c_r_mount},
         "detection": None if study is None else {
-            "options": study.options.to_dict(), "threshold_hz": study.pod.threshold_hz,
+            "options": study.options.to_dict(), "threshold_hz": [float(t) for t in study.pod.threshold_hz],
+            "sigma_hz": [float(t) for t in study.pod.sigma_hz],
+            "per_mode_false_alarm_rate": study.pod.per_mode_rate,
+            "family_pod": {f"{T:g}": [float(p) for p in v]
+                           for T, v in study.pod.family_pod.items()},
             "engaged_fraction": study.timing.engaged_fraction,
             "pass_seconds": study.timing.pass_seconds,
             "watched_modes": [int(i) + 1 for i in study.watched_modes()]},
@@ -227,11 +231,12 @@ def _image(name: str, plots: list[str]) -> list[str]:
 
 def _pod_modes(study) -> list[int]:
     """Modes drawn in the POD plot: the watched ones and any other reaching the required
-    POD, at most eight."""
+    POD, at most four (with the three family curves, the threshold lines: at most eight
+    curves)."""
     pod = study.pod
     reaching = np.flatnonzero((pod.pod >= pod.detection_probability).any(axis=0))
     modes = list(study.watched_modes())
-    return (modes + [int(i) for i in reaching if i not in modes])[:8]
+    return (modes + [int(i) for i in reaching if i not in modes])[:4]
 
 
 def json_safe(value):

@@ -71,8 +71,9 @@ def shift_threshold_figure(name: str, pod):
         positive = shift[:, i] > 0
         ax.plot(1e3 * pod.depths[positive], shift[positive, i], **style(n),
                 label=_label(i, nominal.frequency_hz[0, i], pod.kind[i]))
-    ax.axhline(pod.threshold_hz, color="k", lw=1.2,
-               label=f"alarm threshold {pod.threshold_hz:.3g} Hz")
+    low, high = pod.threshold_hz[pod.watched].min(), pod.threshold_hz[pod.watched].max()
+    ax.axhspan(low, high * 1.0001, color="k", alpha=0.15,
+               label=f"alarm thresholds of the watched modes {low:.3g}-{high:.3g} Hz")
     ax.set_yscale("log")
     ax.set_xlabel("crack depth [mm]")
     ax.set_ylabel("frequency drop seen by a record [Hz]")
@@ -91,9 +92,10 @@ def pod_figure(name: str, pod, modes):
     for n, i in enumerate(modes):
         ax.plot(1e3 * pod.depths, pod.pod[:, i], **style(n),
                 label=_label(i, f0[i], pod.kind[i]))
-    if pod.pod_model is not None and len(modes):
-        ax.plot(1e3 * pod.depths, pod.pod_model[:, list(modes)].max(axis=1), color="0.5",
-                lw=2, ls=(0, (1, 1)), label="best of these, model spectrum as baseline")
+    for n, T in enumerate(sorted(pod.family_pod)[:3]):
+        ax.plot(1e3 * pod.depths, pod.family_pod[T], color="k", lw=2.5 - 0.5 * n,
+                ls=("-", "--", ":")[n], marker="o", ms=3,
+                label=f"watched modes together, {T:g} s records")
     ax.axhline(pod.detection_probability, color="k", lw=0.8, ls="--",
                label=f"required POD {pod.detection_probability:g}")
     ax.axhline(pod.false_alarm_rate, color="k", lw=0.8, ls=":",
@@ -101,7 +103,10 @@ def pod_figure(name: str, pod, modes):
     ax.set_ylim(-0.02, 1.02)
     ax.set_xlabel("crack depth [mm]")
     ax.set_ylabel("probability of detection")
-    ax.set_title(f"{name}: probability of detection ({pod.samples} Monte Carlo samples)")
+    ax.axvline(1e3 * pod.depths[1], color="0.6", lw=0.8, ls="-.",
+               label=f"shallowest crack computed {1e3 * pod.depths[1]:.3g} mm")
+    ax.set_title(f"{name}: probability of detection ({pod.samples} Monte Carlo samples; "
+                 f"single modes: records of the scene's length)", fontsize=9)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
     return fig
