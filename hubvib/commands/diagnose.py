@@ -7,12 +7,14 @@ from pathlib import Path
 
 def add_parser(sub) -> None:
     p = sub.add_parser("diagnose", help="estimate the ring crack depth from identified natural "
-                       "frequencies (CSV: frequency_hz, optional mode, baseline_hz)")
+                       "frequencies (CSV: frequency_hz, optional mode, baseline_hz, "
+                       "damping_ratio, record_s or sigma_hz)")
     p.add_argument("--scene", required=True, help="scene TOML file with a [crack] study, or "
                    "the name of a shipped scene (hubvib scenes lists them)")
     p.add_argument("--measured", required=True, type=Path,
                    help="CSV of identified natural frequencies: header frequency_hz, optional "
-                   "columns mode (model mode, 1 = lowest) and baseline_hz (same mode, intact)")
+                   "columns mode (model mode, 1 = lowest), baseline_hz (same mode, intact), "
+                   "damping_ratio and record_s (or sigma_hz) of the identification")
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
 
@@ -31,13 +33,21 @@ def run(args) -> int:
     nominal = ref.nominal_hz[0]
     print(f"scene {scene.name!r}: {len(result.modes)} measured mode(s), baseline: "
           f"{'the measured intact frequencies' if result.baseline == 'measured' else 'the model intact spectrum'}")
-    print(f"{'mode':>4} {'model intact [Hz]':>17} {'measured [Hz]':>13} {'shift [Hz]':>10}  "
-          f"informative")
-    for mode, f, shift, useful in zip(result.modes, measured.frequency_hz, result.shift_hz,
-                                      result.informative):
-        print(f"{mode:>4} {nominal[mode - 1]:>17.3f} {f:>13.3f} {shift:>+10.3f}  "
+    print(f"{'mode':>4} {'model intact [Hz]':>17} {'measured [Hz]':>13} {'shift [Hz]':>10} "
+          f"{'sigma [Hz]':>10}  informative")
+    for mode, f, shift, sigma, useful in zip(result.modes, measured.frequency_hz,
+                                             result.shift_hz, result.sigma_hz,
+                                             result.informative):
+        print(f"{mode:>4} {nominal[mode - 1]:>17.3f} {f:>13.3f} {shift:>+10.3f} {sigma:>10.3f}  "
               f"{'yes' if useful else 'no'}")
-    if result.depth is None:
+    print(f"(shift: measured minus baseline, both record-averaged; sigma: standard deviation "
+          f"of one identified frequency; fit p-value {result.fit_p_value:.3g} at "
+          f"{1e3 * result.fit_depth:.3g} mm)")
+    if result.verdict == "not explained by a ring crack":
+        print(f"verdict: {result.verdict} (fit statistic {result.fit_statistic:.3g}, p = "
+              f"{result.fit_p_value:.2g} < {ref.fit_false_alarm_rate:g}): "
+              f"{result.explanation()}")
+    elif result.depth is None:
         print(f"verdict: {result.verdict} (no measured mode tells the deepest crack of the "
               f"sweep, {1e3 * ref.depths[-1]:.3g} mm, from an intact reducer)")
     elif result.verdict == "crack indicated":
