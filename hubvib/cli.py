@@ -38,7 +38,7 @@ def main(argv: list[str] | None = None) -> int:
     except BrokenPipeError:
         _silence_stdout()
         return EXIT_BROKEN_PIPE
-    except OSError as exc:  # hubvib.output.OutputError names the file; others say what failed
+    except OSError as exc:  # hubvib.foundation.output.OutputError names the file; others say what failed
         if type(exc).__str__ is not OSError.__str__:
             return _error(exc)
         where = f"{exc.filename!r}: " if exc.filename else ""

@@ -72,7 +72,7 @@ def test_stability_command(capsys):
 
 
 def test_import_lumped_stays_light():
-    code = ("import sys, lumped, hubvib.cli; "
+    code = ("import sys, hubvib.lumped, hubvib.cli; "
             "heavy = {'gmsh', 'skfem', 'pyvista', 'matplotlib', 'meshio', 'mpmath'} & set(sys.modules); "
             "print(sorted(heavy))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

@@ -10,10 +10,10 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from hubvib.crack_growth import slice_ratio, solid_rows
-from hubvib.crack_sweep import CrackSweep, case_inputs, check_case
-from hubvib.fe_cache import CacheEntryError
-from hubvib.scene import SceneError, parse_scene
+from hubvib.studies.crack_growth import slice_ratio, solid_rows
+from hubvib.studies.crack_sweep import CrackSweep, case_inputs, check_case
+from hubvib.runtime.fe_cache import CacheEntryError
+from hubvib.studies.scene import SceneError, parse_scene
 
 WIDTH = 0.04
 
@@ -114,8 +114,8 @@ def test_a_solid_scene_without_a_crack_is_refused():
 
 
 def test_a_semi_elliptic_crack_through_the_rim_is_refused():
-    from hubvib.crack_sweep import crack_of
-    from hubvib.design.build import ring_gear
+    from hubvib.studies.crack_sweep import crack_of
+    from hubvib.build.stages import ring_gear
 
     sweep = parse_scene(SOLID_SCENE, "solid").crack
     through = crack_of(sweep, 0.0).through_depth(ring_gear(sweep.reducer))
@@ -165,7 +165,7 @@ def test_poor_cells_do_not_move_c_ru():
     stiffness, against 8 % from the levels), so the sweep reports the half-stiffness
     change per case: halving is the worse direction, and it stays within a quarter of
     the change.  Deepest and longest crack of the shipped scene."""
-    from hubvib.design.build import ring_gear
+    from hubvib.build.stages import ring_gear
     from hubvib.design.presets import raba118
     from hubvib.fem.estimate import USABLE_QUALITY
     from hubvib.fem.ring_stiffness import default_carrier_teeth, ring_stiffness

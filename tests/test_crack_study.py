@@ -17,11 +17,11 @@ import pytest
 from test_detection_helpers import TIMING, synthetic_fe_rows
 
 from hubvib.cli import main
-from hubvib.crack_study import crack_report, crack_study_from_fe, write_crack_study
+from hubvib.studies.crack_study import crack_report, crack_study_from_fe, write_crack_study
 from hubvib.detection.options import DetectionOptions
 from hubvib.lumped import natural_modes
 from hubvib.lumped.tracking import match
-from hubvib.scene import load_scene
+from hubvib.studies.scene import load_scene
 
 FAST = """
 [reducer]

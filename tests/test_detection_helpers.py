@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from hubvib.crack_sweep import CrackSweep
+from hubvib.studies.crack_sweep import CrackSweep
 from hubvib.detection.carrier import MeshTiming
 from hubvib.detection.model import CrackModel
 from hubvib.lumped import raba118
@@ -41,7 +41,7 @@ def synthetic_model(apply="series", c_ru_mount=None, c_r_mount=None, **rows) -> 
 
 
 def test_synthetic_rows_pass_the_fe_cache_plausibility_check():
-    from hubvib.crack_sweep import check_case
+    from hubvib.studies.crack_sweep import check_case
 
     for row in synthetic_fe_rows():
         check_case(row["depth_m"])(row)  # raises CacheEntryError when implausible

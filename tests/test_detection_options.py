@@ -5,7 +5,7 @@ import pytest
 
 from hubvib.cli import main
 from hubvib.detection.options import DetectionOptions, detection_options
-from hubvib.scene import SceneError, load_scene, parse_scene
+from hubvib.studies.scene import SceneError, load_scene, parse_scene
 
 LUMPED = "[study]\nvalues = [1e5]\n"
 

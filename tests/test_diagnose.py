@@ -176,9 +176,9 @@ plots = false
 @pytest.fixture
 def cli(tmp_path, monkeypatch):
     """A scene whose FE rows are synthetic (no FE stage) and a CSV writer."""
-    import hubvib.crack_sweep
+    import hubvib.studies.crack_sweep
 
-    monkeypatch.setattr(hubvib.crack_sweep, "run_fe_cases",
+    monkeypatch.setattr(hubvib.studies.crack_sweep, "run_fe_cases",
                         lambda sweep, progress=True: (synthetic_fe_rows(sweep.depths), 0))
     scene = tmp_path / "scene.toml"
     scene.write_text(SCENE)

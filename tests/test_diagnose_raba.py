@@ -16,11 +16,11 @@ def student_errors(rng, shape, dof=8):
 
 @pytest.fixture(scope="module")
 def raba():
-    from hubvib.crack_sweep import run_fe_cases
+    from hubvib.studies.crack_sweep import run_fe_cases
     from hubvib.detection.carrier import mesh_timing
     from hubvib.detection.model import CrackModel
     from hubvib.detection.options import detection_options
-    from hubvib.scene import load_scene
+    from hubvib.studies.scene import load_scene
 
     scene = load_scene("raba118_crack")
     options = detection_options(scene)

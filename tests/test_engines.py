@@ -1,4 +1,4 @@
-"""Where a sweep's cases run (hubvib.engines): the scene's [execution] table and run_cases.
+"""Where a sweep's cases run (hubvib.runtime.engines): the scene's [execution] table and run_cases.
 
 A 2-worker ``LocalCluster`` costs a few seconds, so one test gathers the fault
 behaviours of issue 16 point 1 (a worker killed mid-task, a case that raises, the
@@ -15,9 +15,9 @@ from pathlib import Path
 
 import pytest
 
-from hubvib.engines import (EngineError, Execution, OneAtATime, parse_execution_table,
+from hubvib.runtime.engines import (EngineError, Execution, OneAtATime, parse_execution_table,
                             run_cases)
-from hubvib.scene import SceneError, parse_scene
+from hubvib.studies.scene import SceneError, parse_scene
 
 ITEMS = list(range(8))
 #: the case that raises, and its message
@@ -123,7 +123,7 @@ def test_local_in_process_failure_names_the_case_and_keeps_the_others():
 
 def test_local_pool_failure_names_the_case_and_keeps_the_others():
     """Two spawned workers; ``math.sqrt`` (picklable, light to import) fails on -1."""
-    pytest.importorskip("hubvib.process_pool")
+    pytest.importorskip("hubvib.runtime.process_pool")
     items = [4.0, 9.0, -1.0, 16.0, 25.0]
     on_result, delivered = collector()
     with pytest.raises(EngineError, match="case -1.0 failed: ValueError: math domain error"):
@@ -134,7 +134,7 @@ def test_local_pool_failure_names_the_case_and_keeps_the_others():
 def test_local_pool_worker_that_dies_is_reported_once_per_message():
     """Both workers exit (``os._exit``): one EngineError line naming both cases and the
     broken pool once; no hang, nothing delivered."""
-    pytest.importorskip("hubvib.process_pool")
+    pytest.importorskip("hubvib.runtime.process_pool")
     on_result, delivered = collector()
     with pytest.raises(EngineError) as info:
         run_cases(os._exit, [3, 4], on_result, Execution(workers=2), workers=1)
@@ -146,7 +146,7 @@ def test_local_pool_worker_that_dies_is_reported_once_per_message():
 def test_local_pool_workers_run_one_blas_thread(monkeypatch):
     """As Dask's nanny does, so both engines round alike; the parent's environment is
     left as it was."""
-    pytest.importorskip("hubvib.process_pool")
+    pytest.importorskip("hubvib.runtime.process_pool")
     monkeypatch.setenv("OPENBLAS_NUM_THREADS", "7")
     monkeypatch.delenv("OMP_NUM_THREADS", raising=False)
     names = ["OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"]
@@ -279,7 +279,7 @@ workers = 2
 def test_crack_sweep_dask_equals_local_to_the_last_digit(tmp_path, monkeypatch):
     """Issue 16 'done when': the same FE rows with engine "dask" as with "local" (fresh
     caches each), timings excluded; a rerun on the dask run's cache computes nothing."""
-    from hubvib.crack_sweep import run_fe_cases
+    from hubvib.studies.crack_sweep import run_fe_cases
 
     sweep = parse_scene(HUB4_FAST, "hub4-fast").crack
     assert sweep.depths == (0.0, 0.002)

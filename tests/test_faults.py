@@ -84,14 +84,14 @@ def _children(pid: int) -> list[int]:
 def test_interrupt_in_process_is_one_line_and_keeps_the_folder(tmp_path, capsys, monkeypatch):
     """Item 8: KeyboardInterrupt anywhere in a run: exit 130, exactly one line, and the
     output folder keeps the previous run's set byte for byte (the stage is removed)."""
-    import hubvib.study
+    import hubvib.studies.sweep
 
     out, before = _snapshot_set(tmp_path, capsys)
 
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(hubvib.study, "run_study", interrupted)
+    monkeypatch.setattr(hubvib.studies.sweep, "run_study", interrupted)
     assert main(["run", "raba118_c_ru", "--out", str(out)]) == 130
     assert capsys.readouterr().err.splitlines()[-1:] == ["hubvib: interrupted"]
     assert _visible(out) == before
@@ -119,7 +119,7 @@ def test_sigint_to_a_real_run_exits_130_with_one_line(tmp_path):
 
 POOL_PARENT = textwrap.dedent("""
     import sys, time
-    from hubvib.process_pool import worker_pool
+    from hubvib.runtime.process_pool import worker_pool
 
     if __name__ == "__main__":
         try:
@@ -244,7 +244,7 @@ def test_full_tmpfs(tmp_path, capsys):
 def test_busy_output_folder_is_refused(tmp_path, capsys):
     """Item 12: a folder another run holds is refused at once in one line naming the folder
     and the holder's pid; the folder keeps its set."""
-    from hubvib.output import folder_lock
+    from hubvib.foundation.output import folder_lock
 
     out, before = _snapshot_set(tmp_path, capsys)
     with folder_lock(out):

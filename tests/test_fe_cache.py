@@ -1,4 +1,4 @@
-"""The FE cache (hubvib.fe_cache) as used by a crack sweep: faults are detected, never trusted.
+"""The FE cache (hubvib.runtime.fe_cache) as used by a crack sweep: faults are detected, never trusted.
 
 The FE stage is replaced by a synthetic ``fe_case`` (monkeypatched; the sweep runs with
 ``workers = 1``, in this process), so each test takes well under a second.  Every
@@ -18,11 +18,11 @@ from pathlib import Path
 
 import pytest
 
-import hubvib.crack_sweep as crack_sweep
-import hubvib.fe_cache as fe_cache
-from hubvib.crack_sweep import POSITIVE_KEYS, CrackSweep, case_inputs, run_fe_cases
+import hubvib.studies.crack_sweep as crack_sweep
+import hubvib.runtime.fe_cache as fe_cache
+from hubvib.studies.crack_sweep import POSITIVE_KEYS, CrackSweep, case_inputs, run_fe_cases
 from hubvib.design.presets import hub4, raba118
-from hubvib.fe_cache import CacheFolderError, entry_key
+from hubvib.runtime.fe_cache import CacheFolderError, entry_key
 from hubvib.meshing.crack import Crack
 
 DEPTHS = (0.0, 0.002, 0.004)

@@ -11,7 +11,7 @@ from hubvib.fem.annulus import fe_k_theta  # noqa: E402
 from hubvib.fem.elasticity import SingularSystemError, plane_model, solve  # noqa: E402
 from hubvib.fem.material import Material, MaterialError  # noqa: E402
 from hubvib.fem.ring_stiffness import ring_stiffness  # noqa: E402
-from hubvib.meshing import raba118  # noqa: E402
+from hubvib.build import raba118  # noqa: E402
 from hubvib.meshing.annulus import annulus_mesh  # noqa: E402
 from hubvib.meshing.crack import Crack  # noqa: E402
 from hubvib.meshing.ring_gear import Supports  # noqa: E402

@@ -4,7 +4,9 @@ import math
 import numpy as np
 import pytest
 
-from hubvib.meshing import measure, raba118
+from hubvib.build import raba118
+
+from hubvib.meshing import measure
 from hubvib.meshing.crack import Crack
 from hubvib.meshing.gear import GearGeometryError, SpurGear
 from hubvib.meshing.profile import ShaperCutter, ToothProfile

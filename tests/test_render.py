@@ -6,7 +6,7 @@ import pytest
 pv = pytest.importorskip("pyvista")
 imageio = pytest.importorskip("imageio")
 
-from hubvib.render import render_mode  # noqa: E402
+from hubvib.render.modes import render_mode  # noqa: E402
 from hubvib.lumped import natural_modes  # noqa: E402
 from hubvib.lumped.presets import raba118  # noqa: E402
 
@@ -45,16 +45,16 @@ def test_gif_and_multiblock_on_request(tmp_path):
 def cracked_ring_fields():
     pytest.importorskip("gmsh")
     pytest.importorskip("skfem")
-    from hubvib.fe_render import ring_fields
+    from hubvib.render.fe import ring_fields
     from hubvib.meshing.levels import scaled_options
-    from hubvib.meshing import raba118
+    from hubvib.build import raba118
     from hubvib.meshing.crack import Crack
 
     return ring_fields(raba118.design(), Crack(0, 0.012), scaled_options(4.0), modes=2)
 
 
 def test_fe_renders_are_real_distinct_and_repeatable(tmp_path, cracked_ring_fields):
-    from hubvib.fe_render import render_fe
+    from hubvib.render.fe import render_fe
 
     fields = cracked_ring_fields
     files = render_fe(fields, tmp_path / "a", vtu=True)
@@ -72,9 +72,9 @@ def test_fe_renders_are_real_distinct_and_repeatable(tmp_path, cracked_ring_fiel
 
 
 def test_fe_ring_fields_physics(cracked_ring_fields):
-    from hubvib.fe_render import ring_fields
+    from hubvib.render.fe import ring_fields
     from hubvib.meshing.levels import scaled_options
-    from hubvib.meshing import raba118
+    from hubvib.build import raba118
 
     fields = cracked_ring_fields
     intact = ring_fields(raba118.design(), None, scaled_options(4.0), modes=1)

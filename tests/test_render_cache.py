@@ -4,7 +4,7 @@ import json
 import numpy as np
 import pytest
 
-from hubvib.render_cache import array_digest, cache_folder, cached_render
+from hubvib.render.cache import array_digest, cache_folder, cached_render
 
 
 @pytest.fixture

@@ -3,7 +3,7 @@ from pathlib import Path
 import pytest
 
 from hubvib.cli import main
-from hubvib.scene import SceneError, default_scene_text, load_scene, parse_scene
+from hubvib.studies.scene import SceneError, default_scene_text, load_scene, parse_scene
 
 SCENES = sorted((Path(__file__).parents[1] / "scenes").glob("*.toml"))
 FE_SCENES = [s for s in SCENES if "[crack]" in s.read_text()]
@@ -16,7 +16,7 @@ def test_shipped_scenes_are_the_scene_files():
     the TOML files of scenes/, the default and an FE scene among them, each described by a
     first comment line: so the parametrised run below (and the solid crack-growth test)
     covers every shipped scene."""
-    from hubvib.scene import DEFAULT_SCENE, shipped_scenes
+    from hubvib.studies.scene import DEFAULT_SCENE, shipped_scenes
 
     shipped = shipped_scenes()
     assert sorted(shipped) == [s.stem for s in SCENES], "package data vs scenes/*.toml"
@@ -57,7 +57,7 @@ def test_default_scene_is_the_shipped_crack_scene():
 def test_fig4_scene_detects_the_crack_in_rotational_modes_only(tmp_path, capsys):
     fig4 = Path(__file__).parents[1] / "scenes" / "raba118_c_ru.toml"
     assert main(["run", str(fig4), "--out", str(tmp_path)]) == 0
-    from hubvib.study import run_study
+    from hubvib.studies.sweep import run_study
 
     result = run_study(load_scene(fig4))
     detected = {r["kind"] for r in result.detection() if r["detectable_at"] is not None}

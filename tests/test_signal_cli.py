@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from hubvib.cli import main
-from hubvib.scene import SceneError
+from hubvib.studies.scene import SceneError
 from hubvib.signal import study as signal_study
 from hubvib.signal.mesh_curves import synthetic_curves
 from hubvib.signal.options import SignalOptions, parse_signal_table
@@ -58,7 +58,7 @@ def test_sample_rate_is_checked_against_the_scenes_own_mesh_frequency():
     """Nyquist: fs >= 2 k f_mesh with f_mesh = z_r f_s z_s / (z_s + z_r) of the scene's design
     (Raba 64/26 at 1500 rpm and k = 3: 2 x 3 x 64 x 25 x 26/90 = 2773.33 Hz; hub4 80/24:
     2 x 3 x 80 x 25 x 24/104 = 2769.23 Hz)."""
-    from hubvib.scene import parse_scene
+    from hubvib.studies.scene import parse_scene
 
     for design, needed in (('[reducer]\npreset = "raba118"', "2773.33"),
                            ('[design]\npreset = "hub4"', "2769.23")):

@@ -4,7 +4,7 @@ import math
 import numpy as np
 
 from hubvib.lumped import raba118
-from hubvib.meshing import raba118 as geometry
+from hubvib.build import raba118 as geometry
 from hubvib.meshing.gear import centre_distance, rotation
 from hubvib.signal.mesh_curves import synthetic_curves
 from hubvib.signal.mesh_phase import raba118_phasing

@@ -91,7 +91,7 @@ def test_solver_choice_by_size_and_name():
 @pytest.fixture(scope="module")
 def coarse_solid_ring():
     pytest.importorskip("gmsh")
-    from hubvib.meshing import raba118
+    from hubvib.build import raba118
     from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
     from hubvib.meshing.levels import solid_options
 
@@ -103,7 +103,7 @@ def test_solid_c_ru_between_plane_stress_and_plane_strain(coarse_solid_ring):
     """A 40 mm wide ring in 3D is stiffer than in plane stress and softer than in plane
     strain, whose bending stiffness is 1 / (1 - nu^2) = 1.099 times higher."""
     from hubvib.fem.ring_stiffness import ring_stiffness
-    from hubvib.meshing import raba118
+    from hubvib.build import raba118
     from hubvib.meshing.ring_mesh import ring_mesh
 
     ring = raba118.ring_gear()
@@ -214,7 +214,7 @@ def test_lazy_basis_is_scikit_fems_basis(mesh, element):
 
 def test_blas_threads_are_set_and_restored():
     """OpenBLAS runs with the asked thread count inside the block and its own after."""
-    from hubvib.blas import _handles, blas_threads
+    from hubvib.foundation.blas import _handles, blas_threads
 
     if not _handles():
         pytest.skip("no OpenBLAS loaded")

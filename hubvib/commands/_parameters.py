@@ -5,7 +5,7 @@ from pathlib import Path
 
 from hubvib.lumped import METHODS, PRESETS, field_names
 
-from hubvib.params_input import CONVENIENCE_KEYS, load_parameters, parse_set
+from hubvib.runtime.params_input import CONVENIENCE_KEYS, load_parameters, parse_set
 
 PARAMETER_HELP = (
     "Parameter keys (SI: kg, m, N/m, rad): " + ", ".join(field_names())
@@ -32,8 +32,8 @@ def parameters(args):
     """The lumped parameters the options describe (``--design`` replaces ``--preset``)."""
     if args.design is None:
         return load_parameters(args.preset, args.params, parse_set(args.set))
-    from hubvib.design.build import lumped_parameters
-    from hubvib.params_input import apply_overrides
+    from hubvib.build.stages import lumped_parameters
+    from hubvib.runtime.params_input import apply_overrides
 
     from .design import design_from_argument
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from hubvib.output import json_text
+from hubvib.foundation.output import json_text
 
 #: (key, label, unit, baseline key or None) of the printed table
 ROWS = (

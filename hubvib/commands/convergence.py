@@ -6,7 +6,7 @@ import math
 import sys
 from pathlib import Path
 
-from hubvib.output import json_text, locked_folder
+from hubvib.foundation.output import json_text, locked_folder
 
 
 def add_parser(sub) -> None:

@@ -18,7 +18,8 @@ def add_parser(sub) -> None:
 
 def design_from_argument(text: str):
     """A design file path, or the name of a preset design."""
-    from hubvib.design import PRESETS, load_design, preset_design
+    from hubvib.build import load_design
+    from hubvib.design import PRESETS, preset_design
 
     path = Path(text)
     if not path.exists() and text in PRESETS:
@@ -27,7 +28,7 @@ def design_from_argument(text: str):
 
 
 def run(args) -> int:
-    from hubvib.design import summary
+    from hubvib.build import summary
 
     info = summary(design_from_argument(args.file))
     if args.json:

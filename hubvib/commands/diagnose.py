@@ -22,7 +22,7 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     from hubvib.detection.diagnosis import diagnose_scene
     from hubvib.detection.measured import read_measured
-    from hubvib.scene import load_scene
+    from hubvib.studies.scene import load_scene
 
     measured = read_measured(args.measured)
     scene = load_scene(args.scene)

@@ -97,7 +97,7 @@ def _with_curve(design) -> dict:
 
 def _write(out: Path, designs) -> list[Path]:
     from hubvib.companion.efficiency_plot import efficiency_figure, link_loss_figure
-    from hubvib.output import save_figure, write_csv
+    from hubvib.foundation.output import save_figure, write_csv
 
     rows = [{"ratio": d.ratio, **{k: v for k, v in row.items()}}
             for d in designs for row in _with_curve(d)["curve"]]

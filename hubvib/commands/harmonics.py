@@ -29,7 +29,7 @@ def add_parser(sub) -> None:
 
 def run(args) -> int:
     from hubvib.companion import harmonics as h
-    from hubvib.output import json_text, output_set, write_csv, save_figure
+    from hubvib.foundation.output import json_text, output_set, write_csv, save_figure
 
     train = h.GearTrain(args.z1, args.z2, args.stages)
     analysis = h.analyse(h.read_periods(args.periods), args.pulses_per_rev, train, args.top,

@@ -8,7 +8,7 @@ import numpy as np
 
 from hubvib.meshing.crack import STARTS
 
-from hubvib.output import json_text, output_set
+from hubvib.foundation.output import json_text, output_set
 
 #: most bulk elements ``--size`` may ask for (estimated from the exact area or volume
 #: before meshing): 5e5 triangles take ~2 min to mesh on 2 cores (2.1e5 at 5e-4 m: 41 s)
@@ -48,7 +48,7 @@ def add_parser(sub) -> None:
 
 def bodies(args):
     """The ring and the named body (ring, sun or planet) of the design the options give."""
-    from hubvib.design.build import gear_body, ring_gear
+    from hubvib.build.stages import gear_body, ring_gear
 
     from .design import design_from_argument
 

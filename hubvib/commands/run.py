@@ -6,8 +6,8 @@ import sys
 import time
 from pathlib import Path
 
-from hubvib.output import json_text, output_set
-from hubvib.progress import stage
+from hubvib.foundation.output import json_text, output_set
+from hubvib.runtime.progress import stage
 
 
 def add_parser(sub) -> None:
@@ -35,7 +35,7 @@ def _missing_extras(scene) -> str | None:
 
 
 def run(args) -> int:
-    from hubvib.scene import load_scene
+    from hubvib.studies.scene import load_scene
 
     scene = load_scene(args.scene)
     missing = _missing_extras(scene)
@@ -44,7 +44,7 @@ def run(args) -> int:
         return 2
     folder = Path(args.out or scene.folder)
     if scene.crack is not None:  # before any work: the FE results must have a place to go
-        from hubvib.cache_check import check_writable
+        from hubvib.runtime.cache_check import check_writable
 
         check_writable("stiffness")
     # the folder is checked and locked before any work; the files go to a stage and
@@ -61,7 +61,7 @@ def run(args) -> int:
 
 
 def _lumped_study(scene, staged: Path):
-    from hubvib.study import run_study, write_study
+    from hubvib.studies.sweep import run_study, write_study
 
     started = time.perf_counter()
     result = run_study(scene)
@@ -73,7 +73,7 @@ def _lumped_study(scene, staged: Path):
 
 
 def _crack_growth(scene, staged: Path):
-    from hubvib.crack_growth import run_crack_growth, write_crack_growth
+    from hubvib.studies.crack_growth import run_crack_growth, write_crack_growth
 
     started = time.perf_counter()
     result = run_crack_growth(scene)
@@ -86,7 +86,7 @@ def _crack_growth(scene, staged: Path):
 
 
 def _crack_study(scene, staged: Path):
-    from hubvib.crack_study import run_crack_study, write_crack_study
+    from hubvib.studies.crack_study import run_crack_study, write_crack_study
 
     if scene.crack.model == "solid":
         return _crack_growth(scene, staged)
@@ -105,7 +105,7 @@ def _crack_study(scene, staged: Path):
         started = time.perf_counter()
     write_crack_study(result, staged)
     if "signal" in scene.tables:
-        from hubvib.output import write_text
+        from hubvib.foundation.output import write_text
 
         report = staged / "report.md"
         write_text(report, report.read_text(encoding="utf-8") + (

@@ -11,7 +11,7 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from hubvib.scene import DEFAULT_SCENE, shipped_scenes
+    from hubvib.studies.scene import DEFAULT_SCENE, shipped_scenes
 
     scenes = shipped_scenes()
     if args.json:

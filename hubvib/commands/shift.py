@@ -3,8 +3,8 @@ from __future__ import annotations
 
 from hubvib.lumped import ParameterError
 from hubvib.lumped.parameters import scalar_field_names
-from hubvib.output import json_text
-from hubvib.params_input import parse_number
+from hubvib.foundation.output import json_text
+from hubvib.runtime.params_input import parse_number
 
 from ._parameters import PARAMETER_HELP, add_parameter_options, parameters
 

@@ -17,9 +17,9 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from hubvib.output import json_text, output_set
-    from hubvib.progress import stage
-    from hubvib.scene import load_scene
+    from hubvib.foundation.output import json_text, output_set
+    from hubvib.runtime.progress import stage
+    from hubvib.studies.scene import load_scene
     from hubvib.signal.report import write_signal_study
     from hubvib.signal.study import run_signal_study
 

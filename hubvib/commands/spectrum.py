@@ -1,7 +1,7 @@
 """``hubvib spectrum``: natural frequencies, mode types and multiplicities."""
 from __future__ import annotations
 
-from hubvib.output import json_text
+from hubvib.foundation.output import json_text
 
 from ._parameters import PARAMETER_HELP, add_parameter_options, parameters
 

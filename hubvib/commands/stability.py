@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import math
 
-from hubvib.output import json_text
+from hubvib.foundation.output import json_text
 
 #: most timed repeats: one repeat of every case and method takes ~0.4 s, 1000 ~7 min
 MAX_REPEATS = 1000

@@ -23,7 +23,7 @@ def add_parser(sub) -> None:
 
 
 def bearings(design) -> dict:
-    from hubvib.design.build import bearing_stiffness
+    from hubvib.build.stages import bearing_stiffness
 
     started = time.perf_counter()
     rows = bearing_stiffness(design)
@@ -36,8 +36,8 @@ def bearings(design) -> dict:
 def run(args) -> int:
     import math
 
-    from hubvib.output import json_text
-    from hubvib.design.build import gear_body, material, ring_gear
+    from hubvib.foundation.output import json_text
+    from hubvib.build.stages import gear_body, material, ring_gear
     from hubvib.fem.estimate import estimate_mesh, estimate_ring
     from hubvib.meshing.crack import Crack
 

@@ -144,14 +144,14 @@ def _print_files(files) -> None:
 
 
 def _write_point(out: Path, results) -> list[Path]:
-    from hubvib.output import write_csv
+    from hubvib.foundation.output import write_csv
 
     return [write_csv(out / "torus_screw_forces.csv", [r.to_dict() for r in results])]
 
 
 def _write_sweep(out: Path, rows) -> list[Path]:
     from hubvib.companion.torus_screw_sweep import eta_figure
-    from hubvib.output import save_figure, write_csv
+    from hubvib.foundation.output import save_figure, write_csv
 
     flat = [{**r.point.to_dict(), **f.to_dict()} for r in rows for f in r.forces]
     return [write_csv(out / "torus_screw_sweep.csv", flat),

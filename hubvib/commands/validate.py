@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from hubvib.output import json_text, output_set
+from hubvib.foundation.output import json_text, output_set
 
 
 def add_parser(sub) -> None:

@@ -1,7 +1,7 @@
 """Figures of the ball/roller gear losses against the driving-track lift angle (seed 001).
 
 matplotlib is imported inside the functions (off-screen Agg backend); each returns a figure for
-:func:`hubvib.output.save_figure`.
+:func:`hubvib.foundation.output.save_figure`.
 """
 from __future__ import annotations
 

@@ -1,15 +1,16 @@
-"""The reducer design: one source for geometry, FE and the lumped model.
+"""The reducer design: pure data at the bottom of the layers (it imports no stage).
 
-``load_design(path)`` reads a design file, ``preset_design(name)`` gives a shipped
-design, ``check_assembly`` holds every assembly rule, ``hubvib.design.build``
-turns a design into what each stage needs.
+``read_design(path)`` reads a design file and ``table_design(table)`` a ``[design]``
+table (keys, types and ranges checked); ``preset_design(name)`` gives a registered
+design (``PRESETS``, ``register_preset``).  The assembly rules and everything built from
+a design (gears, bodies, materials, the lumped parameters) live one layer up, in
+``hubvib.build`` (``hubvib.build.load_design`` = read + assembly rules).
 """
-from .assembly import check_assembly, summary
 from .model import (BearingSpec, DesignError, GearSpec, MaterialSpec, ReducerDesign, RimSpec,
                     SupportSpec)
-from .parse import load_design, parse_design
-from .presets import PRESETS, preset_design
+from .parse import read_design, table_design
+from .presets import PRESETS, preset_design, preset_names, register_preset
 
 __all__ = ["BearingSpec", "DesignError", "GearSpec", "MaterialSpec", "PRESETS", "ReducerDesign",
-           "RimSpec", "SupportSpec", "check_assembly", "load_design", "parse_design",
-           "preset_design", "summary"]
+           "RimSpec", "SupportSpec", "preset_design", "preset_names", "read_design",
+           "register_preset", "table_design"]

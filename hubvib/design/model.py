@@ -9,8 +9,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from hubvib.foundation.errors import InputError
 
-class DesignError(ValueError):
+
+class DesignError(InputError):
     """The design is invalid or cannot assemble; the message names the key and the range."""
 
 
@@ -125,7 +127,7 @@ class ReducerDesign:
     lumped : tuple of (str, float)
         Lumped-model fields that the geometry does not give (``m_c``, ``c_ru`` ...) or
         that the design fixes by decision (a published table's value), SI; see
-        ``hubvib.design.build.lumped_parameters``.
+        ``hubvib.build.stages.lumped_parameters``.
     notes : tuple of str
         Where each ASSUMED value comes from, printed by ``hubvib design check``.
     """

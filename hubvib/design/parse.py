@@ -30,6 +30,7 @@ import math
 import tomllib
 from pathlib import Path
 
+from .fields import DIAMETER_FIELDS, MASS_FIELDS, STIFFNESS_FIELDS
 from .model import (BearingSpec, DesignError, GearSpec, MaterialSpec, ReducerDesign, RimSpec,
                     SupportSpec)
 
@@ -54,8 +55,11 @@ REQUIRED = {"design": ("n_planets", "module", "face_width", "sun", "planet", "ri
             "bearings.carrier": ("rollers", "roller_length", "load")}
 
 
-def load_design(path: Path) -> ReducerDesign:
-    """Read and check a design file (its ``[design]`` table)."""
+def read_design(path: Path) -> ReducerDesign:
+    """Read a design file (its ``[design]`` table), every key's type and range checked.
+
+    The assembly rules need the stages' geometry and are checked one layer up
+    (``hubvib.build.load_design``)."""
     path = Path(path)
     try:
         if path.is_dir():
@@ -73,17 +77,14 @@ def load_design(path: Path) -> ReducerDesign:
     if set(data) != {"design"}:
         raise DesignError(f"design file {str(path)!r}: expected one [design] table, found "
                           f"{sorted(data) or 'nothing'}")
-    return parse_design(data["design"], default_name=path.stem)
+    return table_design(data["design"], default_name=path.stem)
 
 
-def parse_design(table, default_name: str = "design") -> ReducerDesign:
-    """A ``[design]`` table (dict) into a checked ``ReducerDesign``.
-
-    Checks every key's type and range, then the assembly rules
-    (``hubvib.design.assembly.check_assembly``).
+def table_design(table, default_name: str = "design") -> ReducerDesign:
+    """A ``[design]`` table (dict) into a ``ReducerDesign``, every key's type and range
+    checked.  ``hubvib.build.parse_design`` adds the assembly rules
+    (``hubvib.build.assembly.check_assembly``).
     """
-    from .assembly import check_assembly
-
     t = _table(table, "design")
     n = _integer(t, "design", "n_planets", low=1, high=12)
     angles = None
@@ -132,7 +133,6 @@ def parse_design(table, default_name: str = "design") -> ReducerDesign:
         planet_bearing=_bearing(bearings, "planet"),
         carrier_bearing=_bearing(bearings, "carrier"),
         lumped=lumped)
-    check_assembly(design)
     return design
 
 
@@ -154,8 +154,6 @@ def _bearing(bearings: dict, key: str) -> BearingSpec | None:
 
 
 def _lumped(value) -> dict:
-    from hubvib.lumped.parameters import DIAMETER_FIELDS, MASS_FIELDS, STIFFNESS_FIELDS
-
     t = _table(value, "lumped", check=False)
     allowed = STIFFNESS_FIELDS + MASS_FIELDS + DIAMETER_FIELDS
     for key, v in t.items():

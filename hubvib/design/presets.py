@@ -1,9 +1,22 @@
-"""Named designs.  Every Raba 118/76 constant lives here and nowhere else."""
+"""Named designs: the one registry of presets (``PRESETS``).
+
+Every Raba 118/76 constant lives here and nowhere else.  A new preset is one entry:
+a function returning a ``ReducerDesign`` and a ``register_preset(name, factory)`` line
+(here or in any module imported before use).  The CLI's choices (``design check``,
+``spectrum``, ``mesh``, ``stiffness``, ``shift``, ...), their help texts, scene validation
+(``preset = ...``) and the lumped presets (``hubvib.build.lumped_preset``) all read it.
+"""
 from __future__ import annotations
 
 import math
+from typing import Callable
 
-from .model import BearingSpec, GearSpec, MaterialSpec, ReducerDesign, RimSpec, SupportSpec
+from .involute import involute
+from .model import (BearingSpec, DesignError, GearSpec, MaterialSpec, ReducerDesign, RimSpec,
+                    SupportSpec)
+
+#: name -> factory of the design, in registration order
+PRESETS: dict[str, Callable[[], ReducerDesign]] = {}
 
 RABA_WORKING_PRESSURE_ANGLE = math.radians(25.28)  # [rad] from the paper
 
@@ -18,8 +31,6 @@ def raba118() -> ReducerDesign:
     m = 3.25 mm; both pairs share one centre distance, so x_s + x_p = x_r - x_p, and
     that sum follows from the working angle.
     """
-    from hubvib.meshing.gear import involute
-
     alpha, teeth = math.radians(20.0), {"sun": 26, "planet": 19, "ring": 64}
     shift_sum = (float(involute(RABA_WORKING_PRESSURE_ANGLE)) - float(involute(alpha))) * (
         teeth["sun"] + teeth["planet"]) / (2 * math.tan(alpha))
@@ -73,13 +84,26 @@ def hub4() -> ReducerDesign:
                "the carrier: a steel disc over the planet-centre circle, face-width thick"))
 
 
-PRESETS = {"raba118": raba118, "hub4": hub4}
+def register_preset(name: str, factory: Callable[[], ReducerDesign]) -> None:
+    """Add a named design (``factory()`` returns it); a name is registered once."""
+    if not isinstance(name, str) or not name.isidentifier():
+        raise DesignError(f"preset name {name!r}; allowed: a Python identifier")
+    if name in PRESETS and PRESETS[name] is not factory:
+        raise DesignError(f"preset {name!r} is already registered")
+    PRESETS[name] = factory
+
+
+def preset_names() -> tuple[str, ...]:
+    """The registered preset names, in registration order (the CLI's choices)."""
+    return tuple(PRESETS)
+
+
+register_preset("raba118", raba118)
+register_preset("hub4", hub4)
 
 
 def preset_design(name: str) -> ReducerDesign:
     """The named design (see ``PRESETS``)."""
-    from .model import DesignError
-
     if name not in PRESETS:
         raise DesignError(f"unknown design preset {name!r}; allowed: {', '.join(PRESETS)}")
     return PRESETS[name]()

@@ -84,7 +84,7 @@ class MeshTiming:
 def mesh_timing(design, carrier_speed: float) -> MeshTiming:
     """Timing of the ring-planet mesh of a ``ReducerDesign`` (as the FE stage builds it)
     at ``carrier_speed`` [rad/s]."""
-    from hubvib.design.build import gear_body, ring_gear
+    from hubvib.build.stages import gear_body, ring_gear
     from hubvib.fem.mesh_cycle import GearPair
 
     ring = ring_gear(design)

@@ -50,7 +50,10 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 from scipy.stats import chi2, norm
 
+from hubvib.identification.law import fisher_sigma_hz
+
 from .measured import Measured, MeasuredError
+from .options import DetectionOptions
 from .uncertainty import draw, nominal, observed_frequencies
 
 CRACK, NO_CRACK, NOT_IDENTIFIABLE, NOT_EXPLAINED = (
@@ -398,10 +401,6 @@ def measured_sigma(measured: Measured, ref: Reference, index: np.ndarray,
     """Identification standard deviation [Hz] of every measured row: its ``sigma_hz``,
     else the Cramer-Rao bound from its ``damping_ratio`` / ``record_s`` (the scene's
     where a column is missing), else the reference's value for its mode."""
-    from hubvib.identification.law import fisher_sigma_hz
-
-    from .options import DetectionOptions
-
     options = options or DetectionOptions()
     sigma = ref.sigma_hz[index].copy()
     if measured.sigma_hz is not None:
@@ -457,7 +456,7 @@ def diagnose_scene(scene, measured: Measured, progress: bool = True,
                    workers: int = 2) -> tuple[Diagnosis, Reference]:
     """Diagnosis of ``measured`` against the crack study of ``scene`` (FE cases from the
     cache or computed, then the Monte Carlo reference)."""
-    from hubvib.crack_sweep import run_fe_cases
+    from hubvib.studies.crack_sweep import run_fe_cases
 
     from .carrier import mesh_timing
     from .model import CrackModel

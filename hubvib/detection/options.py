@@ -42,6 +42,9 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from hubvib.foundation.errors import SceneError
+from hubvib.identification.law import fisher_sigma_hz
+
 
 @dataclass(frozen=True)
 class DetectionOptions:
@@ -110,8 +113,6 @@ class DetectionOptions:
     def sigma_hz(self, frequency_hz, record_length: float | None = None) -> np.ndarray:
         """Standard deviation [Hz] of frequencies ``frequency_hz`` [Hz] identified from one
         record of ``record_length`` [s] (default the scene's), per mode."""
-        from hubvib.identification.law import fisher_sigma_hz
-
         T = self.record_length if record_length is None else record_length
         return np.array([fisher_sigma_hz(f, self.damping_ratio, T, self.snr)
                          for f in np.atleast_1d(frequency_hz)])
@@ -152,8 +153,6 @@ _KEYS = {
 
 def parse_detection_table(table: dict) -> DetectionOptions:
     """Validate a ``[detection]`` table; raise SceneError naming the key, value and range."""
-    from hubvib.scene import SceneError
-
     unknown = set(table) - set(_KEYS)
     if unknown:
         raise SceneError(f"unknown key(s) {sorted(unknown)} at [detection]; allowed: "

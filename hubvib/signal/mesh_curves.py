@@ -96,11 +96,11 @@ def _curves(pairs, compliance, q_hertz, cracked_compliance=None, depth=0.0) -> M
 
 
 def _pairs(design=None):
-    from hubvib.design.build import gear_body, ring_gear
+    from hubvib.build.stages import gear_body, ring_gear
     from hubvib.fem.mesh_cycle import GearPair
 
     if design is None:
-        from hubvib.meshing.raba118 import design as raba
+        from hubvib.build.raba118 import design as raba
 
         design = raba()
     planet = gear_body(design, "planet")
@@ -148,7 +148,7 @@ def fe_mesh_curves(depths, start: str = "root", angle: float = 0.0, scale: float
     if design is None:
         material = Material()
     else:
-        from hubvib.design.build import material as design_material
+        from hubvib.build.stages import material as design_material
 
         material = design_material(design)
     options = scaled_options(scale)
@@ -175,10 +175,10 @@ def fe_mesh_curves(depths, start: str = "root", angle: float = 0.0, scale: float
 def cached_tooth_curve(body, span, material, options, crack=None, progress=None,
                        name: str = "tooth"):
     """FE tooth compliance curve (``hubvib.fem.tooth_stiffness.fe_curve``), cached and
-    checked (``hubvib.fe_cache``: inputs, checksum, FE-stage version)."""
+    checked (``hubvib.runtime.fe_cache``: inputs, checksum, FE-stage version)."""
     from dataclasses import asdict
 
-    from hubvib.fe_cache import CacheEntryError, entry_key, read_entry, write_entry
+    from hubvib.runtime.fe_cache import CacheEntryError, entry_key, read_entry, write_entry
     from hubvib.fem.tooth_stiffness import ToothCurve, fe_curve
     from hubvib.meshing.cache import root_folder
 

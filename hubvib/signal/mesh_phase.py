@@ -98,7 +98,7 @@ def design_teeth(design=None) -> dict[str, int]:
 
 def design_phasing(design=None) -> MeshPhasing:
     """Mesh phasing of a ``ReducerDesign``'s gears (default Raba 118/76)."""
-    from hubvib.design.build import spur_gears
+    from hubvib.build.stages import spur_gears
 
     return gear_phasing(*spur_gears(design or _raba()))
 
@@ -114,7 +114,7 @@ def raba118_phasing() -> MeshPhasing:
 
 
 def _raba():
-    from hubvib.meshing.raba118 import design
+    from hubvib.build.raba118 import design
 
     return design()
 

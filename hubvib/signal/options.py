@@ -31,6 +31,8 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
+from hubvib.foundation.errors import SceneError
+
 MESH_STIFFNESS = ("ratio", "direct")
 INTEGRATORS = ("newmark", "central")
 
@@ -139,11 +141,9 @@ def parse_signal_table(table: dict) -> SignalOptions:
 
     Raises
     ------
-    hubvib.scene.SceneError
+    hubvib.foundation.errors.SceneError
         Naming ``[signal] key``, the value and the allowed range.
     """
-    from hubvib.scene import SceneError
-
     allowed = set(_NUMBERS) | set(_INTEGERS) | set(_CHOICES)
     unknown = set(table) - allowed
     if unknown:
@@ -182,8 +182,6 @@ def parse_signal_table(table: dict) -> SignalOptions:
 def check_sample_rate(options: SignalOptions, design=None) -> None:
     """Refuse a sample rate below twice the highest mesh harmonic asked for (aliasing);
     the mesh frequency is the design's (default Raba 118/76)."""
-    from hubvib.scene import SceneError
-
     _, mesh = kinematics(options.sun_speed_rpm, design)
     needed = 2 * options.mesh_harmonics * mesh
     if options.sample_rate_hz < needed:

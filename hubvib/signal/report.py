@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hubvib.output import save_figure, write_csv, write_json, write_text
+from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
 
 from .indicators import INDICATORS
 from .sensor import write_signal_csv, write_wav

@@ -92,7 +92,7 @@ def add_noise(values: np.ndarray, rms: float, seed: int) -> np.ndarray:
 
 def write_signal_csv(path: Path, time: np.ndarray, values: np.ndarray) -> Path:
     """CSV with columns ``time_s, acceleration_m_s2`` (written atomically)."""
-    from hubvib.output import write_text
+    from hubvib.foundation.output import write_text
 
     buffer = io.StringIO()
     buffer.write("time_s,acceleration_m_s2\n")
@@ -105,7 +105,7 @@ def write_wav(path: Path, values: np.ndarray, sample_rate: float) -> Path:
     whole Hz (written atomically)."""
     from scipy.io import wavfile
 
-    from hubvib.output import atomic_path
+    from hubvib.foundation.output import atomic_path
 
     peak = float(np.max(np.abs(values))) or 1.0
     with atomic_path(path) as tmp:

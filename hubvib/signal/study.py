@@ -130,7 +130,7 @@ def harmonic_rules(n_planets: int, design=None) -> list[HarmonicRule]:
 
 def curves_for(scene, options: SignalOptions, progress=None) -> list[MeshCurves]:
     """The mesh curves of every depth, scaled as ``options.mesh_stiffness`` says."""
-    from hubvib.crack_sweep import ACCURACY
+    from hubvib.studies.crack_sweep import ACCURACY
 
     from .mesh_curves import fe_mesh_curves
 

@@ -1,0 +1,233 @@
+"""Sparse symmetric positive definite solvers for ``K u = f``, chosen by problem size.
+
+Measured on 2 cores (``validation/benchmark.py`` and fe_facts.md, 3D elasticity
+~3e5 DOF): SuperLU does not finish in 330 s (13 GB), smoothed-aggregation AMG
+with the rigid-body near-null space as CG preconditioner takes 7-15 s (1 GB),
+PARDISO in SPD mode ~10 s (2.5 GB).  On node blocks PARDISO is also twice as
+fast as SuperLU on the plane ring (6.8e4 DOFs, 24 load columns: 0.29 s against
+0.60 s, same run).  ``"auto"`` therefore picks
+
+- ``"pardiso"`` when pypardiso (our MKL loader) is installed,
+- else ``"superlu"`` for plane problems and anything below ``DIRECT_LIMIT`` DOFs,
+- else ``"amg"`` (pyamg; each column is one preconditioned CG solve to
+  ``AMG_TOLERANCE``).
+
+A factorisation (``factorise``) serves any number of load columns, now or
+later.  PARDISO takes a model's node blocks as they are (``factorise_blocks``),
+factorised in single precision and refined in double to 1e-12 (``fem/pardiso.py``;
+on the solid ring about twice as fast as pypardiso's CSR path, same run: README).  SuperLU runs
+with one BLAS thread (``fem/threads.py``).  Every solver refuses a singular
+(unsupported) system with ``SingularSystemError``.
+"""
+from __future__ import annotations
+
+import importlib.util
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from hubvib.foundation.blas import blas_threads
+
+SOLVERS = ("auto", "superlu", "pardiso", "amg")
+DIRECT_LIMIT = 60_000  # [DOF] 3D systems below this factorise fast enough with SuperLU
+AMG_TOLERANCE = 1e-10  # relative residual of the CG iteration
+PIVOT_RATIO = 1e-13    # a pivot this small relative to the largest: singular
+#: estimated relative error (max norm, per column) of a refined single-precision solve:
+#: below what a double-precision factorisation leaves on the solid ring (~1e-13..1e-12)
+REFINE_TOLERANCE = 1e-12
+REFINE_STEPS = 8
+
+
+class SingularSystemError(ValueError):
+    """The stiffness matrix is singular with the given supports (rigid-body motion left)."""
+
+
+def pick(method: str, ndofs: int, dim: int) -> str:
+    """The solver ``method`` stands for on a system of ``ndofs`` unknowns in ``dim`` D."""
+    if method not in SOLVERS:
+        raise ValueError(f"solver = {method!r}; allowed: {', '.join(SOLVERS)}")
+    if method != "auto":
+        return method
+    if importlib.util.find_spec("pypardiso"):
+        return "pardiso"
+    return "superlu" if dim == 2 or ndofs < DIRECT_LIMIT else "amg"
+
+
+class Factor:
+    """A factorised (or preconditioned) SPD system: ``solve`` any number of times, then
+    ``free``.  ``method`` names the solver."""
+
+    method = ""
+
+    def solve(self, f: np.ndarray) -> np.ndarray:
+        """``u`` with ``K u = f``; f (n,) or (n, k)."""
+        f = np.asarray(f, dtype=float)
+        return self._solve(f.reshape(f.shape[0], -1)).reshape(f.shape)
+
+    def free(self) -> None:
+        """Release the factorisation's memory."""
+
+    def _solve(self, columns: np.ndarray) -> np.ndarray:
+        raise NotImplementedError
+
+
+def factorise(K, method: str, near_null: np.ndarray | None = None) -> Factor:
+    """Factorise the SPD matrix ``K`` (whole, sparse) with the named solver (not ``"auto"``).
+
+    ``near_null`` (n, m): rigid-body modes of the free DOFs, AMG's near-null space.
+    """
+    if method == "superlu":
+        return _SuperLU(K)
+    if method == "pardiso":
+        return _PardisoFactor.from_csr(K)
+    if method == "amg":
+        return _AMG(K, near_null)
+    raise ValueError(f"solver = {method!r}; allowed: {', '.join(SOLVERS[1:])}")
+
+
+def factorise_blocks(indptr, indices, values, single: bool = True) -> Factor:
+    """PARDISO on an SPD matrix given as its upper block triangle (``BlockMatrix.upper``).
+
+    ``single``: factorise in single precision and refine each solution in double
+    precision until its estimated relative error is ``REFINE_TOLERANCE`` (what a double
+    factorisation leaves); if that fails, factorise again in double precision.
+    """
+    return _PardisoFactor(indptr, indices, values, values.shape[1], single,
+                          lambda: _symmetric_block_matvec(indptr, indices, values))
+
+
+def _csc_of_symmetric(K):
+    """CSC of a symmetric matrix: its CSR arrays read column-wise (no conversion)."""
+    if sp.issparse(K) and K.format == "csr":
+        return sp.csc_matrix((K.data, K.indices, K.indptr), shape=K.shape)
+    return sp.csc_matrix(K)
+
+
+class _SuperLU(Factor):
+    method = "superlu"
+
+    def __init__(self, K):
+        try:
+            with blas_threads(1):
+                self._lu = spla.splu(_csc_of_symmetric(K), permc_spec="COLAMD")
+        except RuntimeError as error:
+            raise SingularSystemError(
+                f"the supported stiffness matrix is singular: {error}") from None
+        diag = np.abs(self._lu.U.diagonal())
+        if diag.min() <= PIVOT_RATIO * diag.max():
+            raise SingularSystemError(
+                f"the supported stiffness matrix is singular to working precision (pivot ratio "
+                f"{diag.min() / diag.max():.1e}): check the supports")
+
+    def _solve(self, columns):
+        with blas_threads(1):  # small BLAS kernels: more threads only wait (hubvib/blas.py)
+            return self._lu.solve(columns)
+
+    def free(self):
+        self._lu = None
+
+
+class _PardisoFactor(Factor):
+    method = "pardiso"
+
+    def __init__(self, indptr, indices, data, block: int = 1, single: bool = False,
+                 matvec=None):
+        self._matrix = (indptr, indices, data, block)
+        self._single = single
+        self._make_matvec = matvec  # built when first needed: after the factorisation's peak
+        self._matvec = None
+        self._pardiso = self._factorise(single)
+
+    def _factorise(self, single: bool):
+        from .pardiso import Pardiso, PardisoError
+
+        try:
+            factor = Pardiso(*self._matrix, single=single)
+        except PardisoError as error:
+            if single:  # too ill-conditioned for float32: try again in double
+                return self._factorise(False)
+            raise SingularSystemError(f"PARDISO: the supported stiffness matrix is not positive "
+                                      f"definite ({error}): check the supports") from None
+        self._single = single
+        return factor
+
+    @classmethod
+    def from_csr(cls, K) -> "_PardisoFactor":
+        upper = sp.triu(K, format="csr")
+        upper.sort_indices()
+        return cls(upper.indptr, upper.indices, upper.data)
+
+    def _solve(self, columns):
+        u = self._pardiso.solve(columns).astype(float)
+        if not self._single:
+            return u
+        self._matvec = self._matvec or self._make_matvec()
+        previous = None
+        for _ in range(REFINE_STEPS):
+            step = self._pardiso.solve(columns - self._matvec(u)).astype(float)
+            u += step
+            tiny = np.finfo(float).tiny
+            size = np.abs(step).max(axis=0) / np.maximum(np.abs(u).max(axis=0), tiny)
+            if not size.any():
+                return u
+            if previous is not None:
+                # each step shrinks the error by ``rate``: what is left after this one
+                rate = size / np.maximum(previous, tiny)
+                if np.all((rate < 0.5) & (size * rate / (1 - rate) <= REFINE_TOLERANCE)):
+                    return u
+            previous = size
+        self._pardiso.free()  # refinement stalls: the float32 factor is not good enough
+        self._pardiso = self._factorise(False)
+        return self._pardiso.solve(columns)
+
+    def free(self):
+        self._pardiso.free()
+
+
+def _symmetric_block_matvec(indptr, indices, values):
+    """``x -> K x`` for the symmetric K whose upper block triangle is given (block CSR).
+
+    One CSR copy of the upper triangle serves both halves: its arrays read as CSC are the
+    lower triangle (no transposed copy, which would double the memory at the solve)."""
+    rows = len(indptr) - 1
+    block = values.shape[1]
+    shape = (rows * block, rows * block)
+    upper = sp.bsr_matrix((values, indices, indptr), shape=shape).tocsr()
+    lower = sp.csc_matrix((upper.data, upper.indices, upper.indptr), shape=shape)
+    diagonal = values[indptr[:-1]]  # sorted upper rows start with their diagonal block
+
+    def matvec(x):
+        x = np.asarray(x)
+        by_node = x.reshape(rows, block, -1)
+        counted_twice = np.einsum("rij,rjk->rik", diagonal, by_node).reshape(x.shape)
+        return upper @ x + lower @ x - counted_twice
+
+    return matvec
+
+
+class _AMG(Factor):
+    method = "amg"
+
+    def __init__(self, K, near_null):
+        import pyamg
+
+        self._hierarchy = pyamg.smoothed_aggregation_solver(sp.csr_matrix(K), B=near_null,
+                                                            symmetry="symmetric")
+
+    def _solve(self, columns):
+        u = np.empty_like(columns)
+        for j in range(columns.shape[1]):
+            residuals = []
+            u[:, j] = self._hierarchy.solve(columns[:, j], tol=AMG_TOLERANCE, accel="cg",
+                                            maxiter=500, residuals=residuals)
+            reached = residuals[-1] / max(residuals[0], np.finfo(float).tiny)
+            if not np.isfinite(reached) or reached > 10 * AMG_TOLERANCE:
+                raise SingularSystemError(
+                    f"AMG-CG stalled at relative residual {reached:.1e} after "
+                    f"{len(residuals) - 1} iterations: the system is singular or badly "
+                    "conditioned; check the supports")
+        return u
+
+    def free(self):
+        self._hierarchy = None

@@ -1,0 +1,168 @@
+"""Off-screen renders of the FE ring: deformed under the planet mesh forces (von Mises),
+a zoom on the crack tip, and the ring's lowest modes on its supports (SI inside).
+
+The load is the operating one: each of the three planets pushes on its ring
+tooth with the mesh force of the design's sun torque (``hubvib.design``); planet 1
+sits on the cracked tooth.  Drawn on the corner nodes (linear triangles); the
+deformation is magnified, by the factor printed on the image.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from hubvib.render.modes import write_atomically, offscreen_plotter
+
+MODES = 4
+MAGNIFIED = 0.03  # largest drawn displacement as a fraction of the ring's outer radius
+TIP_VIEW = 2.5e-3  # [m] half height of the crack-tip zoom
+
+
+@dataclass(frozen=True)
+class RingFields:
+    """The ring's corner nodes and triangles with its loaded state and modes (SI)."""
+
+    points: np.ndarray        # (n, 2) [m]
+    triangles: np.ndarray     # (m, 3) into points
+    displacement: np.ndarray  # (n, 2) [m] under the mesh forces
+    von_mises: np.ndarray     # (n,) [Pa]
+    mode_shapes: np.ndarray   # (k, n, 2) mass-normalised
+    mode_hz: np.ndarray       # (k,)
+    crack_tip: np.ndarray | None  # (2,) [m]
+    ring_torque: float        # [N m]
+    label: str
+
+
+def ring_fields(design, crack=None, options=None, modes: int = MODES) -> RingFields:
+    """Solve the design's ring under its planet mesh forces (at the design's sun torque)
+    and for its lowest ``modes``."""
+    from hubvib.build.stages import material, mesh_force, ring_gear
+    from hubvib.fem.elasticity import plane_model, solve
+    from hubvib.fem.modal import lowest_modes
+    from hubvib.fem.ring_stiffness import mesh_force_load, planet_teeth
+    from hubvib.fem.stress import von_mises
+    from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
+
+    ring = ring_gear(design)
+    mesh = ring_mesh(ring, crack, options or MeshOptions())
+    model = plane_model(mesh, material(design), thickness=ring.gear.face_width)
+    force = mesh_force(design)
+    tooth = 0 if crack is None else crack.tooth
+    teeth = planet_teeth(ring, tooth, design.n_planets)
+    u = solve(model, mesh_force_load(model, ring, teeth, force), ["supports"]).u
+    stress = von_mises(model, u)
+    fe = model.basis.mesh
+    corners = np.unique(fe.t)
+    index = np.full(fe.p.shape[1], -1)
+    index[corners] = np.arange(len(corners))
+    dofs = model.basis.nodal_dofs[:, corners]
+
+    def at_corners(vector):
+        return np.column_stack([vector[dofs[0]], vector[dofs[1]]])
+
+    vibration = lowest_modes(model, modes, ["supports"])
+    tip = None
+    if crack is not None and len(mesh.points_of.get("crack_tip", [])):
+        tip = mesh.points[mesh.points_of["crack_tip"]].reshape(-1, 2).mean(axis=0)
+    torque = design.n_planets * force * ring.gear.base_diameter / 2
+    what = "intact" if crack is None else (f"{crack.start} crack {1e3 * crack.depth:.3g} mm "
+                                           f"at tooth {crack.tooth}")
+    return RingFields(fe.p[:, corners].T, index[fe.t.T], at_corners(u), stress[corners],
+                      np.array([at_corners(s) for s in vibration.shapes.T]), vibration.hertz,
+                      tip, torque, f"{design.name} ring, {what}")
+
+
+def _grid(fields: RingFields, displacement: np.ndarray, scale: float, scalars: dict):
+    import pyvista as pv
+
+    points = np.column_stack([fields.points + scale * displacement,
+                              np.zeros(len(fields.points))])
+    grid = pv.UnstructuredGrid({pv.CellType.TRIANGLE: fields.triangles}, points)
+    for name, values in scalars.items():
+        grid.point_data[name] = values
+    return grid
+
+
+def _scale(fields: RingFields, displacement: np.ndarray) -> float:
+    largest = np.abs(displacement).max()
+    outer = np.hypot(*fields.points.T).max()
+    return MAGNIFIED * outer / largest if largest > 0 else 0.0
+
+
+def _outline(fields: RingFields):
+    return _grid(fields, fields.displacement, 0.0, {}).extract_feature_edges()
+
+
+def _picture(path: Path, draw, centre=None) -> Path:
+    """Draw, look along -z (at ``centre`` with a ``TIP_VIEW`` window if given), save."""
+    def write(tmp):
+        plotter = offscreen_plotter()
+        draw(plotter)
+        plotter.view_xy()
+        plotter.enable_parallel_projection()
+        if centre is not None:
+            plotter.camera.focal_point = (*centre, 0.0)
+            plotter.camera.position = (*centre, 1.0)
+            plotter.camera.parallel_scale = TIP_VIEW
+        plotter.screenshot(str(tmp))
+        plotter.close()
+
+    return write_atomically(path, write)
+
+
+def render_fe(fields: RingFields, folder: Path, vtu: bool = False) -> list[Path]:
+    """PNG: the loaded ring, the crack tip (if any), each mode; VTU of all fields on request."""
+    folder = Path(folder)
+    scale = _scale(fields, fields.displacement)
+    mpa = fields.von_mises / 1e6
+    loaded = _grid(fields, fields.displacement, scale, {"von Mises [MPa]": mpa})
+    title = (f"{fields.label}\nring torque {fields.ring_torque:.0f} N m (ASSUMED sun torque), "
+             f"deformation x{scale:.0f}")
+    colour = dict(scalars="von Mises [MPa]", cmap="turbo",
+                  clim=(0.0, float(np.percentile(mpa, 99.5))),
+                  scalar_bar_args={"title": "von Mises [MPa]", "color": "black"})
+    outline = _outline(fields)
+
+    def whole(plotter):
+        plotter.add_mesh(outline, color="#bbbbbb", line_width=1)
+        plotter.add_mesh(loaded, **colour)
+        plotter.add_text(title, position="upper_left", font_size=10, color="black")
+
+    files = [_picture(folder / "fe_ring_loaded.png", whole)]
+    if fields.crack_tip is not None:
+        distance = np.hypot(*(fields.points - fields.crack_tip).T)
+        centre = fields.crack_tip + scale * fields.displacement[np.argmin(distance)]
+        near = mpa[distance < TIP_VIEW]
+
+        def tip(plotter):
+            plotter.add_mesh(loaded, show_edges=True, edge_color="#333333",
+                             **dict(colour, clim=(0.0, float(np.percentile(near, 99)))))
+            plotter.add_text(f"{fields.label}: crack tip, deformation x{scale:.0f}",
+                             position="upper_left", font_size=10, color="black")
+
+        files.append(_picture(folder / "fe_crack_tip.png", tip, centre))
+    for k, (shape, hz) in enumerate(zip(fields.mode_shapes, fields.mode_hz)):
+        size = np.hypot(*shape.T)
+        grid = _grid(fields, shape, _scale(fields, shape), {"displacement (normalised)": size / size.max()})
+
+        def mode(plotter, grid=grid, k=k, hz=hz):
+            plotter.add_mesh(outline, color="#bbbbbb", line_width=1)
+            plotter.add_mesh(grid, scalars="displacement (normalised)", cmap="viridis",
+                             scalar_bar_args={"title": "displacement (normalised)", "color": "black"})
+            plotter.add_text(f"{fields.label}\nFE mode {k + 1} on clamped supports: "
+                             f"{hz:.1f} Hz", position="upper_left", font_size=10,
+                             color="black")
+
+        files.append(_picture(folder / f"fe_ring_mode_{k + 1:02d}.png", mode))
+    if vtu:
+        data = {"displacement [m]": np.column_stack([fields.displacement,
+                                                      np.zeros(len(fields.points))]),
+                "von Mises [Pa]": fields.von_mises}
+        for k, shape in enumerate(fields.mode_shapes):
+            data[f"mode {k + 1} ({fields.mode_hz[k]:.1f} Hz)"] = np.column_stack(
+                [shape, np.zeros(len(shape))])
+        grid = _grid(fields, fields.displacement, 0.0, data)
+        files.append(write_atomically(folder / "fe_ring.vtu", lambda tmp: grid.save(str(tmp))))
+    return files

@@ -1,0 +1,260 @@
+"""Where the FE cases of a sweep run: a local process pool or a Dask distributed cluster.
+
+Workers compute and return results; the calling process alone writes them
+(``on_result``), so no shared filesystem is needed.  The scene's optional
+``[execution]`` table chooses (SI, seconds)::
+
+    [execution]
+    engine = "local"              # or "dask"
+    scheduler = "tcp://host:8786" # dask: a running scheduler; absent: a LocalCluster
+    workers = 2                   # local pool / LocalCluster workers, 1..64
+    timeout_s = 10                # dask: how long to wait for the scheduler and for a
+                                  # worker to join it [s], 1..600
+"""
+from __future__ import annotations
+
+import logging
+import math
+import os
+import threading
+import warnings
+from contextlib import contextmanager
+from dataclasses import dataclass
+
+from hubvib.foundation.errors import InputError, SceneError
+
+ENGINES = ("local", "dask")
+#: the oldest dask.distributed with every API used here (Client.map, as_completed,
+#: LocalCluster(dashboard_address=None))
+MIN_DISTRIBUTED = (2022, 1)
+
+
+class EngineError(InputError):
+    """The engine cannot run the cases; the message names the setting or the case."""
+
+
+@dataclass(frozen=True)
+class Execution:
+    """How to run a sweep's cases: ``engine`` ("local" or "dask"), ``scheduler``
+    address (dask; ``None`` = a LocalCluster), ``workers`` (``None`` = the sweep's
+    own), ``timeout`` [s] to reach the scheduler."""
+
+    engine: str = "local"
+    scheduler: str | None = None
+    workers: int | None = None
+    timeout: float = 10.0
+
+
+def parse_execution_table(table: dict) -> Execution:
+    """The scene's ``[execution]`` table, checked."""
+    allowed = {"engine", "scheduler", "workers", "timeout_s"}
+    unknown = sorted(set(table) - allowed)
+    if unknown:
+        raise SceneError(f"unknown key(s) {unknown} in [execution]; allowed: {sorted(allowed)}")
+    engine = table.get("engine", "local")
+    if engine not in ENGINES:
+        raise SceneError(f"[execution] engine = {engine!r}; allowed: {', '.join(ENGINES)}")
+    scheduler = table.get("scheduler")
+    if scheduler is not None and (engine != "dask" or not isinstance(scheduler, str)
+                                  or not scheduler.startswith(("tcp://", "tls://", "inproc://"))):
+        raise SceneError(f"[execution] scheduler = {scheduler!r}; allowed with engine = \"dask\": "
+                         "an address like \"tcp://host:8786\"")
+    workers = table.get("workers")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
+                                or not 1 <= workers <= 64):
+        raise SceneError(f"[execution] workers = {workers!r}; allowed integers 1..64")
+    timeout = table.get("timeout_s", 10.0)
+    if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or not (
+            math.isfinite(timeout) and 1 <= timeout <= 600):
+        raise SceneError(f"[execution] timeout_s = {timeout!r}; allowed 1..600 [s]")
+    return Execution(engine, scheduler, workers, float(timeout))
+
+
+def run_cases(function, items: list, on_result, execution: Execution, workers: int) -> None:
+    """``on_result(item, function(item))`` for every item, in completion order.
+
+    A case that raises does not stop the others; afterwards one ``EngineError``
+    names every failed case and its message.  Pool and Dask workers run one BLAS
+    thread each (``SINGLE_THREADED``), so both engines give the same numbers to the
+    last digit; with one worker the local engine runs the cases in this process,
+    with its BLAS threads.
+    """
+    if not items:
+        return
+    workers = execution.workers or workers
+    if execution.engine == "dask":
+        failures = _run_dask(function, items, on_result, execution, workers)
+    elif workers == 1 or len(items) == 1:
+        failures = _run_here(function, items, on_result)
+    else:
+        failures = _run_pool(function, items, on_result, workers)
+    if failures:
+        raise EngineError(_failure_text(failures))
+
+
+def check_reachable(execution: Execution) -> None:
+    """``EngineError`` unless the scheduler (if any) accepts a TCP connection within the
+    timeout: checked before anything is written."""
+    import socket
+    from urllib.parse import urlsplit
+
+    if execution.engine != "dask" or execution.scheduler is None or not \
+            execution.scheduler.startswith(("tcp://", "tls://")):
+        return
+    address = urlsplit(execution.scheduler)
+    try:
+        with socket.create_connection((address.hostname, address.port or 8786),
+                                      timeout=execution.timeout):
+            pass
+    except (OSError, ValueError) as exc:
+        raise EngineError(f"[execution] scheduler = {execution.scheduler!r} did not answer "
+                          f"within {execution.timeout:g} s ({exc})") from None
+
+
+def _failure_text(failures: list) -> str:
+    """One line: each message once, with the cases it ended (a broken pool ends them all)."""
+    cases = {}
+    for item, message in failures:
+        cases.setdefault(message, []).append(item)
+    return "; ".join(f"case {items[0]!r} failed: {message}" if len(items) == 1 else
+                     f"cases {', '.join(repr(i) for i in items)} failed: {message}"
+                     for message, items in cases.items())
+
+
+def _run_here(function, items, on_result) -> list:
+    """In this process, one item after the other; a failure does not stop the others."""
+    failures = []
+    for item in items:
+        try:
+            result = function(item)
+        except Exception as exc:  # noqa: BLE001 - reported per case, as with a pool
+            failures.append((item, f"{type(exc).__name__}: {exc}"))
+            continue
+        on_result(item, result)
+    return failures
+
+
+#: set in every worker, as Dask's nanny does (``distributed.nanny.pre-spawn-environ``):
+#: one BLAS thread per worker process, so the local pool and a Dask cluster round alike
+#: (a multi-threaded BLAS changes the last digits of the FE values, and with the core count)
+SINGLE_THREADED = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+
+
+@contextmanager
+def _environment(values: dict):
+    """``os.environ`` updated with ``values`` inside the block (spawned children inherit it)."""
+    saved = {key: os.environ.get(key) for key in values}
+    os.environ.update(values)
+    try:
+        yield
+    finally:
+        for key, value in saved.items():
+            if value is None:
+                os.environ.pop(key, None)
+            else:
+                os.environ[key] = value
+
+
+def _run_pool(function, items, on_result, workers) -> list:
+    from concurrent.futures import as_completed
+
+    from hubvib.runtime.process_pool import worker_pool
+
+    failures = []
+    with worker_pool(min(workers, len(items))) as pool:
+        with _environment(SINGLE_THREADED):  # the workers are spawned on submit
+            futures = {pool.submit(function, item): item for item in items}
+        for future in as_completed(futures):
+            try:
+                result = future.result()
+            except Exception as exc:  # noqa: BLE001 - reported per case below
+                failures.append((futures[future], f"{type(exc).__name__}: {exc}"))
+                continue
+            on_result(futures[future], result)
+    return failures
+
+
+_ONE_AT_A_TIME = threading.Lock()
+
+
+@dataclass(frozen=True)
+class OneAtATime:
+    """``function`` under a per-process lock: a Dask worker started with several threads
+    still runs one case at a time (gmsh has one current model per process, so two
+    meshes built in two threads of one process would mix)."""
+
+    function: object
+
+    def __call__(self, item):
+        with _ONE_AT_A_TIME:
+            return self.function(item)
+
+
+def distributed_version_ok() -> tuple[bool, str]:
+    """Whether dask.distributed is installed and recent enough, and its version."""
+    try:
+        import distributed
+    except ImportError:
+        return False, "not installed"
+    parts = distributed.__version__.split(".")
+    try:
+        version = (int(parts[0]), int(parts[1]))
+    except (ValueError, IndexError):
+        return True, distributed.__version__
+    return version >= MIN_DISTRIBUTED, distributed.__version__
+
+
+def _wait_for_a_worker(client, execution: Execution) -> None:
+    """``EngineError`` unless a worker is (or joins) the scheduler within the timeout:
+    without one the cases would wait for ever."""
+    try:
+        client.wait_for_workers(1, timeout=execution.timeout)
+    except (OSError, TimeoutError):
+        raise EngineError(f"[execution] scheduler = {execution.scheduler!r} answers but has no "
+                          f"worker (none joined within {execution.timeout:g} s): start "
+                          f"`dask worker {execution.scheduler}` on the machines that compute"
+                          ) from None
+
+
+def _run_dask(function, items, on_result, execution: Execution, workers: int) -> list:
+    ok, version = distributed_version_ok()
+    if not ok:
+        raise EngineError(f"[execution] engine = \"dask\" needs dask.distributed >= "
+                          f"{MIN_DISTRIBUTED[0]}.{MIN_DISTRIBUTED[1]} (found: {version}): "
+                          "pip install 'hubvib[dask]'")
+    from distributed import Client, LocalCluster, as_completed
+
+    cluster = None
+    try:
+        if execution.scheduler is None:
+            # quiet: a failed case is reported once, by EngineError, without a traceback;
+            # the scheduler's HTTP port moves on if 8787 is taken (a running `dask scheduler`)
+            with warnings.catch_warnings():
+                warnings.filterwarnings("ignore", message="Port .* is already in use")
+                cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                       dashboard_address=None, silence_logs=logging.CRITICAL)
+            client = Client(cluster)
+        else:
+            try:
+                client = Client(execution.scheduler, timeout=execution.timeout)
+            except (OSError, TimeoutError) as exc:
+                raise EngineError(f"[execution] scheduler = {execution.scheduler!r} did not "
+                                  f"answer within {execution.timeout:g} s ({exc})") from None
+        failures = []
+        with client:
+            if execution.scheduler is not None:
+                _wait_for_a_worker(client, execution)
+            futures = client.map(OneAtATime(function), items, pure=False)
+            item_of = {f.key: item for f, item in zip(futures, items)}
+            for future in as_completed(futures):
+                item = item_of[future.key]
+                try:
+                    result = future.result()
+                except Exception as exc:  # noqa: BLE001 - reported per case
+                    failures.append((item, f"{type(exc).__name__}: {exc}"))
+                    continue
+                on_result(item, result)
+        return failures
+    finally:
+        if cluster is not None:
+            cluster.close()

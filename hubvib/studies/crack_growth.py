@@ -1,0 +1,296 @@
+"""The 3D crack-growth study: semi-elliptic root cracks over depth and half-length (SI).
+
+Each crack is a semi-elliptic surface crack at the critical fillet point of the
+ring tooth, centred on the face width: depth ``a`` at its deepest point, mouth
+``2 c`` long on the fillet.  The solid ring gives ``c_ru`` (mean over every
+carrier position of one planet pitch) and ``c_r`` with their error estimates
+(``fem.estimate.estimate_ring``).  The cracked tooth's mesh stiffness is not
+solved in 3D: the slice method (the face width cut into independent slices in
+parallel, each with the plane c_rp ratio at its local depth ``a(z)``; Z. Chen,
+Y. Shao, Engineering Failure Analysis 18 (2011) 2149-2164) carries the plane
+cases of the same depths over to the part-width crack.  Slices that do not hold
+each other up are softer than the solid tooth, so the slice ratio overstates the
+crack's effect on c_rp.
+
+Per half-length the lumped and detection stages and the report are those of the
+plane study (``hubvib.studies.crack_study``), in a folder of their own.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe, provenance,
+                          write_crack_study)
+from hubvib.studies.crack_sweep import run_fe_cases
+from hubvib.runtime.engines import Execution
+from hubvib.fem.estimate import USABLE_QUALITY
+from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.studies.scene import Scene
+
+#: slices of the face width in the slice method
+SLICES = 512
+#: what the tests measured about the poorly shaped cells of the Raba 118/76 ring
+RABA_POOR_CELLS = (" On this ring, halving or doubling them moves c_ru itself by less than its "
+                   "error estimate (test `test_poor_cells_do_not_move_c_ru`).")
+
+
+def slice_ratio(depth: float, half_length: float, face_width: float, plane_depths,
+                plane_ratios) -> float:
+    """The part-width crack's c_rp ratio by the slice method [-].
+
+    The mean over the face width ``face_width`` [m] of the plane ratio at the local
+    depth ``depth * sqrt(1 - ((z - z_c) / half_length)^2)`` [m], linear between the
+    ``plane_depths`` [m] (ascending from 0, where the ratio is 1), 1 outside the mouth.
+    It is linear in the ratios: ``1 - slice_ratio(..., 1 - errors)`` carries plane
+    errors over.
+    """
+    plane_depths = np.asarray(plane_depths, dtype=float)
+    if plane_depths[0] != 0 or np.any(np.diff(plane_depths) <= 0):
+        raise ValueError(f"plane_depths = {plane_depths.tolist()!r}: allowed ascending "
+                         "values from 0 [m]")
+    if not 0 <= depth <= plane_depths[-1]:
+        raise ValueError(f"depth {depth!r} m outside the plane cases "
+                         f"0..{plane_depths[-1]:g} m")
+    if not 0 <= 2 * half_length <= face_width:
+        raise ValueError(f"half_length {half_length!r} m, allowed 0..{face_width / 2:g} m")
+    # slices at z - z_c = c sin(theta), equal steps in theta: the local depth a cos(theta)
+    # has no square-root end point to spoil the midpoint rule
+    # (dz = c cos(theta) d theta; the weights are normalised so a constant is exact)
+    weight = np.cos(((np.arange(SLICES) + 0.5) / SLICES - 0.5) * math.pi)
+    inside = np.interp(depth * weight, plane_depths, plane_ratios) @ weight / weight.sum()
+    return float(1 - 2 * half_length / face_width * (1 - inside))
+
+
+def solid_rows(sweep, solid: list[dict], plane: list[dict]) -> list[dict]:
+    """The solid cases (``sweep.cases`` order) with the c_rp keys of the plane study's rows
+    (slice method) and the change of c_ru and c_r against the intact ring [-]: its error
+    (fine against coarse level) and how far it moves with the poorly shaped cells at half
+    stiffness."""
+    width = sweep.reducer.face_width
+    depths = [row["depth_m"] for row in plane]
+    column = {key: [row[key] for row in plane] for key in
+              ("c_rp_engaged_ratio", "c_rp_engaged_min_ratio", "c_rp_engaged_ratio_error")}
+    intact = solid[0]
+    rows = []
+    for row in solid:
+        depth, half = row["depth_m"], row["half_length_m"]
+        ratio = slice_ratio(depth, half, width, depths, column["c_rp_engaged_ratio"])
+        minimum = slice_ratio(depth, half, width, depths, column["c_rp_engaged_min_ratio"])
+        error = 1 - slice_ratio(depth, half, width, depths,
+                                1 - np.asarray(column["c_rp_engaged_ratio_error"]))
+        changes = {}
+        for name in ("c_ru", "c_r"):
+            fine = row[f"{name}_N_m"] - intact[f"{name}_N_m"]
+            coarse = row[f"{name}_coarse_N_m"] - intact[f"{name}_coarse_N_m"]
+            halved = row[f"{name}_poor_half_N_m"] - intact[f"{name}_poor_half_N_m"]
+            changes[f"{name}_change"] = fine / intact[f"{name}_N_m"]
+            changes[f"{name}_change_error"] = abs(fine - coarse) / intact[f"{name}_N_m"]
+            changes[f"{name}_change_poor_cells"] = (halved - fine) / intact[f"{name}_N_m"]
+        rows.append(dict(row, c_rp_engaged_ratio=ratio, c_rp_engaged_min_ratio=minimum,
+                         c_rp_engaged_ratio_error=error, **changes))
+    return rows
+
+
+@dataclass
+class CrackGrowthResult:
+    """The solid cases with their c_rp (``rows``), the plane cases of the same depths
+    (``plane``), and per half-length [m] the study of the plane report (``studies``)."""
+
+    scene: Scene
+    rows: list[dict]
+    plane: list[dict]
+    studies: dict[float, CrackStudyResult]
+    computed: int
+    files: list[Path] = field(default_factory=list)
+
+    def grid_rows(self) -> list[dict]:
+        plane = {row["depth_m"]: row for row in self.plane}
+        intact = plane[0.0]
+        out = []
+        for r in self.rows:
+            through = plane[r["depth_m"]]
+            out.append({
+                "depth_mm": 1e3 * r["depth_m"], "half_length_mm": 1e3 * r["half_length_m"],
+                "c_ru_N_m": r["c_ru_N_m"], "c_ru_error_N_m": r["c_ru_error_N_m"],
+                "c_ru_change_percent": 100 * r["c_ru_change"],
+                "c_ru_change_error_percent": 100 * r["c_ru_change_error"],
+                "c_ru_change_poor_cells_percent": 100 * r["c_ru_change_poor_cells"],
+                "c_ru_min_N_m": r["c_ru_min_N_m"], "c_ru_max_N_m": r["c_ru_max_N_m"],
+                "c_r_N_m": r["c_r_N_m"], "c_r_error_N_m": r["c_r_error_N_m"],
+                "c_r_change_percent": 100 * r["c_r_change"],
+                "c_r_change_error_percent": 100 * r["c_r_change_error"],
+                "c_r_change_poor_cells_percent": 100 * r["c_r_change_poor_cells"],
+                "plane_through_c_ru_change_percent":
+                    100 * (through["c_ru_N_m"] / intact["c_ru_N_m"] - 1),
+                "c_rp_slice_ratio": r["c_rp_engaged_ratio"],
+                "c_rp_slice_ratio_error": r["c_rp_engaged_ratio_error"],
+                "plane_through_c_rp_ratio": through["c_rp_engaged_ratio"],
+                "min_sicn": r["min_quality"], "poor_cells": r["poor_cells"],
+                "dofs": r["dofs"], "fe_seconds": r["seconds_total"]})
+        return out
+
+
+def run_crack_growth(scene: Scene, progress: bool = True, detection: bool = True,
+                     workers: int = 2) -> CrackGrowthResult:
+    """Plane cases of the sweep's depths, then the solid cases (both cached, on the scene's
+    engine), then the lumped and detection stages per half-length."""
+    sweep = scene.crack
+    execution = scene.tables.get("execution", Execution())
+    plane, computed_plane = run_fe_cases(replace(sweep, model="plane", half_lengths=()),
+                                         progress, execution)
+    solid, computed_solid = run_fe_cases(sweep, progress, execution)
+    rows = solid_rows(sweep, solid, plane)
+    studies = {}
+    for half in sweep.half_lengths:
+        fe = [rows[0]] + [r for r in rows[1:] if r["half_length_m"] == half]
+        studies[half] = crack_study_from_fe(scene, fe, detection=detection, workers=workers)
+    return CrackGrowthResult(scene, rows, plane, studies, computed_plane + computed_solid)
+
+
+def folder_name(half_length: float) -> str:
+    return f"half_length_{1e3 * half_length:g}mm"
+
+
+def write_crack_growth(result: CrackGrowthResult, folder: Path) -> CrackGrowthResult:
+    """Per half-length the plane study's files in ``folder/half_length_*mm``; the grid as
+    CSV and JSON, its plot and ``report.md`` in ``folder``."""
+    folder = Path(folder)
+    scene = result.scene
+    files = []
+    for half, study in result.studies.items():
+        files += write_crack_study(study, folder / folder_name(half)).files
+    grid = result.grid_rows()
+    files.append(write_csv(folder / "stiffness_3d.csv", grid))
+    files.append(write_json(folder / "results.json", json_safe({
+        "scene": scene.name, **provenance(), "crack": {
+            "tooth": scene.crack.tooth, "start": scene.crack.start, "model": "solid",
+            "depths_m": list(scene.crack.depths), "half_lengths_m": list(scene.crack.half_lengths)},
+        "grid": grid, "modes": {folder_name(h): s.mode_rows() for h, s in
+                                result.studies.items()}})))
+    plots = []
+    if scene.plots:
+        plots.append(save_figure(change_figure(scene.name, grid), folder / "c_ru_change.png"))
+    files += plots
+    files.append(write_text(folder / "report.md", growth_report(result, grid,
+                                                                [p.name for p in plots])))
+    result.files = files
+    return result
+
+
+def change_figure(name: str, grid: list[dict]):
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4), layout="constrained")
+    halves = sorted({r["half_length_mm"] for r in grid if r["depth_mm"] > 0})
+    for ax, key in zip(axes, ("c_ru", "c_r")):
+        for i, half in enumerate(halves):
+            rows = [grid[0]] + [r for r in grid if r["half_length_mm"] == half]
+            ax.errorbar([r["depth_mm"] for r in rows],
+                        [r[f"{key}_change_percent"] for r in rows],
+                        yerr=[max(r[f"{key}_change_error_percent"],
+                                  abs(r[f"{key}_change_poor_cells_percent"])) for r in rows],
+                        marker="o",
+                        capsize=3, label=f"semi-elliptic, half-length {half:g} mm")
+        if key == "c_ru":
+            depths = sorted({r["depth_mm"] for r in grid})
+            through = {r["depth_mm"]: r["plane_through_c_ru_change_percent"] for r in grid}
+            ax.plot(depths, [through[d] for d in depths], "k--",
+                    label="plane, through the face width")
+        ax.set_xlabel("crack depth at the deepest point [mm]")
+        ax.set_ylabel(f"change of {key} against the intact ring [%]")
+        ax.grid(True, alpha=0.3)
+    axes[0].legend(fontsize=8)
+    fig.suptitle(f"{name}: solid ring body stiffness against crack size (bars: the larger of "
+                 "the level difference and the poor-cell effect)")
+    return fig
+
+
+def _is_raba(design) -> bool:
+    from hubvib.design.presets import raba118
+
+    return design.fingerprint() == raba118().fingerprint()
+
+
+def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str]) -> str:
+    from hubvib.studies.crack_sweep import case_label
+    from hubvib.detection.numbers import percent
+
+    scene, sweep = result.scene, result.scene.crack
+    info = provenance()
+    width = sweep.reducer.face_width
+    worst = min(grid, key=lambda r: r["min_sicn"])
+    lines = [
+        f"# {scene.name}: 3D ring-crack growth study", "",
+        f"hubvib {info['hubvib_version']}, {info['date']}. Semi-elliptic root cracks in ring "
+        f"tooth {sweep.tooth}, centred on the {1e3 * width:g} mm face width: depths "
+        f"{', '.join(f'{1e3 * d:.3g}' for d in sweep.depths if d > 0)} mm at the deepest point "
+        f"x half-lengths {', '.join(f'{1e3 * c:.3g}' for c in sweep.half_lengths)} mm along "
+        "the width.", "",
+        "## Short answer", ""]
+    for half, study in result.studies.items():
+        rows = study.mode_rows()
+        top = max(rows, key=lambda r: abs(r["shift_at_deepest_percent"]))
+        found = [r["detectable_depth_mm"] for r in rows if r.get("detectable_depth_mm")]
+        detect = (f"detectable from {min(found):.3g} mm" if found else
+                  "no crack of the sweep detectable" if "detectable_depth_mm" in rows[0] else
+                  "detection not run")
+        lines.append(f"- half-length {1e3 * half:g} mm: largest shift at "
+                     f"{1e3 * sweep.depths[-1]:.3g} mm depth in mode {top['mode']} "
+                     f"({top['frequency_intact_hz']:.1f} Hz, "
+                     f"{percent(top['shift_at_deepest_percent'])} %); {detect} "
+                     f"([report]({folder_name(half)}/report.md)).")
+    lines += ["", "## Solid ring body against crack size", "",
+              "Change of the solid ring body's stiffness against the intact ring; ± is the "
+              "change's own error estimate, (fine - fine intact) - (coarse - coarse intact): "
+              "most of each level's error is common to the cracked and the intact ring, so it "
+              "is far below the error of the values themselves (column `c_ru_error_N_m` of "
+              "`stiffness_3d.csv`). *½ poor* is how far "
+              f"the change moves when every cell with min SICN < {USABLE_QUALITY:g} has half "
+              "its stiffness (see Mesh quality below); take the larger of the two as the "
+              "change's uncertainty. The plane column is the crack through the whole face "
+              "width at the same depth (plane stress), the limit of a long crack.", "",
+              "| depth [mm] | half-length [mm] | c_ru [N/m] | change [%] | ± | ½ poor | plane, "
+              "through [%] | c_r change [%] | ± | ½ poor | c_rp ratio (slices) | plane c_rp "
+              "ratio | min SICN | cells < 0.1 | DOFs | time [s] |",
+              "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for r in grid:
+        lines.append(
+            f"| {r['depth_mm']:.3g} | {r['half_length_mm']:.3g} | {r['c_ru_N_m']:.5e} | "
+            f"{r['c_ru_change_percent']:+.3f} | {r['c_ru_change_error_percent']:.3f} | "
+            f"{r['c_ru_change_poor_cells_percent']:+.3f} | "
+            f"{r['plane_through_c_ru_change_percent']:+.3f} | {r['c_r_change_percent']:+.3f} | "
+            f"{r['c_r_change_error_percent']:.3f} | {r['c_r_change_poor_cells_percent']:+.3f} | "
+            f"{r['c_rp_slice_ratio']:.4f} | "
+            f"{r['plane_through_c_rp_ratio']:.4f} | {r['min_sicn']:.3g} | "
+            f"{r['poor_cells']} | {r['dofs']} | {r['fe_seconds']:.0f} |")
+    lines += [""] + [f"![{p}]({p})" for p in plots] + [""]
+    lines += [
+        "## Assumptions", "",
+        "- Solid ring: curved quadratic tetrahedra, supports clamped, every planet's mesh "
+        "force spread over its tooth's load surface across the face; c_ru is the mean over "
+        "every carrier position of one planet pitch, read on the root lands as in the plane "
+        "study; error estimate: the default solid level against the one before it "
+        "(`hubvib.meshing.levels.SOLID_LEVELS`).",
+        "- c_rp of the cracked tooth: the slice method (Chen & Shao 2011): the face width in "
+        f"{SLICES} independent slices in parallel, each with the plane c_rp ratio at its local "
+        "depth, linear between the plane cases of the sweep's depths (the interpolation adds "
+        "an error the ± does not hold). Independent slices are softer than the solid tooth, "
+        "so the slices overstate the crack's effect on c_rp; the plane column is the crack "
+        "through the width.",
+        "- The crack is not moved: the mean over carrier positions includes the positions "
+        "where a planet loads the cracked tooth.",
+        f"- Mesh quality: the worst cell of the sweep has min SICN {worst['min_sicn']:.3g} "
+        f"({case_label((worst['depth_mm'] / 1e3, worst['half_length_mm'] / 1e3))}). The intact "
+        f"ring's mesh has {grid[0]['poor_cells']} cells below {USABLE_QUALITY:g} too (min "
+        f"{grid[0]['min_sicn']:.3g}): they come with root lands and fillets narrower than the "
+        "elements, and a finer mesh there costs several times the DOFs. They sit where c_ru "
+        "is read (the root lands), so every case is solved once more with them at half "
+        "stiffness: the *½ poor* columns." + (RABA_POOR_CELLS if _is_raba(sweep.reducer) else ""),
+        "",
+        f"FE cases: {len(result.rows)} solid and {len(result.plane)} plane "
+        f"({result.computed} computed now, the others from the cache).", ""]
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,316 @@
+"""FE stage of a crack sweep: c_ru, c_r and c_rp of the cracked ring, one case per crack (SI).
+
+``model = "plane"``: one case per depth, a crack through the face width in plane
+stress.  ``c_rp`` is the ring-planet mesh stiffness averaged over the engagement
+of the cracked tooth, as a ratio to the same window intact; the tooth model
+loads tooth 0, so the crack is moved there (the tooth's compliance relative
+to its root lands does not depend on where the supports are).
+
+``model = "solid"``: one case per depth and half-length, a semi-elliptic root
+crack centred on the face width in the solid ring (``c_ru``, ``c_r``); its
+``c_rp`` ratio comes from the plane cases of the same depths by the slice method
+(``hubvib.studies.crack_growth``).
+
+Every case is cached (``hubvib.runtime.fe_cache``: keyed on the design, the crack, the
+mesh level and the FE stage's source; checked before it is used), written
+atomically by the calling process when it finishes.  A sweep killed at any point
+resumes without losing or recomputing a finished case.  Cases run in worker
+processes or on a Dask cluster (``hubvib.runtime.engines``).
+"""
+from __future__ import annotations
+
+import sys
+from dataclasses import asdict, dataclass
+
+
+from hubvib.runtime.engines import Execution, check_reachable, run_cases
+from hubvib.runtime.progress import progress as hubvib_progress
+from hubvib.runtime import fe_cache
+from hubvib.runtime.fe_cache import (CacheEntryError, case_lock, entry_key, finite_positive, read_entry,
+                       write_entry)
+
+APPLY = ("series", "ratio", "direct")
+MODELS = ("plane", "solid")
+#: mesh size multiplier of each accuracy setting (1.0: c_ru to ~0.3 %, see README)
+ACCURACY = {"default": 1.0, "fast": 2.0}
+#: at most this many depths in one sweep
+MAX_DEPTHS = 64
+#: every value of a case's result that must be a finite number > 0
+POSITIVE_KEYS = ("c_ru_N_m", "c_r_N_m", "c_ru_min_N_m", "c_ru_max_N_m", "c_rp_engaged_ratio",
+                 "c_rp_engaged_min_ratio")
+#: the same for a solid case (its c_rp comes from the plane cases)
+SOLID_POSITIVE_KEYS = ("c_ru_N_m", "c_r_N_m", "c_ru_min_N_m", "c_ru_max_N_m", "c_ru_coarse_N_m",
+                       "c_r_coarse_N_m", "c_ru_poor_half_N_m", "c_r_poor_half_N_m")
+#: the other keys the 3D report reads from a solid case
+SOLID_KEYS = ("c_ru_error_N_m", "c_r_error_N_m", "min_quality", "poor_cells", "dofs",
+              "seconds_total")
+
+
+@dataclass(frozen=True)
+class CrackSweep:
+    """Crack depths to analyse in the ring gear of the reducer.
+
+    Parameters
+    ----------
+    depths : tuple of float
+        Crack depths [m] along the path, ascending, starting at 0 (the intact ring).
+    tooth, start, angle
+        Tooth index, ``"root"`` or ``"rim"``, direction from the radial [rad].
+    apply : str
+        How FE enters the lumped model: ``"series"`` puts the ring mounting in series
+        with the FE ring body, ``1/c = 1/c_mount + 1/c_body(depth)``; ``"ratio"`` scales
+        the preset's ``c_ru`` and ``c_r`` by FE(depth) / FE(0) (the paper's hypothesis:
+        the whole compliance is the ring body, an upper bound of the effect);
+        ``"direct"`` uses the FE values themselves (a rigid mounting).
+    accuracy : str
+        ``"default"`` or ``"fast"`` (element sizes doubled).
+    workers : int
+        Worker processes for the FE cases (1 = in this process).
+    c_ru_mount, c_r_mount : float or None
+        With ``"series"``: the mounting's torsional and radial stiffness [N/m]; ``None``
+        identifies it so that the intact total equals the preset's ``c_ru`` / ``c_r``.
+    design : ReducerDesign or None
+        The reducer whose ring is cracked; ``None`` = Raba 118/76.
+    model : str
+        ``"plane"`` (cracks through the face width, plane stress) or ``"solid"``
+        (semi-elliptic root cracks in the solid ring, one per depth and half-length).
+    half_lengths : tuple of float
+        With ``"solid"``: half the crack mouth's length along the face width [m].
+    """
+
+    depths: tuple[float, ...]
+    tooth: int = 0
+    start: str = "root"
+    angle: float = 0.0
+    apply: str = "series"
+    accuracy: str = "default"
+    workers: int = 2
+    c_ru_mount: float | None = None
+    c_r_mount: float | None = None
+    design: object = None
+    model: str = "plane"
+    half_lengths: tuple[float, ...] = ()
+
+    @property
+    def cases(self) -> list:
+        """The FE cases: depths [m] in the plane; ``(depth, half_length)`` [m] in the solid,
+        the intact ring first as ``(0.0, 0.0)``."""
+        if self.model == "plane":
+            return list(self.depths)
+        return [(0.0, 0.0)] + [(d, c) for c in self.half_lengths for d in self.depths if d > 0]
+
+    @property
+    def reducer(self):
+        """The design (Raba 118/76 when none is given)."""
+        if self.design is not None:
+            return self.design
+        from hubvib.build.raba118 import design
+
+        return design()
+
+
+def crack_of(sweep: CrackSweep, depth: float):
+    from hubvib.meshing.crack import Crack
+
+    return Crack(sweep.tooth, float(depth), sweep.angle, sweep.start)
+
+
+def front_of(half_length: float):
+    """The semi-elliptic front of a solid case, centred on the face width."""
+    from hubvib.meshing.crack import CrackFront
+
+    return CrackFront("semi_elliptic", 0.5, float(half_length))
+
+
+def case_label(case) -> str:
+    if isinstance(case, tuple):
+        return f"depth {1e3 * case[0]:.4g} mm, half-length {1e3 * case[1]:.4g} mm"
+    return f"depth {1e3 * case:.4g} mm"
+
+
+def case_inputs(sweep: CrackSweep, case) -> dict:
+    """Everything that decides one case's FE values, as plain data."""
+    if isinstance(case, tuple):
+        from hubvib.meshing.levels import SOLID_LEVELS
+
+        depth, half_length = case
+        return {"design": sweep.reducer.fingerprint(), "crack": asdict(crack_of(sweep, depth)),
+                "front": asdict(front_of(half_length)) if depth > 0 else None,
+                "levels": SOLID_LEVELS[-2:], "quantities": "solid c_ru c_r pitch poor-half"}
+    return {"design": sweep.reducer.fingerprint(), "crack": asdict(crack_of(sweep, case)),
+            "scale": ACCURACY[sweep.accuracy], "quantities": "c_ru c_r c_rp_engaged"}
+
+
+def fe_case(sweep: CrackSweep, case) -> dict:
+    """c_ru, c_r, c_rp with error estimate and timing for one case (runs in a worker).
+
+    Plane: per mesh level one mesh, one assembly and one factorisation serve c_ru, c_r
+    and the cracked tooth's compliance (``fem.estimate.estimate_crack_case``).  Solid:
+    c_ru over every carrier position of one planet pitch and c_r on the last two
+    ``SOLID_LEVELS``, and on the fine one again with its poorly shaped cells at half
+    stiffness."""
+    import time
+
+    from hubvib.build.stages import gear_body, material, ring_gear
+    from hubvib.fem.estimate import estimate_crack_case
+
+    started = time.perf_counter()
+    design = sweep.reducer
+    if isinstance(case, tuple):
+        from hubvib.fem.estimate import estimate_ring
+        from hubvib.fem.ring_stiffness import default_carrier_teeth
+
+        depth, half_length = case
+        ring = ring_gear(design)
+        result = estimate_ring(ring, crack_of(sweep, depth) if depth > 0 else None, solid=True,
+                               front=front_of(half_length) if depth > 0 else None,
+                               material=material(design), n_planets=design.n_planets,
+                               carrier_teeth=default_carrier_teeth(ring, design.n_planets),
+                               poor_cells_halved=True)
+        return dict(result.to_dict(), depth_m=float(depth), half_length_m=float(half_length),
+                    seconds_total=time.perf_counter() - started)
+    depth = case
+    result = estimate_crack_case(ring_gear(design), gear_body(design, "planet"),
+                                 crack_of(sweep, depth), ACCURACY[sweep.accuracy],
+                                 material=material(design), n_planets=design.n_planets)
+    return dict(result.to_dict(), depth_m=float(depth),
+                seconds_total=time.perf_counter() - started)
+
+
+def cache_folder():
+    from hubvib.meshing.cache import root_folder
+
+    return root_folder() / "stiffness"
+
+
+def check_case(case):
+    """The plausibility check of a cached case (a depth [m], or depth and half-length)."""
+    if isinstance(case, tuple):
+        return _check_solid_case(case)
+    depth = case
+
+    def check(result: dict) -> None:
+        finite_positive(result, POSITIVE_KEYS)
+        if result.get("depth_m") != depth:
+            raise CacheEntryError(f"depth_m = {result.get('depth_m')!r}, the case is {depth!r}")
+        if not result["c_ru_min_N_m"] <= result["c_ru_N_m"] <= result["c_ru_max_N_m"]:
+            raise CacheEntryError("c_ru outside its own min..max over carrier positions")
+        for key in ("c_rp_engaged_ratio", "c_rp_engaged_min_ratio"):
+            if not result[key] <= 1 + 1e-6 or (depth == 0 and result[key] != 1.0):
+                raise CacheEntryError(f"{key} = {result[key]!r}: a crack cannot stiffen the tooth")
+    return check
+
+
+def _check_solid_case(case):
+    def check(result: dict) -> None:
+        finite_positive(result, SOLID_POSITIVE_KEYS)
+        missing = [k for k in SOLID_KEYS if k not in result]
+        if missing:
+            raise CacheEntryError(f"lacks {', '.join(missing)}")
+        found = (result.get("depth_m"), result.get("half_length_m"))
+        if found != case:
+            raise CacheEntryError(f"(depth_m, half_length_m) = {found!r}, the case is {case!r}")
+        if not result["c_ru_min_N_m"] <= result["c_ru_N_m"] <= result["c_ru_max_N_m"]:
+            raise CacheEntryError("c_ru outside its own min..max over carrier positions")
+    return check
+
+
+def run_fe_cases(sweep: CrackSweep, progress: bool = True,
+                 execution: Execution = Execution()) -> tuple[list[dict], int]:
+    """Every case's FE result (``sweep.cases`` order), from the cache or computed; returns
+    them and how many ran."""
+    if sweep.design is not None and not sweep.reducer.equally_spaced:
+        raise ValueError(f"design {sweep.reducer.name!r}: the FE ring model loads equally spaced "
+                         "planets only; unequal planet_angles_deg work in the lumped model but "
+                         "not in the crack study")
+    folder = cache_folder()
+    inputs = {d: case_inputs(sweep, d) for d in sweep.cases}
+    paths = {d: folder / f"{entry_key(inputs[d])}.json" for d in sweep.cases}
+    results = {}
+
+    def cached(case, notice):
+        try:
+            results[case] = read_entry(paths[case], inputs[case], check_case(case))
+            return True
+        except CacheEntryError as exc:
+            if notice and str(exc) != "missing":
+                print(f"hubvib: cache entry {paths[case].name} for {case_label(case)}: {exc}; "
+                      "recomputing", file=sys.stderr)
+            return False
+
+    todo = [d for d in sweep.cases if not cached(d, notice=True)]
+    if todo:
+        check_reachable(execution)
+    bar = (hubvib_progress(len(sweep.cases), "FE crack cases", "case",
+                           len(sweep.cases) - len(todo)) if progress else _Silent())
+
+    def store(case, result):
+        write_entry(paths[case], inputs[case], result)
+        results[case] = result
+        bar.update(1, f"{case_label(case)}, {result['seconds_total']:.1f} s")
+
+    computed = 0
+    try:
+        for attempt in ("others may hold", "wait"):
+            mine, busy = [], []
+            with _locks(paths, todo, wait=attempt == "wait") as held:
+                for case in todo:
+                    if case in held and not cached(case, notice=False):
+                        mine.append(case)
+                    elif case not in held:
+                        busy.append(case)
+                    else:
+                        bar.update(1)
+                run_cases(_Case(sweep, fe_cache.fe_version()), mine, store, execution, sweep.workers)
+                computed += len(mine)
+            todo = [d for d in busy if not cached(d, notice=False)]
+            if not todo:
+                break
+    finally:
+        bar.close()
+    return [results[d] for d in sweep.cases], computed
+
+
+@dataclass(frozen=True)
+class _Case:
+    """``fe_case`` bound to its sweep: one picklable callable of the case.  It refuses to
+    run on a worker whose FE stage differs from the client's (its result would be cached
+    under the client's version)."""
+
+    sweep: CrackSweep
+    fe_version: str
+
+    def __call__(self, case) -> dict:
+        if fe_cache.fe_version() != self.fe_version:
+            raise RuntimeError(f"this worker's FE stage is version {fe_cache.fe_version()}, "
+                               f"the client's "
+                               f"{self.fe_version}: install the same hubvib on every worker")
+        return fe_case(self.sweep, case)
+
+
+class _locks:
+    """Lock each entry of ``cases``; ``held`` is the set locked by this process."""
+
+    def __init__(self, paths, cases, wait):
+        self.stack, self.paths, self.cases, self.wait = None, paths, cases, wait
+
+    def __enter__(self):
+        from contextlib import ExitStack
+
+        self.stack = ExitStack()
+        held = set()
+        for case in self.cases:
+            if self.stack.enter_context(case_lock(self.paths[case], self.wait)):
+                held.add(case)
+        return held
+
+    def __exit__(self, *exc):
+        self.stack.close()
+
+
+class _Silent:
+    def update(self, n: int = 1, note: str = "") -> None:
+        pass
+
+    def close(self) -> None:
+        pass

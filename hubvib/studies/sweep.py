@@ -1,0 +1,171 @@
+"""The lumped frequency-shift study a scene describes, and its report."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from hubvib.lumped import FrequencyShift, Spectrum, frequency_sensitivity, frequency_shift, natural_modes
+from hubvib.lumped.sensitivity import Sensitivity
+
+from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.studies.scene import Scene
+
+
+@dataclass
+class StudyResult:
+    scene: Scene
+    baseline: Spectrum
+    shifts: list[FrequencyShift]
+    sensitivity: Sensitivity
+    files: list[Path] = field(default_factory=list)
+
+    @property
+    def base_value(self) -> float:
+        return float(getattr(self.scene.params, self.scene.parameter))
+
+    def detection(self) -> list[dict]:
+        """Per mode: the modified value nearest the baseline whose |shift| reaches the threshold."""
+        rows = []
+        for i, kind in enumerate(self.baseline.kind):
+            hits = [s for s in self.shifts if abs(s.percent[i]) >= self.scene.threshold_percent]
+            nearest = min(hits, key=lambda s: abs(math.log(s.modified_value / self.base_value)),
+                          default=None) if self.base_value > 0 else (hits[0] if hits else None)
+            rows.append({
+                "mode": i + 1, "kind": kind,
+                "omega_base_rad_s": float(self.baseline.omega[i]),
+                "detectable_at": None if nearest is None else nearest.modified_value,
+                "shift_percent_there": None if nearest is None else float(nearest.percent[i]),
+                "relative_sensitivity": float(self.sensitivity.relative[i]),
+            })
+        return rows
+
+    def shift_rows(self) -> list[dict]:
+        rows = []
+        for s in self.shifts:
+            for row in s.rows():
+                rows.append({self.scene.parameter: s.modified_value, **row})
+        return rows
+
+
+def run_study(scene: Scene) -> StudyResult:
+    baseline = natural_modes(scene.params, scene.method)
+    shifts = [frequency_shift(scene.params, scene.parameter, v, method=scene.method)
+              for v in scene.values]
+    sensitivity = frequency_sensitivity(scene.params, scene.parameter, scene.method, baseline)
+    return StudyResult(scene, baseline, shifts, sensitivity)
+
+
+def write_study(result: StudyResult, folder: Path) -> StudyResult:
+    """Write the tables, plots and ``report.md`` into ``folder``."""
+    folder = Path(folder)
+    files = [
+        write_csv(folder / "baseline_spectrum.csv", result.baseline.rows()),
+        write_csv(folder / "shifts.csv", result.shift_rows()),
+        write_csv(folder / "detection.csv", result.detection()),
+        write_json(folder / "results.json", {
+            "scene": result.scene.name,
+            "parameters": result.scene.params.to_dict(),
+            "study_parameter": result.scene.parameter,
+            "baseline_value": result.base_value,
+            "threshold_percent": result.scene.threshold_percent,
+            "baseline_spectrum": result.baseline.rows(),
+            "shifts": result.shift_rows(),
+            "detection": result.detection(),
+        }),
+    ]
+    plots = []
+    if result.scene.plots:
+        plots = [save_figure(_frequency_figure(result), folder / "frequency_vs_parameter.png"),
+                 save_figure(_shift_figure(result), folder / "shift_percent.png")]
+    files += plots
+    files.append(write_text(folder / "report.md", report_markdown(result, [p.name for p in plots])))
+    result.files = files
+    return result
+
+
+def report_markdown(result: StudyResult, plot_names: list[str]) -> str:
+    scene, p = result.scene, result.scene.params
+    lines = [
+        f"# hubvib study: {scene.name}",
+        "",
+        f"Reducer: N = {p.n_planets} planets, baseline {scene.parameter} = {result.base_value:.6g} "
+        f"(SI), modified values {', '.join(f'{v:.6g}' for v in scene.values)}.",
+        "Stiffnesses are the numbers given by the scene (no FE stage ran).",
+        "",
+        "## Validation status",
+        "- Eigensolver: Jacobi SVD of the factored stiffness; agrees with a 50-digit mpmath "
+        "reference to 1e-6 or better on every stiff and extreme case (`hubvib stability`).",
+        "- Model: reproduces the published Raba 118/76 spectrum with the paper's printed matrix "
+        "(0.2 %); the energy-consistent model used here differs in the translational modes, "
+        "explained in `hubvib validate raba118`.",
+        "",
+        "## Baseline spectrum",
+        "",
+        "| mode | omega [rad/s] | f [Hz] | type | multiplicity |",
+        "|---:|---:|---:|---|---:|",
+    ]
+    for r in result.baseline.rows():
+        lines.append(f"| {r['mode']} | {r['omega_rad_s']:.2f} | {r['frequency_hz']:.3f} | "
+                     f"{r['kind']} | {r['multiplicity']} |")
+    lines += ["", f"## Shift in percent per mode ({scene.parameter} as column)", ""]
+    header = "| mode | type | " + " | ".join(f"{v:.3g}" for v in scene.values) + " |"
+    lines += [header, "|---:|---|" + "---:|" * len(scene.values)]
+    for i, kind in enumerate(result.baseline.kind):
+        cells = " | ".join(f"{s.percent[i]:+.3f}" for s in result.shifts)
+        lines.append(f"| {i + 1} | {kind} | {cells} |")
+    lines += ["", f"## Detection at {scene.threshold_percent:g} % shift", "",
+              "| mode | type | first detectable value | shift there [%] | "
+              "relative sensitivity (dω/ω)/(dk/k) |", "|---:|---|---:|---:|---:|"]
+    for r in result.detection():
+        value = "not reached" if r["detectable_at"] is None else f"{r['detectable_at']:.4g}"
+        there = "" if r["shift_percent_there"] is None else f"{r['shift_percent_there']:+.3f}"
+        lines.append(f"| {r['mode']} | {r['kind']} | {value} | {there} | "
+                     f"{r['relative_sensitivity']:.4g} |")
+    if plot_names:
+        lines += ["", "## Plots", ""] + [f"![{n}]({n})" for n in plot_names]
+    return "\n".join(lines) + "\n"
+
+
+def _frequency_figure(result: StudyResult):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    values = np.array([result.base_value] + [s.modified_value for s in result.shifts])
+    omega = np.array([result.shifts[0].omega_base] + [s.omega_modified for s in result.shifts])
+    order = np.argsort(values)
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for i in range(omega.shape[1]):
+        ax.plot(values[order], omega[order, i], marker="o", ms=3,
+                label=f"{i + 1} {result.baseline.kind[i]}")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(f"{result.scene.parameter} [SI]")
+    ax.set_ylabel("natural frequency [rad/s]")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=6, ncol=2)
+    return fig
+
+
+def _shift_figure(result: StudyResult):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 5))
+    values = [s.modified_value for s in result.shifts]
+    for i in range(result.baseline.omega.size):
+        ax.plot(values, [s.percent[i] for s in result.shifts], marker="o", ms=3,
+                label=f"{i + 1} {result.baseline.kind[i]}")
+    ax.axhline(-result.scene.threshold_percent, color="k", ls=":", lw=0.8)
+    ax.set_xscale("log")
+    ax.set_xlabel(f"{result.scene.parameter} [SI]")
+    ax.set_ylabel("frequency shift [%]")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=6, ncol=2)
+    return fig
