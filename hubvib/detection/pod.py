@@ -208,6 +208,14 @@ class PodResult:
         ok[0] = False
         return float(self.depths[int(ok.argmax())]) if ok.any() else math.nan
 
+    def family_rows(self) -> list[dict]:
+        """Family POD per depth and record length (``pod_family.csv``)."""
+        modes = " ".join(str(int(i) + 1) for i in self.watched)
+        return [{"depth_mm": 1e3 * float(d), "record_s": float(T), "watched_modes": modes,
+                 "family_false_alarm_rate": self.false_alarm_rate,
+                 "pod": float(self.family_pod[T][k])}
+                for T in sorted(self.family_pod) for k, d in enumerate(self.depths)]
+
     def rows(self) -> list[dict]:
         nominal = self.nominal
         carried = nominal.carried_by

@@ -172,6 +172,7 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
              write_csv(folder / "modes.csv", result.mode_rows())]
     if study is not None:
         files += [write_csv(folder / "pod.csv", study.pod.rows()),
+                  write_csv(folder / "pod_family.csv", study.pod.family_rows()),
                   write_csv(folder / "detectability_map.csv", study.map.rows())]
     files.append(write_json(folder / "results.json", json_safe({
         "scene": scene.name, **provenance(), "parameters": scene.params.to_dict(),
@@ -338,7 +339,9 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
         lines += _image("detectability_map.png", plots)
         lines += sections.pod_section(study) + _image("pod.png", plots)
         lines += ["Files: `pod.csv` (every mode and depth: shift, its 5-95 % range over the "
-                  "scatter, carrying stiffness, FE error, POD with both baselines).", ""]
+                  "scatter, carrying stiffness, FE error, identification scatter, threshold, "
+                  "POD with both baselines), `pod_family.csv` (the watched modes together, "
+                  "per record length).", ""]
         lines += sections.carrier_section(study) + _image("carrier_position.png", plots)
     else:
         lines += [sections.mounting_sentence(model), ""]
