@@ -113,7 +113,9 @@ class CrackStudyResult:
                    "smallest_detectable_depth_mm":
                        float(1e3 * self.depths[hits[0]]) if len(hits) else None}
             if pod is not None:
-                row |= {"signal_in": str(pod.nominal.carried_by[-1, i]),
+                row |= {"record_shift_at_deepest_hz": float(pod.nominal.shift_hz[-1, i]),
+                        "sigma_hz": float(pod.sigma_hz[i]),
+                        "signal_in": str(pod.nominal.carried_by[-1, i]),
                         "pod_at_deepest": float(pod.pod[-1, i]),
                         "detectable_depth_mm": (None if math.isnan(detectable[i])
                                                 else 1e3 * float(detectable[i]))}
@@ -203,7 +205,8 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
             plots += [
                 save_figure(figures.shift_threshold_figure(name, study.pod),
                             folder / "shift_vs_depth.png"),
-                save_figure(figures.map_figure(name, study.map, deepest),
+                save_figure(figures.map_figure(name, study.map, deepest,
+                                               float(result.depths[1])),
                             folder / "detectability_map.png"),
                 save_figure(figures.pod_figure(name, study.pod, _pod_modes(study)),
                             folder / "pod.png"),
