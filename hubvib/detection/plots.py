@@ -54,8 +54,14 @@ def relative_shift_figure(name: str, depths: np.ndarray, omega: np.ndarray, kind
     relative = omega / omega[0] - 1
     moving = moving_modes(relative)
     panels = [moving[j:j + PER_PANEL] for j in range(0, max(moving.size, 1), PER_PANEL)]
-    fig, axes = _axes(len(panels))
-    for ax, modes in zip(axes[0], panels):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(len(panels), 1, figsize=(9, 4 * len(panels)), squeeze=False,
+                             layout="constrained")
+    for ax, modes in zip(axes[:, 0], panels):
         for n, i in enumerate(modes):
             ax.plot(1e3 * depths, 100 * relative[:, i], **style(n),
                     label=_label(i, omega[0, i] / (2 * math.pi), kind[i]))
