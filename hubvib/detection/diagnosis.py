@@ -52,6 +52,7 @@ from scipy.stats import chi2, norm
 
 from hubvib.identification.law import fisher_sigma_hz
 
+from .drift import drift_model
 from .measured import Measured, MeasuredError
 from .options import DetectionOptions
 from .uncertainty import draw, nominal, observed_frequencies
@@ -82,6 +83,8 @@ class Reference:
         record length and SNR).
     false_alarm_rate, detection_probability, confidence, fit_false_alarm_rate : float
         [-]
+    drift_cov : ndarray, shape (modes, modes) or None
+        Covariance of the drift between two records (temperature, load) [Hz^2].
     """
 
     depths: np.ndarray
@@ -92,6 +95,7 @@ class Reference:
     detection_probability: float
     confidence: float
     fit_false_alarm_rate: float = 0.01
+    drift_cov: np.ndarray | None = None
 
     @property
     def n_modes(self) -> int:
@@ -111,10 +115,11 @@ def reference(model, options, timing, seed: int | None = None, workers: int = 1)
     samples = observed_frequencies(model, draw(model, options, options.samples, rng), fraction,
                                    long, workers)
     nominal_hz = observed_frequencies(model, nominal(model), fraction, long)[0]
+    drift = drift_model(model.parameters(0), nominal_hz[0], options, model.method)
     return Reference(np.array(model.depths), samples, nominal_hz,
                      options.sigma_hz(nominal_hz[0]), options.false_alarm_rate,
                      options.detection_probability, options.confidence,
-                     options.fit_false_alarm_rate)
+                     options.fit_false_alarm_rate, drift.covariance())
 
 
 def pair_modes(measured: Measured, ref: Reference) -> np.ndarray:
@@ -253,7 +258,8 @@ class Posterior:
     """Gaussian likelihood of the shifts of chosen modes over a fine depth grid.
 
     ``sigma_hz``: identification standard deviation of each chosen mode [Hz] (default the
-    reference's); against a measured baseline both frequencies carry it.
+    reference's); against a measured baseline both frequencies carry it.  The drift
+    between records (the reference's ``drift_cov``) adds to the noise covariance.
     """
 
     def __init__(self, ref: Reference, modes: np.ndarray, measured_baseline: bool,
@@ -266,11 +272,14 @@ class Posterior:
             X = X - X[:, :1]
         else:
             X = X - ref.nominal_hz[0, self.modes]
-        self.noise = (2.0 if measured_baseline else 1.0) * self.sigma ** 2
+        noise = np.diag((2.0 if measured_baseline else 1.0) * self.sigma ** 2)
+        if ref.drift_cov is not None:
+            noise = noise + ref.drift_cov[np.ix_(self.modes, self.modes)]
+        self.noise = noise
         mean = X.mean(axis=0)
         centred = X - mean
         cov = np.einsum("sdi,sdj->dij", centred, centred) / (X.shape[0] - 1)
-        cov += np.diag(self.noise)
+        cov += noise
         self.sweep_mean, self.sweep_cov = mean, cov
         self.grid = np.linspace(0.0, ref.depths[-1], GRID)
         self.mean = _interpolate(ref.depths, mean, self.grid)
@@ -284,7 +293,8 @@ class Posterior:
         shape (2, depths, draws)."""
         draws = min(BOOTSTRAP, X.shape[0])
         pick = rng.choice(X.shape[0], draws, replace=False)
-        y = X[pick] + rng.standard_normal((draws, 1, self.modes.size)) * np.sqrt(self.noise)
+        root = np.linalg.cholesky(self.noise)
+        y = X[pick] + (rng.standard_normal((draws, 1, self.modes.size)) @ root.T)
         stats = np.stack([np.stack(self.fit_statistics(y[:, k])) for k in range(X.shape[1])],
                          axis=1)
         return np.sort(stats, axis=-1)
@@ -432,7 +442,8 @@ def synthetic_measurements(model, options, timing, depths: np.ndarray, seed: int
                            workers: int = 1, errors=None) -> tuple[np.ndarray, np.ndarray]:
     """Frequencies and own baselines [Hz] of reducers drawn from the uncertainty model
     with cracks of ``depths`` [m], each identified with the scene's identification
-    scatter ``options.sigma_hz``.
+    scatter ``options.sigma_hz``, the drift between the two records
+    (:mod:`.drift`) on the cracked one.
 
     ``errors(rng, shape)``: standardised identification errors (default standard normal),
     e.g. resampled from identified simulated records.  Returns arrays of shape
@@ -449,7 +460,9 @@ def synthetic_measurements(model, options, timing, depths: np.ndarray, seed: int
                                                   True)[0, 0])
     draw_errors = errors or (lambda generator, shape: generator.standard_normal(shape))
     noise = draw_errors(rng, f.shape) * sigma
-    return f[:, 1] + noise[:, 1], f[:, 0] + noise[:, 0]
+    drift = drift_model(at.parameters(0), observed_frequencies(
+        at, nominal(at), timing.engaged_fraction, True)[0, 0], options, at.method)
+    return f[:, 1] + noise[:, 1] + drift.draw(rng, depths.size), f[:, 0] + noise[:, 0]
 
 
 def diagnose_scene(scene, measured: Measured, progress: bool = True,

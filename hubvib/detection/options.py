@@ -11,6 +11,12 @@ All keys, with their defaults::
                                         # the rate of crack verdicts on an intact reducer
     fit_false_alarm_rate = 0.01         # rate at which diagnose calls a pattern a ring crack
                                         # does produce "not explained by a ring crack"
+    temperature_std_K = 1.0             # ASSUMED: temperature change between two records [K]
+    modulus_per_K = -2.6e-4             # steel: relative change of Young's modulus per K
+    expansion_per_K = 1.2e-5            # steel: linear thermal expansion per K
+    mesh_load_std_percent = 0.0         # change of every mesh stiffness between the records
+                                        # from a load change (std, percent): 0 = records
+                                        # at the same torque
     detection_probability = 0.9         # POD at which a depth counts as detectable
     scatter_masses_percent = 2.0        # relative standard deviation of every mass
     scatter_stiffnesses_percent = 10.0  # ... of mesh, bearing and sun/carrier torsion springs
@@ -33,7 +39,10 @@ law ``sqrt(zeta f / (2 pi T))`` for high SNR and a wide band) with the damping
 ``watched_modes`` modes with the largest deepest-crack shift against that scatter;
 each mode's threshold holds the per-mode rate ``1 - (1 - alpha)^(1/m)`` (Sidak:
 the identification errors are independent), so the family raises a false alarm
-with probability ``false_alarm_rate``.
+with probability ``false_alarm_rate``.  Drift between the two records (uniform
+temperature, load on the meshes; :mod:`hubvib.detection.drift`) is reported as
+an extra family POD, with and without compensation by reference modes, and
+enters the covariance of ``hubvib diagnose``.
 """
 from __future__ import annotations
 
@@ -67,6 +76,13 @@ class DetectionOptions:
     fit_false_alarm_rate : float
         Probability [-] that ``hubvib diagnose`` calls a frequency pattern that a ring
         crack does produce "not explained by a ring crack".
+    temperature_std : float
+        Standard deviation of the uniform temperature change between two records [K].
+    modulus_per_K, expansion_per_K : float
+        Relative change of Young's modulus and of every length per K [1/K].
+    mesh_load_std : float
+        Standard deviation of the common relative change of every mesh stiffness between
+        two records from a load change [-].
     detection_probability : float
         Probability of detection [-] at which a depth counts as detectable.
     scatter_masses, scatter_stiffnesses, scatter_mounting : float
@@ -92,6 +108,10 @@ class DetectionOptions:
     watched_modes: int = 4
     false_alarm_rate: float = 0.01
     fit_false_alarm_rate: float = 0.01
+    temperature_std: float = 1.0
+    modulus_per_K: float = -2.6e-4
+    expansion_per_K: float = 1.2e-5
+    mesh_load_std: float = 0.0
     detection_probability: float = 0.9
     scatter_masses: float = 0.02
     scatter_stiffnesses: float = 0.10
@@ -135,6 +155,10 @@ _KEYS = {
     "watched_modes": ("watched_modes", int, 1, 1000, False, False, 1),
     "false_alarm_rate": ("false_alarm_rate", float, 0.0, 0.5, True, True, 1.0),
     "fit_false_alarm_rate": ("fit_false_alarm_rate", float, 0.0, 0.5, True, True, 1.0),
+    "temperature_std_K": ("temperature_std", float, 0.0, 100.0, False, False, 1.0),
+    "modulus_per_K": ("modulus_per_K", float, -0.01, 0.0, False, False, 1.0),
+    "expansion_per_K": ("expansion_per_K", float, 0.0, 0.001, False, False, 1.0),
+    "mesh_load_std_percent": ("mesh_load_std", float, 0.0, 100.0, False, False, 0.01),
     "detection_probability": ("detection_probability", float, 0.0, 1.0, True, True, 1.0),
     "scatter_masses_percent": ("scatter_masses", float, 0.0, 100.0, False, False, 0.01),
     "scatter_stiffnesses_percent": ("scatter_stiffnesses", float, 0.0, 100.0, False, False,

@@ -35,12 +35,16 @@ discretisation error.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.optimize import brentq
 from scipy.stats import norm
 
+from hubvib.identification.law import KAPPA
+
+from .drift import Drift, drift_model, references
+from .drift import family_pod as family_pod_mc
 from .numbers import ROUND_OFF
 from .uncertainty import draw, nominal, observed_frequencies
 
@@ -159,6 +163,13 @@ class PodResult:
     family_pod : dict
         Record length [s] -> ndarray (depths,): probability that some watched mode
         alarms (own intact baseline) [-].
+    drift : Drift or None
+        Temperature and load drift between records (:mod:`.drift`).
+    references : ndarray of int or None
+        Per watched mode, its reference mode for drift compensation (-1: none).
+    family_pod_drift, family_pod_compensated : dict
+        Record length [s] -> family POD (depths,) with the drift between the records,
+        without and with compensation by the reference modes [-].
     threshold_model_hz, pod_model : ndarray or None
         The same against the model's nominal intact spectrum [Hz], [-].
     false_alarm_rate, detection_probability : float
@@ -183,6 +194,10 @@ class PodResult:
     false_alarm_rate: float
     detection_probability: float
     samples: int
+    drift: Drift | None = None
+    references: np.ndarray | None = None
+    family_pod_drift: dict = field(default_factory=dict)
+    family_pod_compensated: dict = field(default_factory=dict)
 
     @property
     def resolved(self) -> np.ndarray:
@@ -201,19 +216,26 @@ class PodResult:
         first = np.where(ok.any(axis=0), ok.argmax(axis=0), -1)
         return np.where(first >= 0, self.depths[np.maximum(first, 0)], np.nan)
 
-    def family_detectable_depth(self, record_length: float) -> float:
+    def family_detectable_depth(self, record_length: float, which: str = "") -> float:
         """Smallest depth [m] whose family POD with records of ``record_length`` [s]
-        reaches the required probability; NaN when none does."""
-        ok = self.family_pod[record_length] >= self.detection_probability
+        reaches the required probability (``which``: ``""``, ``"drift"`` or
+        ``"compensated"``); NaN when none does."""
+        table = getattr(self, f"family_pod_{which}" if which else "family_pod")
+        ok = table[record_length] >= self.detection_probability
         ok[0] = False
         return float(self.depths[int(ok.argmax())]) if ok.any() else math.nan
 
     def family_rows(self) -> list[dict]:
         """Family POD per depth and record length (``pod_family.csv``)."""
         modes = " ".join(str(int(i) + 1) for i in self.watched)
+        def at(table, T, k):
+            return float(table[T][k]) if T in table else None
+
         return [{"depth_mm": 1e3 * float(d), "record_s": float(T), "watched_modes": modes,
                  "family_false_alarm_rate": self.false_alarm_rate,
-                 "pod": float(self.family_pod[T][k])}
+                 "pod": float(self.family_pod[T][k]),
+                 "pod_with_drift": at(self.family_pod_drift, T, k),
+                 "pod_drift_compensated": at(self.family_pod_compensated, T, k)}
                 for T in sorted(self.family_pod) for k, d in enumerate(self.depths)]
 
     def rows(self) -> list[dict]:
@@ -282,6 +304,18 @@ def pod_study(model, options, timing, samples: int | None = None, model_baseline
         p = norm.cdf((-measured_threshold(s_T, rate) - shifts[..., family])
                      / (math.sqrt(2) * s_T))
         family_pod[T] = 1.0 - np.prod(1.0 - p, axis=-1).mean(axis=0)
+    drift = drift_model(model.parameters(0), f0, options, model.method)
+    refs = references(shifts[:, -1].mean(axis=0), sigma, drift, f0, family,
+                      KAPPA * options.damping_ratio)
+    drifting, compensated = {}, {}
+    if model_baseline:  # the scene's study (the map's many POD runs skip it)
+        drift_rng = np.random.default_rng((options.seed, 7))
+        for T in sorted({*RECORD_LENGTHS, options.record_length}):
+            s_T = options.sigma_hz(f0, T)
+            drifting[T] = family_pod_mc(shifts, s_T, f0, family, options.false_alarm_rate,
+                                        drift_rng, drift)
+            compensated[T] = family_pod_mc(shifts, s_T, f0, family,
+                                           options.false_alarm_rate, drift_rng, drift, refs)
     threshold_model = pod_model = None
     if model_baseline:
         calibration = observed_frequencies(model.at_depths([0.0]),
@@ -294,7 +328,8 @@ def pod_study(model, options, timing, samples: int | None = None, model_baseline
     return PodResult(np.array(model.depths), kind, nominal_result, shifts.mean(axis=0),
                      np.quantile(shifts, 0.05, axis=0), np.quantile(shifts, 0.95, axis=0),
                      sigma, family, rate, threshold, pod, family_pod, threshold_model,
-                     pod_model, options.false_alarm_rate, options.detection_probability, n)
+                     pod_model, options.false_alarm_rate, options.detection_probability, n,
+                     drift, refs, drifting, compensated)
 
 
 def _quantile_threshold(offsets: np.ndarray, sigma: float, alpha: float) -> float:
