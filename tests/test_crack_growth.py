@@ -10,6 +10,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from hubvib.design import preset_design
 from hubvib.studies.crack_growth import slice_ratio, solid_rows
 from hubvib.studies.crack_sweep import CrackSweep, case_inputs, check_case
 from hubvib.runtime.fe_cache import CacheEntryError
@@ -132,7 +133,8 @@ def test_a_solid_scene_with_a_signal_is_refused():
 
 def test_solid_rows_change_and_its_error():
     """The change's error is (fine - fine intact) - (coarse - coarse intact) by hand."""
-    sweep = CrackSweep((0.0, 0.003), model="solid", half_lengths=(0.004,))
+    sweep = CrackSweep((0.0, 0.003), model="solid", half_lengths=(0.004,),
+                       design=preset_design("raba118"))
 
     def row(depth, half, fine, coarse):
         return {"depth_m": depth, "half_length_m": half, "c_ru_N_m": fine,

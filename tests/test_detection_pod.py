@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from test_detection_helpers import TIMING, synthetic_model
 
+from hubvib.design import preset_design
 from hubvib.detection.carrier import MeshTiming, carrier_study, mesh_timing, observed_omega
 from hubvib.detection.options import DetectionOptions
 from hubvib.detection.pod import measured_threshold, pod_study
@@ -77,7 +78,7 @@ def test_a_shift_below_its_own_fe_error_is_not_resolved():
 def test_mesh_timing_of_the_raba_design():
     from hubvib.studies.crack_sweep import CrackSweep
 
-    timing = mesh_timing(CrackSweep((0.0,)).reducer, 15.0)
+    timing = mesh_timing(preset_design("raba118"), 15.0)
     assert timing.ring_teeth == 64 and timing.n_planets == 3
     assert 1.0 < timing.contact_ratio < 2.0
     # N eps / z of the time, passes of eps 2 pi / (z Omega)

@@ -10,6 +10,10 @@ from hubvib.studies.scene import SceneError
 from hubvib.signal import study as signal_study
 from hubvib.signal.mesh_curves import synthetic_curves
 from hubvib.signal.options import SignalOptions, parse_signal_table
+from hubvib.design import preset_design
+
+RABA = preset_design("raba118")  # the reference case (hubvib.design.presets)
+
 
 SCENE = """
 [reducer]
@@ -72,7 +76,7 @@ def fake_fe(monkeypatch):
     """Synthetic mesh curves instead of the FE stage (constant tooth compliances)."""
     def curves(scene, options, progress=None):
         p = scene.params
-        return [synthetic_curves(crack_factor=1 + 40 * d, depth=d).to_preset(p.c_sp, p.c_rp)
+        return [synthetic_curves(RABA, crack_factor=1 + 40 * d, depth=d).to_preset(p.c_sp, p.c_rp)
                 for d in scene.crack.depths]
     monkeypatch.setattr(signal_study, "curves_for", curves)
 

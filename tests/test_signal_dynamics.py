@@ -9,12 +9,17 @@ from hubvib.lumped import natural_modes, raba118
 from hubvib.lumped.network import mass_diagonal, spring_network
 from hubvib.signal.dynamics import planetary_dynamics
 from hubvib.signal.mesh_curves import synthetic_curves
-from hubvib.signal.mesh_phase import raba118_phasing
+from hubvib.design import preset_design
+from hubvib.signal.mesh_phase import design_phasing
+
 from hubvib.signal.options import SignalOptions
 from hubvib.signal.simulation import simulate
 from hubvib.signal.study import step_halving_change
 from hubvib.signal.time_response import (Excitation, LinearSystem, integrate,
                                          periodic_start)
+
+RABA = preset_design("raba118")  # the reference case (hubvib.design.presets)
+
 
 #: a fast operating point for tests: a shorter carrier revolution, fewer steps
 FAST = SignalOptions(sun_speed_rpm=6000.0, sample_rate_hz=20000.0)
@@ -106,7 +111,7 @@ def test_undamped_energy_is_conserved_exactly_by_average_acceleration():
 
 def test_static_preload_carries_the_input_torque_through_every_mesh():
     params = raba118()
-    curves = synthetic_curves().to_preset(params.c_sp, params.c_rp)
+    curves = synthetic_curves(RABA).to_preset(params.c_sp, params.c_rp)
     dynamics = planetary_dynamics(params, curves, 0.05, 1000.0)
     expected = 1000.0 / (params.d_s / 2) / params.n_planets   # T_s / (N r_bs)
     np.testing.assert_allclose(np.abs(dynamics.static_force), expected, rtol=1e-10,
@@ -115,13 +120,13 @@ def test_static_preload_carries_the_input_torque_through_every_mesh():
 
 def _cracked():
     params = raba118()
-    return params, synthetic_curves(crack_factor=1.5, depth=0.01).to_preset(params.c_sp,
+    return params, synthetic_curves(RABA, crack_factor=1.5, depth=0.01).to_preset(params.c_sp,
                                                                             params.c_rp)
 
 
 def test_periodic_start_repeats_every_revolution():
     params, curves = _cracked()
-    sim = simulate(params, curves, raba118_phasing(), FAST, crack_tooth=0, revolutions=2)
+    sim = simulate(params, curves, design_phasing(RABA), FAST, crack_tooth=0, revolutions=2)
     M = sim.steps_per_revolution
     f = sim.ring_forces
     assert np.abs(f[M:] - f[:M + 1]).max() < 1e-9 * np.abs(f).max(), \
@@ -130,7 +135,7 @@ def test_periodic_start_repeats_every_revolution():
 
 def test_halving_the_time_step_changes_the_spectrum_little():
     params, curves = _cracked()
-    change = step_halving_change(params, curves, raba118_phasing(), FAST, 3 * 64 + 18)
+    change = step_halving_change(params, curves, design_phasing(RABA), FAST, 3 * 64 + 18, None, 26)
     assert change["relative_change"] < 0.02, \
         f"halving the time step moved the order amplitudes by {change['relative_change']:.3g} " \
         "of the largest (stated tolerance 0.02)"
@@ -144,7 +149,7 @@ def test_static_transmission_error_drives_the_meshes_linearly():
     responses = []
     for amplitude in (1e-6, 2e-6):
         options = replace(FAST, sun_torque_N_m=1e-9, transmission_error_m=amplitude)
-        sim = simulate(params, curves, raba118_phasing(), options, crack_tooth=None)
+        sim = simulate(params, curves, design_phasing(RABA), options, crack_tooth=None)
         responses.append(sim.ring_forces)
     scale = np.abs(responses[0]).max()
     assert scale > 1.0, "a 1 um transmission error must load the meshes"

@@ -7,11 +7,16 @@ from hubvib.lumped import raba118
 from hubvib.build import raba118 as geometry
 from hubvib.meshing.gear import centre_distance, rotation
 from hubvib.signal.mesh_curves import synthetic_curves
-from hubvib.signal.mesh_phase import raba118_phasing
+from hubvib.design import preset_design
+from hubvib.signal.mesh_phase import design_phasing
+
 from hubvib.signal.options import SignalOptions
 from hubvib.signal.sensor import sensor_signal
 from hubvib.signal.simulation import simulate
 from hubvib.signal.spectral import order_spectrum
+
+RABA = preset_design("raba118")  # the reference case (hubvib.design.presets)
+
 
 FAST = SignalOptions(sun_speed_rpm=6000.0)
 
@@ -30,7 +35,7 @@ def _crossings(points, origin, direction):
 
 def test_roll_lengths_match_the_involute_flanks_intersected_with_the_lines_of_action():
     """Independent check: flank polylines of the real gears cut by the lines of action."""
-    ph = raba118_phasing()
+    ph = design_phasing(RABA)
     ring, planet = geometry.ring(), geometry.planet()
     a = centre_distance(planet, ring)
     rb_p = planet.base_diameter / 2
@@ -68,7 +73,7 @@ def test_roll_lengths_match_the_involute_flanks_intersected_with_the_lines_of_ac
 def test_parker_lin_phases_of_equally_spaced_planets():
     """Parker & Lin 2004: planet i's ring mesh leads planet 1's by z_r psi_i / 2 pi cycles and
     its sun mesh by -z_s psi_i / 2 pi, the same fraction when (z_s + z_r) / N is whole."""
-    ph = raba118_phasing()
+    ph = design_phasing(RABA)
     z_s, z_r = geometry.sun().teeth, geometry.ring().teeth
     assert (z_s + z_r) % 3 == 0
     for i in range(1, 3):
@@ -81,10 +86,10 @@ def test_parker_lin_phases_of_equally_spaced_planets():
 
 
 def _sensor_spectrum(params, crack_factor=1.0):
-    curves = synthetic_curves(crack_factor=crack_factor,
+    curves = synthetic_curves(RABA, crack_factor=crack_factor,
                               depth=0.01 if crack_factor != 1 else 0.0)
     curves = curves.to_preset(params.c_sp, params.c_rp)
-    sim = simulate(params, curves, raba118_phasing(), FAST, crack_tooth=0)
+    sim = simulate(params, curves, design_phasing(RABA), FAST, crack_tooth=0)
     return order_spectrum(sensor_signal(sim, math.radians(30.0))[:-1])
 
 

@@ -3,8 +3,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from hubvib.lumped import METHODS, PRESETS, field_names
-
+from hubvib.design import preset_names
+from hubvib.lumped import METHODS, field_names
 from hubvib.runtime.params_input import CONVENIENCE_KEYS, load_parameters, parse_set
 
 PARAMETER_HELP = (
@@ -17,7 +17,8 @@ PARAMETER_HELP = (
 
 
 def add_parameter_options(p) -> None:
-    p.add_argument("--preset", default="raba118", choices=sorted(PRESETS))
+    p.add_argument("--preset", default="raba118", choices=sorted(preset_names()),
+                   help="a registered design preset (hubvib.design.PRESETS)")
     p.add_argument("--design", metavar="FILE.toml",
                    help="a reducer design file (or a preset design's name): its lumped model")
     p.add_argument("--params", type=Path, metavar="FILE.toml",

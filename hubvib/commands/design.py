@@ -5,22 +5,22 @@ import json
 import math
 from pathlib import Path
 
+from hubvib.build import load_design, summary
+from hubvib.design import PRESETS, preset_design, preset_names
+
 
 def add_parser(sub) -> None:
     p = sub.add_parser("design", help="check a reducer design file (assembly rules, derived "
                        "geometry and lumped fields)")
     p.add_argument("action", choices=["check"])
     p.add_argument("file", help="design TOML file, or the name of a preset design "
-                   "(raba118, hub4)")
+                   f"({', '.join(preset_names())})")
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
 
 
 def design_from_argument(text: str):
     """A design file path, or the name of a preset design."""
-    from hubvib.build import load_design
-    from hubvib.design import PRESETS, preset_design
-
     path = Path(text)
     if not path.exists() and text in PRESETS:
         return preset_design(text)
@@ -28,8 +28,6 @@ def design_from_argument(text: str):
 
 
 def run(args) -> int:
-    from hubvib.build import summary
-
     info = summary(design_from_argument(args.file))
     if args.json:
         print(json.dumps(info, indent=2, allow_nan=False))

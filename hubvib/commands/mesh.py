@@ -6,9 +6,9 @@ from pathlib import Path
 
 import numpy as np
 
-from hubvib.meshing.crack import STARTS
-
+from hubvib.design import preset_names
 from hubvib.foundation.output import json_text, output_set
+from hubvib.meshing.crack import STARTS
 
 #: most bulk elements ``--size`` may ask for (estimated from the exact area or volume
 #: before meshing): 5e5 triangles take ~2 min to mesh on 2 cores (2.1e5 at 5e-4 m: 41 s)
@@ -19,7 +19,8 @@ def add_parser(sub) -> None:
     p = sub.add_parser("mesh", help="gmsh mesh of a gear body (VTU + PNG + counts)")
     p.add_argument("part", choices=["ring", "sun", "planet"],
                    help="the ring (may be cracked), or the sun or planet on its bore")
-    p.add_argument("--preset", default="raba118", choices=["raba118", "hub4"])
+    p.add_argument("--preset", default="raba118", choices=preset_names(),
+                   help="a registered design preset (hubvib.design.PRESETS)")
     p.add_argument("--design", metavar="FILE.toml", help="a reducer design file (replaces "
                    "--preset)")
     p.add_argument("--crack-depth", type=float, default=0.0, metavar="D",

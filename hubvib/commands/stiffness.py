@@ -3,12 +3,15 @@ from __future__ import annotations
 
 import time
 
+from hubvib.design import preset_names
 from hubvib.fem.solvers import SOLVERS
+
 
 def add_parser(sub) -> None:
     p = sub.add_parser("stiffness", help="every stiffness of the lumped model: FE c_ru, c_r, "
                        "c_sp, c_rp; bearing c_p, c_c")
-    p.add_argument("--preset", default="raba118", choices=["raba118", "hub4"])
+    p.add_argument("--preset", default="raba118", choices=preset_names(),
+                   help="a registered design preset (hubvib.design.PRESETS)")
     p.add_argument("--design", metavar="FILE.toml",
                    help="a reducer design file (replaces --preset)")
     p.add_argument("--crack-depth", type=float, default=0.0, metavar="D",

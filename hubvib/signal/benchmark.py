@@ -30,19 +30,21 @@ import numpy as np
 def benchmark_signal(revolutions: int = 10, sample_rate_hz: float = 20000.0,
                      rtol: float = 1e-6) -> dict:
     """Timings [s], their ratio and the errors of both integrators (see the module)."""
-    from hubvib.lumped import raba118
+    from hubvib.build import lumped_preset
+    from hubvib.design import preset_design
 
     from .dynamics import excitation
     from .mesh_curves import synthetic_curves
-    from .mesh_phase import raba118_phasing, raba118_teeth
+    from .mesh_phase import design_phasing, design_teeth
     from .options import SignalOptions
     from .sensor import sampled, sensor_signal
     from .simulation import simulate
     from .time_response import Excitation, integrate, periodic_start
 
-    params = raba118()
-    curves = synthetic_curves(crack_factor=1.5, depth=0.01).to_preset(params.c_sp, params.c_rp)
-    phasing, teeth = raba118_phasing(), raba118_teeth()
+    design, params = preset_design("raba118"), lumped_preset("raba118")
+    curves = synthetic_curves(design, crack_factor=1.5, depth=0.01).to_preset(params.c_sp,
+                                                                               params.c_rp)
+    phasing, teeth = design_phasing(design), design_teeth(design)
     options = SignalOptions(sample_rate_hz=sample_rate_hz, revolutions=revolutions)
 
     started = time.perf_counter()

@@ -95,22 +95,19 @@ def _curves(pairs, compliance, q_hertz, cracked_compliance=None, depth=0.0) -> M
                       cracked_s, cracked_k, float(depth))
 
 
-def _pairs(design=None):
+def _pairs(design):
     from hubvib.build.stages import gear_body, ring_gear
     from hubvib.fem.mesh_cycle import GearPair
 
-    if design is None:
-        from hubvib.build.raba118 import design as raba
-
-        design = raba()
     planet = gear_body(design, "planet")
     bodies = {"sun": gear_body(design, "sun"), "planet": planet, "ring": ring_gear(design)}
     return bodies, (GearPair(planet, bodies["sun"]), GearPair(planet, bodies["ring"]))
 
 
-def synthetic_curves(tooth_compliance: float = 2.0e-9, crack_factor: float = 1.0,
+def synthetic_curves(design, tooth_compliance: float = 2.0e-9, crack_factor: float = 1.0,
                      depth: float = 0.0) -> MeshCurves:
-    """Raba 118/76 mesh curves with every tooth of constant compliance [m/N] (no FE).
+    """Mesh curves of a design's reducer with every tooth of constant compliance [m/N]
+    (no FE).
 
     The stiffness is then piecewise constant (one or two pairs in contact) over the
     true paths of contact; ``crack_factor`` > 1 multiplies the cracked ring tooth's
@@ -119,7 +116,7 @@ def synthetic_curves(tooth_compliance: float = 2.0e-9, crack_factor: float = 1.0
     from hubvib.fem.material import Material
     from hubvib.fem.tooth_beam import hertz_compliance
 
-    bodies, pairs = _pairs()
+    bodies, pairs = _pairs(design)
 
     def constant(value):
         return lambda r: np.full(np.shape(r), value)
@@ -130,10 +127,9 @@ def synthetic_curves(tooth_compliance: float = 2.0e-9, crack_factor: float = 1.0
     return _curves(pairs, compliance, q_h, cracked, depth)
 
 
-def fe_mesh_curves(depths, start: str = "root", angle: float = 0.0, scale: float = 1.0,
-                   progress=None, design=None) -> list[MeshCurves]:
-    """FE mesh curves of a design's reducer (default Raba 118/76) for each crack depth [m]
-    (0: intact).
+def fe_mesh_curves(depths, start: str, angle: float, scale: float, progress,
+                   design) -> list[MeshCurves]:
+    """FE mesh curves of a design's reducer for each crack depth [m] (0: intact).
 
     ``scale`` is the mesh level (``hubvib.meshing.levels.scaled_options``); the crack
     (``hubvib.meshing.crack.Crack``) is moved to tooth 0 for the tooth model, as in

@@ -33,6 +33,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hubvib.build.stages import spur_gears
+
 
 @dataclass(frozen=True)
 class MeshPhasing:
@@ -90,33 +92,14 @@ class MeshPhasing:
         return self.roll_sum - self.ring_roll(theta)
 
 
-def design_teeth(design=None) -> dict[str, int]:
-    """Tooth counts of the sun, planet and ring of a ``ReducerDesign`` (default Raba 118/76)."""
-    design = design or _raba()
+def design_teeth(design) -> dict[str, int]:
+    """Tooth counts of the sun, planet and ring of a ``ReducerDesign``."""
     return {"sun": design.sun.teeth, "planet": design.planet.teeth, "ring": design.ring.teeth}
 
 
-def design_phasing(design=None) -> MeshPhasing:
-    """Mesh phasing of a ``ReducerDesign``'s gears (default Raba 118/76)."""
-    from hubvib.build.stages import spur_gears
-
-    return gear_phasing(*spur_gears(design or _raba()))
-
-
-def raba118_teeth() -> dict[str, int]:
-    """Tooth counts of the Raba 118/76 sun, planet and ring."""
-    return design_teeth()
-
-
-def raba118_phasing() -> MeshPhasing:
-    """Mesh phasing of the Raba 118/76 gears."""
-    return design_phasing()
-
-
-def _raba():
-    from hubvib.build.raba118 import design
-
-    return design()
+def design_phasing(design) -> MeshPhasing:
+    """Mesh phasing of a ``ReducerDesign``'s gears."""
+    return gear_phasing(*spur_gears(design))
 
 
 def gear_phasing(sun, planet, ring) -> MeshPhasing:

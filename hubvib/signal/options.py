@@ -110,9 +110,9 @@ class SignalOptions:
         check_sample_rate(self, design)
 
 
-def kinematics(sun_speed_rpm: float, design=None) -> tuple[float, float]:
-    """Carrier and ring-mesh frequency [Hz] at this sun speed, for a design (default Raba
-    118/76; ring fixed: f_c = f_s z_s / (z_s + z_r), f_mesh = z_r f_c)."""
+def kinematics(sun_speed_rpm: float, design) -> tuple[float, float]:
+    """Carrier and ring-mesh frequency [Hz] at this sun speed, for a design (ring fixed:
+    f_c = f_s z_s / (z_s + z_r), f_mesh = z_r f_c)."""
     from .mesh_phase import design_teeth
 
     teeth = design_teeth(design)
@@ -179,9 +179,9 @@ def parse_signal_table(table: dict) -> SignalOptions:
     return options
 
 
-def check_sample_rate(options: SignalOptions, design=None) -> None:
+def check_sample_rate(options: SignalOptions, design) -> None:
     """Refuse a sample rate below twice the highest mesh harmonic asked for (aliasing);
-    the mesh frequency is the design's (default Raba 118/76)."""
+    the mesh frequency is the design's."""
     _, mesh = kinematics(options.sun_speed_rpm, design)
     needed = 2 * options.mesh_harmonics * mesh
     if options.sample_rate_hz < needed:

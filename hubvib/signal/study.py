@@ -112,7 +112,7 @@ class SignalStudy:
         return out
 
 
-def harmonic_rules(n_planets: int, design=None) -> list[HarmonicRule]:
+def harmonic_rules(n_planets: int, design) -> list[HarmonicRule]:
     """Labels of carrier orders: mesh harmonics, planet-pass / cracked-tooth sidebands
     (multiples of N around them), planet-pass orders, shaft orders; else unexplained."""
     teeth = design_teeth(design)
@@ -204,12 +204,10 @@ def _below_nyquist(spectrum: OrderSpectrum, sim: Simulation,
 
 
 def step_halving_change(params, curves: MeshCurves, phasing, options: SignalOptions,
-                        max_order: int, full_order: int | None = None,
-                        sun_teeth: int | None = None) -> dict:
+                        max_order: int, full_order: int | None, sun_teeth: int) -> dict:
     """Largest change of the order amplitudes when the time step is halved, relative to the
     largest amplitude [-]: orders <= ``max_order`` (the analysed band) and, with
     ``full_order``, orders <= ``full_order`` (up to the Nyquist order of the record)."""
-    sun_teeth = sun_teeth or design_teeth()["sun"]
     spectra = []
     for factor in (1, 2):
         halved = replace(options, steps_per_period=options.steps_per_period * factor,

@@ -101,12 +101,11 @@ class CrackSweep:
 
     @property
     def reducer(self):
-        """The design (Raba 118/76 when none is given)."""
-        if self.design is not None:
-            return self.design
-        from hubvib.build.raba118 import design
-
-        return design()
+        """The design whose ring is cracked (``design``; no default reducer)."""
+        if self.design is None:
+            raise ValueError("CrackSweep.design is None; give the reducer design "
+                             "(e.g. hubvib.design.preset_design(\"raba118\"))")
+        return self.design
 
 
 def crack_of(sweep: CrackSweep, depth: float):
