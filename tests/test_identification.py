@@ -50,9 +50,9 @@ def test_simulated_record_has_the_exact_psd_of_its_mode():
 
 
 def test_identified_frequencies_scatter_as_the_bound_predicts():
-    # Monte Carlo of 120 simulated records identified by the shipped method
+    # Monte Carlo of 80 simulated records identified by the shipped method
     f, zeta, T, snr = 50.0, 0.02, 60.0, 100.0
-    est = identified(f, zeta, T, snr, records=120, seed=1)
+    est = identified(f, zeta, T, snr, records=80, seed=1)
     low, high = _std_band(est.size)
     ratio = est.std(ddof=1) / fisher_sigma_hz(f, zeta, T, snr)
     assert 0.9 * low <= ratio <= 1.1 * high, \
