@@ -157,7 +157,8 @@ def short_answer(name: str, model, study) -> list[str]:
         shallowest = pod.depths[1]
         note = " (the shallowest crack computed)" if math.isclose(first, shallowest) else ""
         lines.append(f"**Watch modes {modes}. On one mode alone a crack is detectable from "
-                     f"{depth_mm(first)} mm{note}** under this mounting ({rule}). {_support_sentence(pod)}"
+                     f"{depth_mm(first)} mm{note}** under this mounting ({rule}). "
+                     f"{_support_sentence(pod)}"
                      f"{_modulation_sentence(study, watched)}")
     else:
         lines.append(f"**Watch modes {modes}: on one mode alone no crack of the sweep is "

@@ -182,7 +182,8 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
         "mounting": {"apply": result.model.apply, "c_ru_mount_N_m": result.model.c_ru_mount,
                      "c_r_mount_N_m": result.model.c_r_mount},
         "detection": None if study is None else {
-            "options": study.options.to_dict(), "threshold_hz": [float(t) for t in study.pod.threshold_hz],
+            "options": study.options.to_dict(),
+            "threshold_hz": [float(t) for t in study.pod.threshold_hz],
             "sigma_hz": [float(t) for t in study.pod.sigma_hz],
             "per_mode_false_alarm_rate": study.pod.per_mode_rate,
             "family_pod": {f"{T:g}": [float(p) for p in v]
@@ -392,17 +393,26 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
                      f"{r['fe_c_rp_engaged_ratio_error']:.1e} | {r['lumped_c_ru_N_m']:.7g} | "
                      f"{r['lumped_c_r_N_m']:.7g} | {r['lumped_c_rp_planet1_N_m']:.5g} |")
     lines += ["", "## Modes: sensitivity and detection", "",
-              "Shift at the instant planet 1 meshes with the cracked tooth; detectable from: "
-              "the Monte Carlo POD above (a record's view of the shift).", "",
-              "| mode | type | f intact [Hz] | shift at deepest [Hz] | [%] | (dω/ω)/(dc_ru/c_ru) "
+              "Instantaneous shift: at the instant planet 1 meshes with the cracked tooth; "
+              "record shift: the time-averaged shift a record sees (what the POD uses). "
+              "Sensitivities are per relative change of the whole stiffness (c_rp: every "
+              "planet's ring mesh); *follows*: a sensitivity above 0.01; *signal in*: the "
+              "stiffness whose crack-induced change alone moves the mode most at the deepest "
+              "crack, record-averaged (sensitivity times change; the same rule as in "
+              "`detectability_map.csv`). Detectable from: this mode alone, Monte Carlo POD "
+              "at the family-corrected rate.", "",
+              "| mode | type | f intact [Hz] | instantaneous shift at deepest [Hz] | [%] "
+              "| record shift at deepest [Hz] | (dω/ω)/(dc_ru/c_ru) "
               "| (dω/ω)/(dc_r/c_r) | (dω/ω)/(dc_rp/c_rp) | follows | signal in "
               "| detectable from [mm] |",
-              "|---:|---|---:|---:|---:|---:|---:|---:|---|---|---:|"]
+              "|---:|---|---:|---:|---:|---:|---:|---:|---:|---|---|---:|"]
     for r in result.mode_rows():
         depth = r.get("detectable_depth_mm")
+        f0 = r["frequency_intact_hz"]
         lines.append(f"| {r['mode']} | {r['kind']} | {r['frequency_intact_hz']:.3f} | "
                      f"{shift_hz(r['shift_at_deepest_hz'], r['frequency_intact_hz'])} | "
                      f"{percent(r['shift_at_deepest_percent'])} | "
+                     f"{shift_hz(r.get('record_shift_at_deepest_hz'), f0)} | "
                      f"{sensitivity(r['sensitivity_c_ru'])} | "
                      f"{sensitivity(r['sensitivity_c_r'])} | "
                      f"{sensitivity(r['sensitivity_c_rp'])} | {r['follows']} | "
