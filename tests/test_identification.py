@@ -89,3 +89,27 @@ def test_bad_bands_are_refused():
         identify_mode(values, 100.0, 10.0, 0.001)
     with pytest.raises(ValueError, match="all must be > 0"):
         fisher_sigma_hz(100.0, 0.0, 10.0)
+
+
+@pytest.mark.parametrize("power", [0, 4])
+def test_cramer_rao_bound_matches_a_finite_difference_fisher_matrix(power):
+    # independent: the Fisher matrix of the Whittle likelihood from central differences
+    from hubvib.identification.law import response_shape
+
+    f0, zeta, T, snr, kappa = 100.0, 0.02, 100.0, 50.0, 6.0
+    k = np.arange(math.ceil(f0 * (1 - kappa * zeta) * T), math.floor(f0 * (1 + kappa * zeta)
+                                                                     * T) + 1)
+    f = k / T
+    theta = np.array([f0, zeta, 1.0, 1.0 / (4 * zeta * zeta * snr)])
+
+    def D(t):
+        return t[2] * response_shape(f, t[0], t[1], power) + t[3]
+
+    grads = []
+    for i in range(4):
+        step = np.zeros(4)
+        step[i] = 1e-6 * theta[i]
+        grads.append((D(theta + step) - D(theta - step)) / (2 * step[i]))
+    G = np.array(grads) / D(theta)
+    expected = math.sqrt(np.linalg.inv(G @ G.T)[0, 0])
+    assert fisher_sigma_hz(f0, zeta, T, snr, kappa, power) == pytest.approx(expected, rel=1e-6)

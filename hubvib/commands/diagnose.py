@@ -1,4 +1,5 @@
-"""``hubvib diagnose --scene SCENE --measured FILE.csv``: crack depth from measured frequencies."""
+"""``hubvib diagnose --scene SCENE (--measured FILE.csv | --record FILE --baseline-record FILE)``:
+crack depth from measured frequencies or from two accelerometer records."""
 from __future__ import annotations
 
 import json
@@ -11,25 +12,51 @@ def add_parser(sub) -> None:
                        "damping_ratio, record_s or sigma_hz)")
     p.add_argument("--scene", required=True, help="scene TOML file with a [crack] study, or "
                    "the name of a shipped scene (hubvib scenes lists them)")
-    p.add_argument("--measured", required=True, type=Path,
+    p.add_argument("--measured", type=Path,
                    help="CSV of identified natural frequencies: header frequency_hz, optional "
                    "columns mode (model mode, 1 = lowest), baseline_hz (same mode, intact), "
                    "damping_ratio and record_s (or sigma_hz) of the identification")
+    p.add_argument("--record", type=Path, help="accelerometer record of the reducer now: "
+                   "CSV time_s,acceleration_m_s2, WAV or UFF 58 (instead of --measured)")
+    p.add_argument("--baseline-record", type=Path,
+                   help="record of the same reducer intact (with --record)")
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
 
 
 def run(args) -> int:
     from hubvib.detection.diagnosis import diagnose_scene
+    from hubvib.detection.from_records import diagnose_records
     from hubvib.detection.measured import read_measured
     from hubvib.studies.scene import load_scene
 
-    measured = read_measured(args.measured)
+    if (args.measured is None) == (args.record is None):
+        raise ValueError("give either --measured FILE.csv or --record FILE with "
+                         "--baseline-record FILE")
+    if (args.record is None) != (args.baseline_record is None):
+        raise ValueError("--record and --baseline-record go together: the record now and "
+                         "the record of the same reducer intact")
     scene = load_scene(args.scene)
-    result, ref = diagnose_scene(scene, measured, progress=not args.json)
+    found = None
+    if args.record is not None:
+        result, ref, found = diagnose_records(scene, args.record, args.baseline_record,
+                                              progress=not args.json)
+        measured = found.measured
+    else:
+        measured = read_measured(args.measured)
+        result, ref = diagnose_scene(scene, measured, progress=not args.json)
     if args.json:
-        print(json.dumps({"scene": scene.name, **result.to_dict()}, indent=2, allow_nan=False))
+        extra = {} if found is None else {"skipped_modes": {
+            str(i + 1): why for i, why in sorted(found.now.skipped.items())}}
+        print(json.dumps({"scene": scene.name, **result.to_dict(), **extra}, indent=2,
+                         allow_nan=False))
         return 0
+    if found is not None:
+        print(f"identified from the records (Bayesian FFT, damping "
+              f"{100 * found.now.modes[0].damping_ratio:.3g} % in the first band): modes "
+              f"{', '.join(str(i + 1) for i in found.now.index)}; skipped: "
+              + ("; ".join(f"{i + 1} ({why})" for i, why in sorted(found.now.skipped.items()))
+                 or "none"))
     nominal = ref.nominal_hz[0]
     print(f"scene {scene.name!r}: {len(result.modes)} measured mode(s), baseline: "
           f"{'the measured intact frequencies' if result.baseline == 'measured' else 'the model intact spectrum'}")

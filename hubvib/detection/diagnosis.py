@@ -465,10 +465,9 @@ def synthetic_measurements(model, options, timing, depths: np.ndarray, seed: int
     return f[:, 1] + noise[:, 1] + drift.draw(rng, depths.size), f[:, 0] + noise[:, 0]
 
 
-def diagnose_scene(scene, measured: Measured, progress: bool = True,
-                   workers: int = 2) -> tuple[Diagnosis, Reference]:
-    """Diagnosis of ``measured`` against the crack study of ``scene`` (FE cases from the
-    cache or computed, then the Monte Carlo reference)."""
+def scene_reference(scene, progress: bool = True, workers: int = 2):
+    """The Monte Carlo reference of ``scene``'s crack study and its DetectionOptions (FE
+    cases from the cache or computed)."""
     from hubvib.studies.crack_sweep import run_fe_cases
 
     from .carrier import mesh_timing
@@ -487,4 +486,11 @@ def diagnose_scene(scene, measured: Measured, progress: bool = True,
     model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method)
     ref = reference(model, options, mesh_timing(scene.crack.reducer, options.carrier_speed),
                     workers=workers)
+    return ref, options
+
+
+def diagnose_scene(scene, measured: Measured, progress: bool = True,
+                   workers: int = 2) -> tuple[Diagnosis, Reference]:
+    """Diagnosis of ``measured`` against the crack study of ``scene``."""
+    ref, options = scene_reference(scene, progress, workers)
     return diagnose(measured, ref, options), ref

@@ -21,6 +21,10 @@ from scipy.optimize import minimize
 from .law import KAPPA, fisher_sigma_hz, response_shape
 
 
+class IdentificationError(ValueError):
+    """No mode could be identified in the band; the message says what the fit found."""
+
+
 @dataclass(frozen=True)
 class IdentifiedMode:
     """One identified mode.
@@ -45,9 +49,11 @@ class IdentifiedMode:
 
 
 def identify_mode(values, sample_rate: float, guess_hz: float, damping_guess: float = 0.02,
-                  kappa: float = KAPPA) -> IdentifiedMode:
+                  kappa: float = KAPPA, acceleration: bool = False) -> IdentifiedMode:
     """Identify the mode near ``guess_hz`` [Hz] in the record ``values`` sampled at
-    ``sample_rate`` [Hz]; ``damping_guess`` [-] sets the band ``guess (1 +- kappa zeta)``."""
+    ``sample_rate`` [Hz]; ``damping_guess`` [-] sets the band ``guess (1 +- kappa zeta)``.
+    ``acceleration``: the record is an acceleration with white noise on it; the response
+    shape is ``b^4 |h|^2`` (:func:`.law.response_shape` with power 4)."""
     x = np.asarray(values, dtype=float)
     n = x.size
     dt = 1.0 / sample_rate
@@ -63,6 +69,7 @@ def identify_mode(values, sample_rate: float, guess_hz: float, damping_guess: fl
     spectrum = np.fft.rfft(x - x.mean())
     P = (dt / n) * np.abs(spectrum[k]) ** 2
     f = k / T
+    power = 4 if acceleration else 0
     width = max(1, int(round(damping_guess * guess_hz * T)))
     smooth = np.convolve(P, np.ones(width) / width, mode="same")
     f_start = float(f[np.argmax(smooth)])
@@ -74,12 +81,13 @@ def identify_mode(values, sample_rate: float, guess_hz: float, damping_guess: fl
         f0, zeta, S, Se = p[0], math.exp(p[1]), math.exp(p[2]), math.exp(p[3])
         b = f / f0
         g = (1 - b * b) ** 2 + (2 * zeta * b) ** 2
-        h2 = 1.0 / g
+        bp = b ** power
+        h2 = bp / g
         D = S * h2 + Se
         w = 1.0 / D - P / (D * D)
         dg_db = -4 * b * (1 - b * b) + 8 * zeta * zeta * b
-        grad = np.array([np.sum(w * S * h2 * h2 * dg_db * b / f0),
-                         np.sum(w * S * -h2 * h2 * 8 * zeta * b * b) * zeta,
+        grad = np.array([np.sum(w * S * (bp * dg_db * b / g ** 2 - power * h2) / f0),
+                         np.sum(w * S * -bp / g ** 2 * 8 * zeta * b * b) * zeta,
                          np.sum(w * S * h2), np.sum(w * Se)]) * scale
         return float(np.sum(np.log(D) + P / D)), grad
 
@@ -90,4 +98,12 @@ def identify_mode(values, sample_rate: float, guess_hz: float, damping_guess: fl
     p = start + result.x * scale
     f0, zeta, S, Se = float(p[0]), math.exp(p[1]), math.exp(p[2]), math.exp(p[3])
     snr = S / (4 * zeta * zeta * Se)
-    return IdentifiedMode(f0, zeta, snr, fisher_sigma_hz(f0, zeta, T, snr, kappa))
+    if not (lo < f0 < hi and 0 < zeta < 0.5 and snr > 1):
+        raise IdentificationError(f"no resonance found in {lo:.6g}..{hi:.6g} Hz (fit: "
+                                  f"{f0:.6g} Hz, damping {zeta:.3g}, SNR {snr:.3g})")
+    try:
+        sigma = fisher_sigma_hz(f0, zeta, T, min(snr, 1e12), kappa, power)
+    except np.linalg.LinAlgError:
+        raise IdentificationError(f"the fit at {f0:.6g} Hz carries no information on the "
+                                  "frequency (singular Fisher matrix)") from None
+    return IdentifiedMode(f0, zeta, snr, sigma)

@@ -40,15 +40,17 @@ def au_sigma_hz(frequency_hz, damping_ratio, record_s):
     return np.sqrt(z * f / (2 * math.pi * t))
 
 
-def response_shape(frequency_hz, natural_hz: float, damping_ratio: float) -> np.ndarray:
-    """``|h|^2 = 1 / ((1 - b^2)^2 + (2 zeta b)^2)``, ``b = f / f_n``: the displacement
-    response PSD of one mode to white force, over its static value [-]."""
+def response_shape(frequency_hz, natural_hz: float, damping_ratio: float,
+                   power: int = 0) -> np.ndarray:
+    """``b^power |h|^2``, ``|h|^2 = 1 / ((1 - b^2)^2 + (2 zeta b)^2)``, ``b = f / f_n``:
+    the response PSD of one mode to white force over its static value [-]; ``power`` 0
+    for displacement, 4 for acceleration."""
     b = np.asarray(frequency_hz, dtype=float) / natural_hz
-    return 1.0 / ((1 - b * b) ** 2 + (2 * damping_ratio * b) ** 2)
+    return b ** power / ((1 - b * b) ** 2 + (2 * damping_ratio * b) ** 2)
 
 
 def fisher_sigma_hz(frequency_hz: float, damping_ratio: float, record_s: float,
-                    snr: float = math.inf, kappa: float = KAPPA) -> float:
+                    snr: float = math.inf, kappa: float = KAPPA, power: int = 0) -> float:
     """Cramer-Rao bound [Hz] of the frequency identified by :mod:`.bfft`.
 
     The FFT ordinates of a record of ``record_s`` seconds in the band
@@ -64,6 +66,9 @@ def fisher_sigma_hz(frequency_hz: float, damping_ratio: float, record_s: float,
         the noise PSD [-] (Au's gamma); ``inf`` leaves the noise out.
     kappa : float
         Band half-width in units of ``zeta f`` [-].
+    power : int
+        0: displacement record (white noise on displacement); 4: acceleration record
+        (white noise on acceleration), the response shape times ``b^4``.
     """
     f0, zeta, T = float(frequency_hz), float(damping_ratio), float(record_s)
     if not (f0 > 0 and zeta > 0 and T > 0 and snr > 0 and kappa > 0):
@@ -78,12 +83,13 @@ def fisher_sigma_hz(frequency_hz: float, damping_ratio: float, record_s: float,
     Se = 0.0 if math.isinf(snr) else S / (4 * zeta * zeta * snr)
     b = f / f0
     g = (1 - b * b) ** 2 + (2 * zeta * b) ** 2
-    h2 = 1.0 / g
+    bp = b ** power
+    h2 = bp / g
     D = S * h2 + Se
     dg_db = -4 * b * (1 - b * b) + 8 * zeta * zeta * b
-    grads = [S * (-dg_db / g ** 2) * (-b / f0),        # d/d f0
-             S * (-(8 * zeta * b * b) / g ** 2),        # d/d zeta
-             h2]                                        # d/d S
+    grads = [S * (bp * dg_db * b / g ** 2 - power * h2) / f0,  # d/d f0 (db/df0 = -b/f0)
+             S * bp * (-(8 * zeta * b * b) / g ** 2),       # d/d zeta
+             h2]                                            # d/d S
     if Se > 0:
         grads.append(np.ones_like(f))                   # d/d Se
     G = np.array(grads) / D
