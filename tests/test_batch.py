@@ -89,7 +89,7 @@ def test_blas_threads_are_one_inside_and_restored_after():
 
 
 def test_benchmark_reports_speed_and_agreement():
-    result = benchmark_batch(points=300, single=10, workers=1)
+    result = benchmark_batch(raba118(), points=300, single=10, workers=1)
     assert result["points"] == 300 and result["points_per_second"] > 0
     assert result["speedup"] > 0 and result["fallback_points"] == 0
     assert result["max_relative_difference"] < 1e-10, "benchmark's own agreement check"

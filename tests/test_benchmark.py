@@ -36,7 +36,7 @@ def test_reference_outside_the_asymptotic_range_is_the_finest_level(values):
 def test_ring_levels_reach_past_the_default():
     """Issue 17, item 19: the c_ru table goes at least two levels finer than the default
     (scale 1), and its reference levels are all finer than the default."""
-    from hubvib.validation.benchmark import REFERENCE_SCALES
+    from hubvib.benchmarks.ring_2d import REFERENCE_SCALES
     from hubvib.validation.convergence import scales_of
 
     for quantity in ("c_ru", "c_r", "c_sp", "c_rp"):
@@ -53,7 +53,7 @@ def test_previous_path_solves_the_same_problem():
     from hubvib.build import raba118
     from hubvib.meshing.levels import scaled_options
     from hubvib.meshing.ring_mesh import ring_mesh
-    from hubvib.validation.benchmark import previous_ring_fe
+    from hubvib.validation.previous_fe import previous_ring_fe
 
     ring = raba118.ring_gear()
     mesh = ring_mesh(ring, None, scaled_options(4.0))
@@ -66,7 +66,7 @@ def test_previous_path_solves_the_same_problem():
 def test_peak_memory_of_a_command():
     """A child that holds 300 MB peaks above 0.3 GB (and far below the 2 GB a leak would
     show); a failing child is an error, not a number."""
-    from hubvib.validation.benchmark import peak_memory_gb
+    from hubvib.benchmarks.memory import peak_memory_gb
 
     touch = "a = bytearray(300_000_000); a[::4096] = b'x' * len(a[::4096])"
     gb = peak_memory_gb([sys.executable, "-c", touch])
@@ -87,7 +87,7 @@ FIGURES = {"quick": True, "c_ru_2d_seconds": 1.5, "c_ru_2d_previous_seconds": 2.
 def test_benchmark_command_prints_ratios_and_standard_json(monkeypatch, capsys):
     """The command is thin: the library's figures as standard JSON (nulls, no NaN), or a
     table whose ratio column is baseline / ours."""
-    import hubvib.validation.benchmark as benchmark
+    import hubvib.benchmarks as benchmark
 
     monkeypatch.setattr(benchmark, "run_benchmark", lambda quick, progress: dict(FIGURES))
     assert main(["benchmark", "--quick", "--json"]) == 0
@@ -105,7 +105,7 @@ def test_quick_benchmark_runs():
     """The smoke test of the whole benchmark: the previous path and the shared crack case
     give the same numbers (1e-9), the 2D c_ru level is within 0.1 % of the default level."""
     pytest.importorskip("gmsh")
-    from hubvib.validation.benchmark import run_benchmark
+    from hubvib.benchmarks import run_benchmark
 
     figures = run_benchmark(quick=True)
     assert figures["c_ru_2d_previous_max_rel_difference"] < 1e-9
@@ -117,16 +117,17 @@ def test_quick_benchmark_runs():
 def test_main_job_and_test_command_failures_are_named_not_timed(monkeypatch):
     import subprocess
 
-    import hubvib.validation.benchmark as benchmark
+    from hubvib.benchmarks.main_job import main_job
+    from hubvib.benchmarks.tests_command import readme_test_command
 
     def failing(command, **kwargs):
         return subprocess.CompletedProcess(command, 2, "1 failed, 9 passed\n",
                                            "hubvib: error: no display\n")
 
     monkeypatch.setattr(subprocess, "run", failing)
-    assert benchmark.main_job() == {"main_job_fresh_seconds": None,
+    assert main_job() == {"main_job_fresh_seconds": None,
                                     "main_job_cached_seconds": None,
                                     "main_job_skipped": "hubvib run (fresh) failed: hubvib: "
                                                         "error: no display"}
-    assert benchmark.readme_test_command() == {
+    assert readme_test_command() == {
         "tests_seconds": None, "tests_skipped": "the tests failed: 1 failed, 9 passed"}

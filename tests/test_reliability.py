@@ -140,14 +140,14 @@ def _bad_folders(tmp_path):
 @pytest.mark.parametrize("where", ["file", "under a file", "proc", "long name"])
 def test_output_folder_checked_before_any_work(command, where, tmp_path, capsys, monkeypatch):
     """Item 5: the folder is refused in one line before meshing/validating/computing."""
-    import hubvib.commands.mesh
+    import hubvib.studies.part_mesh
     import hubvib.validation.convergence
     import hubvib.validation.raba118
 
     def no_work(*args, **kwargs):
         raise AssertionError("work started before the output folder was checked")
 
-    monkeypatch.setattr(hubvib.commands.mesh, "build", no_work)
+    monkeypatch.setattr(hubvib.studies.part_mesh, "mesh_part", no_work)
     monkeypatch.setattr(hubvib.validation.raba118, "validate", no_work)
     monkeypatch.setattr(hubvib.validation.convergence, "run_study", no_work)
     folder = str(_bad_folders(tmp_path)[where])

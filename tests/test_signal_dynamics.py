@@ -161,7 +161,7 @@ def test_static_transmission_error_drives_the_meshes_linearly():
 def test_benchmark_runs_both_integrators_on_the_same_problem():
     from hubvib.signal import benchmark_signal
 
-    result = benchmark_signal(revolutions=1)
+    result = benchmark_signal(RABA, raba118(), revolutions=1)
     assert result["samples_per_mesh_period"] >= 20
     # accuracy only (never timings): both within 5 % of the Richardson reference
     assert result["newmark_error"] < 0.05 and result["solve_ivp_error"] < 0.05, result

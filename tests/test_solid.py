@@ -118,7 +118,7 @@ def test_solid_c_ru_between_plane_stress_and_plane_strain(coarse_solid_ring):
 def test_calculix_solves_the_same_problem(tmp_path, coarse_solid_ring):
     """Second code: CalculiX on our mesh and nodal loads gives the same displacements
     to its print precision (7 digits) and the same c_ru (1e-6)."""
-    from hubvib.validation.benchmark import solid_race
+    from hubvib.benchmarks.solid import solid_race
 
     row = solid_race(mesh=coarse_solid_ring, folder=tmp_path)
     assert row["max_rel_difference"] < 1e-6

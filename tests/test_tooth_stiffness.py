@@ -142,6 +142,7 @@ def test_ring_crack_lowers_c_rp_while_the_tooth_is_engaged(raba_pairs):
     assert np.allclose(cracked[away], intact[away], rtol=1e-12)
 
 
+@pytest.mark.slow  # two FE mesh-stiffness runs; the default run checks the same gate below
 def test_zero_depth_crack_gives_the_intact_c_rp():
     """Crack depth 0 is the intact ring (no cracked cycle; same c_rp to 1e-12)."""
     options = MeshOptions(size=4e-3, tooth_size=1e-3, load_size=0.2e-3)
@@ -149,6 +150,27 @@ def test_zero_depth_crack_gives_the_intact_c_rp():
     intact = reducer_mesh_stiffness(SUN, PLANET, RING, options)
     assert zero["c_rp"].cracked is None
     assert zero["c_rp"].value == pytest.approx(intact["c_rp"].value, rel=1e-12)
+
+
+def test_zero_depth_crack_computes_no_cracked_tooth(monkeypatch):
+    """The same property on the potential-energy tooth curves (FE replaced, so fast): a crack
+    of depth 0 asks for no cracked tooth and gives the intact c_rp exactly; a 5 mm crack
+    asks for it."""
+    from hubvib.fem import tooth_stiffness
+
+    cracks = []
+
+    def curve(body, span, material, options, crack=None, *rest):
+        cracks.append(crack)
+        return tooth_stiffness.beam_curve(body, span, material)
+
+    monkeypatch.setattr(tooth_stiffness, "fe_curve", curve)
+    zero = reducer_mesh_stiffness(SUN, PLANET, RING, None, Crack(0, 0.0))
+    assert cracks == [None] * 3 and zero["c_rp"].cracked is None
+    intact = reducer_mesh_stiffness(SUN, PLANET, RING, None)
+    assert zero["c_rp"].value == intact["c_rp"].value
+    reducer_mesh_stiffness(SUN, PLANET, RING, None, Crack(0, 5e-3))
+    assert cracks[-1] == Crack(0, 5e-3)
 
 
 # bearings ---------------------------------------------------------------------

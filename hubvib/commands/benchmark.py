@@ -1,5 +1,5 @@
 """``hubvib benchmark [--json] [--quick]``: FE speed and memory, each timing a ratio against
-its baseline measured in the same run (``hubvib.validation.benchmark``)."""
+its baseline measured in the same run (``hubvib.benchmarks``)."""
 from __future__ import annotations
 
 import sys
@@ -39,9 +39,9 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from hubvib.validation.benchmark import run_benchmark
+    import hubvib.benchmarks as benchmarks
 
-    figures = run_benchmark(quick=args.quick,
+    figures = benchmarks.run_benchmark(quick=args.quick,
                             progress=lambda line: print(line, file=sys.stderr, flush=True))
     if args.json:
         print(json_text(figures))

@@ -5,7 +5,6 @@ import json
 import math
 from pathlib import Path
 
-from hubvib.build import load_design, summary
 from hubvib.design import PRESETS, preset_design, preset_names
 
 
@@ -21,6 +20,8 @@ def add_parser(sub) -> None:
 
 def design_from_argument(text: str):
     """A design file path, or the name of a preset design."""
+    from hubvib.build import load_design  # the FE stage's geometry: loaded when used
+
     path = Path(text)
     if not path.exists() and text in PRESETS:
         return preset_design(text)
@@ -28,6 +29,8 @@ def design_from_argument(text: str):
 
 
 def run(args) -> int:
+    from hubvib.build import summary
+
     info = summary(design_from_argument(args.file))
     if args.json:
         print(json.dumps(info, indent=2, allow_nan=False))

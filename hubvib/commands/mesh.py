@@ -4,15 +4,10 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-import numpy as np
-
 from hubvib.design import preset_names
-from hubvib.foundation.output import json_text, output_set
+from hubvib.foundation.output import json_text
 from hubvib.meshing.crack import STARTS
-
-#: most bulk elements ``--size`` may ask for (estimated from the exact area or volume
-#: before meshing): 5e5 triangles take ~2 min to mesh on 2 cores (2.1e5 at 5e-4 m: 41 s)
-MAX_ELEMENTS = {2: 5e5, 3: 2e5}
+from hubvib.studies.part_mesh import MAX_ELEMENTS, PartMesh, write_part_mesh
 
 
 def add_parser(sub) -> None:
@@ -47,104 +42,14 @@ def add_parser(sub) -> None:
     p.set_defaults(handler=run)
 
 
-def bodies(args):
-    """The ring and the named body (ring, sun or planet) of the design the options give."""
-    from hubvib.build.stages import gear_body, ring_gear
-
+def run(args) -> int:
     from .design import design_from_argument
 
-    design = design_from_argument(args.design or args.preset)
-    return ring_gear(design) if args.part == "ring" else gear_body(design, args.part)
-
-
-def build(args):
-    from hubvib.meshing.crack import Crack, CrackFront
-    from hubvib.meshing.gear import GearGeometryError
-    from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
-
-    crack = Crack(args.crack_tooth, args.crack_depth, math.radians(args.crack_angle),
-                  args.crack_start)
-    if args.part != "ring":
-        if args.crack_depth or args.dim == 3:
-            raise GearGeometryError(f"{args.part}: cracks and --dim 3 are for the ring only")
-        body = bodies(args)
-        return body, ring_mesh(body, None, _options(MeshOptions(), args))
-    ring = bodies(args)
-    if args.dim == 3:
-        from hubvib.meshing.ring_mesh_3d import SOLID_OPTIONS, ring_mesh_3d
-
-        front = CrackFront(args.crack_front, half_length=args.crack_half_length)
-        return ring, ring_mesh_3d(ring, crack, front, _options(SOLID_OPTIONS, args))
-    return ring, ring_mesh(ring, crack, _options(MeshOptions(), args))
-
-
-def check_size(args, body) -> None:
-    """Refuse a ``--size`` whose mesh would be too large, before any meshing.
-
-    Elements ~ area / (sqrt(3)/4 h^2) (equilateral triangles) or volume /
-    (h^3 / (6 sqrt(2))) (regular tetrahedra); refinement at the teeth adds to it.
-    """
-    if args.size is None or (args.dim == 3 and args.part != "ring"):
-        return  # build() refuses a solid sun or planet
-    if not (math.isfinite(args.size) and args.size > 0):
-        raise ValueError(f"--size = {args.size!r} m, but it must be a finite size > 0")
-    if args.dim == 3:
-        extent, cell = body.area() * body.gear.face_width, 1 / (6 * math.sqrt(2))
-    else:
-        extent, cell = body.area(), math.sqrt(3) / 4
-    estimate = extent / (cell * args.size ** args.dim)
-    limit = MAX_ELEMENTS[args.dim]
-    if estimate > limit:
-        smallest = (extent / (cell * limit)) ** (1 / args.dim)
-        raise ValueError(f"--size = {args.size:g} m would give ~{estimate:.1e} elements of the "
-                         f"{args.part}; allowed >= {smallest:.1e} m (at most {limit:.0e} "
-                         f"{'tetrahedra' if args.dim == 3 else 'triangles'})")
-
-
-def _options(defaults, args):
-    from dataclasses import replace
-
-    changes = {"order": args.order}
-    if args.size is not None:
-        changes["size"] = args.size
-    if args.tip_size is not None:
-        changes["tip_size"] = args.tip_size
-    return replace(defaults, **changes)
-
-
-def summary(ring, mesh) -> dict:
-    from hubvib.meshing import measure
-
-    if mesh.dim == 3:
-        size = {"volume_m3": measure.volume(mesh), "exact_volume_m3": mesh.info["exact_volume"]}
-    else:
-        size = {"area_m2": measure.area(mesh), "exact_area_m2": mesh.info["exact_area"]}
-    measured, exact = size.values()
-    return {"nodes": mesh.info["nodes"], "elements": mesh.info["elements"],
-            "cell_type": mesh.cell_type, **size, "relative_error": measured / exact - 1,
-            "mass_kg": measure.mass(mesh, ring.gear.face_width, ring.density),
-            "min_quality_sicn": mesh.info["min_quality"],
-            "mean_quality_sicn": mesh.info["mean_quality"],
-            "seconds": mesh.info["seconds"], "crack_path_m": mesh.info["crack_path"],
-            "groups": sorted(mesh.boundaries)}
-
-
-def run(args) -> int:
-    from hubvib.meshing.export import write_png, write_vtu
-
-    check_size(args, bodies(args))
-    name = args.part + ("" if args.crack_depth == 0 else f"_crack_{args.crack_depth:g}m") + (
-        "_3d" if args.dim == 3 else "")
-    with output_set(args.out) as staged:  # checked and locked before the meshing
-        ring, mesh = build(args)
-        info = summary(ring, mesh)
-        write_vtu(mesh, staged / f"{name}.vtu")
-        tooth = ring.tooth_angle(args.crack_tooth)
-        centre = None if args.crack_depth else ring.load_radius * np.array(
-            [math.cos(tooth), math.sin(tooth)])
-        write_png(mesh, staged / f"{name}.png", centre=centre,
-                  half_width=None if args.crack_depth else 0.02)
-    info["files"] = [str(args.out / f"{name}.{ext}") for ext in ("vtu", "png")]
+    request = PartMesh(args.part, args.crack_depth, args.crack_tooth,
+                       math.radians(args.crack_angle), args.crack_start, args.order, args.dim,
+                       args.crack_front, args.crack_half_length, args.size, args.tip_size)
+    info, mesh = write_part_mesh(design_from_argument(args.design or args.preset), request,
+                                 args.out)
     if args.json:
         print(json_text(info))
         return 0

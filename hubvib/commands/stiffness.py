@@ -1,10 +1,11 @@
 """``hubvib stiffness``: every stiffness of the lumped model with its error estimate and run time."""
 from __future__ import annotations
 
-import time
-
 from hubvib.design import preset_names
 from hubvib.fem.solvers import SOLVERS
+from hubvib.foundation.output import json_text
+
+from .design import design_from_argument
 
 
 def add_parser(sub) -> None:
@@ -25,57 +26,11 @@ def add_parser(sub) -> None:
     p.set_defaults(handler=run)
 
 
-def bearings(design) -> dict:
-    from hubvib.build.stages import bearing_stiffness
-
-    started = time.perf_counter()
-    rows = bearing_stiffness(design)
-    for row in rows.values():
-        row.update(value_N_m=row["tangent_N_m"], seconds_total=time.perf_counter() - started,
-                   sun_torque_N_m=design.sun_torque)
-    return rows
-
-
 def run(args) -> int:
-    import math
-
-    from hubvib.foundation.output import json_text
-    from hubvib.build.stages import gear_body, material, ring_gear
-    from hubvib.fem.estimate import estimate_mesh, estimate_ring
-    from hubvib.meshing.crack import Crack
-
-    from .design import design_from_argument
+    from hubvib.studies.stiffness import stiffness_table
 
     design = design_from_argument(args.design or args.preset)
-    if not design.equally_spaced:
-        raise ValueError(f"design {design.name!r}: the FE ring model loads equally spaced planets "
-                         "only")
-    if not (math.isfinite(args.crack_depth) and args.crack_depth >= 0):
-        raise ValueError(f"--crack-depth = {args.crack_depth!r}; allowed: a finite depth >= 0 [m] "
-                         "(0 = intact only)")
-    ring, steel = ring_gear(design), material(design)
-    cases = {"intact": None}
-    if args.crack_depth > 0:
-        crack = Crack(0, args.crack_depth)
-        crack.path(ring)  # validate before any meshing
-        cases[f"crack {args.crack_depth:g} m"] = crack
-    # c_sp, c_rp are intact means in both cases; the cracked run adds the cracked tooth's
-    # engagement to c_rp, so one run serves both
-    estimates = estimate_mesh(gear_body(design, "sun"), gear_body(design, "planet"), ring,
-                              list(cases.values())[-1], material=steel)
-    mesh_rows = {key: e.to_dict() for key, e in estimates.items()}
-    intact_mesh_rows = {key: e.to_dict(engaged=False) for key, e in estimates.items()}
-    bearing_rows = bearings(design)
-    out = {}
-    for name, crack in cases.items():
-        ring_options = dict(solver=args.solver, material=steel, n_planets=design.n_planets)
-        rows = _ring_rows(estimate_ring(ring, crack, **ring_options).to_dict(), "")
-        if args.solid:
-            rows.update(_ring_rows(estimate_ring(ring, crack, solid=True,
-                                                 **ring_options).to_dict(), " 3D"))
-        rows.update(intact_mesh_rows if crack is None else mesh_rows)
-        rows.update(bearing_rows)
-        out[name] = rows
+    out = stiffness_table(design, args.crack_depth, args.solver, args.solid)
     if args.json:
         print(json_text({"cases": out}))
         return 0
@@ -114,15 +69,6 @@ def run(args) -> int:
         print("3D: P2 tetrahedra, +- = difference to the next coarser solid level (the "
               "benchmark's reference level agrees to ~0.3 %, README)")
     return 0
-
-
-def _ring_rows(r: dict, suffix: str) -> dict:
-    common = {"seconds_total": r["seconds_total"], "dofs": r["dofs"], "solver": r["solver"]}
-    return {f"c_ru{suffix}": {"value_N_m": r["c_ru_N_m"], "error_N_m": r["c_ru_error_N_m"],
-                              "min_N_m": r["c_ru_min_N_m"], "max_N_m": r["c_ru_max_N_m"],
-                              **common},
-            f"c_r{suffix}": {"value_N_m": r["c_r_N_m"], "error_N_m": r["c_r_error_N_m"],
-                             **common}}
 
 
 def _checks(key: str, r: dict) -> str:

@@ -21,6 +21,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from scipy.optimize import minimize_scalar
+
 from .track_geometry import check_alpha1, fixed_track_lift_angle
 
 #: Input power of the paper's loss plots, W1 = 1500 W [W].
@@ -199,8 +201,6 @@ def optimum(ratio: int, friction: Friction = Friction()) -> Optimum:
     psi -> infinity at both ends of (0, 90) deg; the continuous minimum is refined by a bounded
     Brent search within one degree of the whole-degree one.
     """
-    from scipy.optimize import minimize_scalar
-
     curve = loss_curve(ratio, WHOLE_DEGREES, friction)
     whole = min(curve, key=lambda item: item.psi)
     lo = max(whole.alpha1_rad - math.radians(1.0), 1e-9)

@@ -12,6 +12,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.stats import t
 
 
 @dataclass(frozen=True)
@@ -85,8 +86,6 @@ def screen(values, confidence: float = 0.95) -> Screening:
     confidence : float
         Two-sided confidence level of the Student quantile, in (0, 1).
     """
-    from scipy.stats import t
-
     data = np.asarray(values, dtype=float)
     if data.size < 2 or not np.all(np.isfinite(data)):
         raise ValueError(f"a record needs at least two finite values, got {data.size}")

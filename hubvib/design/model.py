@@ -7,7 +7,7 @@ says ``_deg``; ``hubvib.design.parse`` converts at that edge.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 from hubvib.foundation.errors import InputError
 
@@ -174,8 +174,6 @@ class ReducerDesign:
 
     def fingerprint(self) -> dict:
         """Every field that decides an FE value, as plain data (for cache keys)."""
-        from dataclasses import asdict
-
         data = asdict(self)
         data.pop("notes")
         data["lumped"] = self.lumped_fields

@@ -27,6 +27,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hubvib.build.stages import gear_body, ring_gear
+from hubvib.fem.mesh_cycle import GearPair
+from hubvib.lumped import natural_modes
+
 
 @dataclass(frozen=True)
 class MeshTiming:
@@ -84,9 +88,6 @@ class MeshTiming:
 def mesh_timing(design, carrier_speed: float) -> MeshTiming:
     """Timing of the ring-planet mesh of a ``ReducerDesign`` (as the FE stage builds it)
     at ``carrier_speed`` [rad/s]."""
-    from hubvib.build.stages import gear_body, ring_gear
-    from hubvib.fem.mesh_cycle import GearPair
-
     ring = ring_gear(design)
     pair = GearPair(gear_body(design, "planet"), ring)
     return MeshTiming(int(ring.teeth), float(pair.contact_ratio), int(design.n_planets),
@@ -147,8 +148,6 @@ def carrier_study(model, timing: MeshTiming, record_length: float,
                   points_per_pitch: int = 40) -> CarrierStudy:
     """Spectra of ``model`` (a CrackModel) in and out of engagement, per depth, and over
     one passage of planet 1 at the deepest crack."""
-    from hubvib.lumped import natural_modes
-
     depths = range(len(model.depths))
     omega_in = np.array([natural_modes(model.parameters(k, True), model.method).omega
                          for k in depths])

@@ -41,10 +41,15 @@ import numpy as np
 from scipy.optimize import brentq
 from scipy.stats import norm
 
+<<<<<<< HEAD
 from hubvib.identification.law import KAPPA
 
 from .drift import Drift, drift_model, references
 from .drift import family_pod as family_pod_mc
+=======
+from hubvib.lumped import natural_modes
+
+>>>>>>> main
 from .numbers import ROUND_OFF
 from .uncertainty import draw, nominal, observed_frequencies
 
@@ -283,8 +288,6 @@ def pod_study(model, options, timing, samples: int | None = None, model_baseline
     seed : int, optional
         Default ``options.seed``.
     """
-    from hubvib.lumped import natural_modes
-
     n = samples or options.samples
     rng = np.random.default_rng(options.seed if seed is None else seed)
     fraction, long = timing.engaged_fraction, timing.long_record(options.record_length)

@@ -11,6 +11,7 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.sparse import coo_matrix
 
 from hubvib.meshing.fe_mesh import FEMesh
 from hubvib.meshing.to_skfem import to_skfem
@@ -96,8 +97,6 @@ class PlaneModel:
         fine meshes).  Points within the sagitta of a curved boundary edge may be
         missed: keep them ~10 um inside.
         """
-        from scipy.sparse import coo_matrix
-
         basis = self.basis
         points = np.asarray(points, dtype=float).reshape(-1, 2).T
         try:

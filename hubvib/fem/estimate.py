@@ -8,6 +8,17 @@ from __future__ import annotations
 import time
 from dataclasses import asdict, dataclass
 
+import numpy as np
+
+from hubvib.fem.crack_level import crack_level
+from hubvib.fem.material import Material
+from hubvib.fem.ring_stiffness import ring_stiffness
+from hubvib.fem.tooth_stiffness import reducer_mesh_stiffness
+from hubvib.meshing.crack import CrackFront
+from hubvib.meshing.levels import SOLID_LEVELS, scaled_options, solid_options
+from hubvib.meshing.ring_mesh import ring_mesh
+from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
+
 
 #: field -> JSON / cache key with its unit
 RING_KEYS = {"c_ru": "c_ru_N_m", "c_ru_error": "c_ru_error_N_m", "c_ru_min": "c_ru_min_N_m",
@@ -87,16 +98,6 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
     ``poor_cells_halved`` (solid) solves the fine level once more with the cells below
     ``USABLE_QUALITY`` at half stiffness.
     """
-    import numpy as np
-
-    from hubvib.meshing.crack import CrackFront
-    from hubvib.meshing.levels import SOLID_LEVELS, scaled_options, solid_options
-    from hubvib.meshing.ring_mesh import ring_mesh
-    from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
-
-    from .material import Material
-    from .ring_stiffness import ring_stiffness
-
     mesher = mesher or ring_mesh
     if solid:
         levels = {"coarse": solid_options(*SOLID_LEVELS[-2]),
@@ -195,12 +196,6 @@ def estimate_crack_case(ring, planet, crack, scale: float = 1.0, mesher=None, ma
     the planet's gear body; ``mesher(ring, crack, options)`` replaces ``ring_mesh``;
     ``material`` (default steel) and ``n_planets`` (equally spaced) are the design's.
     """
-    from hubvib.meshing.levels import scaled_options
-    from hubvib.meshing.ring_mesh import ring_mesh
-
-    from .crack_level import crack_level
-    from .material import Material
-
     mesher = mesher or ring_mesh
     material = material or Material()
     results = {}
@@ -290,10 +285,6 @@ def estimate_mesh(sun, planet, ring, crack=None, scale: float = 1.0,
     ``sun``, ``planet`` are gear bodies, ``ring`` the ring gear; with ``crack`` the
     ring-planet mesh is also given over the cracked tooth's engagement.
     """
-    from hubvib.meshing.levels import scaled_options
-
-    from .tooth_stiffness import reducer_mesh_stiffness
-
     results = {}
     for name, level in (("coarse", 2 * scale), ("fine", scale)):
         started = time.perf_counter()

@@ -21,6 +21,8 @@ from __future__ import annotations
 
 import ctypes
 import functools
+import glob
+import sys
 
 import numpy as np
 
@@ -51,9 +53,6 @@ class PardisoError(ArithmeticError):
 def _library():
     """MKL's ``pardiso`` entry point: ``libmkl_rt`` beside the interpreter where pip puts it,
     else wherever pypardiso's loader finds it (a recursive search, ~1 s)."""
-    import glob
-    import sys
-
     library = None
     for path in sorted(glob.glob(f"{sys.prefix}/lib/libmkl_rt.so*"), key=len):
         try:

@@ -19,6 +19,7 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
 
 from hubvib.meshing.fe_mesh import FEMesh
 from hubvib.meshing.ring_gear import RingGear
@@ -100,7 +101,6 @@ def _tooth_groups(model, teeth, part: str):
 
 def tooth_forces(model, teeth) -> ToothForces:
     """``ToothForces`` of ``teeth`` on ``model`` (one facet basis for all of them)."""
-    import scipy.sparse as sp
     import skfem
 
     teeth, patch, owner, size = _tooth_groups(model, teeth, "load")
@@ -172,7 +172,6 @@ class RootLands:
 
 def root_lands(model, teeth) -> RootLands:
     """``RootLands`` of ``teeth`` (groups ``tooth{k}_root``): one facet basis for all."""
-    import scipy.sparse as sp
     import skfem
 
     teeth, lands, owner, size = _tooth_groups(model, teeth, "root")

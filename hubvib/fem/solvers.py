@@ -1,6 +1,6 @@
 """Sparse symmetric positive definite solvers for ``K u = f``, chosen by problem size.
 
-Measured on 2 cores (``validation/benchmark.py`` and fe_facts.md, 3D elasticity
+Measured on 2 cores (``hubvib/benchmarks/`` and fe_facts.md, 3D elasticity
 ~3e5 DOF): SuperLU does not finish in 330 s (13 GB), smoothed-aggregation AMG
 with the rigid-body near-null space as CG preconditioner takes 7-15 s (1 GB),
 PARDISO in SPD mode ~10 s (2.5 GB).  On node blocks PARDISO is also twice as
@@ -27,6 +27,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from hubvib.fem.pardiso import Pardiso, PardisoError
 from hubvib.foundation.blas import blas_threads
 
 SOLVERS = ("auto", "superlu", "pardiso", "amg")
@@ -140,8 +141,6 @@ class _PardisoFactor(Factor):
         self._pardiso = self._factorise(single)
 
     def _factorise(self, single: bool):
-        from .pardiso import Pardiso, PardisoError
-
         try:
             factor = Pardiso(*self._matrix, single=single)
         except PardisoError as error:

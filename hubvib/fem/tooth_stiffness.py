@@ -20,6 +20,7 @@ import numpy as np
 from numpy.polynomial import chebyshev
 
 from hubvib.meshing.ring_gear import ToothedBody
+from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
 
 from .iso6336 import iso_stiffness
 from .material import Material
@@ -71,8 +72,6 @@ def fe_curve(body: ToothedBody, radii_range, material: Material, options, crack=
              mesher=None, tooth: int = 0) -> ToothCurve:
     """FE tooth compliance of ``tooth`` at Chebyshev radii of ``radii_range``;
     ``mesher(body, crack, options)`` replaces ``ring_mesh`` (to share meshes)."""
-    from hubvib.meshing.ring_mesh import ring_mesh
-
     radii = chebyshev_radii(*radii_range)
     started = time.perf_counter()
     mesh = (mesher or ring_mesh)(body, crack, options)
@@ -162,8 +161,6 @@ def engaged_ring_mesh(planet: ToothedBody, ring: ToothedBody, crack, options=Non
     The intact tooth curves are kept between calls (a crack sweep reuses them);
     ``mesher`` meshes the cracked ring (see ``fe_curve``).
     """
-    from hubvib.meshing.ring_mesh import MeshOptions
-
     options = MeshOptions() if options is None else options
     span = contact_radii(ring, [GearPair(planet, ring)])
     cracked = fe_curve(ring, span, material, options, crack, mesher)
@@ -190,8 +187,6 @@ def reducer_mesh_stiffness(sun: ToothedBody, planet: ToothedBody, ring: ToothedB
                            options=None, crack=None, material: Material = Material(),
                            ) -> dict[str, PairStiffness]:
     """``{"c_sp": ..., "c_rp": ...}`` of a planetary stage; ``crack`` on ring tooth 0."""
-    from hubvib.meshing.ring_mesh import MeshOptions
-
     options = MeshOptions() if options is None else options
     if crack is not None and crack.tooth != 0:
         raise ValueError(f"crack.tooth = {crack.tooth}: the tooth-stiffness model loads tooth 0")

@@ -32,10 +32,11 @@ from typing import Mapping
 import numpy as np
 
 from hubvib.foundation.blas import blas_thread_counts, blas_threads
+from hubvib.lumped.spectrum import natural_modes
 
 from .eigensolve import rigid_body_count, solve_network
 from .network import SpringNetwork, mass_diagonal, spring_network
-from .parameters import MASS_FIELDS, STIFFNESS_FIELDS, ParameterError, PlanetaryParameters
+from .parameters import MASS_FIELDS, ParameterError, PlanetaryParameters, STIFFNESS_FIELDS
 
 #: bound on the relative error of omega above which a point is solved more accurately
 TOLERANCE = 1e-10
@@ -201,12 +202,12 @@ def _solve_chunk(G, k, mass, tolerance):
     return omega, bound, tier
 
 
-def benchmark_batch(points: int = 10_000, single: int = 200, seed: int = 0,
-                    workers: int = 2) -> dict:
+def benchmark_batch(params: PlanetaryParameters, points: int = 10_000, single: int = 200,
+                    seed: int = 0, workers: int = 2) -> dict:
     """Batched against one-at-a-time solves, measured in the same run.
 
     Scatters every stiffness by 10 % and every mass by 2 % (log-normal) around
-    the Raba 118/76 preset, solves ``points`` of them batched and ``single`` of
+    ``params`` (the benchmark: the Raba 118/76 preset), solves ``points`` of them batched and ``single`` of
     them one at a time with :func:`lumped.natural_modes` (Jacobi), and compares.
 
     Returns
@@ -219,10 +220,6 @@ def benchmark_batch(points: int = 10_000, single: int = 200, seed: int = 0,
         (against Jacobi on the ``single`` points), ``blas_threads`` (during the
         batch; empty when no OpenBLAS was found).
     """
-    from .presets import raba118
-    from .spectrum import natural_modes
-
-    params = raba118()
     rng = np.random.default_rng(seed)
     changes = {name: getattr(params, name) * np.exp(0.1 * rng.standard_normal(points))
                for name in STIFFNESS_FIELDS if getattr(params, name) > 0}

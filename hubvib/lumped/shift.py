@@ -6,6 +6,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hubvib.lumped.parameters import ParameterError, scalar_field_names
+
 from .parameters import PlanetaryParameters
 from .sweep import sweep
 
@@ -62,8 +64,6 @@ def frequency_shift(
     Modes are followed through ``steps`` intermediate values (geometric when
     both ends are positive) so that crossings do not swap them.
     """
-    from .parameters import ParameterError, scalar_field_names
-
     if parameter not in scalar_field_names():
         raise ParameterError(f"parameter = {parameter!r}; allowed one-number fields: "
                              f"{', '.join(scalar_field_names())}")

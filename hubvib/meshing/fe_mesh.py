@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
+from hubvib.foundation.output import atomic_path
+
 #: gmsh element type -> (name, dimension, number of vertices)
 ELEMENT_TYPES = {
     1: ("line", 1, 2), 8: ("line3", 1, 2),
@@ -77,7 +79,6 @@ class FEMesh:
         if self.cell_quality is not None:
             arrays["cell_quality"] = self.cell_quality
         meta = json.dumps({"cell_type": self.cell_type, "info": self.info})
-        from hubvib.foundation.output import atomic_path
 
         with atomic_path(path) as tmp, open(tmp, "wb") as handle:
             np.savez(handle, meta=np.array(meta), **arrays)

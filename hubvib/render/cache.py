@@ -17,10 +17,14 @@ import json
 import shutil
 import sys
 from functools import lru_cache
+from importlib import metadata
 from pathlib import Path, PurePosixPath
 
-from hubvib.runtime.fe_cache import canonical
+import numpy as np
+
 from hubvib.foundation.output import atomic_folder
+from hubvib.meshing.cache import root_folder
+from hubvib.runtime.fe_cache import canonical
 
 MANIFEST = "manifest.json"
 
@@ -28,8 +32,6 @@ MANIFEST = "manifest.json"
 @lru_cache(maxsize=1)
 def render_version() -> str:
     """Hash of the rendering source and of the pyvista and VTK versions."""
-    from importlib import metadata
-
     digest = hashlib.sha256()
     for name in ("modes.py", "fe.py"):
         digest.update((Path(__file__).parent / name).read_bytes())
@@ -44,8 +46,6 @@ def render_version() -> str:
 def array_digest(array) -> str:
     """SHA-256 of an array's shape and values, rounded to 10 digits relative to its largest
     entry (the last digits of an eigensolver do not change a picture)."""
-    import numpy as np
-
     values = np.asarray(array, dtype=float)
     if not np.isfinite(values).all():
         raise ValueError("array_digest: the array holds NaN or infinity")
@@ -56,8 +56,6 @@ def array_digest(array) -> str:
 
 
 def cache_folder() -> Path:
-    from hubvib.meshing.cache import root_folder
-
     return root_folder() / "renders"
 
 

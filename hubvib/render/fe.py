@@ -13,7 +13,13 @@ from pathlib import Path
 
 import numpy as np
 
-from hubvib.render.modes import write_atomically, offscreen_plotter
+from hubvib.build.stages import material, mesh_force, ring_gear
+from hubvib.fem.elasticity import plane_model, solve
+from hubvib.fem.modal import lowest_modes
+from hubvib.fem.ring_stiffness import mesh_force_load, planet_teeth
+from hubvib.fem.stress import von_mises
+from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
+from hubvib.render.modes import offscreen_plotter, write_atomically
 
 MODES = 4
 MAGNIFIED = 0.03  # largest drawn displacement as a fraction of the ring's outer radius
@@ -38,13 +44,6 @@ class RingFields:
 def ring_fields(design, crack=None, options=None, modes: int = MODES) -> RingFields:
     """Solve the design's ring under its planet mesh forces (at the design's sun torque)
     and for its lowest ``modes``."""
-    from hubvib.build.stages import material, mesh_force, ring_gear
-    from hubvib.fem.elasticity import plane_model, solve
-    from hubvib.fem.modal import lowest_modes
-    from hubvib.fem.ring_stiffness import mesh_force_load, planet_teeth
-    from hubvib.fem.stress import von_mises
-    from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
-
     ring = ring_gear(design)
     mesh = ring_mesh(ring, crack, options or MeshOptions())
     model = plane_model(mesh, material(design), thickness=ring.gear.face_width)

@@ -16,6 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
+from hubvib.foundation.output import atomic_path
+
 AMPLITUDE = 0.08
 TOOTH_PITCH = 10.2e-3   # [m] arc between drawn teeth (module 3.25 mm: pi m)
 THICKNESS = 0.02        # [m] plate thickness, for shading only
@@ -146,8 +148,6 @@ def _draw(plotter, meshes: dict, reference: dict, label: str):
 
 def write_atomically(path: Path, write) -> Path:
     """``write(tmp)`` into a temporary file that replaces ``path`` when it succeeds."""
-    from hubvib.foundation.output import atomic_path
-
     with atomic_path(path) as tmp:
         write(tmp)
     return path

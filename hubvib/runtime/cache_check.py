@@ -11,6 +11,7 @@ import tempfile
 from pathlib import Path
 
 from hubvib.foundation.errors import InputError
+from hubvib.meshing.cache import root_folder
 
 
 class CacheError(InputError):
@@ -23,8 +24,6 @@ def check_writable(*subfolders: str) -> Path:
     Creates them if needed (as the cache does).  Raises :class:`CacheError`
     naming ``$HUBVIB_CACHE`` (or the default ``~/.cache/hubvib``) otherwise.
     """
-    from hubvib.meshing.cache import root_folder
-
     root = root_folder()
     source = "HUBVIB_CACHE" if os.environ.get("HUBVIB_CACHE") else "the default cache"
     for folder in [root, *(root / name for name in subfolders)]:

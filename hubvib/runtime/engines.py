@@ -16,12 +16,16 @@ from __future__ import annotations
 import logging
 import math
 import os
+import socket
 import threading
 import warnings
+from concurrent.futures import as_completed
 from contextlib import contextmanager
 from dataclasses import dataclass
+from urllib.parse import urlsplit
 
 from hubvib.foundation.errors import InputError, SceneError
+from hubvib.runtime.process_pool import worker_pool
 
 ENGINES = ("local", "dask")
 #: the oldest dask.distributed with every API used here (Client.map, as_completed,
@@ -95,9 +99,6 @@ def run_cases(function, items: list, on_result, execution: Execution, workers: i
 def check_reachable(execution: Execution) -> None:
     """``EngineError`` unless the scheduler (if any) accepts a TCP connection within the
     timeout: checked before anything is written."""
-    import socket
-    from urllib.parse import urlsplit
-
     if execution.engine != "dask" or execution.scheduler is None or not \
             execution.scheduler.startswith(("tcp://", "tls://")):
         return
@@ -156,10 +157,6 @@ def _environment(values: dict):
 
 
 def _run_pool(function, items, on_result, workers) -> list:
-    from concurrent.futures import as_completed
-
-    from hubvib.runtime.process_pool import worker_pool
-
     failures = []
     with worker_pool(min(workers, len(items))) as pool:
         with _environment(SINGLE_THREADED):  # the workers are spawned on submit

@@ -20,6 +20,9 @@ from contextlib import contextmanager
 from functools import lru_cache
 from pathlib import Path
 
+import hubvib.fem
+from hubvib.foundation.output import write_json
+
 FORMAT = "hubvib-fe-cache"
 FORMAT_VERSION = 2
 
@@ -36,9 +39,6 @@ class CacheFolderError(ValueError):
 @lru_cache(maxsize=1)
 def fe_version() -> str:
     """Hash of the FE stage's source (``fem/`` and ``meshing/``)."""
-    import hubvib.fem
-    import hubvib.meshing
-
     digest = hashlib.sha256()
     for package in (hubvib.meshing, hubvib.fem):
         folder = Path(package.__file__).parent
@@ -68,8 +68,6 @@ def write_entry(path: Path, inputs: dict, result: dict) -> None:
     A result holding NaN or infinity is refused (``ValueError`` naming the keys), and
     a folder that cannot be written raises ``CacheFolderError``: one line, no traceback.
     """
-    from hubvib.foundation.output import write_json
-
     try:
         checksum = _checksum(inputs, result)
     except ValueError:

@@ -25,23 +25,23 @@ import math
 import time
 
 import numpy as np
+from scipy.integrate import solve_ivp
+
+from hubvib.signal.dynamics import excitation
+from hubvib.signal.mesh_curves import synthetic_curves
+from hubvib.signal.mesh_phase import design_phasing, design_teeth
+from hubvib.signal.options import SignalOptions
+from hubvib.signal.sensor import hann_window, sampled, sensor_signal
+from hubvib.signal.simulation import simulate
+from hubvib.signal.time_response import Excitation, integrate, periodic_start
 
 
-def benchmark_signal(revolutions: int = 10, sample_rate_hz: float = 20000.0,
+def benchmark_signal(design, params, revolutions: int = 10, sample_rate_hz: float = 20000.0,
                      rtol: float = 1e-6) -> dict:
-    """Timings [s], their ratio and the errors of both integrators (see the module)."""
-    from hubvib.build import lumped_preset
-    from hubvib.design import preset_design
+    """Timings [s], their ratio and the errors of both integrators (see the module), for a
+    design and its lumped parameters (the benchmark: Raba 118/76)."""
 
-    from .dynamics import excitation
-    from .mesh_curves import synthetic_curves
-    from .mesh_phase import design_phasing, design_teeth
-    from .options import SignalOptions
-    from .sensor import sampled, sensor_signal
-    from .simulation import simulate
-    from .time_response import Excitation, integrate, periodic_start
 
-    design, params = preset_design("raba118"), lumped_preset("raba118")
     curves = synthetic_curves(design, crack_factor=1.5, depth=0.01).to_preset(params.c_sp,
                                                                                params.c_rp)
     phasing, teeth = design_phasing(design), design_teeth(design)
@@ -62,7 +62,6 @@ def benchmark_signal(revolutions: int = 10, sample_rate_hz: float = 20000.0,
     periodic_s = time.perf_counter() - started
 
     # baseline: solve_ivp on y' = F(t) y + g(t) from the same periodic state
-    from scipy.integrate import solve_ivp
 
     dyn, h = marched.dynamics, marched.step
     system = dyn.system
@@ -139,8 +138,6 @@ def _halved(table: np.ndarray) -> np.ndarray:
 
 def _sensor(dyn, dk, x, angle, sensor_angle):
     """Sensor signal from displacements and the stiffness table (as ``sensor_signal``)."""
-    from .sensor import hann_window
-
     N = dyn.n_planets
     k = dyn.mean[None, :] + dk
     forces = k * (dyn.preload[None, :] + x @ dyn.system.rows.T) - dyn.static_force[None, :]

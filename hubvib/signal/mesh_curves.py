@@ -13,9 +13,19 @@ compliances (no FE), for tests.
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass, replace
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
+
+from hubvib.build.stages import gear_body, ring_gear
+from hubvib.fem.material import Material
+from hubvib.fem.mesh_cycle import GearPair, mesh_cycle
+from hubvib.fem.tooth_beam import hertz_compliance
+from hubvib.fem.tooth_stiffness import ToothCurve, contact_radii, fe_curve
+from hubvib.meshing.cache import root_folder
+from hubvib.meshing.crack import Crack
+from hubvib.meshing.levels import scaled_options
+from hubvib.runtime.fe_cache import CacheEntryError, entry_key, read_entry, write_entry
 
 
 @dataclass(frozen=True)
@@ -81,8 +91,6 @@ class MeshCurves:
 
 
 def _curves(pairs, compliance, q_hertz, cracked_compliance=None, depth=0.0) -> MeshCurves:
-    from hubvib.fem.mesh_cycle import mesh_cycle
-
     sun_pair, ring_pair = pairs
     sun = mesh_cycle(sun_pair, compliance["planet"], compliance["sun"], q_hertz)
     ring = mesh_cycle(ring_pair, compliance["planet"], compliance["ring"], q_hertz)
@@ -96,9 +104,6 @@ def _curves(pairs, compliance, q_hertz, cracked_compliance=None, depth=0.0) -> M
 
 
 def _pairs(design):
-    from hubvib.build.stages import gear_body, ring_gear
-    from hubvib.fem.mesh_cycle import GearPair
-
     planet = gear_body(design, "planet")
     bodies = {"sun": gear_body(design, "sun"), "planet": planet, "ring": ring_gear(design)}
     return bodies, (GearPair(planet, bodies["sun"]), GearPair(planet, bodies["ring"]))
@@ -113,9 +118,6 @@ def synthetic_curves(design, tooth_compliance: float = 2.0e-9, crack_factor: flo
     true paths of contact; ``crack_factor`` > 1 multiplies the cracked ring tooth's
     compliance (``depth`` only labels the case).
     """
-    from hubvib.fem.material import Material
-    from hubvib.fem.tooth_beam import hertz_compliance
-
     bodies, pairs = _pairs(design)
 
     def constant(value):
@@ -135,12 +137,6 @@ def fe_mesh_curves(depths, start: str, angle: float, scale: float, progress,
     (``hubvib.meshing.crack.Crack``) is moved to tooth 0 for the tooth model, as in
     the crack sweep.  ``progress(message)`` is called before each FE solve.
     """
-    from hubvib.fem.material import Material
-    from hubvib.fem.tooth_beam import hertz_compliance
-    from hubvib.fem.tooth_stiffness import contact_radii
-    from hubvib.meshing.crack import Crack
-    from hubvib.meshing.levels import scaled_options
-
     if design is None:
         material = Material()
     else:
@@ -172,12 +168,6 @@ def cached_tooth_curve(body, span, material, options, crack=None, progress=None,
                        name: str = "tooth"):
     """FE tooth compliance curve (``hubvib.fem.tooth_stiffness.fe_curve``), cached and
     checked (``hubvib.runtime.fe_cache``: inputs, checksum, FE-stage version)."""
-    from dataclasses import asdict
-
-    from hubvib.runtime.fe_cache import CacheEntryError, entry_key, read_entry, write_entry
-    from hubvib.fem.tooth_stiffness import ToothCurve, fe_curve
-    from hubvib.meshing.cache import root_folder
-
     inputs = json.loads(json.dumps({
         "quantity": "tooth compliance curve", "body": repr(body),
         "span_m": [float(v) for v in span], "material": asdict(material),

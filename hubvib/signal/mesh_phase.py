@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hubvib.build.stages import spur_gears
+from hubvib.meshing.gear import centre_distance, working_pressure_angle
 
 
 @dataclass(frozen=True)
@@ -104,8 +105,6 @@ def design_phasing(design) -> MeshPhasing:
 
 def gear_phasing(sun, planet, ring) -> MeshPhasing:
     """Mesh phasing of three :class:`hubvib.meshing.gear.SpurGear` (ring internal)."""
-    from hubvib.meshing.gear import centre_distance, working_pressure_angle
-
     alpha_s = working_pressure_angle(planet, sun)
     alpha_r = working_pressure_angle(planet, ring)
     gap = centre_distance(planet, ring) * math.sin(alpha_r)

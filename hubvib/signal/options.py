@@ -32,6 +32,7 @@ import math
 from dataclasses import asdict, dataclass
 
 from hubvib.foundation.errors import SceneError
+from hubvib.signal.mesh_phase import design_teeth
 
 MESH_STIFFNESS = ("ratio", "direct")
 INTEGRATORS = ("newmark", "central")
@@ -113,8 +114,6 @@ class SignalOptions:
 def kinematics(sun_speed_rpm: float, design) -> tuple[float, float]:
     """Carrier and ring-mesh frequency [Hz] at this sun speed, for a design (ring fixed:
     f_c = f_s z_s / (z_s + z_r), f_mesh = z_r f_c)."""
-    from .mesh_phase import design_teeth
-
     teeth = design_teeth(design)
     carrier = sun_speed_rpm / 60 * teeth["sun"] / (teeth["sun"] + teeth["ring"])
     return carrier, teeth["ring"] * carrier

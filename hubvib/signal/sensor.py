@@ -25,6 +25,10 @@ import math
 from pathlib import Path
 
 import numpy as np
+from scipy.interpolate import CubicSpline
+from scipy.io import wavfile
+
+from hubvib.foundation.output import atomic_path, write_text
 
 from .simulation import Simulation
 
@@ -70,8 +74,6 @@ def sampled(one_revolution: np.ndarray, carrier_hz: float, sample_rate: float,
     FFT) and a periodic cubic spline reads it at the sample angles: relative error
     below 1e-5 at the highest kept order.
     """
-    from scipy.interpolate import CubicSpline
-
     nyquist_order = int(math.ceil(sample_rate / 2 / carrier_hz)) - 1
     max_order = min(nyquist_order, one_revolution.size // 2 - 1)
     X = np.fft.rfft(one_revolution)
@@ -92,8 +94,6 @@ def add_noise(values: np.ndarray, rms: float, seed: int) -> np.ndarray:
 
 def write_signal_csv(path: Path, time: np.ndarray, values: np.ndarray) -> Path:
     """CSV with columns ``time_s, acceleration_m_s2`` (written atomically)."""
-    from hubvib.foundation.output import write_text
-
     buffer = io.StringIO()
     buffer.write("time_s,acceleration_m_s2\n")
     np.savetxt(buffer, np.column_stack([time, values]), delimiter=",", fmt="%.9g")
@@ -103,10 +103,6 @@ def write_signal_csv(path: Path, time: np.ndarray, values: np.ndarray) -> Path:
 def write_wav(path: Path, values: np.ndarray, sample_rate: float) -> Path:
     """32-bit float WAV of ``values`` scaled to peak 1, at the sample rate rounded to
     whole Hz (written atomically)."""
-    from scipy.io import wavfile
-
-    from hubvib.foundation.output import atomic_path
-
     peak = float(np.max(np.abs(values))) or 1.0
     with atomic_path(path) as tmp:
         wavfile.write(tmp, int(round(sample_rate)), (values / peak).astype(np.float32))

@@ -18,6 +18,8 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.interpolate import CubicSpline
+from scipy.signal import spectrogram as scipy_spectrogram
 
 
 @dataclass(frozen=True)
@@ -102,8 +104,6 @@ def angle_domain(angle: np.ndarray, values: np.ndarray, points_per_rev: int) -> 
     ValueError
         Fewer than one whole revolution, or ``angle`` not increasing.
     """
-    from scipy.interpolate import CubicSpline
-
     angle = np.asarray(angle, dtype=float)
     values = np.asarray(values, dtype=float)
     if angle.size < 4 or np.any(np.diff(angle) <= 0):
@@ -150,8 +150,6 @@ class Spectrogram:
 
 def spectrogram(values: np.ndarray, sample_rate: float, segment: int) -> Spectrogram:
     """Hann-windowed short-time spectrum, ``segment`` samples per window, 75 % overlap."""
-    from scipy.signal import spectrogram as scipy_spectrogram
-
     f, t, S = scipy_spectrogram(values, fs=sample_rate, window="hann", nperseg=segment,
                                 noverlap=3 * segment // 4, scaling="spectrum",
                                 mode="magnitude")

@@ -16,15 +16,17 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from hubvib.lumped import natural_modes
+from hubvib.signal.mesh_curves import fe_mesh_curves
+from hubvib.studies.crack_sweep import ACCURACY
 
-from .indicators import INDICATORS, GearOrders, indicators, residual
+from .indicators import GearOrders, INDICATORS, indicators, residual
 from .mesh_curves import MeshCurves
 from .mesh_phase import design_phasing, design_teeth
 from .options import SignalOptions
 from .sensor import add_noise, sampled, sensor_signal
 from .simulation import Simulation, carrier_speed, simulate, steps_per_revolution
-from .spectral import (HarmonicRule, OrderSpectrum, SidebandRule, angle_domain,
-                       order_spectrum, top_harmonics)
+from .spectral import (HarmonicRule, OrderSpectrum, SidebandRule, angle_domain, order_spectrum,
+                       top_harmonics)
 
 #: labelled lines listed per depth
 TOP_LINES = 12
@@ -130,10 +132,6 @@ def harmonic_rules(n_planets: int, design) -> list[HarmonicRule]:
 
 def curves_for(scene, options: SignalOptions, progress=None) -> list[MeshCurves]:
     """The mesh curves of every depth, scaled as ``options.mesh_stiffness`` says."""
-    from hubvib.studies.crack_sweep import ACCURACY
-
-    from .mesh_curves import fe_mesh_curves
-
     sweep = scene.crack
     depths = sweep.depths if sweep is not None else (0.0,)
     fe = fe_mesh_curves(depths, sweep.start if sweep else "root",

@@ -18,18 +18,23 @@ plane study (``hubvib.studies.crack_study``), in a folder of their own.
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
-from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe, provenance,
-                          write_crack_study)
-from hubvib.studies.crack_sweep import run_fe_cases
-from hubvib.runtime.engines import Execution
+from hubvib.design.presets import raba118
+from hubvib.detection.numbers import percent
 from hubvib.fem.estimate import USABLE_QUALITY
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.runtime.engines import Execution
+from hubvib.runtime.progress import stage
+from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe,
+                                        provenance, write_crack_study)
+from hubvib.studies.crack_sweep import case_label, run_fe_cases
 from hubvib.studies.scene import Scene
+from hubvib.studies.study import Study
 
 #: slices of the face width in the slice method
 SLICES = 512
@@ -210,15 +215,10 @@ def change_figure(name: str, grid: list[dict]):
 
 
 def _is_raba(design) -> bool:
-    from hubvib.design.presets import raba118
-
     return design.fingerprint() == raba118().fingerprint()
 
 
 def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str]) -> str:
-    from hubvib.studies.crack_sweep import case_label
-    from hubvib.detection.numbers import percent
-
     scene, sweep = result.scene, result.scene.crack
     info = provenance()
     width = sweep.reducer.face_width
@@ -294,3 +294,41 @@ def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str])
         f"FE cases: {len(result.rows)} solid and {len(result.plane)} plane "
         f"({result.computed} computed now, the others from the cache).", ""]
     return "\n".join(lines) + "\n"
+
+
+def _run(scene: Scene, staged: Path) -> CrackGrowthResult:
+    started = time.perf_counter()
+    result = run_crack_growth(scene)
+    stage(f"FE stage ({result.computed} of {len(result.rows) + len(result.plane)} cases "
+          f"computed) and lumped spectra of {len(result.studies)} half-lengths", started)
+    started = time.perf_counter()
+    write_crack_growth(result, staged)
+    stage("tables, plots and reports", started)
+    return result
+
+
+def _summary(scene: Scene, result: CrackGrowthResult, folder: Path, files: list) -> dict:
+    return {"scene": scene.name, "folder": str(folder), "files": [str(f) for f in files],
+            "fe_cases_computed": result.computed, "grid": result.grid_rows()}
+
+
+def _lines(scene: Scene, result: CrackGrowthResult, folder: Path) -> list[str]:
+    grid = result.grid_rows()
+    out = [f"scene {scene.name!r}: semi-elliptic ring root cracks, {len(grid) - 1} solid cases "
+           f"({result.computed} FE cases computed, the others cached)",
+           f"{'depth [mm]':>10} {'half-length [mm]':>16} {'c_ru change [%]':>16} {'+-':>7} "
+           f"{'1/2 poor':>8} {'plane through [%]':>17} {'c_rp ratio':>10}"]
+    for r in grid[1:]:
+        out.append(f"{r['depth_mm']:>10.3g} {r['half_length_mm']:>16.3g} "
+                   f"{r['c_ru_change_percent']:>+16.3f} {r['c_ru_change_error_percent']:>7.3f} "
+                   f"{r['c_ru_change_poor_cells_percent']:>+8.3f} "
+                   f"{r['plane_through_c_ru_change_percent']:>+17.3f} "
+                   f"{r['c_rp_slice_ratio']:>10.4f}")
+    out.append("+-: fine minus coarse level; 1/2 poor: the change with the cells of min SICN "
+               "< 0.1 at half stiffness (take the larger)")
+    out.append(f"\nreport: {folder / 'report.md'}")
+    return out
+
+
+#: the solid crack growth: [crack] model = "solid"
+CRACK_GROWTH = Study("growth", _run, _summary, _lines)

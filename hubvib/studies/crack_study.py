@@ -10,21 +10,35 @@ the mounting stiffness, the carrier position) is :mod:`hubvib.detection`.
 """
 from __future__ import annotations
 
+import datetime
 import math
+import time
 from dataclasses import asdict, dataclass, field
+from importlib import metadata
 from pathlib import Path
 
 import numpy as np
 
-from hubvib.lumped import Spectrum, frequency_sensitivity, natural_modes
-from hubvib.lumped.tracking import match
-
-from hubvib.studies.crack_sweep import run_fe_cases
-from hubvib.runtime.engines import Execution
+from hubvib.build.stages import ring_gear
+from hubvib.detection import report as sections
 from hubvib.detection.model import CrackModel
 from hubvib.detection.numbers import depth_mm, percent, sensitivity, shift_hz
+from hubvib.detection.options import DetectionOptions
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.lumped import Spectrum, frequency_sensitivity, natural_modes
+from hubvib.lumped.tracking import match
+from hubvib.meshing.levels import scaled_options
+from hubvib.render.cache import array_digest, cached_render
+from hubvib.render.fe import render_fe, ring_fields
+from hubvib.render.modes import render_modes
+from hubvib.runtime.engines import Execution
+from hubvib.runtime.fe_cache import fe_version
+from hubvib.runtime.progress import stage
+from hubvib.signal.report import write_signal_study
+from hubvib.signal.study import run_signal_study
+from hubvib.studies.crack_sweep import ACCURACY, crack_of, run_fe_cases
 from hubvib.studies.scene import Scene
+from hubvib.studies.study import Study
 
 #: a mode "follows" a stiffness when its relative sensitivity exceeds this
 SENSITIVE = 0.01
@@ -257,9 +271,6 @@ def json_safe(value):
 
 def provenance() -> dict:
     """hubvib version and the date of the run (UTC)."""
-    import datetime
-    from importlib import metadata
-
     try:
         version = metadata.version("hubvib")
     except metadata.PackageNotFoundError:
@@ -270,10 +281,6 @@ def provenance() -> dict:
 
 def rendered_depth(sweep) -> float:
     """The deepest crack of the sweep that still has a tip (not through the rim) [m]."""
-    from hubvib.build.stages import ring_gear
-
-    from hubvib.studies.crack_sweep import crack_of
-
     ring = ring_gear(sweep.reducer)
     open_ended = [d for d in sweep.depths if d > 0 and not crack_of(sweep, d).is_through(ring)]
     return max(open_ended, default=max(sweep.depths))
@@ -282,11 +289,7 @@ def rendered_depth(sweep) -> float:
 def _render_modes(scene: Scene, spectrum, folder: Path) -> list[Path]:
     """Every elastic lumped mode (``render.render_modes``), from the render cache when the
     same spectrum was rendered before."""
-    from hubvib.render.cache import array_digest, cached_render
-
     def render(target):
-        from hubvib.render.modes import render_modes
-
         return render_modes(scene.params, spectrum, target, gif=scene.gif, vtm=scene.vtm)
 
     inputs = {"params": scene.params.to_dict(), "omega": array_digest(spectrum.omega),
@@ -298,18 +301,11 @@ def _render_modes(scene: Scene, spectrum, folder: Path) -> list[Path]:
 def _render_fe(scene: Scene, folder: Path) -> list[Path]:
     """The FE ring at the rendered depth (``fe_render``), from the render cache when the
     same design, crack and mesh were rendered by this FE stage before."""
-    from hubvib.studies.crack_sweep import ACCURACY, crack_of
-    from hubvib.runtime.fe_cache import fe_version
-    from hubvib.render.cache import cached_render
-    from hubvib.meshing.levels import scaled_options
-
     depth = rendered_depth(scene.crack)
     crack = crack_of(scene.crack, depth) if depth > 0 else None
     options = scaled_options(ACCURACY[scene.crack.accuracy])
 
     def render(target):
-        from hubvib.render.fe import render_fe, ring_fields
-
         return render_fe(ring_fields(scene.crack.reducer, crack, options), target,
                          vtu=scene.vtm)
 
@@ -321,8 +317,6 @@ def _render_fe(scene: Scene, folder: Path) -> list[Path]:
 
 def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
                  fe_renders: list[str] = ()) -> str:
-    from hubvib.detection import report as sections
-
     scene, sweep, model, study = result.scene, result.scene.crack, result.model, result.detection
     intact = result.fe[0]
     info = provenance()
@@ -438,3 +432,61 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
                   "(plane stress, deformation magnified).", ""]
         lines += [f"![{n}]({n})" for n in fe_renders]
     return "\n".join(lines) + "\n"
+
+
+def _run(scene: Scene, staged: Path) -> CrackStudyResult:
+    started = time.perf_counter()
+    result = run_crack_study(scene)
+    stage(f"FE stage ({result.computed} of {len(result.fe)} cases computed) and lumped "
+          "spectra", started)
+    started = time.perf_counter()
+    if "signal" in scene.tables:  # the vibration signature beside the frequency study
+        study = run_signal_study(scene)
+        stage(f"signals of {len(study.depths)} crack depth(s)", started)
+        signal_files = write_signal_study(study, staged / "signal", plots=scene.plots)["files"]
+        started = time.perf_counter()
+    write_crack_study(result, staged)
+    if "signal" in scene.tables:
+        report = staged / "report.md"
+        write_text(report, report.read_text(encoding="utf-8") + SIGNAL_SECTION)
+        result.files += [staged / "signal" / f for f in signal_files]
+    stage("tables, plots, renders and report", started)
+    return result
+
+
+#: the report section that links the vibration signature (scenes with a [signal] table)
+SIGNAL_SECTION = ("\n## Vibration signature\n\nThe signal a sensor on the ring records, its "
+                  "order spectrum, spectrogram and condition indicators against crack depth: "
+                  "[signal/report.md](signal/report.md).\n")
+
+
+def _summary(scene: Scene, result: CrackStudyResult, folder: Path, files: list) -> dict:
+    return {"scene": scene.name, "folder": str(folder), "files": [str(f) for f in files],
+            "fe_cases_computed": result.computed, "modes": result.mode_rows()}
+
+
+def _lines(scene: Scene, result: CrackStudyResult, folder: Path) -> list[str]:
+    out = [f"scene {scene.name!r}: ring crack depths "
+           f"{', '.join(f'{1e3 * d:.3g}' for d in result.depths)} mm "
+           f"({result.computed} FE cases computed, {len(result.fe) - result.computed} cached)"]
+    rows = result.mode_rows()
+    physical = "detectable_depth_mm" in rows[0]
+    if physical:
+        pod = scene.tables.get("detection", DetectionOptions()).detection_probability
+        last = f"detectable from (POD >= {pod:g}), via"
+    else:
+        last = f"smallest crack shifting >= {scene.threshold_percent:g} %"
+    out.append(f"{'mode':>4} {'type':<13} {'f intact [Hz]':>13} {'shift at deepest [%]':>21} "
+               f"{'follows':>10}  {last}")
+    for r in rows:
+        depth = r["detectable_depth_mm"] if physical else r["smallest_detectable_depth_mm"]
+        where = f" ({r['signal_in']})" if physical and depth is not None else ""
+        out.append(f"{r['mode']:>4} {r['kind']:<13} {r['frequency_intact_hz']:>13.3f} "
+                   f"{percent(r['shift_at_deepest_percent']):>21} {r['follows']:>10}  "
+                   f"{'not detectable' if depth is None else f'{depth:.3g} mm'}{where}")
+    out.append(f"\nreport: {folder / 'report.md'}")
+    return out
+
+
+#: the plane crack study: a scene with [crack] (model = "plane")
+CRACK_STUDY = Study("crack", _run, _summary, _lines)

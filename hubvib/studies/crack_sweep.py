@@ -20,14 +20,19 @@ processes or on a Dask cluster (``hubvib.runtime.engines``).
 from __future__ import annotations
 
 import sys
+import time
+from contextlib import ExitStack
 from dataclasses import asdict, dataclass
 
-
-from hubvib.runtime.engines import Execution, check_reachable, run_cases
-from hubvib.runtime.progress import progress as hubvib_progress
+from hubvib.build.stages import gear_body, material, ring_gear
+from hubvib.fem.estimate import estimate_crack_case
+from hubvib.meshing.cache import root_folder
+from hubvib.meshing.crack import Crack, CrackFront
 from hubvib.runtime import fe_cache
-from hubvib.runtime.fe_cache import (CacheEntryError, case_lock, entry_key, finite_positive, read_entry,
-                       write_entry)
+from hubvib.runtime.engines import Execution, check_reachable, run_cases
+from hubvib.runtime.fe_cache import (CacheEntryError, case_lock, entry_key, finite_positive,
+                                     read_entry, write_entry)
+from hubvib.runtime.progress import progress as hubvib_progress
 
 APPLY = ("series", "ratio", "direct")
 MODELS = ("plane", "solid")
@@ -109,15 +114,11 @@ class CrackSweep:
 
 
 def crack_of(sweep: CrackSweep, depth: float):
-    from hubvib.meshing.crack import Crack
-
     return Crack(sweep.tooth, float(depth), sweep.angle, sweep.start)
 
 
 def front_of(half_length: float):
     """The semi-elliptic front of a solid case, centred on the face width."""
-    from hubvib.meshing.crack import CrackFront
-
     return CrackFront("semi_elliptic", 0.5, float(half_length))
 
 
@@ -148,11 +149,6 @@ def fe_case(sweep: CrackSweep, case) -> dict:
     c_ru over every carrier position of one planet pitch and c_r on the last two
     ``SOLID_LEVELS``, and on the fine one again with its poorly shaped cells at half
     stiffness."""
-    import time
-
-    from hubvib.build.stages import gear_body, material, ring_gear
-    from hubvib.fem.estimate import estimate_crack_case
-
     started = time.perf_counter()
     design = sweep.reducer
     if isinstance(case, tuple):
@@ -177,8 +173,6 @@ def fe_case(sweep: CrackSweep, case) -> dict:
 
 
 def cache_folder():
-    from hubvib.meshing.cache import root_folder
-
     return root_folder() / "stiffness"
 
 
@@ -294,8 +288,6 @@ class _locks:
         self.stack, self.paths, self.cases, self.wait = None, paths, cases, wait
 
     def __enter__(self):
-        from contextlib import ExitStack
-
         self.stack = ExitStack()
         held = set()
         for case in self.cases:

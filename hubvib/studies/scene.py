@@ -56,18 +56,22 @@ from __future__ import annotations
 
 import math
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from importlib import resources
 from pathlib import Path
 
+from hubvib.build import load_design, parse_design
+from hubvib.build.stages import derived_lumped_fields, ring_gear
+from hubvib.design import DesignError, PRESETS, preset_design
 from hubvib.detection.options import parse_detection_table
 from hubvib.foundation.errors import SceneError
 from hubvib.lumped import METHODS, ParameterError, PlanetaryParameters, field_names
 from hubvib.meshing.crack import STARTS
+from hubvib.meshing.gear import GearGeometryError
 from hubvib.runtime.engines import parse_execution_table
-from hubvib.runtime.params_input import load_parameters
+from hubvib.runtime.params_input import load_parameters, read_text_file
 from hubvib.signal.options import parse_signal_table
-from hubvib.studies.crack_sweep import ACCURACY, APPLY, MAX_DEPTHS, MODELS, CrackSweep
+from hubvib.studies.crack_sweep import ACCURACY, APPLY, CrackSweep, MAX_DEPTHS, MODELS, crack_of
 
 PARAMETER_NAMES = field_names()
 
@@ -109,6 +113,14 @@ class Scene:
     design: object = None
     tables: dict = field(default_factory=dict, compare=False)
 
+    @property
+    def kind(self) -> str:
+        """The study this scene runs (``hubvib.studies.kinds.STUDIES``): "sweep" (no
+        [crack] table), "crack" ([crack] model = "plane") or "growth" (model = "solid")."""
+        if self.crack is None:
+            return "sweep"
+        return "growth" if self.crack.model == "solid" else "crack"
+
 
 #: the shipped scene ``hubvib run`` runs without an argument
 DEFAULT_SCENE = "raba118_crack"
@@ -145,7 +157,6 @@ def load_scene(path: Path | str | None = None) -> Scene:
     path = Path(path)
     if not path.exists() and path.suffix != ".toml" and path.parent == Path("."):
         return parse_scene(shipped_scene_text(path.name), path.name)
-    from hubvib.runtime.params_input import read_text_file
 
     return parse_scene(read_text_file(path, "scene", SceneError), path.stem, path.parent)
 
@@ -237,9 +248,6 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
 
 def _design(data, reducer, base: Path | None):
     """The scene's design: its [design] table, else the [reducer] preset's design."""
-    from hubvib.build import load_design, parse_design
-    from hubvib.design import DesignError, PRESETS, preset_design
-
     preset = _string(reducer, "reducer", "preset", "raba118")
     try:
         if "design" not in data:
@@ -263,8 +271,6 @@ def _design(data, reducer, base: Path | None):
 
 def _check_consistent(design, params) -> None:
     """Refuse lumped parameters that contradict the design (N, angles, diameters)."""
-    from hubvib.build.stages import derived_lumped_fields
-
     if design is None:
         return
     n = len(params.theta)
@@ -383,13 +389,6 @@ def _half_lengths(table, model, start, through) -> tuple[float, ...]:
 
 def _checked_depths(sweep: CrackSweep, through: bool) -> CrackSweep:
     """Validate every depth against the design's ring (no meshing) and add the through depth."""
-    from dataclasses import replace
-
-    from hubvib.build.stages import ring_gear
-    from hubvib.meshing.gear import GearGeometryError
-
-    from hubvib.studies.crack_sweep import crack_of
-
     if sweep.tooth >= sweep.reducer.ring.teeth:
         raise SceneError(f"[crack] tooth = {sweep.tooth}; allowed 0..{sweep.reducer.ring.teeth - 1} "
                          f"(the ring of {sweep.reducer.name!r} has {sweep.reducer.ring.teeth} teeth)")

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -11,7 +12,9 @@ from hubvib.lumped import FrequencyShift, Spectrum, frequency_sensitivity, frequ
 from hubvib.lumped.sensitivity import Sensitivity
 
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.runtime.progress import stage
 from hubvib.studies.scene import Scene
+from hubvib.studies.study import Study
 
 
 @dataclass
@@ -169,3 +172,36 @@ def _shift_figure(result: StudyResult):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=6, ncol=2)
     return fig
+
+
+def _run(scene: Scene, staged: Path) -> StudyResult:
+    started = time.perf_counter()
+    result = run_study(scene)
+    stage(f"lumped spectra and shifts of {len(scene.values)} values", started)
+    started = time.perf_counter()
+    write_study(result, staged)
+    stage(f"tables{', plots' if scene.plots else ''} and report", started)
+    return result
+
+
+def _summary(scene: Scene, result: StudyResult, folder: Path, files: list) -> dict:
+    return {"scene": scene.name, "folder": str(folder), "files": [str(f) for f in files],
+            "detection": result.detection()}
+
+
+def _lines(scene: Scene, result: StudyResult, folder: Path) -> list[str]:
+    out = [f"scene {scene.name!r}: {scene.parameter} {result.base_value:.6g} -> "
+           f"{', '.join(f'{v:.3g}' for v in scene.values)}",
+           f"{'mode':>4} {'type':<13} {'base [rad/s]':>13} {'shift at last value [%]':>24}  "
+           f"first value shifting >= {scene.threshold_percent:g} %"]
+    last = result.shifts[-1]
+    for r in result.detection():
+        first = "not reached" if r["detectable_at"] is None else f"{r['detectable_at']:.4g}"
+        out.append(f"{r['mode']:>4} {r['kind']:<13} {r['omega_base_rad_s']:>13.3f} "
+                   f"{last.percent[r['mode'] - 1]:>24.3f}  {first}")
+    out.append(f"\nreport: {folder / 'report.md'}")
+    return out
+
+
+#: the lumped sweep: a scene without [crack]
+SWEEP = Study("sweep", _run, _summary, _lines)

@@ -16,8 +16,10 @@ import time
 from pathlib import Path
 
 import numpy as np
+from scipy.spatial import cKDTree
 
-from hubvib.meshing.fe_mesh import GMSH_TO_VTK_TETRA10, FEMesh
+from hubvib.fem.elasticity import dof_components
+from hubvib.meshing.fe_mesh import FEMesh, GMSH_TO_VTK_TETRA10
 
 #: C3D10 node order is VTK's (edges 12, 23, 31, 14, 24, 34)
 ELEMENT = {"tetra10": ("C3D10", GMSH_TO_VTK_TETRA10), "tetra": ("C3D4", slice(None))}
@@ -33,10 +35,6 @@ def available() -> bool:
 
 def node_of_dof(mesh: FEMesh, basis) -> tuple[np.ndarray, np.ndarray]:
     """For every DOF of a vector basis on ``mesh``: its mesh node and component."""
-    from scipy.spatial import cKDTree
-
-    from hubvib.fem.elasticity import dof_components
-
     distance, node = cKDTree(mesh.points).query(basis.doflocs.T)
     if distance.max() > 1e-9:
         raise ValueError(f"a DOF sits {distance.max():.1e} m from every mesh node")

@@ -22,6 +22,15 @@ from pathlib import Path
 
 import numpy as np
 
+from hubvib.build import raba118
+from hubvib.fem.annulus import exact_k_theta, fe_k_theta
+from hubvib.fem.edge_crack import fe_rotation_compliance, handbook_added_compliance
+from hubvib.fem.material import Material
+from hubvib.fem.ring_stiffness import ring_stiffness
+from hubvib.fem.tooth_stiffness import reducer_mesh_stiffness
+from hubvib.meshing.levels import scaled_options
+from hubvib.meshing.ring_mesh import ring_mesh
+
 #: coarse to fine; the default mesh is scale 1.  Enough where the reference is exact.
 SCALES = (4.0, 2.0 * math.sqrt(2), 2.0, math.sqrt(2), 1.0)
 #: the gear meshes' c_sp, c_rp: two levels finer than the default
@@ -39,11 +48,6 @@ UNITS = {"c_ru": "N/m", "c_r": "N/m", "c_sp": "N/m", "c_rp": "N/m", "annulus": "
 
 
 def _ring_level(scale: float, which: str) -> dict:
-    from hubvib.fem.ring_stiffness import ring_stiffness
-    from hubvib.meshing.levels import scaled_options
-    from hubvib.build import raba118
-    from hubvib.meshing.ring_mesh import ring_mesh
-
     ring = raba118.ring_gear()
     mesh = ring_mesh(ring, None, scaled_options(scale))
     result = ring_stiffness(ring, mesh)
@@ -54,10 +58,6 @@ def _ring_level(scale: float, which: str) -> dict:
 
 
 def _mesh_level(scale: float, which: str) -> dict:
-    from hubvib.fem.tooth_stiffness import reducer_mesh_stiffness
-    from hubvib.meshing.levels import scaled_options
-    from hubvib.build import raba118
-
     result = reducer_mesh_stiffness(raba118.gear_body("sun"), raba118.gear_body("planet"),
                                     raba118.ring_gear(), scaled_options(scale))[which]
     return {"dofs": result.dofs, "value": result.value,
@@ -69,9 +69,6 @@ STRIP = (0.01, 0.001, 0.4)  # width, thickness [m], a/W
 
 
 def _annulus_level(scale: float) -> dict:
-    from hubvib.fem.annulus import exact_k_theta, fe_k_theta
-    from hubvib.fem.material import Material
-
     a, b, t = ANNULUS
     started = time.perf_counter()
     value, dofs = fe_k_theta(a, b, t, Material(), 4e-3 * scale, 2)
@@ -80,8 +77,6 @@ def _annulus_level(scale: float) -> dict:
 
 
 def _strip_level(scale: float) -> dict:
-    from hubvib.fem.edge_crack import fe_rotation_compliance, handbook_added_compliance
-
     W, t, ratio = STRIP
     started = time.perf_counter()
     sizes = {"size": W / 10 * scale, "tip_size": W / 400 * scale}

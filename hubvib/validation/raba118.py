@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from hubvib.foundation.output import save_figure, write_csv, write_json
 from hubvib.lumped.presets import raba118
 from hubvib.lumped.spectrum import natural_modes, printed_modes
 from hubvib.lumped.sweep import sweep
@@ -110,8 +111,6 @@ def paired_modes(printed_kind, energy_kind) -> list[int]:
 
 def write_report(result: RabaValidation, out: Path) -> RabaValidation:
     """Write spectrum.csv, theory.csv, summary.json and fig4_c_ru_sweep.png to ``out``."""
-    from hubvib.foundation.output import save_figure, write_csv, write_json
-
     out = Path(out)
     result.files = [
         write_csv(out / "spectrum.csv", result.rows),

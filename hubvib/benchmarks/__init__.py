@@ -1,0 +1,79 @@
+"""``hubvib benchmark``: every timing a ratio against a baseline run in the same process,
+one module per figure.
+
+The machine's cores are shared, so absolute seconds drift by 2-3x from one minute to the
+next; each figure is therefore measured beside its baseline, interleaved, and the ratio
+is the figure to trust.  The figures and their baselines:
+
+- ``ring_2d``: 2D c_ru against the previous FE path (``hubvib.validation.previous_fe``) on
+  the same mesh, and its error against finer uniform levels;
+- ``crack_case``: a crack case with one shared factorisation per level against separate
+  ones (``estimate_ring`` + ``engaged_ring_mesh``, as the crack sweep did);
+- ``solid``: 3D c_ru against CalculiX 2.20 (``ccx``, SPOOLES, 2 threads) and against the
+  previous FE path, same mesh and nodal loads;
+- ``memory``: peak memory of ``hubvib stiffness --solid`` and of the 3D solve alone;
+- the lumped and signal stages report their own baselines
+  (``hubvib.lumped.batch.benchmark_batch``, ``hubvib.signal.benchmark.benchmark_signal``);
+- ``main_job``: the default scene from an empty cache and again cached;
+  ``tests_command``: the README's test command, from a source checkout.
+
+``python -m hubvib.benchmarks.tables`` prints the README's tables of error / size against
+time.  Timings are measured here, never asserted in tests.
+"""
+from __future__ import annotations
+
+import time
+
+from hubvib.benchmarks.crack_case import crack_case
+from hubvib.benchmarks.main_job import main_job
+from hubvib.benchmarks.memory import memory_figures
+from hubvib.benchmarks.ring_2d import QUICK_REFERENCE_SCALES, REFERENCE_SCALES, ring_2d
+from hubvib.benchmarks.solid import solid_figures
+from hubvib.benchmarks.tests_command import readme_test_command
+from hubvib.build import lumped_preset
+from hubvib.design import preset_design
+from hubvib.lumped.batch import benchmark_batch
+from hubvib.signal.benchmark import benchmark_signal
+from hubvib.validation import calculix as ccx
+
+
+def run_benchmark(quick: bool = False, progress=None) -> dict:
+    """Every figure of ``hubvib benchmark`` (SI: seconds, GB, N/m; ratios are baseline time
+    over ours).  ``quick`` skips the 3D race and the memory probes, takes the 2D reference
+    from the default level (``QUICK_REFERENCE_SCALES``), runs the crack case at scale 2
+    and the signal stage over two revolutions."""
+    say = progress or (lambda line: None)
+    started = time.perf_counter()
+    out = {"quick": quick}
+    out.update(ring_2d(reference_scales=QUICK_REFERENCE_SCALES if quick else REFERENCE_SCALES,
+                       progress=say))
+    out.update(crack_case(scale=2.0 if quick else 1.0, progress=say))
+    skipped = "skipped (--quick)"
+    if quick:
+        out.update({key: None for key in (
+            "calculix_speedup", "calculix_max_rel_difference", "solid_peak_memory_gb")})
+        out["solid_skipped"] = skipped
+    else:
+        out.update(solid_figures(say))
+        if not ccx.available():
+            out.update(calculix_speedup=None, calculix_max_rel_difference=None,
+                       calculix_skipped="ccx not found: install Debian's calculix-ccx")
+        out.update(memory_figures(say))
+    out["lumped"] = benchmark_batch(lumped_preset("raba118"))
+    out["lumped_points_per_second"] = out["lumped"]["points_per_second"]
+    say(f"lumped: {out['lumped_points_per_second']:.0f} points/s")
+    # --quick: two carrier revolutions instead of ten (its solve_ivp baseline takes minutes)
+    out["signal"] = benchmark_signal(preset_design("raba118"), lumped_preset("raba118"),
+                                     **({"revolutions": 2} if quick else {}))
+    say("signal: done")
+    if quick:
+        out.update(main_job_fresh_seconds=None, main_job_cached_seconds=None,
+                   tests_seconds=None, main_job_skipped=skipped, tests_skipped=skipped)
+    else:
+        out.update(main_job(say))
+        out.update(readme_test_command(say))
+    out["seconds_total"] = time.perf_counter() - started
+    return out
+
+
+__all__ = ["REFERENCE_SCALES", "run_benchmark"]

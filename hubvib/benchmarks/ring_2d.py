@@ -1,0 +1,64 @@
+"""Figure: 2D c_ru of the Raba ring, ours against the previous FE path on the same mesh,
+and its error against the reference from finer uniform levels."""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from hubvib.build import raba118
+from hubvib.fem.ring_stiffness import ring_stiffness
+from hubvib.meshing.levels import ring_options
+from hubvib.meshing.ring_mesh import ring_mesh
+from hubvib.validation.convergence import compute_level, reference_value
+from hubvib.validation.previous_fe import previous_ring_fe
+
+#: the 2D c_ru level of the headline figure (``levels.ring_options``): the cheapest found
+#: that keeps c_ru within 0.1 % of the finest level
+C_RU_2D_SCALE = math.sqrt(2)
+#: levels whose finest gives the 2D reference (finer than every level the FE stage uses)
+REFERENCE_SCALES = (1 / math.sqrt(2), 0.5, 1 / (2 * math.sqrt(2)))
+#: --quick: the default level alone (the error is then a lower bound, and labelled so)
+QUICK_REFERENCE_SCALES = (1.0,)
+
+
+def ring_2d(scale: float = C_RU_2D_SCALE, reference_scales=REFERENCE_SCALES,
+            repeats: int = 2, progress=None) -> dict:
+    """2D c_ru of the Raba ring on ``levels.ring_options(scale)``: seconds (mesh + FE, the FE
+    the faster of ``repeats`` runs) against the previous FE path on the same mesh,
+    interleaved; its error against the reference from the uniform levels
+    ``reference_scales`` (``convergence.reference_value``)."""
+    say = progress or (lambda line: None)
+    ring = raba118.ring_gear()
+    started = time.perf_counter()
+    mesh = ring_mesh(ring, None, ring_options(scale))
+    mesh_seconds = time.perf_counter() - started
+    new, old = [], []
+    for _ in range(repeats):
+        started = time.perf_counter()
+        result = ring_stiffness(ring, mesh)
+        new.append(time.perf_counter() - started)
+        started = time.perf_counter()
+        previous = previous_ring_fe(ring, mesh)
+        old.append(time.perf_counter() - started)
+    say(f"2D c_ru at scale {scale:.3f}: FE {min(new):.2f} s, previous FE path {min(old):.2f} s")
+    levels = []
+    for s in reference_scales:
+        levels.append(compute_level("c_ru", s))
+        say(f"2D c_ru reference level {s:.3f}: {levels[-1]['dofs']} DOFs, "
+            f"{levels[-1]['value']:.8e} N/m")
+    reference, how = reference_value([r["value"] for r in levels], math.sqrt(2))
+    return {
+        "c_ru_2d_seconds": mesh_seconds + min(new),
+        "c_ru_2d_previous_seconds": mesh_seconds + min(old),
+        "c_ru_2d_speedup": (mesh_seconds + min(old)) / (mesh_seconds + min(new)),
+        "c_ru_2d_fe_speedup": min(old) / min(new),
+        "c_ru_2d_mesh_seconds": mesh_seconds,
+        "c_ru_2d_scale": scale, "c_ru_2d_dofs": result.dofs, "c_ru_2d_N_m": result.c_ru,
+        "c_ru_2d_rel_error": abs(result.c_ru / reference - 1),
+        "c_ru_2d_reference_N_m": reference, "c_ru_2d_reference": how,
+        "c_ru_2d_reference_scales": list(reference_scales),
+        "c_ru_2d_previous_max_rel_difference": float(
+            np.abs(previous["c_ru"] / result.c_ru_positions - 1).max()),
+    }

@@ -1,0 +1,73 @@
+"""Every stiffness of a design's lumped model with its error estimate and run time: the FE
+ring (c_ru, c_r; plane, and solid on request), the FE mesh stiffness (c_sp, c_rp, mean over
+the mesh cycle) and the bearings (c_p, c_c, Palmgren line contact).  ``hubvib stiffness``
+prints it.  SI units: N/m, m, s."""
+from __future__ import annotations
+
+import math
+import time
+
+from hubvib.build import bearing_stiffness, gear_body, material, ring_gear
+from hubvib.fem.estimate import estimate_mesh, estimate_ring
+from hubvib.meshing.crack import Crack
+
+
+def bearing_rows(design) -> dict:
+    """c_p and c_c of the design's bearings (those it gives), with the time they took [s]."""
+    started = time.perf_counter()
+    rows = bearing_stiffness(design)
+    for row in rows.values():
+        row.update(value_N_m=row["tangent_N_m"], seconds_total=time.perf_counter() - started,
+                   sun_torque_N_m=design.sun_torque)
+    return rows
+
+
+def stiffness_table(design, crack_depth: float = 0.0, solver: str = "auto",
+                    solid: bool = False) -> dict[str, dict]:
+    """Case name ("intact", and "crack D m" when ``crack_depth`` [m] > 0, a root crack at
+    tooth 0) -> quantity (c_ru, c_r, [c_ru 3D, c_r 3D,] c_sp, c_rp, c_p, c_c) -> its row
+    (``value_N_m``, ``error_N_m``, ``seconds_total``, ...: the JSON of ``hubvib stiffness``).
+
+    Raises ``ValueError`` naming the design or ``--crack-depth`` for a design whose planets
+    are not equally spaced (the FE ring model loads equally spaced planets only) or a depth
+    that is not a finite number >= 0.
+    """
+    if not design.equally_spaced:
+        raise ValueError(f"design {design.name!r}: the FE ring model loads equally spaced planets "
+                         "only")
+    if not (math.isfinite(crack_depth) and crack_depth >= 0):
+        raise ValueError(f"--crack-depth = {crack_depth!r}; allowed: a finite depth >= 0 [m] "
+                         "(0 = intact only)")
+    ring, steel = ring_gear(design), material(design)
+    cases = {"intact": None}
+    if crack_depth > 0:
+        crack = Crack(0, crack_depth)
+        crack.path(ring)  # validate before any meshing
+        cases[f"crack {crack_depth:g} m"] = crack
+    # c_sp, c_rp are intact means in both cases; the cracked run adds the cracked tooth's
+    # engagement to c_rp, so one run serves both
+    estimates = estimate_mesh(gear_body(design, "sun"), gear_body(design, "planet"), ring,
+                              list(cases.values())[-1], material=steel)
+    mesh_rows = {key: e.to_dict() for key, e in estimates.items()}
+    intact_mesh_rows = {key: e.to_dict(engaged=False) for key, e in estimates.items()}
+    bearings = bearing_rows(design)
+    out = {}
+    for name, crack in cases.items():
+        ring_options = dict(solver=solver, material=steel, n_planets=design.n_planets)
+        rows = _ring_rows(estimate_ring(ring, crack, **ring_options).to_dict(), "")
+        if solid:
+            rows.update(_ring_rows(estimate_ring(ring, crack, solid=True,
+                                                 **ring_options).to_dict(), " 3D"))
+        rows.update(intact_mesh_rows if crack is None else mesh_rows)
+        rows.update(bearings)
+        out[name] = rows
+    return out
+
+
+def _ring_rows(r: dict, suffix: str) -> dict:
+    common = {"seconds_total": r["seconds_total"], "dofs": r["dofs"], "solver": r["solver"]}
+    return {f"c_ru{suffix}": {"value_N_m": r["c_ru_N_m"], "error_N_m": r["c_ru_error_N_m"],
+                              "min_N_m": r["c_ru_min_N_m"], "max_N_m": r["c_ru_max_N_m"],
+                              **common},
+            f"c_r{suffix}": {"value_N_m": r["c_r_N_m"], "error_N_m": r["c_r_error_N_m"],
+                             **common}}
