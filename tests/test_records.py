@@ -141,6 +141,7 @@ def test_diagnose_from_two_records_end_to_end(tmp_path, monkeypatch, capsys):
     # intact 4 kHz acceleration records, written as CSV
     import json
 
+    import hubvib.detection.diagnosis
     import hubvib.studies.crack_sweep
     from test_detection_helpers import synthetic_fe_rows
 
@@ -148,8 +149,11 @@ def test_diagnose_from_two_records_end_to_end(tmp_path, monkeypatch, capsys):
     from hubvib.detection.options import DetectionOptions
     from test_detection_helpers import TIMING, synthetic_model
 
-    monkeypatch.setattr(hubvib.studies.crack_sweep, "run_fe_cases",
-                        lambda sweep, progress=True: (synthetic_fe_rows(sweep.depths), 0))
+    def fe_rows(sweep, progress=True):
+        return synthetic_fe_rows(sweep.depths), 0
+
+    monkeypatch.setattr(hubvib.studies.crack_sweep, "run_fe_cases", fe_rows)
+    monkeypatch.setattr(hubvib.detection.diagnosis, "run_fe_cases", fe_rows)
     scene = tmp_path / "scene.toml"
     scene.write_text(SCENE)
     f0 = reference(synthetic_model("direct"), DetectionOptions(samples=100),

@@ -18,7 +18,14 @@ from pathlib import Path
 
 import numpy as np
 
-from .diagnosis import CRACK, NO_CRACK, NOT_EXPLAINED, Posterior, synthetic_measurements
+from hubvib.studies.crack_sweep import run_fe_cases
+from hubvib.studies.scene import load_scene
+
+from .carrier import mesh_timing
+from .diagnosis import (CRACK, NO_CRACK, NOT_EXPLAINED, Posterior, reference,
+                        synthetic_measurements)
+from .model import CrackModel
+from .options import detection_options
 
 
 def student_errors(rng, shape, dof: int = 8) -> np.ndarray:
@@ -103,14 +110,6 @@ def calibrate(model, options, timing, ref, modes, trials: int = 400,
 
 
 def main(argv=None) -> int:
-    from hubvib.studies.crack_sweep import run_fe_cases
-    from hubvib.studies.scene import load_scene
-
-    from .carrier import mesh_timing
-    from .diagnosis import reference
-    from .model import CrackModel
-    from .options import detection_options
-
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--scene", default="raba118_crack")
     parser.add_argument("--modes", default="13,15,16,18")

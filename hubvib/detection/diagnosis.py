@@ -50,17 +50,13 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 from scipy.stats import chi2, norm
 
-<<<<<<< HEAD
-from hubvib.identification.law import fisher_sigma_hz
-
-from .drift import drift_model
-=======
 from hubvib.detection.carrier import mesh_timing
 from hubvib.detection.model import CrackModel
 from hubvib.detection.options import detection_options
+from hubvib.identification.law import fisher_sigma_hz
 from hubvib.studies.crack_sweep import run_fe_cases
 
->>>>>>> main
+from .drift import drift_model
 from .measured import Measured, MeasuredError
 from .options import DetectionOptions
 from .uncertainty import draw, nominal, observed_frequencies
@@ -473,22 +469,9 @@ def synthetic_measurements(model, options, timing, depths: np.ndarray, seed: int
     return f[:, 1] + noise[:, 1] + drift.draw(rng, depths.size), f[:, 0] + noise[:, 0]
 
 
-<<<<<<< HEAD
 def scene_reference(scene, progress: bool = True, workers: int = 2):
     """The Monte Carlo reference of ``scene``'s crack study and its DetectionOptions (FE
     cases from the cache or computed)."""
-    from hubvib.studies.crack_sweep import run_fe_cases
-
-    from .carrier import mesh_timing
-    from .model import CrackModel
-    from .options import detection_options
-
-=======
-def diagnose_scene(scene, measured: Measured, progress: bool = True,
-                   workers: int = 2) -> tuple[Diagnosis, Reference]:
-    """Diagnosis of ``measured`` against the crack study of ``scene`` (FE cases from the
-    cache or computed, then the Monte Carlo reference)."""
->>>>>>> main
     if scene.crack is None:
         raise ValueError(f"--scene {scene.name!r} has no [crack] study: diagnosis needs the "
                          "crack sweep it compares the measurement with")

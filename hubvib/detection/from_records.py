@@ -13,8 +13,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from hubvib.identification.modes import ModeIdentification, identify_modes
-from hubvib.identification.readers import RecordError
+from hubvib.identification.readers import RecordError, read_record
 
+from .diagnosis import diagnose, scene_reference
 from .measured import Measured
 
 
@@ -60,10 +61,6 @@ def diagnose_records(scene, record_path, baseline_path, progress: bool = True,
                      workers: int = 2):
     """Diagnosis of ``scene`` from an acceleration record now and one of the intact
     reducer (file paths): (Diagnosis, Reference, RecordInput)."""
-    from hubvib.identification.readers import read_record
-
-    from .diagnosis import diagnose, scene_reference
-
     record = read_record(record_path, "--record")
     baseline = read_record(baseline_path, "--baseline-record")
     ref, options = scene_reference(scene, progress, workers)

@@ -41,15 +41,11 @@ import numpy as np
 from scipy.optimize import brentq
 from scipy.stats import norm
 
-<<<<<<< HEAD
 from hubvib.identification.law import KAPPA
+from hubvib.lumped import natural_modes
 
 from .drift import Drift, drift_model, references
 from .drift import family_pod as family_pod_mc
-=======
-from hubvib.lumped import natural_modes
-
->>>>>>> main
 from .numbers import ROUND_OFF
 from .uncertainty import draw, nominal, observed_frequencies
 
