@@ -76,7 +76,8 @@ def test_a_cached_solid_case_of_another_crack_is_refused():
            "c_ru_coarse_N_m": 2.1, "c_r_coarse_N_m": 1.1, "c_ru_poor_half_N_m": 1.9,
            "c_r_poor_half_N_m": 0.9, "depth_m": 0.003, "half_length_m": 0.004,
            "c_ru_error_N_m": 0.1, "c_r_error_N_m": 0.1, "min_quality": 0.01, "poor_cells": 9,
-           "dofs": 99, "seconds_total": 1.0}
+           "dofs": 99, "solver": "synthetic", "seconds_mesh": 0.4, "seconds_fe": 0.5,
+           "seconds_total": 1.0}
     check_case((0.003, 0.004))(row)
     with pytest.raises(CacheEntryError, match="half_length_m"):
         check_case((0.003, 0.008))(row)

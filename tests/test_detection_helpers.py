@@ -29,7 +29,8 @@ def synthetic_fe_rows(depths=None, c_ru_drop=0.058, c_r_drop=0.05, c_rp_drop=0.1
              "c_r_N_m": body_scale * C_R * (1 - c_r_drop * t * t),
              "c_r_error_N_m": c_r_error * body_scale,
              "c_rp_engaged_ratio": 1 - c_rp_drop * t, "c_rp_engaged_ratio_error": c_rp_error * t,
-             "c_rp_engaged_min_ratio": 1 - 2 * c_rp_drop * t, "seconds_total": 0.0}
+             "c_rp_engaged_min_ratio": 1 - 2 * c_rp_drop * t, "dofs": 1, "solver": "synthetic",
+             "seconds_mesh": 0.0, "seconds_fe": 0.0, "seconds_total": 0.0}
             for d, t in zip(depths, x)]
 
 

@@ -22,7 +22,7 @@ import hubvib.studies.crack_sweep as crack_sweep
 import hubvib.runtime.fe_cache as fe_cache
 from hubvib.studies.crack_sweep import POSITIVE_KEYS, CrackSweep, case_inputs, run_fe_cases
 from hubvib.design.presets import hub4, raba118
-from hubvib.runtime.fe_cache import CacheFolderError, entry_key
+from hubvib.runtime.fe_cache import CacheEntryError, CacheFolderError, entry_key
 from hubvib.meshing.crack import Crack
 
 DEPTHS = (0.0, 0.002, 0.004)
@@ -372,3 +372,23 @@ def test_concurrent_runs_compute_each_case_once(tmp_path):
     reports = [json.loads(o.read_text()) for o in outs]
     assert sum(r["computed"] for r in reports) == len(DEPTHS)
     assert reports[0]["results"] == reports[1]["results"] == [synthetic(d) for d in DEPTHS]
+
+
+def test_typed_case_round_trips_and_names_what_is_missing():
+    """Issue 21 item 3: a cached case reads back as a typed, frozen result whose to_dict is
+    the entry's dict again (same keys, same values); a missing key or a wrong type is
+    named, and the entry records the schema version of that dict form."""
+    from hubvib.fem.estimate import SCHEMA_VERSION, CrackCaseEstimate
+    from hubvib.studies.crack_sweep import PlaneCase
+
+    row = synthetic(0.004)
+    case = PlaneCase.from_dict(row)
+    assert isinstance(case.estimate, CrackCaseEstimate) and case.depth == 0.004
+    assert case.to_dict() == row
+    with pytest.raises(ValueError, match="lacks c_r_N_m"):
+        PlaneCase.from_dict({k: v for k, v in row.items() if k != "c_r_N_m"})
+    with pytest.raises(ValueError, match="dofs = '12345'; allowed: int"):
+        PlaneCase.from_dict(dict(row, dofs="12345"))
+    with pytest.raises(CacheEntryError, match="lacks solver"):
+        crack_sweep.check_case(0.004)({k: v for k, v in row.items() if k != "solver"})
+    assert SCHEMA_VERSION >= 1

@@ -6,7 +6,7 @@ when the convergence is monotone with rate >= 1; see the annulus study).
 from __future__ import annotations
 
 import time
-from dataclasses import asdict, dataclass
+from dataclasses import MISSING, asdict, dataclass, fields
 
 import numpy as np
 
@@ -27,6 +27,35 @@ RING_KEYS = {"c_ru": "c_ru_N_m", "c_ru_error": "c_ru_error_N_m", "c_ru_min": "c_
              "c_ru_poor_half": "c_ru_poor_half_N_m", "c_r_poor_half": "c_r_poor_half_N_m"}
 #: a cell whose gmsh min SICN is below this counts as poorly shaped
 USABLE_QUALITY = 0.1
+#: version of the dict form of the estimates (``to_dict`` / ``from_dict``), stored with
+#: every FE cache entry: a change of the fields is a new version, and old entries go
+SCHEMA_VERSION = 1
+
+
+#: the field types of the estimates, as their annotations name them
+_TYPES = {"float": float, "int": int, "str": str}
+
+
+def _from_dict(cls, data: dict):
+    """An estimate from its dict form (the keys of ``to_dict``; other keys are the
+    caller's).  ``ValueError`` names the missing keys or the key of a wrong type."""
+    if not isinstance(data, dict):
+        raise ValueError(f"{cls.__name__}: {data!r} is not a table")
+    values, missing = {}, []
+    for f in fields(cls):
+        key = RING_KEYS.get(f.name, f.name)
+        if key not in data:
+            if f.default is MISSING:
+                missing.append(key)
+            continue
+        value, kind = data[key], _TYPES[f.type]
+        if isinstance(value, bool) or not (isinstance(value, (int, float)) if kind is float
+                                           else isinstance(value, kind)):
+            raise ValueError(f"{key} = {value!r}; allowed: {kind.__name__}")
+        values[f.name] = float(value) if kind is float else value
+    if missing:
+        raise ValueError(f"lacks {', '.join(missing)}")
+    return cls(**values)
 
 
 @dataclass(frozen=True)
@@ -81,6 +110,12 @@ class RingEstimate:
     def to_dict(self) -> dict:
         """Keys with units (``c_ru_N_m`` ...), as in the JSON output and the cache."""
         return {RING_KEYS.get(k, k): v for k, v in asdict(self).items()}
+
+    @classmethod
+    def from_dict(cls, data: dict) -> RingEstimate:
+        """The inverse of ``to_dict`` (``SCHEMA_VERSION``); ``ValueError`` names a missing
+        key or a value of the wrong type."""
+        return _from_dict(cls, data)
 
 
 def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
@@ -184,6 +219,12 @@ class CrackCaseEstimate:
     def to_dict(self) -> dict:
         """Keys with units, as ``RingEstimate.to_dict`` plus the ``c_rp_engaged_*`` ratios."""
         return {RING_KEYS.get(k, k): v for k, v in asdict(self).items()}
+
+    @classmethod
+    def from_dict(cls, data: dict) -> CrackCaseEstimate:
+        """The inverse of ``to_dict`` (``SCHEMA_VERSION``); ``ValueError`` names a missing
+        key or a value of the wrong type."""
+        return _from_dict(cls, data)
 
 
 def estimate_crack_case(ring, planet, crack, scale: float = 1.0, mesher=None, material=None,

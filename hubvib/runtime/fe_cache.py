@@ -21,6 +21,8 @@ from functools import lru_cache
 from pathlib import Path
 
 import hubvib.fem
+import hubvib.meshing
+from hubvib.fem.estimate import SCHEMA_VERSION
 from hubvib.foundation.output import write_json
 
 FORMAT = "hubvib-fe-cache"
@@ -76,7 +78,8 @@ def write_entry(path: Path, inputs: dict, result: dict) -> None:
                          f"for {inputs.get('crack', inputs)}") from None
     try:
         write_json(path, {"format": FORMAT, "version": FORMAT_VERSION, "fe_version": fe_version(),
-                          "inputs": inputs, "result": result, "checksum": checksum})
+                          "schema": SCHEMA_VERSION, "inputs": inputs, "result": result,
+                          "checksum": checksum})
     except OSError as exc:
         raise CacheFolderError(f"cannot write the FE cache entry {path}: {exc.strerror or exc}") \
             from None
@@ -105,7 +108,8 @@ def read_entry(path: Path, inputs: dict, check=None) -> dict:
         raise CacheEntryError("not valid JSON") from None
     if not isinstance(data, dict) or data.get("format") != FORMAT:
         raise CacheEntryError("not a hubvib FE cache entry")
-    if data.get("version") != FORMAT_VERSION or data.get("fe_version") != fe_version():
+    if (data.get("version") != FORMAT_VERSION or data.get("fe_version") != fe_version()
+            or data.get("schema") != SCHEMA_VERSION):
         raise CacheEntryError("written by another version of the FE stage")
     # stored inputs went through JSON (tuples read back as lists): compare like with like
     if data.get("inputs") != json.loads(canonical(inputs)):

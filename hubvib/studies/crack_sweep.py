@@ -25,7 +25,7 @@ from contextlib import ExitStack
 from dataclasses import asdict, dataclass
 
 from hubvib.build.stages import gear_body, material, ring_gear
-from hubvib.fem.estimate import estimate_crack_case
+from hubvib.fem.estimate import CrackCaseEstimate, RingEstimate, estimate_crack_case
 from hubvib.meshing.cache import root_folder
 from hubvib.meshing.crack import Crack, CrackFront
 from hubvib.runtime import fe_cache
@@ -43,12 +43,11 @@ MAX_DEPTHS = 64
 #: every value of a case's result that must be a finite number > 0
 POSITIVE_KEYS = ("c_ru_N_m", "c_r_N_m", "c_ru_min_N_m", "c_ru_max_N_m", "c_rp_engaged_ratio",
                  "c_rp_engaged_min_ratio")
+#: keys a solid case must hold although ``RingEstimate`` has defaults for them
+SOLID_REQUIRED = ("min_quality", "poor_cells")
 #: the same for a solid case (its c_rp comes from the plane cases)
 SOLID_POSITIVE_KEYS = ("c_ru_N_m", "c_r_N_m", "c_ru_min_N_m", "c_ru_max_N_m", "c_ru_coarse_N_m",
                        "c_r_coarse_N_m", "c_ru_poor_half_N_m", "c_r_poor_half_N_m")
-#: the other keys the 3D report reads from a solid case
-SOLID_KEYS = ("c_ru_error_N_m", "c_r_error_N_m", "min_quality", "poor_cells", "dofs",
-              "seconds_total")
 
 
 @dataclass(frozen=True)
@@ -162,14 +161,13 @@ def fe_case(sweep: CrackSweep, case) -> dict:
                                material=material(design), n_planets=design.n_planets,
                                carrier_teeth=default_carrier_teeth(ring, design.n_planets),
                                poor_cells_halved=True)
-        return dict(result.to_dict(), depth_m=float(depth), half_length_m=float(half_length),
-                    seconds_total=time.perf_counter() - started)
+        return SolidCase(result, float(depth), float(half_length),
+                         time.perf_counter() - started).to_dict()
     depth = case
     result = estimate_crack_case(ring_gear(design), gear_body(design, "planet"),
                                  crack_of(sweep, depth), ACCURACY[sweep.accuracy],
                                  material=material(design), n_planets=design.n_planets)
-    return dict(result.to_dict(), depth_m=float(depth),
-                seconds_total=time.perf_counter() - started)
+    return PlaneCase(result, float(depth), time.perf_counter() - started).to_dict()
 
 
 def cache_folder():
@@ -177,12 +175,14 @@ def cache_folder():
 
 
 def check_case(case):
-    """The plausibility check of a cached case (a depth [m], or depth and half-length)."""
+    """The plausibility check of a cached case (a depth [m], or depth and half-length): the
+    typed result reads back (``PlaneCase`` / ``SolidCase``.from_dict), then its values."""
     if isinstance(case, tuple):
         return _check_solid_case(case)
     depth = case
 
     def check(result: dict) -> None:
+        _typed(PlaneCase, result)
         finite_positive(result, POSITIVE_KEYS)
         if result.get("depth_m") != depth:
             raise CacheEntryError(f"depth_m = {result.get('depth_m')!r}, the case is {depth!r}")
@@ -197,15 +197,75 @@ def check_case(case):
 def _check_solid_case(case):
     def check(result: dict) -> None:
         finite_positive(result, SOLID_POSITIVE_KEYS)
-        missing = [k for k in SOLID_KEYS if k not in result]
-        if missing:
-            raise CacheEntryError(f"lacks {', '.join(missing)}")
+        _typed(SolidCase, result)
         found = (result.get("depth_m"), result.get("half_length_m"))
         if found != case:
             raise CacheEntryError(f"(depth_m, half_length_m) = {found!r}, the case is {case!r}")
         if not result["c_ru_min_N_m"] <= result["c_ru_N_m"] <= result["c_ru_max_N_m"]:
             raise CacheEntryError("c_ru outside its own min..max over carrier positions")
     return check
+
+
+def _typed(kind, result: dict):
+    try:
+        return kind.from_dict(result)
+    except ValueError as exc:
+        raise CacheEntryError(str(exc)) from None
+
+
+@dataclass(frozen=True)
+class PlaneCase:
+    """One plane crack case as the FE cache and the JSON output hold it: the estimate
+    (``fem.estimate.CrackCaseEstimate``), the crack depth [m] and the wall time of the whole
+    case [s].  ``to_dict`` gives the keys of the cache entry and of ``results.json``."""
+
+    estimate: CrackCaseEstimate
+    depth: float
+    seconds_total: float
+
+    def to_dict(self) -> dict:
+        return dict(self.estimate.to_dict(), depth_m=self.depth,
+                    seconds_total=self.seconds_total)
+
+    @classmethod
+    def from_dict(cls, data: dict) -> PlaneCase:
+        """The inverse of ``to_dict``; ``ValueError`` names a missing or wrong key."""
+        estimate = CrackCaseEstimate.from_dict(data)
+        return cls(estimate, _number(data, "depth_m"), _number(data, "seconds_total"))
+
+
+@dataclass(frozen=True)
+class SolidCase:
+    """One solid crack case: the ring estimate (``fem.estimate.RingEstimate``), the crack
+    depth and half-length [m] and the wall time of the whole case [s]."""
+
+    estimate: RingEstimate
+    depth: float
+    half_length: float
+    seconds_total: float
+
+    def to_dict(self) -> dict:
+        return dict(self.estimate.to_dict(), depth_m=self.depth, half_length_m=self.half_length,
+                    seconds_total=self.seconds_total)
+
+    @classmethod
+    def from_dict(cls, data: dict) -> SolidCase:
+        """The inverse of ``to_dict``; ``ValueError`` names a missing or wrong key (the
+        mesh quality, optional in a ``RingEstimate``, is required: the 3D report reads it)."""
+        missing = [k for k in SOLID_REQUIRED if k not in data]
+        if missing:
+            raise ValueError(f"lacks {', '.join(missing)}")
+        estimate = RingEstimate.from_dict(data)
+        return cls(estimate, _number(data, "depth_m"), _number(data, "half_length_m"),
+                   _number(data, "seconds_total"))
+
+
+def _number(data: dict, key: str) -> float:
+    value = data.get(key)
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ValueError(f"lacks {key}" if key not in data else f"{key} = {value!r}; allowed: "
+                         "a number")
+    return float(value)
 
 
 def run_fe_cases(sweep: CrackSweep, progress: bool = True,
