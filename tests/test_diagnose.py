@@ -279,3 +279,14 @@ def test_csv_damping_and_record_length_set_the_identification_scatter(direct):
     assert diagnose(default, ref).sigma_hz[0] == pytest.approx(
         fisher_sigma_hz(ref.nominal_hz[0, 15], 0.02, 10.0, 100.0), rel=1e-6), \
         "scene defaults: 2 % damping, 10 s, SNR 100"
+
+
+def test_calibration_table_of_the_docs(direct):
+    from hubvib.detection.calibration import calibrate
+
+    model, ref = direct
+    result = calibrate(model, OPTIONS, TIMING, ref, [12, 16, 17, 18], trials=60)
+    assert result.intact.get(NO_CRACK, 0.0) >= 0.8
+    assert result.patterns["every mode +1 %"][0] == NOT_EXPLAINED
+    table = result.table()
+    assert len(table) == 2 + 5 + len(result.patterns) and "90 % intervals" in table[5]
