@@ -48,7 +48,8 @@ def run(args) -> int:
     if args.json:
         extra = {} if found is None else {"skipped_modes": {
             str(i + 1): why for i, why in sorted(found.now.skipped.items())}}
-        print(json.dumps({"scene": scene.name, **result.to_dict(), **extra}, indent=2,
+        print(json.dumps({"scene": scene.name, **result.to_dict(), **ref.mesh_stiffness,
+                          **extra}, indent=2,
                          allow_nan=False))
         return 0
     if found is not None:

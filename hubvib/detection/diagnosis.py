@@ -44,7 +44,7 @@ measurements whose identification errors come from identified simulated records.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import linear_sum_assignment
@@ -89,6 +89,10 @@ class Reference:
         [-]
     drift_cov : ndarray, shape (modes, modes) or None
         Covariance of the drift between two records (temperature, load) [Hz^2].
+    mesh_stiffness : dict
+        Which ring-planet mesh stiffness the crack model uses
+        (``CrackModel.mesh_stiffness``: ``c_rp_method``, ``c_rp_source``,
+        ``c_rp_lumped_N_m``, ``c_rp_fe_intact_N_m``).
     """
 
     depths: np.ndarray
@@ -100,6 +104,7 @@ class Reference:
     confidence: float
     fit_false_alarm_rate: float = 0.01
     drift_cov: np.ndarray | None = None
+    mesh_stiffness: dict = field(default_factory=dict)
 
     @property
     def n_modes(self) -> int:
@@ -123,7 +128,8 @@ def reference(model, options, timing, seed: int | None = None, workers: int = 1)
     return Reference(np.array(model.depths), samples, nominal_hz,
                      options.sigma_hz(nominal_hz[0]), options.false_alarm_rate,
                      options.detection_probability, options.confidence,
-                     options.fit_false_alarm_rate, drift.covariance())
+                     options.fit_false_alarm_rate, drift.covariance(),
+                     model.mesh_stiffness())
 
 
 def pair_modes(measured: Measured, ref: Reference) -> np.ndarray:
@@ -481,7 +487,8 @@ def scene_reference(scene, progress: bool = True, workers: int = 2):
                          "per depth ([crack] model = \"plane\")")
     options = detection_options(scene)
     fe, _ = run_fe_cases(scene.crack, progress)
-    model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method)
+    model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
+                               c_rp_given=scene.c_rp_given)
     ref = reference(model, options, mesh_timing(scene.crack.reducer, options.carrier_speed),
                     workers=workers)
     return ref, options

@@ -21,6 +21,7 @@ import numpy as np
 
 from hubvib.build.stages import ring_gear
 from hubvib.detection import report as sections
+from hubvib.detection.mesh_stiffness import iso_c_rp, mesh_stiffness_section
 from hubvib.detection.model import CrackModel
 from hubvib.detection.numbers import depth_mm, percent, sensitivity, shift_hz
 from hubvib.detection.options import DetectionOptions
@@ -52,7 +53,8 @@ class CrackStudyResult:
 
     ``omega[k, i]`` [rad/s] is mode i (numbered at depth 0) at ``depths[k]``;
     ``model`` is the crack as the lumped model sees it, ``detection`` the
-    detection study (None when not run).
+    detection study (None when not run), ``c_rp_comparison`` the record shifts under
+    the other c_rp method (``detection.mesh_stiffness``; None where the methods agree).
     """
 
     scene: Scene
@@ -66,6 +68,7 @@ class CrackStudyResult:
     files: list[Path] = field(default_factory=list)
     model: CrackModel | None = None
     detection: object = None
+    c_rp_comparison: object = None
 
     @property
     def depths(self) -> np.ndarray:
@@ -88,8 +91,12 @@ class CrackStudyResult:
                  "fe_c_rp_engaged_ratio_error": f["c_rp_engaged_ratio_error"],
                  "fe_c_rp_engaged_min_ratio": f["c_rp_engaged_min_ratio"],
                  "lumped_c_ru_N_m": float(cu), "lumped_c_r_N_m": float(cr),
-                 "lumped_c_rp_planet1_N_m": float(self.scene.params.c_rp * fp),
-                 "fe_seconds": f["seconds_total"]}
+                 "lumped_c_rp_planet1_N_m": float(self.model.params.c_rp * fp),
+                 "fe_seconds": f["seconds_total"],
+                 "fe_c_rp_engaged_intact_N_m": f["c_rp_engaged_intact_N_m"],
+                 "lumped_c_rp_factor": float(fp),
+                 "lumped_c_rp_planet1_ratio_method_N_m": float(
+                     self.model.params.c_rp * f["c_rp_engaged_ratio"])}
                 for f, cu, cr, fp in zip(self.fe, self.c_ru, self.c_r, self.c_rp_factor)]
 
     def frequency_rows(self) -> list[dict]:
@@ -107,7 +114,7 @@ class CrackStudyResult:
         """Per mode: what it follows (c_ru, c_r, c_rp), its largest shift, the depth from
         which it detects the crack (Monte Carlo POD, ``detectable_depth_mm``) and, for
         comparison, the first depth shifting it by the flat ``[study]`` threshold."""
-        params = self.scene.params
+        params = self.model.params if self.model is not None else self.scene.params
         base = self.spectra[0]
         rel = {name: frequency_sensitivity(params, name, self.scene.method, base).relative
                for name in STIFFNESSES}
@@ -153,9 +160,10 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
     ``timing`` (a ``detection.carrier.MeshTiming``) defaults to the scene's design at
     the ``[detection]`` carrier speed.
     """
-    model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method)
+    model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
+                               c_rp_given=scene.c_rp_given)
     c_ru, c_r = model.c_ru, model.c_r
-    c_rp_factor = np.array(model.c_rp_ratio)
+    c_rp_factor = np.asarray(model.c_rp_factor())
     spectra = [natural_modes(model.parameters(k), scene.method) for k in range(len(fe))]
     n = spectra[0].omega.size
     omega = np.empty((len(spectra), n))
@@ -165,17 +173,21 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
         step, _ = match(spectra[k - 1], spectra[k])
         order = step[order]
         omega[k] = spectra[k].omega[order]
-    study = None
-    if detection:
+    study = comparison = None
+    if detection or model.c_rp_differs:
         from hubvib.detection.carrier import mesh_timing
+        from hubvib.detection.mesh_stiffness import compare_methods
         from hubvib.detection.options import detection_options
         from hubvib.detection.study import detection_study
 
         options = detection_options(scene)
         timing = timing or mesh_timing(scene.crack.reducer, options.carrier_speed)
-        study = detection_study(model, options, timing, workers=workers)
+        if detection:
+            study = detection_study(model, options, timing, workers=workers)
+        if model.c_rp_differs:
+            comparison = compare_methods(model, timing, options.record_length)
     return CrackStudyResult(scene, fe, c_ru, c_r, c_rp_factor, spectra, omega, computed,
-                            model=model, detection=study)
+                            model=model, detection=study, c_rp_comparison=comparison)
 
 
 def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResult:
@@ -191,7 +203,7 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
                   write_csv(folder / "pod_family.csv", study.pod.family_rows()),
                   write_csv(folder / "detectability_map.csv", study.map.rows())]
     files.append(write_json(folder / "results.json", json_safe({
-        "scene": scene.name, **provenance(), "parameters": scene.params.to_dict(),
+        "scene": scene.name, **provenance(), "parameters": result.model.params.to_dict(),
         "crack": {k: v for k, v in asdict(scene.crack).items() if k != "design"},
         "mounting": {"apply": result.model.apply, "c_ru_mount_N_m": result.model.c_ru_mount,
                      "c_r_mount_N_m": result.model.c_r_mount},
@@ -206,7 +218,12 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
             "pass_seconds": study.timing.pass_seconds,
             "watched_modes": [int(i) + 1 for i in study.watched_modes()]},
         "stiffness": result.stiffness_rows(), "modes": result.mode_rows(),
-        "frequencies": result.frequency_rows()})))
+        "frequencies": result.frequency_rows(),
+        "mesh_stiffness": dict(result.model.mesh_stiffness(),
+                               c_rp_iso6336_N_m=iso_c_rp(scene.crack.reducer),
+                               c_rp_methods_differ=result.c_rp_comparison is not None),
+        "c_rp_methods": (None if result.c_rp_comparison is None
+                         else result.c_rp_comparison.rows())})))
     plots = []
     if scene.plots:
         from hubvib.detection import plots as figures
@@ -343,6 +360,10 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
         lines += sections.carrier_section(study) + _image("carrier_position.png", plots)
     else:
         lines += [sections.mounting_sentence(model), ""]
+    watched = (list(study.watched_modes()) if study is not None
+               else list(np.argsort(-np.abs(result.omega[-1] - result.omega[0]))[:4]))
+    lines += mesh_stiffness_section(model, iso_c_rp(sweep.reducer), result.c_rp_comparison,
+                                    watched)
     lines += [
         "## Assumptions", "",
         f"- Design `{sweep.reducer.name}`: "
@@ -354,8 +375,10 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
         "- c_rp: FE tooth compliance of planet and ring tooth (crack moved to tooth 0) with "
         "Hertz contact added analytically and the load shared over the path of contact; the "
         "ratio cracked/intact is the mean over the cracked tooth's engagement (its minimum is "
-        "in `fe_c_rp_engaged_min_ratio`). This ratio is physical (the same tooth pair, cracked "
-        "and intact) and applies whatever the mounting. Only planet 1's ring mesh changes, so "
+        "in `fe_c_rp_engaged_min_ratio`), the intact value over it is "
+        "`fe_c_rp_engaged_intact_N_m`. The crack's extra compliance (1/ratio - 1)/c_rp_FE "
+        f"enters planet 1's lumped c_rp by the method `{model.c_rp_method}` (see Ring-planet "
+        "mesh stiffness). Only planet 1's ring mesh changes, so "
         "the crack splits the repeated (translational) frequencies."
         + ("" if sweep.model == "plane" else
            f" Solid study, semi-elliptic crack of half-length "
