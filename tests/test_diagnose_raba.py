@@ -1,10 +1,16 @@
 """issue 22 targets on the Raba 118/76 default scene (FE stage from the cache or computed):
-modes 13/15/16/18, 2 % damping, 10 s records."""
+modes 13/15/16/18, 2 % damping, 10 s records.
+
+The calibration targets are checked on the crack model under the ratio method (the
+preset's c_rp = 3e8 N/m times the FE ratio, an upper bound of the crack's effect, where a
+10 s record identifies a crack); under the primary series method (issue 22 item 6) the
+crack moves these modes by less than one identification scatter, and the diagnosis says
+so (last test)."""
 import numpy as np
 import pytest
 
-from hubvib.detection.diagnosis import (CRACK, NO_CRACK, NOT_EXPLAINED, Posterior, reference,
-                                        synthetic_measurements)
+from hubvib.detection.diagnosis import (CRACK, NO_CRACK, NOT_EXPLAINED, NOT_IDENTIFIABLE,
+                                        Posterior, reference, synthetic_measurements)
 
 pytestmark = pytest.mark.slow
 MODES = np.array([12, 14, 15, 17])
@@ -14,8 +20,7 @@ def student_errors(rng, shape, dof=8):
     return rng.standard_t(dof, size=shape) / np.sqrt(dof / (dof - 2))
 
 
-@pytest.fixture(scope="module")
-def raba():
+def _raba(c_rp_method):
     from hubvib.studies.crack_sweep import run_fe_cases
     from hubvib.detection.carrier import mesh_timing
     from hubvib.detection.model import CrackModel
@@ -25,10 +30,30 @@ def raba():
     scene = load_scene("raba118_crack")
     options = detection_options(scene)
     fe, _ = run_fe_cases(scene.crack, False)
-    model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method)
+    model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
+                               c_rp_given=scene.c_rp_given).with_c_rp_method(c_rp_method)
     timing = mesh_timing(scene.crack.reducer, options.carrier_speed)
     ref = reference(model, options, timing)
     return model, options, timing, ref, Posterior(ref, MODES, True)
+
+
+@pytest.fixture(scope="module")
+def raba():
+    return _raba("ratio")
+
+
+def test_under_the_series_method_10s_records_identify_no_crack():
+    """Issue 22 item 6: mode 13 moves 0.30-0.68 Hz (3 mm..through the rim) against a
+    10 s identification scatter of 1.45 Hz: intact reducers are `not identifiable`."""
+    model, options, timing, ref, posterior = _raba("series")
+    trials = 100
+    f, own = synthetic_measurements(model, options, timing, np.zeros(trials), seed=5,
+                                    errors=student_errors)
+    verdicts = [posterior.diagnose(f[j, MODES] - own[j, MODES], "m").verdict
+                for j in range(trials)]
+    assert verdicts.count(NOT_IDENTIFIABLE) >= 0.9 * trials, \
+        "docs/diagnosis.md: 97 % of intact reducers not identifiable (>= 90 %)"
+    assert verdicts.count(CRACK) == 0
 
 
 def test_intact_raba_reducer_is_called_intact(raba):

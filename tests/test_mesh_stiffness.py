@@ -14,6 +14,7 @@ from test_detection_helpers import TIMING, synthetic_fe_rows
 
 from hubvib.detection.mesh_stiffness import compare_methods, iso_c_rp
 from hubvib.detection.model import C_RP_RATIO, C_RP_SERIES, CrackModel
+from hubvib.detection.options import DetectionOptions
 from hubvib.design.presets import raba118
 from hubvib.studies.crack_study import crack_study_from_fe, write_crack_study
 from hubvib.studies.scene import load_scene, parse_scene
@@ -111,9 +112,10 @@ def test_the_preset_gives_its_c_rp_and_a_design_derived_scene_takes_the_fe_one()
 
 
 def test_preset_results_show_both_methods(tmp_path):
-    scene = replace(load_scene(None), plots=False, renders=False)
+    scene = replace(load_scene(None), plots=False, renders=False, tables={"detection": replace(
+        DetectionOptions(), samples=200, map_samples=30, mount_points=3)})
     rows = synthetic_fe_rows(scene.crack.depths, c_rp_fe=C_RP_FE)
-    result = crack_study_from_fe(scene, rows, detection=False, timing=TIMING)
+    result = crack_study_from_fe(scene, rows, timing=TIMING)
     write_crack_study(result, tmp_path)
     data = json.loads((tmp_path / "results.json").read_text())
     mesh = data["mesh_stiffness"]
@@ -124,7 +126,14 @@ def test_preset_results_show_both_methods(tmp_path):
                ["depth_mm"]]
     assert all(abs(r["record_shift_ratio_hz"]) >= abs(r["record_shift_series_hz"]) - 1e-9
                for r in deepest), "the ratio method is the upper bound"
+    other = data["c_rp_other_method_family_pod"]
+    assert other["c_rp_method"] == "ratio"
+    pod = data["detection"]["family_pod"]
+    for T, values in other["family_pod"].items():
+        assert all(o >= p - 0.05 for o, p in zip(values[1:], pod[T][1:])), \
+            "the ratio method's POD is at least the series one (upper bound; MC 0.05)"
     report = (tmp_path / "report.md").read_text()
+    assert "| record [s] | series (primary) | ratio |" in report
     assert "## Ring-planet mesh stiffness" in report and "1.48e+09 N/m" in report
     assert f"{iso_c_rp(raba118()):.4g} N/m" in report
 

@@ -22,8 +22,8 @@ from hubvib.studies.crack_sweep import run_fe_cases
 from hubvib.studies.scene import load_scene
 
 from .carrier import mesh_timing
-from .diagnosis import (CRACK, NO_CRACK, NOT_EXPLAINED, Posterior, reference,
-                        synthetic_measurements)
+from .diagnosis import (CRACK, NO_CRACK, NOT_EXPLAINED, NOT_IDENTIFIABLE, Posterior,
+                        reference, synthetic_measurements)
 from .model import CrackModel
 from .options import detection_options
 
@@ -51,6 +51,8 @@ class Calibration:
         Median interval width [m].
     patterns : dict
         Pattern name -> (verdict, fit p-value).
+    intervals : int or None
+        Cracked reducers that got an interval (the others: no crack identifiable).
     """
 
     modes: tuple
@@ -59,14 +61,23 @@ class Calibration:
     coverage: float
     median_width: float
     patterns: dict
+    intervals: int | None = None
 
     def table(self) -> list[str]:
         rows = ["| check | result |", "|---|---:|"]
         for verdict in (NO_CRACK, CRACK, NOT_EXPLAINED):
             rows.append(f"| intact reducers called `{verdict}` | "
                         f"{100 * self.intact.get(verdict, 0.0):.1f} % |")
-        rows.append(f"| 90 % intervals holding the true depth | {100 * self.coverage:.1f} % |")
-        rows.append(f"| median interval width | {1e3 * self.median_width:.3g} mm |")
+        if self.intact.get(NOT_IDENTIFIABLE, 0.0) > 0:
+            rows.append(f"| intact reducers called `{NOT_IDENTIFIABLE}` | "
+                        f"{100 * self.intact[NOT_IDENTIFIABLE]:.1f} % |")
+        given = "" if self.intervals is None else (
+            f" ({self.intervals} of {self.trials} cracked reducers got an interval)")
+        rows.append(f"| 90 % intervals holding the true depth | {100 * self.coverage:.1f} %"
+                    f"{given} |")
+        rows.append("| median interval width | " + (
+            "no interval (no crack identifiable)" if math.isnan(self.median_width)
+            else f"{1e3 * self.median_width:.3g} mm") + " |")
         for name, (verdict, p) in self.patterns.items():
             rows.append(f"| {name} | `{verdict}` (fit p = {p:.2g}) |")
         return rows
@@ -106,7 +117,7 @@ def calibrate(model, options, timing, ref, modes, trials: int = 400,
             r = posterior.diagnose(y, "measured", f0)
             found[name] = (r.verdict, r.fit_p_value)
     return Calibration(tuple(int(m) for m in modes), trials, intact, covered / trials,
-                       float(np.median(widths)) if widths else math.nan, found)
+                       float(np.median(widths)) if widths else math.nan, found, len(widths))
 
 
 def main(argv=None) -> int:

@@ -19,6 +19,7 @@ from hubvib.fem.iso6336 import iso_stiffness
 from hubvib.fem.mesh_cycle import GearPair
 
 from .model import C_RP_RATIO, C_RP_SERIES
+from .pod import pod_study
 from .uncertainty import nominal, observed_frequencies
 
 
@@ -46,6 +47,8 @@ class MethodComparison:
         Frequencies a record sees, ascending per depth [Hz].
     factor, other_factor : ndarray, shape (depths,)
         Factor on planet 1's lumped c_rp with the cracked tooth in mesh [-].
+    other_pod : PodResult or None
+        The Monte Carlo POD under the other method (``pod.pod_study``; None when not run).
     """
 
     depths: np.ndarray
@@ -55,6 +58,7 @@ class MethodComparison:
     other_hz: np.ndarray
     factor: np.ndarray
     other_factor: np.ndarray
+    other_pod: object = None
 
     @property
     def shift_hz(self) -> np.ndarray:
@@ -72,10 +76,12 @@ class MethodComparison:
                 for k, d in enumerate(self.depths) for i in range(self.frequency_hz.shape[1])]
 
 
-def compare_methods(model, timing, record_length: float) -> MethodComparison:
+def compare_methods(model, timing, record_length: float, options=None,
+                    workers: int = 1) -> MethodComparison:
     """The nominal record-averaged spectra of ``model`` (CrackModel, series or ratio) and
     of the same model under the other c_rp method, for records of ``record_length`` [s]
-    with ``timing`` (``carrier.MeshTiming``)."""
+    with ``timing`` (``carrier.MeshTiming``); with ``options`` (DetectionOptions) also
+    the other method's POD."""
     other = C_RP_RATIO if model.c_rp_method == C_RP_SERIES else C_RP_SERIES
     variant = model.with_c_rp_method(other)
     fraction, long = timing.engaged_fraction, timing.long_record(record_length)
@@ -83,16 +89,24 @@ def compare_methods(model, timing, record_length: float) -> MethodComparison:
     def observed(m):
         return observed_frequencies(m, nominal(m), fraction, long)[0]
 
+    other_pod = (None if options is None
+                 else pod_study(variant, options, timing, workers=workers))
     return MethodComparison(np.array(model.depths), model.c_rp_method, other, observed(model),
                             observed(variant), np.asarray(model.c_rp_factor()),
-                            np.asarray(variant.c_rp_factor()))
+                            np.asarray(variant.c_rp_factor()), other_pod)
+
+
+def family_depths(pod) -> dict:
+    """Record length [s] -> smallest depth [m] the watched family detects (NaN: none)."""
+    return {T: float(pod.family_detectable_depth(T)) for T in sorted(pod.family_pod)}
 
 
 def mesh_stiffness_section(model, iso: float, comparison: MethodComparison | None,
-                           watched) -> list[str]:
+                           watched, pod=None) -> list[str]:
     """Report lines: which c_rp the lumped model uses and why, with the FE, ISO 6336-1
     and lumped values [N/m]; with ``comparison`` the shifts of the ``watched`` modes
-    (0-based) under both methods."""
+    (0-based) under both methods and, with ``pod`` (the model's PodResult) and the
+    comparison's ``other_pod``, the depth the watched family detects under each."""
     fe = model.c_rp_fe[0]
     lumped = model.params.c_rp
     lines = ["## Ring-planet mesh stiffness", ""]
@@ -128,4 +142,16 @@ def mesh_stiffness_section(model, iso: float, comparison: MethodComparison | Non
                  for i in watched]
         lines.append(f"| {1e3 * d:.3g} | {comparison.factor[k]:.4f} | "
                      f"{comparison.other_factor[k]:.4f} | " + " | ".join(cells) + " |")
+    lines.append("")
+    if pod is None or comparison.other_pod is None:
+        return lines
+    mine, other = family_depths(pod), family_depths(comparison.other_pod)
+    lines += [f"Smallest depth the watched modes detect together (POD >= "
+              f"{pod.detection_probability:g}, family-wise false-alarm rate "
+              f"{pod.false_alarm_rate:g}, no drift; the same Monte Carlo draws):", "",
+              f"| record [s] | {comparison.method} (primary) | {comparison.other} |",
+              "|---:|---:|---:|"]
+    for T in mine:
+        cells = ["none" if np.isnan(d) else f"{1e3 * d:.3g} mm" for d in (mine[T], other[T])]
+        lines.append(f"| {T:g} | " + " | ".join(cells) + " |")
     return lines + [""]

@@ -21,7 +21,7 @@ import numpy as np
 
 from hubvib.build.stages import ring_gear
 from hubvib.detection import report as sections
-from hubvib.detection.mesh_stiffness import iso_c_rp, mesh_stiffness_section
+from hubvib.detection.mesh_stiffness import family_depths, iso_c_rp, mesh_stiffness_section
 from hubvib.detection.model import CrackModel
 from hubvib.detection.numbers import depth_mm, percent, sensitivity, shift_hz
 from hubvib.detection.options import DetectionOptions
@@ -185,7 +185,8 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
         if detection:
             study = detection_study(model, options, timing, workers=workers)
         if model.c_rp_differs:
-            comparison = compare_methods(model, timing, options.record_length)
+            comparison = compare_methods(model, timing, options.record_length,
+                                         options if detection else None, workers=workers)
     return CrackStudyResult(scene, fe, c_ru, c_r, c_rp_factor, spectra, omega, computed,
                             model=model, detection=study, c_rp_comparison=comparison)
 
@@ -223,7 +224,8 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
                                c_rp_iso6336_N_m=iso_c_rp(scene.crack.reducer),
                                c_rp_methods_differ=result.c_rp_comparison is not None),
         "c_rp_methods": (None if result.c_rp_comparison is None
-                         else result.c_rp_comparison.rows())})))
+                         else result.c_rp_comparison.rows()),
+        "c_rp_other_method_family_pod": _other_family_pod(result.c_rp_comparison)})))
     plots = []
     if scene.plots:
         from hubvib.detection import plots as figures
@@ -258,6 +260,19 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
         result, [p.name for p in plots], pictures(renders), pictures(fe_renders))))
     result.files = files
     return result
+
+
+def _other_family_pod(comparison) -> dict | None:
+    """The watched family's POD per record length [s] and depth under the other c_rp
+    method (results.json), None where the methods agree or detection did not run."""
+    if comparison is None or comparison.other_pod is None:
+        return None
+    pod = comparison.other_pod
+    return {"c_rp_method": comparison.other,
+            "family_pod": {f"{T:g}": [float(p) for p in v] for T, v in pod.family_pod.items()},
+            "family_detectable_depth_m": {
+                f"{T:g}": (None if math.isnan(d) else d)
+                for T, d in family_depths(pod).items()}}
 
 
 def _image(name: str, plots: list[str]) -> list[str]:
@@ -363,7 +378,7 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
     watched = (list(study.watched_modes()) if study is not None
                else list(np.argsort(-np.abs(result.omega[-1] - result.omega[0]))[:4]))
     lines += mesh_stiffness_section(model, iso_c_rp(sweep.reducer), result.c_rp_comparison,
-                                    watched)
+                                    watched, None if study is None else study.pod)
     lines += [
         "## Assumptions", "",
         f"- Design `{sweep.reducer.name}`: "
