@@ -13,7 +13,7 @@ import numpy as np
 from hubvib.fem.crack_level import crack_level
 from hubvib.fem.material import Material
 from hubvib.fem.ring_stiffness import ring_stiffness
-from hubvib.fem.tooth_stiffness import reducer_mesh_stiffness
+from hubvib.fem.tooth_stiffness import engaged_mesh, reducer_mesh_stiffness
 from hubvib.meshing.crack import CrackFront
 from hubvib.meshing.levels import SOLID_LEVELS, scaled_options, solid_options
 from hubvib.meshing.ring_mesh import ring_mesh
@@ -24,12 +24,15 @@ from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
 RING_KEYS = {"c_ru": "c_ru_N_m", "c_ru_error": "c_ru_error_N_m", "c_ru_min": "c_ru_min_N_m",
              "c_ru_max": "c_ru_max_N_m", "c_r": "c_r_N_m", "c_r_error": "c_r_error_N_m",
              "c_ru_coarse": "c_ru_coarse_N_m", "c_r_coarse": "c_r_coarse_N_m",
-             "c_ru_poor_half": "c_ru_poor_half_N_m", "c_r_poor_half": "c_r_poor_half_N_m"}
+             "c_ru_poor_half": "c_ru_poor_half_N_m", "c_r_poor_half": "c_r_poor_half_N_m",
+             "c_rp_engaged_intact": "c_rp_engaged_intact_N_m",
+             "c_rp_engaged_intact_min": "c_rp_engaged_intact_min_N_m"}
 #: a cell whose gmsh min SICN is below this counts as poorly shaped
 USABLE_QUALITY = 0.1
 #: version of the dict form of the estimates (``to_dict`` / ``from_dict``), stored with
 #: every FE cache entry: a change of the fields is a new version, and old entries go
-SCHEMA_VERSION = 1
+#: (2: the crack case stores the absolute intact engaged c_rp, issue 22 item 6)
+SCHEMA_VERSION = 2
 
 
 #: the field types of the estimates, as their annotations name them
@@ -192,6 +195,10 @@ class CrackCaseEstimate:
         ratio to the same tooth intact, and its error [-] (1 and 0 without a crack).
     c_rp_engaged_min_ratio : float
         The same for the lowest value over the engagement [-].
+    c_rp_engaged_intact, c_rp_engaged_intact_min : float
+        The intact tooth's ring-planet mesh stiffness, mean and lowest over the same
+        engagement [N/m] (the denominators of the two ratios): with them the crack's
+        extra compliance ``(1/ratio - 1) / c_rp_engaged_intact`` [m/N] is absolute.
     dofs : int
         Degrees of freedom of the fine level.
     solver : str
@@ -210,6 +217,8 @@ class CrackCaseEstimate:
     c_rp_engaged_ratio: float
     c_rp_engaged_ratio_error: float
     c_rp_engaged_min_ratio: float
+    c_rp_engaged_intact: float
+    c_rp_engaged_intact_min: float
     dofs: int
     solver: str
     seconds_mesh: float
@@ -217,7 +226,8 @@ class CrackCaseEstimate:
     seconds_total: float
 
     def to_dict(self) -> dict:
-        """Keys with units, as ``RingEstimate.to_dict`` plus the ``c_rp_engaged_*`` ratios."""
+        """Keys with units, as ``RingEstimate.to_dict`` plus the ``c_rp_engaged_*`` ratios
+        and the intact engaged c_rp (``c_rp_engaged_intact_N_m``, ``..._min_N_m``)."""
         return {RING_KEYS.get(k, k): v for k, v in asdict(self).items()}
 
     @classmethod
@@ -250,6 +260,12 @@ def estimate_crack_case(ring, planet, crack, scale: float = 1.0, mesher=None, ma
     fine, coarse = results["fine"][0], results["coarse"][0]
     ratios = dict(c_rp_engaged_ratio=1.0, c_rp_engaged_ratio_error=0.0,
                   c_rp_engaged_min_ratio=1.0)
+    engaged = fine.engaged
+    if engaged is None:  # intact: the same tooth's engagement on the fine level's options
+        engaged = engaged_mesh(planet, ring, None, scaled_options(scale), material,
+                               0 if crack is None else crack.tooth)
+    intact = dict(c_rp_engaged_intact=float(engaged.intact.mean),
+                  c_rp_engaged_intact_min=float(engaged.intact.stiffness.min()))
     if fine.engaged is not None:
         ratios = dict(c_rp_engaged_ratio=fine.engaged.mean_ratio,
                       c_rp_engaged_ratio_error=abs(fine.engaged.mean_ratio
@@ -260,7 +276,7 @@ def estimate_crack_case(ring, planet, crack, scale: float = 1.0, mesher=None, ma
         c_ru=ring_fine.c_ru, c_ru_error=abs(ring_fine.c_ru - ring_coarse.c_ru),
         c_ru_min=float(ring_fine.c_ru_positions.min()),
         c_ru_max=float(ring_fine.c_ru_positions.max()),
-        c_r=ring_fine.c_r, c_r_error=abs(ring_fine.c_r - ring_coarse.c_r), **ratios,
+        c_r=ring_fine.c_r, c_r_error=abs(ring_fine.c_r - ring_coarse.c_r), **ratios, **intact,
         dofs=ring_fine.dofs, solver=ring_fine.seconds["solver"],
         seconds_mesh=results["fine"][1], seconds_fe=results["fine"][2],
         seconds_total=sum(r[1] + r[2] for r in results.values()))

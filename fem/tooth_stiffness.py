@@ -167,16 +167,18 @@ def engaged_ring_mesh(planet: ToothedBody, ring: ToothedBody, crack, options=Non
     return engaged_mesh(planet, ring, cracked, options, material)
 
 
-def engaged_mesh(planet: ToothedBody, ring: ToothedBody, cracked: ToothCurve, options,
+def engaged_mesh(planet: ToothedBody, ring: ToothedBody, cracked: ToothCurve | None, options,
                  material: Material = Material(), tooth: int = 0) -> EngagedMesh:
     """c_rp over the engagement of ring tooth ``tooth`` whose compliance is ``cracked``
-    (at the Chebyshev radii of the ring's contact span), against the same tooth intact.
+    (at the Chebyshev radii of the ring's contact span), against the same tooth intact;
+    ``cracked = None``: the tooth intact (both cycles the intact one).
 
     The intact curves (planet; ring tooth ``tooth``, meshed with ``options``) are kept
     between calls."""
     pair = GearPair(planet, ring)
     planet_curve = _intact_curve(planet, contact_radii(planet, [pair]), material, options)
     ring_curve = _intact_curve(ring, contact_radii(ring, [pair]), material, options, tooth)
+    cracked = ring_curve if cracked is None else cracked
     q_h = hertz_compliance(min(planet.gear.face_width, ring.gear.face_width), material)
     return EngagedMesh(
         mesh_cycle(pair, planet_curve, ring_curve, q_h, marked_pair_compliance=cracked),

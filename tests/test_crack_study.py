@@ -127,7 +127,7 @@ def test_round_off_prints_as_zero(default_report):
     assert not re.search(r"e-(1[1-9]|[2-9]\d)\b", modes), "round-off printed as a value"
     assert not re.search(r"[-+]0\.0*(?![\d.])", report), "a zero printed with a sign"
     rotational = [line for line in modes.splitlines() if "| rotational |" in line]
-    assert rotational and all(line.split("|")[7].strip() == "0" for line in rotational), \
+    assert rotational and all(line.split("|")[8].strip() == "0" for line in rotational), \
         "Lin & Parker: rotational modes do not follow c_r (sensitivity exactly 0)"
 
 

@@ -43,7 +43,8 @@ def synthetic(depth: float) -> dict:
             "c_r_N_m": C_R0 * factor, "c_r_error_N_m": 1e-3 * C_R0, "dofs": 12345,
             "solver": "synthetic", "seconds_mesh": 0.01, "seconds_fe": 0.02,
             "seconds_total": 0.03, "depth_m": float(depth), "c_rp_engaged_ratio": ratio,
-            "c_rp_engaged_ratio_error": 1e-4, "c_rp_engaged_min_ratio": 1.0 - 80.0 * depth}
+            "c_rp_engaged_ratio_error": 1e-4, "c_rp_engaged_min_ratio": 1.0 - 80.0 * depth,
+            "c_rp_engaged_intact_N_m": 1.48e9, "c_rp_engaged_intact_min_N_m": 1.2e9}
 
 
 @pytest.fixture
@@ -161,8 +162,23 @@ def _drop_top(key):
     return fault
 
 
+def _schema_1_entry(path: Path) -> None:
+    """An entry as schema 1 wrote it (issue 22 item 6): no absolute intact c_rp, validly
+    signed, ``schema`` 1."""
+    data = json.loads(path.read_text())
+    for key in ("c_rp_engaged_intact_N_m", "c_rp_engaged_intact_min_N_m"):
+        del data["result"][key]
+    data["schema"] = 1
+    _resign(data)
+    path.write_text(json.dumps(data))
+
+
 #: fault name -> (edit of the entry file, words the one-line notice must contain)
 FAULTS = {
+    # issue 22 item 6: entries of the schema before the intact c_rp are recomputed
+    "schema 1 entry (no intact c_rp)": (_schema_1_entry, "another version"),
+    "result missing the intact c_rp": (
+        _edit_result(_drop("c_rp_engaged_intact_N_m"), resign=True), "c_rp_engaged_intact_N_m"),
     "c_ru halved": (_edit_result(_halve_c_ru, resign=False), "checksum"),
     # still inside c_ru's own min..max: only the checksum can tell
     "c_ru edited by 0.1 %": (_edit_result(lambda r: r.update(c_ru_N_m=0.999 * r["c_ru_N_m"]),

@@ -161,7 +161,8 @@ def carrier_study(model, timing: MeshTiming, record_length: float,
     inside = (angle >= 0) & (angle <= timing.pass_angle)
     deepest = len(model.depths) - 1
     low = model.parameters(deepest, True).replace(
-        c_rp_factors=(model.c_rp_min_ratio[deepest],) + (1.0,) * (model.params.n_planets - 1))
+        c_rp_factors=(float(model.c_rp_factor(deepest, minimum=True)),)
+        + (1.0,) * (model.params.n_planets - 1))
     omega_min = natural_modes(low, model.method).omega
     omega_angle = np.where(inside[:, None], omega_in[deepest], omega_out[deepest])
     omega_angle_min = np.where(inside[:, None], omega_min, omega_out[deepest])

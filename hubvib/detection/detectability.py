@@ -35,9 +35,9 @@ class DetectabilityMap:
         Swept name -> ndarray (mounts, modes) [m], NaN where no depth of the sweep is
         detectable.
     carried_by : dict
-        Swept name -> ndarray (mounts, modes) of ``"c_ru"``, ``"c_r"`` or ``"c_rp"``: the
-        stiffness carrying the shift at that depth (at the deepest crack when none is
-        detectable).
+        Swept name -> ndarray (mounts, modes) of ``"c_ru"``, ``"c_r"``, ``"c_rp"`` or
+        ``"none"``: the stiffness whose change alone moves the mode most at the deepest
+        crack (record-averaged), the same rule as the modes table's ``signal_in``.
     frequency_hz : ndarray
         Per swept name, the nominal intact frequencies [Hz], shape (mounts, modes).
     kind : tuple of str
@@ -102,11 +102,8 @@ def detectability_map(model, options, timing, workers: int = 1) -> Detectability
             result = pod_study(mounted, options, timing, samples=options.map_samples,
                                model_baseline=False, seed=options.seed + m, workers=workers)
             kind = result.kind
-            detectable = result.detectable_depth()
-            at = np.where(np.isnan(detectable), len(result.depths) - 1,
-                          np.searchsorted(result.depths, np.nan_to_num(detectable)))
-            d_rows.append(detectable)
-            c_rows.append(result.nominal.carried_by[at, np.arange(at.size)])
+            d_rows.append(result.detectable_depth())
+            c_rows.append(result.nominal.carried_by[-1])
             f_rows.append(result.nominal.frequency_hz[0])
         depth[swept], carried[swept] = np.array(d_rows), np.array(c_rows)
         frequency[swept] = np.array(f_rows)

@@ -5,14 +5,29 @@ at every depth of the sweep, the distribution of each mode's frequency as a
 record sees it.  For the measured modes the statistic is the shift against the
 baseline (the reducer's own intact frequencies when the CSV gives
 ``baseline_hz``, else the model's nominal intact spectrum).  Its mean and
-covariance over the samples, plus the measurement noise (uniform within
-+-1/(2T) per identified frequency), give a Gaussian likelihood at each depth,
+covariance over the samples, plus the identification noise (normal, standard
+deviation ``sigma_i`` per identified frequency: the CSV's ``sigma_hz``, else the
+Cramer-Rao bound of the Bayesian-FFT identification from the row's or the
+scene's damping and record length, :mod:`hubvib.identification.law`; twice the
+variance against a measured baseline), give a Gaussian likelihood at each depth,
 interpolated linearly between the sweep's depths.  With a uniform prior on
-``[0, deepest]`` the posterior gives:
+``[0, deepest]``:
 
-- ``not identifiable from these modes`` when no measured mode would tell the
-  deepest crack from an intact reducer (its mean shift there stays within the
-  false-alarm quantile at depth 0 plus the detection quantile at that depth);
+- ``not explained by a ring crack`` when no depth fits: the statistic
+  ``Q = -2 max_d log L(d)`` (the whole pattern) or the largest standardised
+  residual at the best depth (one mode alone) exceeds what the model itself
+  produces.  Their null distributions are a parametric bootstrap (the Monte
+  Carlo reducers of each sweep depth plus fresh identification noise, each
+  fitted like the measurement); the p-value is the smaller tail fraction at the
+  fitted depth, doubled (Bonferroni).  Below
+  ``fit_false_alarm_rate`` the pattern (a rise, a uniform shift, a mode moving
+  alone, a shift beyond the deepest crack) is not a ring crack; the nearest
+  other explanation reported is a uniform relative shift of every mode
+  (temperature or material modulus), fitted by generalised least squares with
+  its own chi-squared p-value;
+- ``not identifiable from these modes`` when the deepest crack moves the mean
+  pattern of the measured modes by less than one standard deviation of an
+  intact measurement (Mahalanobis distance < 1): the posterior is the prior;
 - ``crack indicated`` when the likelihood ratio of the best depth against depth
   0 exceeds its critical value at the false-alarm rate (a one-parameter test on
   the boundary d >= 0: the 1 - 2 alpha quantile of chi-squared with one degree
@@ -23,12 +38,13 @@ interpolated linearly between the sweep's depths.  With a uniform prior on
 
 Either interval holds the posterior probability ``confidence``, so over depths
 drawn from the prior it covers the true depth at that rate (law of total
-probability) as far as the Gaussian likelihood is right; tests check it on
-synthetic measurements.
+probability) as far as the Gaussian likelihood is right; more identification
+noise widens it.  Tests check coverage and false alarms on synthetic
+measurements whose identification errors come from identified simulated records.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import linear_sum_assignment
@@ -37,15 +53,21 @@ from scipy.stats import chi2, norm
 from hubvib.detection.carrier import mesh_timing
 from hubvib.detection.model import CrackModel
 from hubvib.detection.options import detection_options
+from hubvib.identification.law import fisher_sigma_hz
 from hubvib.studies.crack_sweep import run_fe_cases
 
+from .drift import drift_model
 from .measured import Measured, MeasuredError
+from .options import DetectionOptions
 from .uncertainty import draw, nominal, observed_frequencies
 
-CRACK, NO_CRACK, NOT_IDENTIFIABLE = ("crack indicated", "no crack indicated",
-                                     "not identifiable from these modes")
+CRACK, NO_CRACK, NOT_IDENTIFIABLE, NOT_EXPLAINED = (
+    "crack indicated", "no crack indicated", "not identifiable from these modes",
+    "not explained by a ring crack")
 #: points of the depth grid on which the posterior is evaluated
 GRID = 400
+#: bootstrap draws per sweep depth for the goodness-of-fit p-value
+BOOTSTRAP = 1000
 
 
 @dataclass(frozen=True)
@@ -60,19 +82,29 @@ class Reference:
         Observed frequencies of the sampled reducers [Hz].
     nominal_hz : ndarray, shape (depths, modes)
         Observed frequencies of the nominal reducer [Hz].
-    resolution_hz : float
-        Frequency grid spacing 1/T [Hz].
-    false_alarm_rate, detection_probability, confidence : float
+    sigma_hz : ndarray, shape (modes,)
+        Standard deviation of one identified frequency of each mode [Hz] (scene's damping,
+        record length and SNR).
+    false_alarm_rate, detection_probability, confidence, fit_false_alarm_rate : float
         [-]
+    drift_cov : ndarray, shape (modes, modes) or None
+        Covariance of the drift between two records (temperature, load) [Hz^2].
+    mesh_stiffness : dict
+        Which ring-planet mesh stiffness the crack model uses
+        (``CrackModel.mesh_stiffness``: ``c_rp_method``, ``c_rp_source``,
+        ``c_rp_lumped_N_m``, ``c_rp_fe_intact_N_m``).
     """
 
     depths: np.ndarray
     frequency_hz: np.ndarray
     nominal_hz: np.ndarray
-    resolution_hz: float
+    sigma_hz: np.ndarray
     false_alarm_rate: float
     detection_probability: float
     confidence: float
+    fit_false_alarm_rate: float = 0.01
+    drift_cov: np.ndarray | None = None
+    mesh_stiffness: dict = field(default_factory=dict)
 
     @property
     def n_modes(self) -> int:
@@ -80,9 +112,9 @@ class Reference:
 
     def window(self) -> tuple[np.ndarray, np.ndarray]:
         """Per mode, the frequency range [Hz] the uncertainty model produces at any depth,
-        widened by one resolution step."""
+        widened by ten identification standard deviations (to pair a row with its mode)."""
         flat = self.frequency_hz.reshape(-1, self.n_modes)
-        return flat.min(axis=0) - self.resolution_hz, flat.max(axis=0) + self.resolution_hz
+        return flat.min(axis=0) - 10 * self.sigma_hz, flat.max(axis=0) + 10 * self.sigma_hz
 
 
 def reference(model, options, timing, seed: int | None = None, workers: int = 1) -> Reference:
@@ -92,9 +124,12 @@ def reference(model, options, timing, seed: int | None = None, workers: int = 1)
     samples = observed_frequencies(model, draw(model, options, options.samples, rng), fraction,
                                    long, workers)
     nominal_hz = observed_frequencies(model, nominal(model), fraction, long)[0]
-    return Reference(np.array(model.depths), samples, nominal_hz, options.resolution_hz,
-                     options.false_alarm_rate, options.detection_probability,
-                     options.confidence)
+    drift = drift_model(model.parameters(0), nominal_hz[0], options, model.method)
+    return Reference(np.array(model.depths), samples, nominal_hz,
+                     options.sigma_hz(nominal_hz[0]), options.false_alarm_rate,
+                     options.detection_probability, options.confidence,
+                     options.fit_false_alarm_rate, drift.covariance(),
+                     model.mesh_stiffness())
 
 
 def pair_modes(measured: Measured, ref: Reference) -> np.ndarray:
@@ -142,10 +177,10 @@ class Diagnosis:
     Attributes
     ----------
     verdict : str
-        ``"crack indicated"``, ``"no crack indicated"`` or
-        ``"not identifiable from these modes"``.
+        ``"crack indicated"``, ``"no crack indicated"``, ``"not explained by a ring
+        crack"`` or ``"not identifiable from these modes"``.
     depth, depth_low, depth_high : float or None
-        Estimate and interval [m]; None when not identifiable.
+        Estimate and interval [m]; None when not identifiable or not explained.
     confidence : float
         Posterior probability of the interval [-].
     baseline : str
@@ -154,10 +189,24 @@ class Diagnosis:
         Model modes used (1-based).
     shift_hz : ndarray
         Measured shift of each mode against the baseline [Hz].
+    sigma_hz : ndarray
+        Standard deviation of each identified frequency [Hz].
     informative : tuple of bool
-        Per mode, whether it can tell the deepest crack from an intact reducer.
+        Per mode, whether the deepest crack moves it by more than one standard deviation
+        of an intact measurement.
     likelihood_ratio, critical : float
         Test statistic against depth 0 and its critical value.
+    fit_statistic, fit_p_value : float
+        ``-2 max log L`` and the bootstrap p-value of the fit under the crack model [-].
+    fit_depth : float
+        Depth of the best fit [m].
+    worst_mode : int
+        Mode (1-based) with the largest standardised residual at the best fit.
+    worst_z : float
+        That residual [-] (positive: the mode lies above what the crack model predicts).
+    uniform_shift, uniform_p_value : float
+        Relative shift [-] common to all modes that fits best (temperature, material
+        modulus) and its chi-squared p-value (1 for one mode: it always fits).
     """
 
     verdict: str
@@ -168,69 +217,177 @@ class Diagnosis:
     baseline: str
     modes: tuple[int, ...]
     shift_hz: np.ndarray
+    sigma_hz: np.ndarray
     informative: tuple[bool, ...]
     likelihood_ratio: float | None
     critical: float
+    fit_statistic: float
+    fit_p_value: float
+    fit_depth: float
+    worst_mode: int
+    worst_z: float
+    uniform_shift: float
+    uniform_p_value: float
+
+    def explanation(self) -> str | None:
+        """The nearest other explanation when the crack model does not fit."""
+        if self.verdict != NOT_EXPLAINED:
+            return None
+        text = (f"mode {self.worst_mode} misfits most ({self.worst_z:+.1f} standard "
+                f"deviations {'above' if self.worst_z > 0 else 'below'} the best ring-crack "
+                f"fit)")
+        if len(self.modes) == 1:
+            text += ("; with one mode a uniform relative shift of every mode (temperature or "
+                     f"material modulus, here {100 * self.uniform_shift:+.3g} %) cannot be "
+                     "ruled out")
+        elif self.uniform_p_value >= 0.01:
+            text += (f"; a uniform relative shift of {100 * self.uniform_shift:+.3g} % of every "
+                     f"mode (temperature or material modulus) fits (p = "
+                     f"{self.uniform_p_value:.2g})")
+        else:
+            text += (f"; a uniform relative shift does not fit either (best "
+                     f"{100 * self.uniform_shift:+.3g} %, p = {self.uniform_p_value:.2g})")
+        return text
 
     def to_dict(self) -> dict:
         return {"verdict": self.verdict, "depth_m": self.depth, "depth_low_m": self.depth_low,
                 "depth_high_m": self.depth_high, "confidence": self.confidence,
                 "baseline": self.baseline, "modes": list(self.modes),
                 "shift_hz": [float(s) for s in self.shift_hz],
+                "sigma_hz": [float(s) for s in self.sigma_hz],
                 "informative": list(self.informative),
-                "likelihood_ratio": self.likelihood_ratio, "critical_value": self.critical}
+                "likelihood_ratio": self.likelihood_ratio, "critical_value": self.critical,
+                "fit_statistic": self.fit_statistic, "fit_p_value": self.fit_p_value,
+                "fit_depth_m": self.fit_depth, "worst_mode": self.worst_mode,
+                "worst_mode_z": self.worst_z, "uniform_shift_relative": self.uniform_shift,
+                "uniform_shift_p_value": self.uniform_p_value,
+                "explanation": self.explanation()}
 
 
 class Posterior:
-    """Gaussian likelihood of the shifts of chosen modes over a fine depth grid."""
+    """Gaussian likelihood of the shifts of chosen modes over a fine depth grid.
 
-    def __init__(self, ref: Reference, modes: np.ndarray, measured_baseline: bool):
+    ``sigma_hz``: identification standard deviation of each chosen mode [Hz] (default the
+    reference's); against a measured baseline both frequencies carry it.  The drift
+    between records (the reference's ``drift_cov``) adds to the noise covariance.
+    """
+
+    def __init__(self, ref: Reference, modes: np.ndarray, measured_baseline: bool,
+                 sigma_hz=None, seed: int = 0):
         self.ref, self.modes = ref, np.asarray(modes)
-        w = ref.resolution_hz
+        self.sigma = (ref.sigma_hz[self.modes] if sigma_hz is None
+                      else np.asarray(sigma_hz, dtype=float))
         X = ref.frequency_hz[:, :, self.modes]
         if measured_baseline:
             X = X - X[:, :1]
-            noise = 2 * w * w / 12  # two uniform errors on the frequency grid
         else:
             X = X - ref.nominal_hz[0, self.modes]
-            noise = w * w / 12
+        noise = np.diag((2.0 if measured_baseline else 1.0) * self.sigma ** 2)
+        if ref.drift_cov is not None:
+            noise = noise + ref.drift_cov[np.ix_(self.modes, self.modes)]
+        self.noise = noise
         mean = X.mean(axis=0)
         centred = X - mean
         cov = np.einsum("sdi,sdj->dij", centred, centred) / (X.shape[0] - 1)
-        cov += noise * np.eye(self.modes.size)
+        cov += noise
         self.sweep_mean, self.sweep_cov = mean, cov
         self.grid = np.linspace(0.0, ref.depths[-1], GRID)
         self.mean = _interpolate(ref.depths, mean, self.grid)
         self.cov = _interpolate(ref.depths, cov, self.grid)
         self.inverse = np.linalg.inv(self.cov)
         self.logdet = np.linalg.slogdet(self.cov)[1]
+        self.null = self._bootstrap(X, np.random.default_rng(seed))
+
+    def _bootstrap(self, X: np.ndarray, rng) -> np.ndarray:
+        """Sorted fit statistics (:meth:`fit_statistics`) of model reducers plus noise,
+        shape (2, depths, draws)."""
+        draws = min(BOOTSTRAP, X.shape[0])
+        pick = rng.choice(X.shape[0], draws, replace=False)
+        root = np.linalg.cholesky(self.noise)
+        y = X[pick] + (rng.standard_normal((draws, 1, self.modes.size)) @ root.T)
+        stats = np.stack([np.stack(self.fit_statistics(y[:, k])) for k in range(X.shape[1])],
+                         axis=1)
+        return np.sort(stats, axis=-1)
+
+    def fit_statistics(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """For shifts ``y`` (..., modes): ``-2 max_d log L(d)`` (the whole pattern) and the
+        largest standardised residual ``max_i |y_i - mu_i| / s_i`` at the best depth (one
+        mode alone: a rise, a mode moving without the others)."""
+        loglike = self.log_likelihood(y)
+        best = loglike.argmax(axis=-1)
+        r = np.asarray(y) - self.mean[best]
+        spread = np.sqrt(np.diagonal(self.cov, axis1=-2, axis2=-1))[best]
+        return -2 * loglike.max(axis=-1), np.abs(r / spread).max(axis=-1)
+
+    def fit_p_value(self, statistics, depth: float) -> float:
+        """Bootstrap p-value of the two fit statistics under a crack of ``depth`` [m]: the
+        smaller tail fraction (neighbouring sweep depths, interpolated linearly), doubled
+        (Bonferroni over the two statistics), at most 1."""
+        draws = self.null.shape[-1]
+        p = []
+        for null, value in zip(self.null, statistics):
+            tail = np.array([draws - np.searchsorted(row, value, side="left") for row in null])
+            p.append(np.interp(depth, self.ref.depths, (1.0 + tail) / (draws + 1.0)))
+        return float(min(1.0, 2 * min(p)))
 
     def informative(self) -> np.ndarray:
-        """Per mode: the deepest crack's mean shift exceeds the false-alarm quantile at
-        depth 0 plus the detection quantile at the deepest depth."""
-        a = norm.ppf(1 - self.ref.false_alarm_rate)
-        b = norm.ppf(self.ref.detection_probability)
+        """Per mode: the deepest crack's mean shift exceeds one standard deviation of an
+        intact measurement."""
         spread0 = np.sqrt(np.diagonal(self.sweep_cov[0]))
-        spread = np.sqrt(np.diagonal(self.sweep_cov[-1]))
-        return np.abs(self.sweep_mean[-1] - self.sweep_mean[0]) > a * spread0 + b * spread
+        return np.abs(self.sweep_mean[-1] - self.sweep_mean[0]) > spread0
+
+    def separation(self) -> float:
+        """Mahalanobis distance [-] between the mean patterns of the deepest crack and of an
+        intact reducer, in the intact covariance: below 1 the posterior is the prior."""
+        d = self.sweep_mean[-1] - self.sweep_mean[0]
+        return float(np.sqrt(d @ np.linalg.solve(self.sweep_cov[0], d)))
 
     def log_likelihood(self, y: np.ndarray) -> np.ndarray:
         """Log-likelihood on the grid, shape (..., GRID), for shifts ``y`` (..., modes)."""
         r = np.asarray(y)[..., None, :] - self.mean
         return -0.5 * (np.einsum("...gi,gij,...gj->...g", r, self.inverse, r) + self.logdet)
 
-    def diagnose(self, y: np.ndarray, baseline: str) -> Diagnosis:
-        """Diagnosis for one vector of measured shifts ``y`` [Hz]."""
+    def uniform_fit(self, y: np.ndarray, frequency_hz: np.ndarray) -> tuple[float, float]:
+        """Relative shift common to all modes (``y = eps f``) by generalised least squares
+        with the intact covariance, and its chi-squared p-value (m - 1 degrees of freedom)."""
+        C = self.cov[0]
+        f = np.asarray(frequency_hz, dtype=float)
+        w = np.linalg.solve(C, f)
+        eps = float(w @ y / (w @ f))
+        r = y - eps * f
+        dof = y.size - 1
+        p = 1.0 if dof == 0 else float(chi2.sf(float(r @ np.linalg.solve(C, r)), dof))
+        return eps, p
+
+    def diagnose(self, y: np.ndarray, baseline: str, frequency_hz=None) -> Diagnosis:
+        """Diagnosis for one vector of measured shifts ``y`` [Hz]; ``frequency_hz``: the
+        modes' intact frequencies [Hz] for the uniform-shift alternative (default the
+        model's nominal ones)."""
         ref = self.ref
+        y = np.asarray(y, dtype=float)
         informative = self.informative()
         critical = float(chi2.ppf(1 - 2 * ref.false_alarm_rate, 1))
         modes = tuple(int(m) + 1 for m in self.modes)
-        if not informative.any():
-            return Diagnosis(NOT_IDENTIFIABLE, None, None, None, ref.confidence, baseline,
-                             modes, np.asarray(y), tuple(bool(b) for b in informative), None,
-                             critical)
         loglike = self.log_likelihood(y)
-        ratio = float(2 * (loglike.max() - loglike[0]))
+        best = int(np.argmax(loglike))
+        statistic = float(-2 * loglike[best])
+        fit_depth = float(self.grid[best])
+        p_fit = self.fit_p_value(self.fit_statistics(y), fit_depth)
+        z = (y - self.mean[best]) / np.sqrt(np.diagonal(self.cov[best]))
+        worst = int(np.argmax(np.abs(z)))
+        f0 = ref.nominal_hz[0, self.modes] if frequency_hz is None else frequency_hz
+        eps, p_uniform = self.uniform_fit(y, f0)
+        ratio = float(2 * (loglike[best] - loglike[0]))
+        common = dict(confidence=ref.confidence, baseline=baseline, modes=modes, shift_hz=y,
+                      sigma_hz=self.sigma, informative=tuple(bool(b) for b in informative),
+                      critical=critical, fit_statistic=statistic, fit_p_value=p_fit,
+                      fit_depth=fit_depth, worst_mode=modes[worst], worst_z=float(z[worst]),
+                      uniform_shift=eps, uniform_p_value=p_uniform)
+        if p_fit < ref.fit_false_alarm_rate:
+            return Diagnosis(NOT_EXPLAINED, None, None, None, likelihood_ratio=ratio, **common)
+        if self.separation() < 1.0:
+            return Diagnosis(NOT_IDENTIFIABLE, None, None, None, likelihood_ratio=None,
+                             **common)
         cdf = _cdf(self.grid, loglike)
         c = ref.confidence
         if ratio > critical:
@@ -240,8 +397,8 @@ class Posterior:
         else:
             depth, low, high = 0.0, 0.0, np.interp(c, cdf, self.grid)
             verdict = NO_CRACK
-        return Diagnosis(verdict, float(depth), float(low), float(high), c, baseline, modes,
-                         np.asarray(y), tuple(bool(b) for b in informative), ratio, critical)
+        return Diagnosis(verdict, float(depth), float(low), float(high), likelihood_ratio=ratio,
+                         **common)
 
 
 def _interpolate(x: np.ndarray, values: np.ndarray, at: np.ndarray) -> np.ndarray:
@@ -259,22 +416,48 @@ def _cdf(grid: np.ndarray, loglike: np.ndarray) -> np.ndarray:
     return cdf / cdf[-1]
 
 
-def diagnose(measured: Measured, ref: Reference) -> Diagnosis:
-    """Pair the measured frequencies with model modes and diagnose the crack."""
+def measured_sigma(measured: Measured, ref: Reference, index: np.ndarray,
+                   options=None) -> np.ndarray:
+    """Identification standard deviation [Hz] of every measured row: its ``sigma_hz``,
+    else the Cramer-Rao bound from its ``damping_ratio`` / ``record_s`` (the scene's
+    where a column is missing), else the reference's value for its mode."""
+    options = options or DetectionOptions()
+    sigma = ref.sigma_hz[index].copy()
+    if measured.sigma_hz is not None:
+        return np.asarray(measured.sigma_hz, dtype=float)
+    if measured.damping_ratio is None and measured.record_s is None:
+        return sigma
+    for row, f in enumerate(measured.frequency_hz):
+        zeta = (options.damping_ratio if measured.damping_ratio is None
+                else measured.damping_ratio[row])
+        T = options.record_length if measured.record_s is None else measured.record_s[row]
+        sigma[row] = fisher_sigma_hz(f, zeta, T, options.snr)
+    return sigma
+
+
+def diagnose(measured: Measured, ref: Reference, options=None) -> Diagnosis:
+    """Pair the measured frequencies with model modes and diagnose the crack
+    (``options``: the scene's DetectionOptions, for rows that give their own damping or
+    record length)."""
     index = pair_modes(measured, ref)
     measured_baseline = measured.baseline_hz is not None
     base = measured.baseline_hz if measured_baseline else ref.nominal_hz[0, index]
-    posterior = Posterior(ref, index, measured_baseline)
+    posterior = Posterior(ref, index, measured_baseline,
+                          measured_sigma(measured, ref, index, options))
     return posterior.diagnose(measured.frequency_hz - base,
-                              "measured" if measured_baseline else "model")
+                              "measured" if measured_baseline else "model", base)
 
 
 def synthetic_measurements(model, options, timing, depths: np.ndarray, seed: int,
-                           workers: int = 1) -> tuple[np.ndarray, np.ndarray]:
+                           workers: int = 1, errors=None) -> tuple[np.ndarray, np.ndarray]:
     """Frequencies and own baselines [Hz] of reducers drawn from the uncertainty model
-    with cracks of ``depths`` [m], each identified on the 1/T grid (uniform error).
+    with cracks of ``depths`` [m], each identified with the scene's identification
+    scatter ``options.sigma_hz``, the drift between the two records
+    (:mod:`.drift`) on the cracked one.
 
-    Returns arrays of shape (len(depths), modes): cracked and intact measurement.
+    ``errors(rng, shape)``: standardised identification errors (default standard normal),
+    e.g. resampled from identified simulated records.  Returns arrays of shape
+    (len(depths), modes): cracked and intact measurement.
     """
     rng = np.random.default_rng(seed)
     depths = np.asarray(depths, dtype=float)
@@ -283,15 +466,18 @@ def synthetic_measurements(model, options, timing, depths: np.ndarray, seed: int
     f = observed_frequencies(at, samples, timing.engaged_fraction,
                              timing.long_record(options.record_length), workers,
                              depth_index=np.arange(1, depths.size + 1))
-    w = options.resolution_hz
-    noise = rng.uniform(-w / 2, w / 2, size=f.shape)
-    return f[:, 1] + noise[:, 1], f[:, 0] + noise[:, 0]
+    sigma = options.sigma_hz(observed_frequencies(at, nominal(at), timing.engaged_fraction,
+                                                  True)[0, 0])
+    draw_errors = errors or (lambda generator, shape: generator.standard_normal(shape))
+    noise = draw_errors(rng, f.shape) * sigma
+    drift = drift_model(at.parameters(0), observed_frequencies(
+        at, nominal(at), timing.engaged_fraction, True)[0, 0], options, at.method)
+    return f[:, 1] + noise[:, 1] + drift.draw(rng, depths.size), f[:, 0] + noise[:, 0]
 
 
-def diagnose_scene(scene, measured: Measured, progress: bool = True,
-                   workers: int = 2) -> tuple[Diagnosis, Reference]:
-    """Diagnosis of ``measured`` against the crack study of ``scene`` (FE cases from the
-    cache or computed, then the Monte Carlo reference)."""
+def scene_reference(scene, progress: bool = True, workers: int = 2):
+    """The Monte Carlo reference of ``scene``'s crack study and its DetectionOptions (FE
+    cases from the cache or computed)."""
     if scene.crack is None:
         raise ValueError(f"--scene {scene.name!r} has no [crack] study: diagnosis needs the "
                          "crack sweep it compares the measurement with")
@@ -301,7 +487,15 @@ def diagnose_scene(scene, measured: Measured, progress: bool = True,
                          "per depth ([crack] model = \"plane\")")
     options = detection_options(scene)
     fe, _ = run_fe_cases(scene.crack, progress)
-    model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method)
+    model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
+                               c_rp_given=scene.c_rp_given)
     ref = reference(model, options, mesh_timing(scene.crack.reducer, options.carrier_speed),
                     workers=workers)
-    return diagnose(measured, ref), ref
+    return ref, options
+
+
+def diagnose_scene(scene, measured: Measured, progress: bool = True,
+                   workers: int = 2) -> tuple[Diagnosis, Reference]:
+    """Diagnosis of ``measured`` against the crack study of ``scene``."""
+    ref, options = scene_reference(scene, progress, workers)
+    return diagnose(measured, ref, options), ref

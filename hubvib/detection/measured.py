@@ -5,10 +5,16 @@ Columns (header line first, comma-separated)::
     frequency_hz      required; identified natural frequency [Hz], > 0, no duplicates
     mode              optional; the model mode it belongs to (1 = lowest), no duplicates
     baseline_hz       optional; the same mode measured on this reducer intact [Hz], > 0
+    damping_ratio     optional; the mode's identified damping ratio [-], in (0, 0.5)
+    record_s          optional; length of the record it was identified from [s], > 0
+    sigma_hz          optional; standard deviation of the identified frequency [Hz], > 0
+                      (instead of damping_ratio / record_s)
 
 Without ``mode`` each frequency is paired with a model mode by nearest value;
-without ``baseline_hz`` the model's intact spectrum is the baseline.  Every
-error names the file line or the column.
+without ``baseline_hz`` the model's intact spectrum is the baseline.  Without
+``sigma_hz`` the identification scatter follows from the row's damping and
+record length (the scene's ``[detection] damping_ratio`` / ``record_length_s``
+where a column is missing).  Every error names the file line or the column.
 """
 from __future__ import annotations
 
@@ -22,7 +28,11 @@ import numpy as np
 
 from hubvib.foundation.files import read_text
 
-COLUMNS = ("frequency_hz", "mode", "baseline_hz")
+COLUMNS = ("frequency_hz", "mode", "baseline_hz", "damping_ratio", "record_s", "sigma_hz")
+#: column -> (what it is, low, high) of the optional per-row numbers (open interval)
+_RANGES = {"damping_ratio": ("a damping ratio", 0.0, 0.5),
+           "record_s": ("a record length in s", 0.0, math.inf),
+           "sigma_hz": ("a standard deviation in Hz", 0.0, math.inf)}
 
 
 class MeasuredError(ValueError):
@@ -41,6 +51,9 @@ class Measured:
         Model mode numbers (1-based) when the file gives them.
     baseline_hz : ndarray or None
         The reducer's own intact frequencies [Hz] when the file gives them.
+    damping_ratio, record_s, sigma_hz : ndarray or None
+        Per-row damping [-], record length [s] and frequency standard deviation [Hz]
+        when the file gives them.
     lines : tuple of int
         File line of each row (the header is line 1).
     source : str
@@ -52,6 +65,9 @@ class Measured:
     baseline_hz: np.ndarray | None
     lines: tuple[int, ...]
     source: str
+    damping_ratio: np.ndarray | None = None
+    record_s: np.ndarray | None = None
+    sigma_hz: np.ndarray | None = None
 
 
 def read_measured(path: Path | str) -> Measured:
@@ -71,7 +87,10 @@ def parse_measured(text: str, source: str = "measured.csv") -> Measured:
     unknown = [h for h in header if h not in COLUMNS]
     if unknown or "frequency_hz" not in header or len(set(header)) != len(header):
         raise MeasuredError(f"{source} line {header_line}: header {header}; it needs the column "
-                            f"frequency_hz and may add mode and baseline_hz (each once)")
+                            f"frequency_hz and may add {', '.join(COLUMNS[1:])} (each once)")
+    if "sigma_hz" in header and ({"damping_ratio", "record_s"} & set(header)):
+        raise MeasuredError(f"{source} line {header_line}: header {header}; give either "
+                            f"sigma_hz or damping_ratio / record_s, not both")
     if len(rows) == 1:
         raise MeasuredError(f"{source}: no frequencies below the header")
     columns = {name: [] for name in header}
@@ -99,8 +118,10 @@ def parse_measured(text: str, source: str = "measured.csv") -> Measured:
                 raise MeasuredError(f"{source} line {number}: mode = {value} repeats line "
                                     f"{first[value]}")
             first[value] = number
-    baseline = np.array(columns["baseline_hz"]) if "baseline_hz" in columns else None
-    return Measured(frequency, mode, baseline, tuple(lines), source)
+    optional = {name: np.array(columns[name]) if name in columns else None
+                for name in ("baseline_hz", *_RANGES)}
+    return Measured(frequency, mode, optional["baseline_hz"], tuple(lines), source,
+                    optional["damping_ratio"], optional["record_s"], optional["sigma_hz"])
 
 
 def _value(source, number, name, cell):
@@ -113,6 +134,15 @@ def _value(source, number, name, cell):
                                 ) from None
         if not 1 <= value <= 10_000:  # a model has 9 + 3N <= 45 modes; bounded before numpy
             raise MeasuredError(f"{where}, but it must be a mode number (an integer 1..10000)")
+        return value
+    if name in _RANGES:
+        what, low, high = _RANGES[name]
+        try:
+            value = float(cell)
+        except ValueError:
+            value = math.nan
+        if not (math.isfinite(value) and low < value < high):
+            raise MeasuredError(f"{where}, but it must be {what} in ({low:g}, {high:g})")
         return value
     try:
         value = float(cell)

@@ -2,9 +2,17 @@
 
 Built from the FE rows of a crack sweep (``hubvib.studies.crack_sweep.run_fe_cases``)
 or from synthetic rows in tests.  ``c_ru`` and ``c_r`` of the lumped model
-follow :func:`hubvib.detection.series.ring_support`; planet 1's ring mesh
-keeps the FE ratio of the cracked tooth's ``c_rp`` (cracked / intact, the same
-tooth pair: a physical ratio) while that tooth is in mesh.
+follow :func:`hubvib.detection.series.ring_support`.
+
+Planet 1's ring mesh while the cracked tooth is in mesh (issue 22 item 6): the
+crack adds the compliance ``dq = (1/ratio - 1) / c_rp_FE`` [m/N] to the tooth
+pair, where ``ratio`` is the FE cracked / intact c_rp over the engagement and
+``c_rp_FE`` the FE intact c_rp over it; in series with the lumped ``c_rp`` it
+gives the factor ``1 / (1 + c_rp dq)`` (``C_RP_SERIES``, the primary method).
+When the lumped ``c_rp`` is the FE one (design-derived scenes: ``with_fe_c_rp``)
+this factor equals the FE ratio.  ``C_RP_RATIO`` multiplies the lumped ``c_rp``
+by the ratio itself (before issue 22: an upper bound of the crack's effect when
+the lumped ``c_rp`` is below the FE one, as the paper's 3e8 N/m is).
 """
 from __future__ import annotations
 
@@ -15,6 +23,23 @@ import numpy as np
 from hubvib.lumped import PlanetaryParameters
 
 from .series import SERIES, identify_mount, ring_support
+
+#: the crack's extra compliance in series with the lumped c_rp (primary)
+C_RP_SERIES = "series"
+#: the lumped c_rp times the FE cracked / intact ratio (an upper bound below the FE c_rp)
+C_RP_RATIO = "ratio"
+C_RP_METHODS = (C_RP_SERIES, C_RP_RATIO)
+
+
+def series_factor(ratio, c_rp_fe, c_rp_lumped):
+    """Factor on the lumped ``c_rp_lumped`` [N/m] from the FE ratio cracked / intact [-]
+    and the FE intact ``c_rp_fe`` [N/m]: ``1 / (1 + c_rp_lumped (1/ratio - 1) / c_rp_fe)``,
+    the crack's extra compliance in series (equal to ``ratio`` when both c_rp agree)."""
+    ratio = np.asarray(ratio, dtype=float)
+    # the same as 1 / (1 + c_rp_lumped (1/ratio - 1) / c_rp_fe), written so that equal
+    # c_rp give the ratio to the last bit
+    rho = np.asarray(c_rp_lumped, dtype=float) / np.asarray(c_rp_fe, dtype=float)
+    return ratio / (ratio + rho * (1.0 - ratio))
 
 
 @dataclass(frozen=True)
@@ -38,6 +63,14 @@ class CrackModel:
         Mounting in series with the body [N/m] (``"series"`` only; given or identified).
     method : str
         Eigensolver of single-point solves.
+    c_rp_fe, c_rp_fe_min : tuple of float
+        FE intact c_rp over the cracked tooth's engagement, mean and lowest, per depth
+        [N/m] (empty: unknown, only ``C_RP_RATIO`` possible).
+    c_rp_method : str
+        ``C_RP_SERIES`` or ``C_RP_RATIO``: how the crack enters planet 1's c_rp.
+    c_rp_source : str
+        ``"given"`` (the lumped c_rp is the scene's / preset's value) or ``"fe"`` (the
+        FE intact c_rp, every planet).
     """
 
     params: PlanetaryParameters
@@ -53,11 +86,28 @@ class CrackModel:
     c_ru_mount: float | None = None
     c_r_mount: float | None = None
     method: str = "jacobi"
+    c_rp_fe: tuple[float, ...] = ()
+    c_rp_fe_min: tuple[float, ...] = ()
+    c_rp_method: str = C_RP_SERIES
+    c_rp_source: str = "given"
+
+    def __post_init__(self):
+        if self.c_rp_method not in C_RP_METHODS:
+            raise ValueError(f"c_rp_method = {self.c_rp_method!r}; allowed: "
+                             f"{', '.join(C_RP_METHODS)}")
+        if self.c_rp_method == C_RP_SERIES and len(self.c_rp_fe) != len(self.depths):
+            raise ValueError(f"c_rp_method = {C_RP_SERIES!r} needs the FE intact c_rp at "
+                             f"every depth: {len(self.c_rp_fe)} values for "
+                             f"{len(self.depths)} depths")
 
     @classmethod
     def from_fe(cls, params: PlanetaryParameters, sweep, fe: list[dict],
-                method: str = "jacobi") -> "CrackModel":
-        """From a CrackSweep and its FE rows (keys as written by ``crack_sweep.fe_case``)."""
+                method: str = "jacobi", c_rp_given: bool = True) -> "CrackModel":
+        """From a CrackSweep and its FE rows (keys as written by ``crack_sweep.fe_case``).
+
+        ``c_rp_given``: the lumped c_rp of ``params`` is a given value (a preset's table,
+        a design's ``lumped.c_rp``, a scene override); otherwise every planet's c_rp is
+        the FE intact c_rp (``with_fe_c_rp``)."""
         def column(key):
             return tuple(float(row[key]) for row in fe)
 
@@ -65,7 +115,10 @@ class CrackModel:
                     column("c_ru_N_m"), column("c_ru_error_N_m"), column("c_r_N_m"),
                     column("c_r_error_N_m"), column("c_rp_engaged_ratio"),
                     column("c_rp_engaged_ratio_error"), column("c_rp_engaged_min_ratio"),
-                    method=method)
+                    method=method, c_rp_fe=column("c_rp_engaged_intact_N_m"),
+                    c_rp_fe_min=column("c_rp_engaged_intact_min_N_m"))
+        if not c_rp_given:
+            model = model.with_fe_c_rp()
         if sweep.apply != SERIES:
             return model
         return model.with_mounts(sweep.c_ru_mount, sweep.c_r_mount)
@@ -80,6 +133,45 @@ class CrackModel:
             c_r_mount = identify_mount(self.params.c_r, self.c_r_body[0], "c_r")
         return replace(self, apply=SERIES, c_ru_mount=float(c_ru_mount),
                        c_r_mount=float(c_r_mount))
+
+    def with_fe_c_rp(self) -> "CrackModel":
+        """Every planet's lumped c_rp set to the FE intact c_rp over the engagement (at
+        depth 0) [N/m]: one mesh stiffness for the intact and the cracked tooth."""
+        return replace(self, params=self.params.replace(c_rp=float(self.c_rp_fe[0])),
+                       c_rp_source="fe")
+
+    def with_c_rp_method(self, c_rp_method: str) -> "CrackModel":
+        """The same model with the crack entering c_rp by ``c_rp_method``."""
+        return replace(self, c_rp_method=c_rp_method)
+
+    def c_rp_factor(self, k=None, ratio=None, c_rp_lumped=None,
+                    minimum: bool = False) -> np.ndarray:
+        """Factor on planet 1's lumped c_rp [-] while the cracked tooth is in mesh, at depth
+        index ``k`` (an int, one index per sample, or None: every depth).  ``ratio``
+        replaces the FE mean ratio there (or the ratio of the minima with ``minimum``)
+        and ``c_rp_lumped`` [N/m] the model's c_rp (e.g. per sample)."""
+        at = slice(None) if k is None else k
+        if ratio is None:
+            ratio = np.asarray(self.c_rp_min_ratio if minimum else self.c_rp_ratio)[at]
+        if self.c_rp_method == C_RP_RATIO:
+            return np.asarray(ratio, dtype=float)
+        fe = np.asarray(self.c_rp_fe_min if minimum else self.c_rp_fe)[at]
+        return series_factor(ratio, fe, self.params.c_rp if c_rp_lumped is None
+                             else c_rp_lumped)
+
+    @property
+    def c_rp_differs(self) -> bool:
+        """Whether the two methods give different factors: the lumped c_rp is not the FE
+        intact one (relative difference above 1e-9)."""
+        return bool(self.c_rp_fe) and abs(self.params.c_rp / self.c_rp_fe[0] - 1) > 1e-9
+
+    def mesh_stiffness(self) -> dict:
+        """The ring-planet mesh stiffness the model uses, as the JSON outputs give it:
+        ``c_rp_method``, ``c_rp_source``, ``c_rp_lumped_N_m`` (every planet intact),
+        ``c_rp_fe_intact_N_m`` (FE, over the cracked tooth's engagement; None unknown)."""
+        return {"c_rp_method": self.c_rp_method, "c_rp_source": self.c_rp_source,
+                "c_rp_lumped_N_m": float(self.params.c_rp),
+                "c_rp_fe_intact_N_m": float(self.c_rp_fe[0]) if self.c_rp_fe else None}
 
     @property
     def c_ru(self) -> np.ndarray:
@@ -96,7 +188,7 @@ class CrackModel:
     def parameters(self, k: int, engaged: bool = True) -> PlanetaryParameters:
         """Lumped parameters at depth index ``k``; ``engaged``: planet 1 meshes with the
         cracked tooth."""
-        factor = self.c_rp_ratio[k] if engaged else 1.0
+        factor = self.c_rp_factor(k) if engaged else 1.0
         others = (1.0,) * (self.params.n_planets - 1)
         return self.params.replace(c_ru=float(self.c_ru[k]), c_r=float(self.c_r[k]),
                                    c_rp_factors=(float(factor),) + others)
@@ -113,7 +205,8 @@ class CrackModel:
         def interpolated(values):
             return tuple(float(v) for v in np.interp(depths, known, values))
 
+        names = ("c_ru_body", "c_ru_body_error", "c_r_body", "c_r_body_error", "c_rp_ratio",
+                 "c_rp_ratio_error", "c_rp_min_ratio", "c_rp_fe", "c_rp_fe_min")
         return replace(self, depths=tuple(float(d) for d in depths), **{
-            name: interpolated(getattr(self, name)) for name in (
-                "c_ru_body", "c_ru_body_error", "c_r_body", "c_r_body_error", "c_rp_ratio",
-                "c_rp_ratio_error", "c_rp_min_ratio")})
+            name: interpolated(getattr(self, name)) for name in names
+            if len(getattr(self, name)) == len(known)})

@@ -4,7 +4,19 @@ All keys, with their defaults::
 
     [detection]
     record_length_s = 10.0              # one record; frequency resolution 1/T [Hz]
-    false_alarm_rate = 0.01             # per mode, one-sided (a crack only lowers frequencies)
+    damping_ratio = 0.02                # ASSUMED modal damping of every mode [-]
+    snr = 100.0                         # modal signal-to-noise ratio of the records [-]
+    watched_modes = 4                   # modes watched together (the alarm family)
+    false_alarm_rate = 0.01             # family-wise over the watched modes; in diagnose,
+                                        # the rate of crack verdicts on an intact reducer
+    fit_false_alarm_rate = 0.01         # rate at which diagnose calls a pattern a ring crack
+                                        # does produce "not explained by a ring crack"
+    temperature_std_K = 1.0             # ASSUMED: temperature change between two records [K]
+    modulus_per_K = -2.6e-4             # steel: relative change of Young's modulus per K
+    expansion_per_K = 1.2e-5            # steel: linear thermal expansion per K
+    mesh_load_std_percent = 0.0         # change of every mesh stiffness between the records
+                                        # from a load change (std, percent): 0 = records
+                                        # at the same torque
     detection_probability = 0.9         # POD at which a depth counts as detectable
     scatter_masses_percent = 2.0        # relative standard deviation of every mass
     scatter_stiffnesses_percent = 10.0  # ... of mesh, bearing and sun/carrier torsion springs
@@ -17,13 +29,30 @@ All keys, with their defaults::
     mount_points = 13
     carrier_speed_rpm = 150.0           # ASSUMED: ~28 km/h on a 0.5 m wheel
     confidence = 0.9                    # two-sided interval of ``hubvib diagnose``
+
+An identified natural frequency scatters by the Cramer-Rao bound of the shipped
+identification method (:func:`hubvib.identification.law.fisher_sigma_hz`; Au's
+law ``sqrt(zeta f / (2 pi T))`` for high SNR and a wide band) with the damping
+``damping_ratio``, the record length ``record_length_s`` and the modal SNR
+``snr``; a Monte Carlo of identified simulated records checks it
+(``python -m hubvib.identification.montecarlo``).  The alarm family is the
+``watched_modes`` modes with the largest deepest-crack shift against that scatter;
+each mode's threshold holds the per-mode rate ``1 - (1 - alpha)^(1/m)`` (Sidak:
+the identification errors are independent), so the family raises a false alarm
+with probability ``false_alarm_rate``.  Drift between the two records (uniform
+temperature, load on the meshes; :mod:`hubvib.detection.drift`) is reported as
+an extra family POD, with and without compensation by reference modes, and
+enters the covariance of ``hubvib diagnose``.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
 
+import numpy as np
+
 from hubvib.foundation.errors import SceneError
+from hubvib.identification.law import fisher_sigma_hz
 
 
 @dataclass(frozen=True)
@@ -34,8 +63,26 @@ class DetectionOptions:
     ----------
     record_length : float
         Length T of one vibration record [s]; frequency resolution 1/T [Hz].
+    damping_ratio : float
+        Modal damping ratio [-] of every mode (the measured CSV may give one per mode).
+    snr : float
+        Modal signal-to-noise ratio of the records, response PSD at resonance over
+        the noise PSD [-].
+    watched_modes : int
+        Number of modes watched together: the family of the false-alarm rate.
     false_alarm_rate : float
-        Probability [-] that an intact reducer raises an alarm on one mode.
+        Probability [-] that an intact reducer raises an alarm on any watched mode
+        (family-wise); in ``hubvib diagnose``, that it is called cracked.
+    fit_false_alarm_rate : float
+        Probability [-] that ``hubvib diagnose`` calls a frequency pattern that a ring
+        crack does produce "not explained by a ring crack".
+    temperature_std : float
+        Standard deviation of the uniform temperature change between two records [K].
+    modulus_per_K, expansion_per_K : float
+        Relative change of Young's modulus and of every length per K [1/K].
+    mesh_load_std : float
+        Standard deviation of the common relative change of every mesh stiffness between
+        two records from a load change [-].
     detection_probability : float
         Probability of detection [-] at which a depth counts as detectable.
     scatter_masses, scatter_stiffnesses, scatter_mounting : float
@@ -56,7 +103,15 @@ class DetectionOptions:
     """
 
     record_length: float = 10.0
+    damping_ratio: float = 0.02
+    snr: float = 100.0
+    watched_modes: int = 4
     false_alarm_rate: float = 0.01
+    fit_false_alarm_rate: float = 0.01
+    temperature_std: float = 1.0
+    modulus_per_K: float = -2.6e-4
+    expansion_per_K: float = 1.2e-5
+    mesh_load_std: float = 0.0
     detection_probability: float = 0.9
     scatter_masses: float = 0.02
     scatter_stiffnesses: float = 0.10
@@ -75,6 +130,19 @@ class DetectionOptions:
         """Frequency resolution 1/T [Hz]."""
         return 1.0 / self.record_length
 
+    def sigma_hz(self, frequency_hz, record_length: float | None = None) -> np.ndarray:
+        """Standard deviation [Hz] of frequencies ``frequency_hz`` [Hz] identified from one
+        record of ``record_length`` [s] (default the scene's), per mode."""
+        T = self.record_length if record_length is None else record_length
+        return np.array([fisher_sigma_hz(f, self.damping_ratio, T, self.snr)
+                         for f in np.atleast_1d(frequency_hz)])
+
+    def per_mode_rate(self, modes: int | None = None) -> float:
+        """Per-mode false-alarm rate [-] that gives ``false_alarm_rate`` over ``modes``
+        independent modes (default ``watched_modes``): ``1 - (1 - alpha)^(1/m)``."""
+        m = self.watched_modes if modes is None else modes
+        return 1.0 - (1.0 - self.false_alarm_rate) ** (1.0 / m)
+
     def to_dict(self) -> dict:
         return {f.name: getattr(self, f.name) for f in fields(self)}
 
@@ -82,7 +150,15 @@ class DetectionOptions:
 #: TOML key -> (attribute, kind, low, high, open low?, open high?, scale to SI)
 _KEYS = {
     "record_length_s": ("record_length", float, 0.0, math.inf, True, True, 1.0),
+    "damping_ratio": ("damping_ratio", float, 0.0, 0.5, True, True, 1.0),
+    "snr": ("snr", float, 0.0, math.inf, True, True, 1.0),
+    "watched_modes": ("watched_modes", int, 1, 1000, False, False, 1),
     "false_alarm_rate": ("false_alarm_rate", float, 0.0, 0.5, True, True, 1.0),
+    "fit_false_alarm_rate": ("fit_false_alarm_rate", float, 0.0, 0.5, True, True, 1.0),
+    "temperature_std_K": ("temperature_std", float, 0.0, 100.0, False, False, 1.0),
+    "modulus_per_K": ("modulus_per_K", float, -0.01, 0.0, False, False, 1.0),
+    "expansion_per_K": ("expansion_per_K", float, 0.0, 0.001, False, False, 1.0),
+    "mesh_load_std_percent": ("mesh_load_std", float, 0.0, 100.0, False, False, 0.01),
     "detection_probability": ("detection_probability", float, 0.0, 1.0, True, True, 1.0),
     "scatter_masses_percent": ("scatter_masses", float, 0.0, 100.0, False, False, 0.01),
     "scatter_stiffnesses_percent": ("scatter_stiffnesses", float, 0.0, 100.0, False, False,

@@ -44,35 +44,57 @@ def _label(i: int, frequency_hz: float, kind: str) -> str:
     return f"{i + 1}: {frequency_hz:.1f} Hz {kind}"
 
 
+#: curves per panel at most: more cannot be told apart
+PER_PANEL = 8
+
+
 def relative_shift_figure(name: str, depths: np.ndarray, omega: np.ndarray, kind):
-    """Relative frequency shift [%] against crack depth, moving modes only."""
-    fig, axes = _axes()
-    ax = axes[0, 0]
+    """Instantaneous relative frequency shift [%] (planet 1 on the cracked tooth) against
+    crack depth, moving modes only, at most :data:`PER_PANEL` curves per panel."""
     relative = omega / omega[0] - 1
-    for n, i in enumerate(moving_modes(relative)):
-        ax.plot(1e3 * depths, 100 * relative[:, i], **style(n),
-                label=_label(i, omega[0, i] / (2 * math.pi), kind[i]))
-    ax.set_xlabel("crack depth [mm]")
-    ax.set_ylabel("frequency shift [%]")
-    ax.set_title(f"{name}: relative shift, planet 1 on the cracked tooth")
-    ax.grid(True, alpha=0.3)
-    _legend(ax)
+    moving = moving_modes(relative)
+    panels = [moving[j:j + PER_PANEL] for j in range(0, max(moving.size, 1), PER_PANEL)]
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(len(panels), 1, figsize=(9, 4 * len(panels)), squeeze=False,
+                             layout="constrained")
+    for ax, modes in zip(axes[:, 0], panels):
+        for n, i in enumerate(modes):
+            ax.plot(1e3 * depths, 100 * relative[:, i], **style(n),
+                    label=_label(i, omega[0, i] / (2 * math.pi), kind[i]))
+        if depths.size > 1:
+            ax.axvline(1e3 * depths[1], color="0.6", lw=0.8, ls="-.",
+                       label=f"shallowest crack computed {1e3 * depths[1]:.3g} mm")
+        ax.set_xlabel("crack depth [mm]")
+        ax.set_ylabel("instantaneous frequency shift [%]")
+        ax.grid(True, alpha=0.3)
+        _legend(ax)
+    fig.suptitle(f"{name}: relative shift with planet 1 on the cracked tooth "
+                 "(instantaneous; a record sees the time average)", fontsize=10)
     return fig
 
 
 def shift_threshold_figure(name: str, pod):
-    """|Shift| [Hz] a record sees against depth, with the alarm threshold (log scale)."""
+    """|Shift| [Hz] a record sees against depth, with the alarm thresholds (log scale); the
+    seven modes moving most against their identification scatter."""
     fig, axes = _axes()
     ax = axes[0, 0]
     nominal = pod.nominal
     shift = -nominal.shift_hz
     relative = nominal.shift_hz / nominal.frequency_hz[0]
-    for n, i in enumerate(moving_modes(relative)):
+    moving = moving_modes(relative)
+    strongest = moving[np.argsort(-np.abs(shift[-1, moving]) / pod.sigma_hz[moving],
+                                  kind="stable")][:PER_PANEL - 1]
+    for n, i in enumerate(sorted(strongest)):
         positive = shift[:, i] > 0
         ax.plot(1e3 * pod.depths[positive], shift[positive, i], **style(n),
                 label=_label(i, nominal.frequency_hz[0, i], pod.kind[i]))
-    ax.axhline(pod.threshold_hz, color="k", lw=1.2,
-               label=f"alarm threshold {pod.threshold_hz:.3g} Hz")
+    low, high = pod.threshold_hz[pod.watched].min(), pod.threshold_hz[pod.watched].max()
+    ax.axhspan(low, high * 1.0001, color="k", alpha=0.15,
+               label=f"alarm thresholds of the watched modes {low:.3g}-{high:.3g} Hz")
     ax.set_yscale("log")
     ax.set_xlabel("crack depth [mm]")
     ax.set_ylabel("frequency drop seen by a record [Hz]")
@@ -91,9 +113,10 @@ def pod_figure(name: str, pod, modes):
     for n, i in enumerate(modes):
         ax.plot(1e3 * pod.depths, pod.pod[:, i], **style(n),
                 label=_label(i, f0[i], pod.kind[i]))
-    if pod.pod_model is not None and len(modes):
-        ax.plot(1e3 * pod.depths, pod.pod_model[:, list(modes)].max(axis=1), color="0.5",
-                lw=2, ls=(0, (1, 1)), label="best of these, model spectrum as baseline")
+    for n, T in enumerate(sorted(pod.family_pod)[:3]):
+        ax.plot(1e3 * pod.depths, pod.family_pod[T], color="k", lw=2.5 - 0.5 * n,
+                ls=("-", "--", ":")[n], marker="o", ms=3,
+                label=f"watched modes together, {T:g} s records")
     ax.axhline(pod.detection_probability, color="k", lw=0.8, ls="--",
                label=f"required POD {pod.detection_probability:g}")
     ax.axhline(pod.false_alarm_rate, color="k", lw=0.8, ls=":",
@@ -101,17 +124,27 @@ def pod_figure(name: str, pod, modes):
     ax.set_ylim(-0.02, 1.02)
     ax.set_xlabel("crack depth [mm]")
     ax.set_ylabel("probability of detection")
-    ax.set_title(f"{name}: probability of detection ({pod.samples} Monte Carlo samples)")
+    ax.axvline(1e3 * pod.depths[1], color="0.6", lw=0.8, ls="-.",
+               label=f"shallowest crack computed {1e3 * pod.depths[1]:.3g} mm")
+    ax.set_title(f"{name}: probability of detection ({pod.samples} Monte Carlo samples; "
+                 f"single modes: records of the scene's length)", fontsize=9)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
     return fig
 
 
-def map_figure(name: str, dmap, deepest: float):
-    """Smallest detectable depth against the mounting, per stiffness carrying the signal."""
+def map_figure(name: str, dmap, deepest: float, shallowest: float | None = None):
+    """Smallest detectable depth against the mounting, per stiffness carrying the signal
+    (the label rule of the modes table) and over all modes; the sweep's shallowest crack
+    marked: nothing below it was computed."""
     fig, axes = _axes(2)
     for ax, swept in zip(axes[0], ("c_ru_mount", "c_r_mount")):
         depth, carried = dmap.depth[swept], dmap.carried_by[swept]
+        ax.plot(dmap.mounts, 1e3 * dmap.smallest(swept), color="k", lw=3, alpha=0.35,
+                label="any mode")
+        if shallowest is not None:
+            ax.axhline(1e3 * shallowest, color="0.6", lw=0.8, ls="-.",
+                       label=f"shallowest crack computed {1e3 * shallowest:.3g} mm")
         for n, carrier in enumerate(("c_ru", "c_r", "c_rp")):
             masked = np.where((carried == carrier) & ~np.isnan(depth), depth, np.inf)
             best = masked.min(axis=1)

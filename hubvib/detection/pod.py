@@ -1,39 +1,51 @@
-"""Probability of detecting a crack from one mode's frequency, by Monte Carlo (SI).
+"""Probability of detecting a crack from the watched modes' frequencies, by Monte Carlo (SI).
 
-Measurement: a natural frequency identified from a record of length T lies on
-the frequency grid of spacing 1/T, so its error is uniform within +-1/(2T).
-Two baselines:
+Measurement: a natural frequency identified from one record of length T scatters
+normally with the standard deviation of the identification method
+(:meth:`.options.DetectionOptions.sigma_hz`: the Cramer-Rao bound of the
+Bayesian-FFT identification, Au's law ``sqrt(zeta f / (2 pi T))`` in the limit),
+independently from record to record.  Two baselines:
 
 ``measured``
-    The reducer's own intact spectrum, measured the same way (monitoring).  The
-    statistic ``f(d) - f(0) + u_1 - u_0`` has triangular noise on +-1/T; an
-    alarm is ``statistic < -t`` with ``t = (1 - sqrt(2 alpha)) / T``, which an
-    intact reducer exceeds with probability alpha exactly.  One-sided: a crack
-    only softens springs, so by the Courant-Fischer min-max principle no
-    natural frequency can rise.
+    The reducer's own intact spectrum, identified the same way (monitoring).  The
+    statistic of mode i, ``f_i(d) - f_i(0) + e_1 - e_0``, has noise
+    ``N(0, 2 sigma_i^2)``; mode i alarms when it falls below ``-t_i`` with
+    ``t_i = z(1 - alpha_m) sqrt(2) sigma_i``.  One-sided: a crack only softens
+    springs, so by the Courant-Fischer min-max principle no natural frequency can
+    rise.
 ``model``
     The model's nominal intact spectrum.  The unit's own scatter then enters the
-    statistic ``f(d) + u - f_model(0)``; the threshold is the alpha quantile of
-    intact units, calibrated on samples drawn independently of those that give
-    the POD.
+    statistic ``f_i(d) + e - f_model,i(0)``; the threshold is the ``alpha_m``
+    quantile of intact units, calibrated on samples drawn independently of those
+    that give the POD.
 
-The probability of detection (POD) of mode i at depth d is the fraction of
-sampled reducers (parameter scatter and FE error, :mod:`.uncertainty`) that
-raise the alarm, with the measurement noise integrated exactly.  A nominal
-shift smaller than the change that the FE error of the stiffness carrying it
-would cause is flagged as not resolved: the FE stage cannot tell it apart from
-its own discretisation error.
+The alarm family is the ``watched_modes`` modes with the largest mean shift at
+the deepest crack against their identification scatter; every mode's threshold
+holds the per-mode rate ``alpha_m = 1 - (1 - alpha)^(1/m)`` (Sidak), so an
+intact reducer raises an alarm on some watched mode with probability ``alpha``
+(the identification errors of different modes are independent).  The POD of a
+mode at depth d is the fraction of sampled reducers (parameter scatter and FE
+error, :mod:`.uncertainty`) that alarm on it, the measurement noise integrated
+exactly; the family POD is the fraction that alarm on any watched mode, for
+records of 10, 60 and 600 s as well as the scene's.  A nominal shift smaller
+than the change that the FE error of the stiffness carrying it would cause is
+flagged as not resolved: the FE stage cannot tell it apart from its own
+discretisation error.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.optimize import brentq
+from scipy.stats import norm
 
+from hubvib.identification.law import KAPPA
 from hubvib.lumped import natural_modes
 
+from .drift import Drift, drift_model, references
+from .drift import family_pod as family_pod_mc
 from .numbers import ROUND_OFF
 from .uncertainty import draw, nominal, observed_frequencies
 
@@ -41,21 +53,21 @@ from .uncertainty import draw, nominal, observed_frequencies
 CARRIERS = ("c_ru", "c_r", "c_rp")
 
 
-def triangular_cdf(x, half_width: float):
-    """CDF of the difference of two independent uniform(-w/2, w/2) errors, ``w = half_width``."""
-    a = half_width
-    x = np.clip(np.asarray(x, dtype=float), -a, a)
-    return np.where(x < 0, (x + a) ** 2 / (2 * a * a), 1 - (a - x) ** 2 / (2 * a * a))
+#: record lengths [s] of the family POD curves
+RECORD_LENGTHS = (10.0, 60.0, 600.0)
 
 
-def uniform_cdf(x, width: float):
-    """CDF of a uniform error on +-width/2."""
-    return np.clip(np.asarray(x, dtype=float) / width + 0.5, 0.0, 1.0)
+def measured_threshold(sigma_hz, rate: float) -> np.ndarray:
+    """Alarm threshold [Hz] of each mode on a shift against the reducer's own intact
+    measurement: ``z(1 - rate) sqrt(2) sigma`` (``sigma_hz`` per mode [Hz], ``rate`` per
+    mode [-])."""
+    return norm.ppf(1.0 - rate) * math.sqrt(2.0) * np.asarray(sigma_hz, dtype=float)
 
 
-def measured_threshold(record_length: float, false_alarm_rate: float) -> float:
-    """Alarm threshold [Hz] on a shift against the reducer's own intact measurement."""
-    return (1.0 - math.sqrt(2 * false_alarm_rate)) / record_length
+def watched(shift_hz: np.ndarray, sigma_hz: np.ndarray, count: int) -> np.ndarray:
+    """Indices (0-based) of the ``count`` modes whose shift ``shift_hz`` [Hz] is largest
+    against their identification scatter ``sigma_hz`` [Hz], best first."""
+    return np.argsort(-np.abs(shift_hz) / sigma_hz, kind="stable")[:min(count, shift_hz.size)]
 
 
 @dataclass(frozen=True)
@@ -139,10 +151,26 @@ class PodResult:
     nominal : NominalShifts
     shift_mean_hz, shift_p05_hz, shift_p95_hz : ndarray, shape (depths, modes)
         Mean and 5 / 95 % quantiles of the sampled shift [Hz] (no measurement noise).
-    threshold_hz : float
+    sigma_hz : ndarray, shape (modes,)
+        Standard deviation of one identified frequency [Hz] (scene's record length).
+    watched : ndarray of int
+        The alarm family (0-based mode indices).
+    per_mode_rate : float
+        False-alarm rate of each mode's threshold [-].
+    threshold_hz : ndarray, shape (modes,)
         Alarm threshold against the reducer's own intact measurement [Hz].
     pod : ndarray, shape (depths, modes)
         Probability of detection against the reducer's own intact measurement [-].
+    family_pod : dict
+        Record length [s] -> ndarray (depths,): probability that some watched mode
+        alarms (own intact baseline) [-].
+    drift : Drift or None
+        Temperature and load drift between records (:mod:`.drift`).
+    references : ndarray of int or None
+        Per watched mode, its reference mode for drift compensation (-1: none).
+    family_pod_drift, family_pod_compensated : dict
+        Record length [s] -> family POD (depths,) with the drift between the records,
+        without and with compensation by the reference modes [-].
     threshold_model_hz, pod_model : ndarray or None
         The same against the model's nominal intact spectrum [Hz], [-].
     false_alarm_rate, detection_probability : float
@@ -156,13 +184,21 @@ class PodResult:
     shift_mean_hz: np.ndarray
     shift_p05_hz: np.ndarray
     shift_p95_hz: np.ndarray
-    threshold_hz: float
+    sigma_hz: np.ndarray
+    watched: np.ndarray
+    per_mode_rate: float
+    threshold_hz: np.ndarray
     pod: np.ndarray
+    family_pod: dict
     threshold_model_hz: np.ndarray | None
     pod_model: np.ndarray | None
     false_alarm_rate: float
     detection_probability: float
     samples: int
+    drift: Drift | None = None
+    references: np.ndarray | None = None
+    family_pod_drift: dict = field(default_factory=dict)
+    family_pod_compensated: dict = field(default_factory=dict)
 
     @property
     def resolved(self) -> np.ndarray:
@@ -180,6 +216,28 @@ class PodResult:
         ok[0] = False
         first = np.where(ok.any(axis=0), ok.argmax(axis=0), -1)
         return np.where(first >= 0, self.depths[np.maximum(first, 0)], np.nan)
+
+    def family_detectable_depth(self, record_length: float, which: str = "") -> float:
+        """Smallest depth [m] whose family POD with records of ``record_length`` [s]
+        reaches the required probability (``which``: ``""``, ``"drift"`` or
+        ``"compensated"``); NaN when none does."""
+        table = getattr(self, f"family_pod_{which}" if which else "family_pod")
+        ok = table[record_length] >= self.detection_probability
+        ok[0] = False
+        return float(self.depths[int(ok.argmax())]) if ok.any() else math.nan
+
+    def family_rows(self) -> list[dict]:
+        """Family POD per depth and record length (``pod_family.csv``)."""
+        modes = " ".join(str(int(i) + 1) for i in self.watched)
+        def at(table, T, k):
+            return float(table[T][k]) if T in table else None
+
+        return [{"depth_mm": 1e3 * float(d), "record_s": float(T), "watched_modes": modes,
+                 "family_false_alarm_rate": self.false_alarm_rate,
+                 "pod": float(self.family_pod[T][k]),
+                 "pod_with_drift": at(self.family_pod_drift, T, k),
+                 "pod_drift_compensated": at(self.family_pod_compensated, T, k)}
+                for T in sorted(self.family_pod) for k, d in enumerate(self.depths)]
 
     def rows(self) -> list[dict]:
         nominal = self.nominal
@@ -199,7 +257,9 @@ class PodResult:
                     "carried_by": str(carried[k, i]),
                     "fe_error_hz": float(nominal.carrier_error_hz[k, i]),
                     "resolved": bool(self.resolved[k, i]) if k else None,
-                    "threshold_hz": self.threshold_hz,
+                    "sigma_hz": float(self.sigma_hz[i]),
+                    "watched": bool(i in self.watched),
+                    "threshold_hz": float(self.threshold_hz[i]),
                     "pod": float(self.pod[k, i]),
                     "threshold_model_hz": (None if self.threshold_model_hz is None
                                            else float(self.threshold_model_hz[i])),
@@ -230,33 +290,52 @@ def pod_study(model, options, timing, samples: int | None = None, model_baseline
     frequencies = observed_frequencies(model, draw(model, options, n, rng), fraction, long,
                                        workers)
     shifts = frequencies - frequencies[:, :1]
-    T, alpha = options.record_length, options.false_alarm_rate
-    threshold = measured_threshold(T, alpha)
-    pod = triangular_cdf(-threshold - shifts, 1.0 / T).mean(axis=0)
-    threshold_model = pod_model = None
     nominal_result = nominal_shifts(model, fraction, long)
+    f0 = nominal_result.frequency_hz[0]
+    sigma = options.sigma_hz(f0)
+    family = watched(shifts[:, -1].mean(axis=0), sigma, options.watched_modes)
+    rate = options.per_mode_rate(family.size)
+    threshold = measured_threshold(sigma, rate)
+    pod = norm.cdf((-threshold - shifts) / (math.sqrt(2) * sigma)).mean(axis=0)
+    family_pod = {}
+    for T in sorted({*RECORD_LENGTHS, options.record_length}):
+        s_T = options.sigma_hz(f0[family], T)
+        p = norm.cdf((-measured_threshold(s_T, rate) - shifts[..., family])
+                     / (math.sqrt(2) * s_T))
+        family_pod[T] = 1.0 - np.prod(1.0 - p, axis=-1).mean(axis=0)
+    drift = drift_model(model.parameters(0), f0, options, model.method)
+    refs = references(shifts[:, -1].mean(axis=0), sigma, drift, f0, family,
+                      KAPPA * options.damping_ratio)
+    drifting, compensated = {}, {}
+    if model_baseline:  # the scene's study (the map's many POD runs skip it)
+        drift_rng = np.random.default_rng((options.seed, 7))
+        for T in sorted({*RECORD_LENGTHS, options.record_length}):
+            s_T = options.sigma_hz(f0, T)
+            drifting[T] = family_pod_mc(shifts, s_T, f0, family, options.false_alarm_rate,
+                                        drift_rng, drift)
+            compensated[T] = family_pod_mc(shifts, s_T, f0, family,
+                                           options.false_alarm_rate, drift_rng, drift, refs)
+    threshold_model = pod_model = None
     if model_baseline:
-        reference = nominal_result.frequency_hz[0]
         calibration = observed_frequencies(model.at_depths([0.0]),
                                            draw(model, options, n, rng), fraction, long,
                                            workers)[:, 0]
-        threshold_model = np.array([_quantile_threshold(calibration[:, i] - reference[i],
-                                                        1.0 / T, alpha)
-                                    for i in range(reference.size)])
-        pod_model = uniform_cdf(-threshold_model - (frequencies - reference), 1.0 / T
-                                ).mean(axis=0)
+        threshold_model = np.array([_quantile_threshold(calibration[:, i] - f0[i], sigma[i],
+                                                        rate) for i in range(f0.size)])
+        pod_model = norm.cdf((-threshold_model - (frequencies - f0)) / sigma).mean(axis=0)
     kind = natural_modes(model.parameters(0), model.method).kind
     return PodResult(np.array(model.depths), kind, nominal_result, shifts.mean(axis=0),
                      np.quantile(shifts, 0.05, axis=0), np.quantile(shifts, 0.95, axis=0),
-                     threshold, pod, threshold_model, pod_model, alpha,
-                     options.detection_probability, n)
+                     sigma, family, rate, threshold, pod, family_pod, threshold_model,
+                     pod_model, options.false_alarm_rate, options.detection_probability, n,
+                     drift, refs, drifting, compensated)
 
 
-def _quantile_threshold(offsets: np.ndarray, width: float, alpha: float) -> float:
-    """t with mean(P(offset + u < -t)) = alpha, u uniform on +-width/2."""
+def _quantile_threshold(offsets: np.ndarray, sigma: float, alpha: float) -> float:
+    """t with mean(P(offset + e < -t)) = alpha, e normal with standard deviation sigma."""
     def excess(t):
-        return uniform_cdf(-t - offsets, width).mean() - alpha
+        return norm.cdf((-t - offsets) / sigma).mean() - alpha
 
-    low = -offsets.max() - width
-    high = -offsets.min() + width
+    low = -offsets.max() - 10 * sigma
+    high = -offsets.min() + 10 * sigma
     return float(brentq(excess, low, high, xtol=1e-12 * max(1.0, abs(high))))

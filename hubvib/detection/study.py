@@ -33,19 +33,10 @@ class DetectionStudy:
     map: DetectabilityMap
     carrier: CarrierStudy
 
-    def watched_modes(self, count: int = 3) -> np.ndarray:
-        """Mode indices (0-based) to watch: the ones detecting the shallowest crack (ties:
-        larger POD there), else the ones with the largest shift against the threshold at
-        the deepest crack."""
-        pod = self.pod
-        depth = pod.detectable_depth()
-        detectable = np.flatnonzero(~np.isnan(depth))
-        if detectable.size:
-            at = np.searchsorted(pod.depths, depth[detectable])
-            order = np.lexsort((-pod.pod[at, detectable], depth[detectable]))
-            return detectable[order][:count]
-        margin = -pod.nominal.shift_hz[-1] / pod.threshold_hz
-        return np.argsort(-margin, kind="stable")[:count]
+    def watched_modes(self, count: int | None = None) -> np.ndarray:
+        """Mode indices (0-based) of the alarm family: the modes whose deepest-crack shift
+        is largest against their identification scatter (:func:`.pod.watched`)."""
+        return self.pod.watched[:count]
 
 
 def detection_study(model, options: DetectionOptions, timing: MeshTiming,

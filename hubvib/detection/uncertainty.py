@@ -93,8 +93,12 @@ def changes(model, samples: Samples, k, engaged: bool) -> dict:
 
     ru, ru0 = body(model.c_ru_body, model.c_ru_body_error, samples.z_ru)
     r, r0 = body(model.c_r_body, model.c_r_body_error, samples.z_r)
-    factor = (np.asarray(model.c_rp_ratio)[k] + samples.z_rp * np.asarray(
-        model.c_rp_ratio_error)[k] if engaged else np.ones(samples.n))
+    if engaged:  # the FE ratio with its error, then the crack's method on this c_rp
+        ratio = np.clip(np.asarray(model.c_rp_ratio)[k] + samples.z_rp * np.asarray(
+            model.c_rp_ratio_error)[k], 1e-6, None)
+        factor = model.c_rp_factor(k, ratio, samples.fields.get("c_rp"))
+    else:
+        factor = np.ones(samples.n)
     rest = np.ones((samples.n, model.params.n_planets - 1))
     return dict(samples.fields,
                 c_ru=ring_support(model.apply, ru, ru0, samples.support_ru, samples.support_ru),

@@ -21,6 +21,7 @@ import numpy as np
 
 from hubvib.build.stages import ring_gear
 from hubvib.detection import report as sections
+from hubvib.detection.mesh_stiffness import family_depths, iso_c_rp, mesh_stiffness_section
 from hubvib.detection.model import CrackModel
 from hubvib.detection.numbers import depth_mm, percent, sensitivity, shift_hz
 from hubvib.detection.options import DetectionOptions
@@ -54,7 +55,8 @@ class CrackStudyResult:
 
     ``omega[k, i]`` [rad/s] is mode i (numbered at depth 0) at ``depths[k]``;
     ``model`` is the crack as the lumped model sees it, ``detection`` the
-    detection study (None when not run).
+    detection study (None when not run), ``c_rp_comparison`` the record shifts under
+    the other c_rp method (``detection.mesh_stiffness``; None where the methods agree).
     """
 
     scene: Scene
@@ -68,6 +70,7 @@ class CrackStudyResult:
     files: list[Path] = field(default_factory=list)
     model: CrackModel | None = None
     detection: object = None
+    c_rp_comparison: object = None
 
     @property
     def depths(self) -> np.ndarray:
@@ -90,8 +93,12 @@ class CrackStudyResult:
                  "fe_c_rp_engaged_ratio_error": f["c_rp_engaged_ratio_error"],
                  "fe_c_rp_engaged_min_ratio": f["c_rp_engaged_min_ratio"],
                  "lumped_c_ru_N_m": float(cu), "lumped_c_r_N_m": float(cr),
-                 "lumped_c_rp_planet1_N_m": float(self.scene.params.c_rp * fp),
-                 "fe_seconds": f["seconds_total"]}
+                 "lumped_c_rp_planet1_N_m": float(self.model.params.c_rp * fp),
+                 "fe_seconds": f["seconds_total"],
+                 "fe_c_rp_engaged_intact_N_m": f["c_rp_engaged_intact_N_m"],
+                 "lumped_c_rp_factor": float(fp),
+                 "lumped_c_rp_planet1_ratio_method_N_m": float(
+                     self.model.params.c_rp * f["c_rp_engaged_ratio"])}
                 for f, cu, cr, fp in zip(self.fe, self.c_ru, self.c_r, self.c_rp_factor)]
 
     def frequency_rows(self) -> list[dict]:
@@ -109,7 +116,7 @@ class CrackStudyResult:
         """Per mode: what it follows (c_ru, c_r, c_rp), its largest shift, the depth from
         which it detects the crack (Monte Carlo POD, ``detectable_depth_mm``) and, for
         comparison, the first depth shifting it by the flat ``[study]`` threshold."""
-        params = self.scene.params
+        params = self.model.params if self.model is not None else self.scene.params
         base = self.spectra[0]
         rel = {name: frequency_sensitivity(params, name, self.scene.method, base).relative
                for name in STIFFNESSES}
@@ -129,7 +136,9 @@ class CrackStudyResult:
                    "smallest_detectable_depth_mm":
                        float(1e3 * self.depths[hits[0]]) if len(hits) else None}
             if pod is not None:
-                row |= {"signal_in": str(pod.nominal.carried_by[-1, i]),
+                row |= {"record_shift_at_deepest_hz": float(pod.nominal.shift_hz[-1, i]),
+                        "sigma_hz": float(pod.sigma_hz[i]),
+                        "signal_in": str(pod.nominal.carried_by[-1, i]),
                         "pod_at_deepest": float(pod.pod[-1, i]),
                         "detectable_depth_mm": (None if math.isnan(detectable[i])
                                                 else 1e3 * float(detectable[i]))}
@@ -153,9 +162,10 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
     ``timing`` (a ``detection.carrier.MeshTiming``) defaults to the scene's design at
     the ``[detection]`` carrier speed.
     """
-    model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method)
+    model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
+                               c_rp_given=scene.c_rp_given)
     c_ru, c_r = model.c_ru, model.c_r
-    c_rp_factor = np.array(model.c_rp_ratio)
+    c_rp_factor = np.asarray(model.c_rp_factor())
     spectra = [natural_modes(model.parameters(k), scene.method) for k in range(len(fe))]
     n = spectra[0].omega.size
     omega = np.empty((len(spectra), n))
@@ -165,17 +175,22 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
         step, _ = match(spectra[k - 1], spectra[k])
         order = step[order]
         omega[k] = spectra[k].omega[order]
-    study = None
-    if detection:
+    study = comparison = None
+    if detection or model.c_rp_differs:
         from hubvib.detection.carrier import mesh_timing
+        from hubvib.detection.mesh_stiffness import compare_methods
         from hubvib.detection.options import detection_options
         from hubvib.detection.study import detection_study
 
         options = detection_options(scene)
         timing = timing or mesh_timing(scene.crack.reducer, options.carrier_speed)
-        study = detection_study(model, options, timing, workers=workers)
+        if detection:
+            study = detection_study(model, options, timing, workers=workers)
+        if model.c_rp_differs:
+            comparison = compare_methods(model, timing, options.record_length,
+                                         options if detection else None, workers=workers)
     return CrackStudyResult(scene, fe, c_ru, c_r, c_rp_factor, spectra, omega, computed,
-                            model=model, detection=study)
+                            model=model, detection=study, c_rp_comparison=comparison)
 
 
 def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResult:
@@ -188,19 +203,31 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
              write_csv(folder / "modes.csv", result.mode_rows())]
     if study is not None:
         files += [write_csv(folder / "pod.csv", study.pod.rows()),
+                  write_csv(folder / "pod_family.csv", study.pod.family_rows()),
                   write_csv(folder / "detectability_map.csv", study.map.rows())]
     files.append(write_json(folder / "results.json", json_safe({
-        "scene": scene.name, **provenance(), "parameters": scene.params.to_dict(),
+        "scene": scene.name, **provenance(), "parameters": result.model.params.to_dict(),
         "crack": {k: v for k, v in asdict(scene.crack).items() if k != "design"},
         "mounting": {"apply": result.model.apply, "c_ru_mount_N_m": result.model.c_ru_mount,
                      "c_r_mount_N_m": result.model.c_r_mount},
         "detection": None if study is None else {
-            "options": study.options.to_dict(), "threshold_hz": study.pod.threshold_hz,
+            "options": study.options.to_dict(),
+            "threshold_hz": [float(t) for t in study.pod.threshold_hz],
+            "sigma_hz": [float(t) for t in study.pod.sigma_hz],
+            "per_mode_false_alarm_rate": study.pod.per_mode_rate,
+            "family_pod": {f"{T:g}": [float(p) for p in v]
+                           for T, v in study.pod.family_pod.items()},
             "engaged_fraction": study.timing.engaged_fraction,
             "pass_seconds": study.timing.pass_seconds,
             "watched_modes": [int(i) + 1 for i in study.watched_modes()]},
         "stiffness": result.stiffness_rows(), "modes": result.mode_rows(),
-        "frequencies": result.frequency_rows()})))
+        "frequencies": result.frequency_rows(),
+        "mesh_stiffness": dict(result.model.mesh_stiffness(),
+                               c_rp_iso6336_N_m=iso_c_rp(scene.crack.reducer),
+                               c_rp_methods_differ=result.c_rp_comparison is not None),
+        "c_rp_methods": (None if result.c_rp_comparison is None
+                         else result.c_rp_comparison.rows()),
+        "c_rp_other_method_family_pod": _other_family_pod(result.c_rp_comparison)})))
     plots = []
     if scene.plots:
         from hubvib.detection import plots as figures
@@ -214,7 +241,8 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
             plots += [
                 save_figure(figures.shift_threshold_figure(name, study.pod),
                             folder / "shift_vs_depth.png"),
-                save_figure(figures.map_figure(name, study.map, deepest),
+                save_figure(figures.map_figure(name, study.map, deepest,
+                                               float(result.depths[1])),
                             folder / "detectability_map.png"),
                 save_figure(figures.pod_figure(name, study.pod, _pod_modes(study)),
                             folder / "pod.png"),
@@ -236,6 +264,19 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
     return result
 
 
+def _other_family_pod(comparison) -> dict | None:
+    """The watched family's POD per record length [s] and depth under the other c_rp
+    method (results.json), None where the methods agree or detection did not run."""
+    if comparison is None or comparison.other_pod is None:
+        return None
+    pod = comparison.other_pod
+    return {"c_rp_method": comparison.other,
+            "family_pod": {f"{T:g}": [float(p) for p in v] for T, v in pod.family_pod.items()},
+            "family_detectable_depth_m": {
+                f"{T:g}": (None if math.isnan(d) else d)
+                for T, d in family_depths(pod).items()}}
+
+
 def _image(name: str, plots: list[str]) -> list[str]:
     """Markdown lines showing ``name`` when it was written."""
     return figure_lines(name) if name in plots else []
@@ -243,11 +284,12 @@ def _image(name: str, plots: list[str]) -> list[str]:
 
 def _pod_modes(study) -> list[int]:
     """Modes drawn in the POD plot: the watched ones and any other reaching the required
-    POD, at most eight."""
+    POD, at most four (with the three family curves, the threshold lines: at most eight
+    curves)."""
     pod = study.pod
     reaching = np.flatnonzero((pod.pod >= pod.detection_probability).any(axis=0))
     modes = list(study.watched_modes())
-    return (modes + [int(i) for i in reaching if i not in modes])[:8]
+    return (modes + [int(i) for i in reaching if i not in modes])[:4]
 
 
 def json_safe(value):
@@ -329,10 +371,16 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
         lines += _image("detectability_map.png", plots)
         lines += sections.pod_section(study) + _image("pod.png", plots)
         lines += ["Files: `pod.csv` (every mode and depth: shift, its 5-95 % range over the "
-                  "scatter, carrying stiffness, FE error, POD with both baselines).", ""]
+                  "scatter, carrying stiffness, FE error, identification scatter, threshold, "
+                  "POD with both baselines), `pod_family.csv` (the watched modes together, "
+                  "per record length).", ""]
         lines += sections.carrier_section(study) + _image("carrier_position.png", plots)
     else:
         lines += [sections.mounting_sentence(model), ""]
+    watched = (list(study.watched_modes()) if study is not None
+               else list(np.argsort(-np.abs(result.omega[-1] - result.omega[0]))[:4]))
+    lines += mesh_stiffness_section(model, iso_c_rp(sweep.reducer), result.c_rp_comparison,
+                                    watched, None if study is None else study.pod)
     lines += [
         "## Assumptions", "",
         f"- Design `{sweep.reducer.name}`: "
@@ -344,8 +392,10 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
         "- c_rp: FE tooth compliance of planet and ring tooth (crack moved to tooth 0) with "
         "Hertz contact added analytically and the load shared over the path of contact; the "
         "ratio cracked/intact is the mean over the cracked tooth's engagement (its minimum is "
-        "in `fe_c_rp_engaged_min_ratio`). This ratio is physical (the same tooth pair, cracked "
-        "and intact) and applies whatever the mounting. Only planet 1's ring mesh changes, so "
+        "in `fe_c_rp_engaged_min_ratio`), the intact value over it is "
+        "`fe_c_rp_engaged_intact_N_m`. The crack's extra compliance (1/ratio - 1)/c_rp_FE "
+        f"enters planet 1's lumped c_rp by the method `{model.c_rp_method}` (see Ring-planet "
+        "mesh stiffness). Only planet 1's ring mesh changes, so "
         "the crack splits the repeated (translational) frequencies."
         + ("" if sweep.model == "plane" else
            f" Solid study, semi-elliptic crack of half-length "
@@ -377,17 +427,26 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
                      f"{r['fe_c_rp_engaged_ratio_error']:.1e} | {r['lumped_c_ru_N_m']:.7g} | "
                      f"{r['lumped_c_r_N_m']:.7g} | {r['lumped_c_rp_planet1_N_m']:.5g} |")
     lines += ["", "## Modes: sensitivity and detection", "",
-              "Shift at the instant planet 1 meshes with the cracked tooth; detectable from: "
-              "the Monte Carlo POD above (a record's view of the shift).", "",
-              "| mode | type | f intact [Hz] | shift at deepest [Hz] | [%] | (dω/ω)/(dc_ru/c_ru) "
+              "Instantaneous shift: at the instant planet 1 meshes with the cracked tooth; "
+              "record shift: the time-averaged shift a record sees (what the POD uses). "
+              "Sensitivities are per relative change of the whole stiffness (c_rp: every "
+              "planet's ring mesh); *follows*: a sensitivity above 0.01; *signal in*: the "
+              "stiffness whose crack-induced change alone moves the mode most at the deepest "
+              "crack, record-averaged (sensitivity times change; the same rule as in "
+              "`detectability_map.csv`). Detectable from: this mode alone, Monte Carlo POD "
+              "at the family-corrected rate.", "",
+              "| mode | type | f intact [Hz] | instantaneous shift at deepest [Hz] | [%] "
+              "| record shift at deepest [Hz] | (dω/ω)/(dc_ru/c_ru) "
               "| (dω/ω)/(dc_r/c_r) | (dω/ω)/(dc_rp/c_rp) | follows | signal in "
               "| detectable from [mm] |",
-              "|---:|---|---:|---:|---:|---:|---:|---:|---|---|---:|"]
+              "|---:|---|---:|---:|---:|---:|---:|---:|---:|---|---|---:|"]
     for r in result.mode_rows():
         depth = r.get("detectable_depth_mm")
+        f0 = r["frequency_intact_hz"]
         lines.append(f"| {r['mode']} | {r['kind']} | {r['frequency_intact_hz']:.3f} | "
                      f"{shift_hz(r['shift_at_deepest_hz'], r['frequency_intact_hz'])} | "
                      f"{percent(r['shift_at_deepest_percent'])} | "
+                     f"{shift_hz(r.get('record_shift_at_deepest_hz'), f0)} | "
                      f"{sensitivity(r['sensitivity_c_ru'])} | "
                      f"{sensitivity(r['sensitivity_c_r'])} | "
                      f"{sensitivity(r['sensitivity_c_rp'])} | {r['follows']} | "
@@ -464,14 +523,30 @@ def _lines(scene: Scene, result: CrackStudyResult, folder: Path) -> list[str]:
         last = f"detectable from (POD >= {pod:g}), via"
     else:
         last = f"smallest crack shifting >= {scene.threshold_percent:g} %"
-    out.append(f"{'mode':>4} {'type':<13} {'f intact [Hz]':>13} {'shift at deepest [%]':>21} "
-               f"{'follows':>10}  {last}")
+    out.append(f"{'mode':>4} {'type':<13} {'f intact [Hz]':>13} {'inst. shift [%]':>15} "
+               + (f"{'record shift [Hz]':>17} {'sigma [Hz]':>10} " if physical else "")
+               + f"{'follows':>10}  {last}")
     for r in rows:
         depth = r["detectable_depth_mm"] if physical else r["smallest_detectable_depth_mm"]
         where = f" ({r['signal_in']})" if physical and depth is not None else ""
+        record = (f"{r['record_shift_at_deepest_hz']:>+17.3g} {r['sigma_hz']:>10.3g} "
+                  if physical else "")
         out.append(f"{r['mode']:>4} {r['kind']:<13} {r['frequency_intact_hz']:>13.3f} "
-                   f"{percent(r['shift_at_deepest_percent']):>21} {r['follows']:>10}  "
+                   f"{percent(r['shift_at_deepest_percent']):>15} {record}{r['follows']:>10}  "
                    f"{'not detectable' if depth is None else f'{depth:.3g} mm'}{where}")
+    out.append("inst. shift: at the deepest crack with planet 1 on the cracked tooth"
+               + ("; record shift: the time-averaged shift a record sees there; sigma: "
+                  "standard deviation of one identified frequency; detectable: on this mode "
+                  "alone at the family-corrected false-alarm rate" if physical else "")
+               + "; follows: relative sensitivity above 0.01")
+    if physical and result.detection is not None:
+        pod_result = result.detection.pod
+        parts = [f"{T:g} s: " + ("none" if math.isnan(d) else f"from {1e3 * d:.3g} mm")
+                 for T in sorted(pod_result.family_pod)
+                 for d in [pod_result.family_detectable_depth(T)]]
+        out.append(f"watched modes {', '.join(str(int(i) + 1) for i in pod_result.watched)} "
+                   f"together (family-wise false-alarm rate {pod_result.false_alarm_rate:g}), "
+                   f"crack detectable (POD >= {pod:g}) with records of " + "; ".join(parts))
     out.append(f"\nreport: {folder / 'report.md'} (in a browser: {folder / 'report.html'})")
     return out
 

@@ -42,7 +42,8 @@ ACCURACY = {"default": 1.0, "fast": 2.0}
 MAX_DEPTHS = 64
 #: every value of a case's result that must be a finite number > 0
 POSITIVE_KEYS = ("c_ru_N_m", "c_r_N_m", "c_ru_min_N_m", "c_ru_max_N_m", "c_rp_engaged_ratio",
-                 "c_rp_engaged_min_ratio")
+                 "c_rp_engaged_min_ratio", "c_rp_engaged_intact_N_m",
+                 "c_rp_engaged_intact_min_N_m")
 #: keys a solid case must hold although ``RingEstimate`` has defaults for them
 SOLID_REQUIRED = ("min_quality", "poor_cells")
 #: the same for a solid case (its c_rp comes from the plane cases)

@@ -122,6 +122,16 @@ class Scene:
         the detection and signal modules read)."""
         return self.study if isinstance(self.study, CrackSweep) else None
 
+    @property
+    def c_rp_given(self) -> bool:
+        """Whether the lumped c_rp is a given value: a ``[reducer]`` preset's table, a
+        design's ``lumped.c_rp`` or a ``[reducer.parameters]`` override.  Otherwise (a
+        design-derived c_rp, ISO 6336-1 by default) a crack study uses the FE intact c_rp."""
+        if "design" not in self.source or self.design is None:
+            return True
+        overrides = self.source.get("reducer", {}).get("parameters", {})
+        return "c_rp" in self.design.lumped_fields or "c_rp" in overrides
+
 
 def check_keys(table: dict, where: str, allowed) -> None:
     """Refuse keys of a scene table (``where``: its name, "" the top level) not in
