@@ -15,7 +15,7 @@ from dataclasses import replace
 from .extract import extract_plane
 from .fe_mesh import FEMesh
 from .gear import GearGeometryError
-from .session import gmsh_model
+from .session import gmsh_model, grade_towards
 
 
 def centre_crack_plate(half_width: float, half_height: float, half_length: float,
@@ -45,17 +45,7 @@ def centre_crack_plate(half_width: float, half_height: float, half_length: float
         crack = geo.addLine(tips[1], tips[0])
         geo.synchronize()
         model = gmsh.model
-        field = model.mesh.field
-        distance = field.add("Distance")
-        field.setNumbers(distance, "PointsList", tips)
-        threshold = field.add("Threshold")
-        for name, value in (("InField", distance), ("SizeMin", tip_size), ("SizeMax", size),
-                            ("DistMin", tip_size), ("DistMax", (size - tip_size) / 0.3)):
-            field.setNumber(threshold, name, value)
-        field.setAsBackgroundMesh(threshold)
-        for name, value in (("Mesh.MeshSizeExtendFromBoundary", 0), ("Mesh.MeshSizeFromPoints", 0),
-                            ("Mesh.MeshSizeFromCurvature", 0), ("Mesh.Algorithm", 6)):
-            gmsh.option.setNumber(name, value)
+        grade_towards(gmsh, tips, tip_size, size)
         model.mesh.embed(1, [crack], 2, surface)
         model.mesh.generate(2)
         if order == 2:

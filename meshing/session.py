@@ -76,3 +76,20 @@ def split_crack(gmsh, dim: int, faces: list[int], open_boundary: list[int]) -> l
     gmsh.plugin.setNumber("Crack", "OpenBoundaryPhysicalGroup", open_group)
     gmsh.plugin.run("Crack")
     return sorted({tag for _, tag in model.getEntities(dim)} - before)
+
+
+def grade_towards(gmsh, points: list[int], tip_size: float, size: float) -> None:
+    """Background mesh size: ``tip_size`` [m] at the gmsh points ``points`` (crack tips),
+    growing linearly to ``size`` [m] over ``(size - tip_size) / 0.3``; the size comes from
+    this field alone (triangles by Frontal-Delaunay, gmsh algorithm 6)."""
+    field = gmsh.model.mesh.field
+    distance = field.add("Distance")
+    field.setNumbers(distance, "PointsList", points)
+    threshold = field.add("Threshold")
+    for name, value in (("InField", distance), ("SizeMin", tip_size), ("SizeMax", size),
+                        ("DistMin", tip_size), ("DistMax", (size - tip_size) / 0.3)):
+        field.setNumber(threshold, name, value)
+    field.setAsBackgroundMesh(threshold)
+    for name, value in (("Mesh.MeshSizeExtendFromBoundary", 0), ("Mesh.MeshSizeFromPoints", 0),
+                        ("Mesh.MeshSizeFromCurvature", 0), ("Mesh.Algorithm", 6)):
+        gmsh.option.setNumber(name, value)

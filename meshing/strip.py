@@ -13,7 +13,7 @@ from dataclasses import replace
 from .extract import extract_plane
 from .fe_mesh import FEMesh
 from .gear import GearGeometryError
-from .session import gmsh_model, split_crack
+from .session import gmsh_model, grade_towards, split_crack
 
 
 def edge_crack_strip(width: float, half_length: float, depth: float, size: float,
@@ -42,17 +42,7 @@ def edge_crack_strip(width: float, half_length: float, depth: float, size: float
             crack = geo.addLine(corners[1], tip)
         geo.synchronize()
         model = gmsh.model
-        field = model.mesh.field
-        distance = field.add("Distance")
-        field.setNumbers(distance, "PointsList", [tip if tip else corners[1]])
-        threshold = field.add("Threshold")
-        for name, value in (("InField", distance), ("SizeMin", tip_size), ("SizeMax", size),
-                            ("DistMin", tip_size), ("DistMax", (size - tip_size) / 0.3)):
-            field.setNumber(threshold, name, value)
-        field.setAsBackgroundMesh(threshold)
-        for name, value in (("Mesh.MeshSizeExtendFromBoundary", 0), ("Mesh.MeshSizeFromPoints", 0),
-                            ("Mesh.MeshSizeFromCurvature", 0), ("Mesh.Algorithm", 6)):
-            gmsh.option.setNumber(name, value)
+        grade_towards(gmsh, [tip if tip else corners[1]], tip_size, size)
         if crack is not None:
             model.mesh.embed(1, [crack], 2, surface)
             model.mesh.embed(0, [tip], 2, surface)
