@@ -174,3 +174,19 @@ def test_diagnose_from_two_records_end_to_end(tmp_path, monkeypatch, capsys):
     assert (np.abs(shift) < 4 * np.sqrt(2) * sigma).all(), \
         "two intact records differ by their identification scatter only (4 sigma)"
     assert data["verdict"] != "crack indicated"
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".wav", ".uff"])
+def test_record_that_is_a_pipe_or_a_device_is_refused_at_once(tmp_path, suffix):
+    """Issue 26 item 1 for the record readers: a FIFO would block and /dev/zero never end;
+    both are refused in one line naming the flag and the file."""
+    import os
+
+    fifo = tmp_path / f"pipe{suffix}"
+    os.mkfifo(fifo)
+    with pytest.raises(RecordError, match=r"--record .*pipe.* not a regular file"):
+        read_record(fifo)
+    device = tmp_path / f"zero{suffix}"
+    device.symlink_to("/dev/zero")
+    with pytest.raises(RecordError, match=r"--baseline-record .*zero.* not a regular file"):
+        read_record(device, "--baseline-record")

@@ -14,14 +14,19 @@ from __future__ import annotations
 import csv
 import io
 import math
+import stat
 from pathlib import Path
 
 import numpy as np
+
+from hubvib.foundation.files import read_bytes, read_text
 
 from .records import Record
 
 #: fewest samples of a usable record
 MIN_SAMPLES = 64
+#: largest record file read [bytes]: 600 s at 51.2 kHz is about 0.6 GB as CSV text
+MAX_RECORD_BYTES = 1 << 30
 CSV_HEADER = ["time_s", "acceleration_m_s2"]
 
 
@@ -39,9 +44,7 @@ def read_record(path: Path | str, flag: str = "--record") -> Record:
     if suffix not in readers:
         raise RecordError(f"{where}: unknown record format {suffix or '(none)'!r}; allowed: "
                           ".csv (time_s,acceleration_m_s2), .wav, .uff / .unv (dataset 58)")
-    if not path.is_file():
-        raise RecordError(f"{where}: cannot read it (no such file)")
-    record = readers[suffix](path, where)
+    record = readers[suffix](path, flag)
     if record.values.size < MIN_SAMPLES or not np.isfinite(record.values).all():
         raise RecordError(f"{where}: {record.values.size} samples, finite: "
                           f"{bool(np.isfinite(record.values).all())}; a record needs at "
@@ -49,11 +52,9 @@ def read_record(path: Path | str, flag: str = "--record") -> Record:
     return record
 
 
-def _csv(path: Path, where: str) -> Record:
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise RecordError(f"{where}: cannot read it ({exc})") from None
+def _csv(path: Path, flag: str) -> Record:
+    where = f"{flag} {str(path)!r}"
+    text = read_text(path, flag, RecordError, kind="CSV record", max_bytes=MAX_RECORD_BYTES)
     rows = [(n, r) for n, r in enumerate(csv.reader(io.StringIO(text)), start=1)
             if any(c.strip() for c in r)]
     if not rows or [c.strip() for c in rows[0][1]] != CSV_HEADER:
@@ -80,11 +81,13 @@ def _csv(path: Path, where: str) -> Record:
     return Record(values[:, 1].copy(), 1.0 / dt)
 
 
-def _wav(path: Path, where: str) -> Record:
+def _wav(path: Path, flag: str) -> Record:
     from scipy.io import wavfile
 
+    where = f"{flag} {str(path)!r}"
+    raw = read_bytes(path, flag, RecordError, kind="WAV record", max_bytes=MAX_RECORD_BYTES)
     try:
-        rate, data = wavfile.read(path)
+        rate, data = wavfile.read(io.BytesIO(raw))
     except (OSError, ValueError) as exc:
         raise RecordError(f"{where}: not a readable WAV file ({exc})") from None
     data = np.asarray(data)
@@ -93,9 +96,11 @@ def _wav(path: Path, where: str) -> Record:
     return Record(data.astype(float), float(rate))
 
 
-def _uff(path: Path, where: str) -> Record:
+def _uff(path: Path, flag: str) -> Record:
     import pyuff
 
+    where = f"{flag} {str(path)!r}"
+    _check_regular(path, where)  # pyuff opens the file by name
     try:
         sets = pyuff.UFF(str(path)).read_sets()
     except Exception as exc:  # pyuff raises bare Exceptions on malformed files
@@ -110,3 +115,18 @@ def _uff(path: Path, where: str) -> Record:
                                   "be a positive time step [s]")
             return Record(np.real(np.asarray(data["data"])).astype(float), 1.0 / step)
     raise RecordError(f"{where}: no dataset 58 with a time response (function type 1)")
+
+
+def _check_regular(path: Path, where: str) -> None:
+    """Refuse what :func:`hubvib.foundation.files.read_bytes` refuses (missing, not a
+    regular file, too large) for a reader that opens the file itself."""
+    try:
+        info = path.stat()
+    except OSError as exc:
+        raise RecordError(f"cannot read {where}: {exc.strerror}") from None
+    if not stat.S_ISREG(info.st_mode):
+        raise RecordError(f"{where} is not a regular file (a directory, device, pipe or "
+                          "socket); give a record file")
+    if info.st_size > MAX_RECORD_BYTES:
+        raise RecordError(f"{where} is larger than {MAX_RECORD_BYTES} bytes, the most a "
+                          "record file may hold here")
