@@ -212,7 +212,9 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
                      "c_r_mount_N_m": result.model.c_r_mount},
         "detection": None if study is None else {
             "options": study.options.to_dict(),
-            "threshold_hz": [float(t) for t in study.pod.threshold_hz],
+            # one number as before: the highest alarm level over the watched modes [Hz]
+            "threshold_hz": float(study.pod.threshold_hz[study.pod.watched].max()),
+            "threshold_hz_per_mode": [float(t) for t in study.pod.threshold_hz],
             "sigma_hz": [float(t) for t in study.pod.sigma_hz],
             "per_mode_false_alarm_rate": study.pod.per_mode_rate,
             "family_pod": {f"{T:g}": [float(p) for p in v]
