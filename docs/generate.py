@@ -44,7 +44,12 @@ DATA_SOURCES = {
     "stiffness_10mm.json": "hubvib stiffness --crack-depth 10e-3 --json "
                            "> docs/data/stiffness_10mm.json",
     "raba118_crack/": "hubvib run raba118_crack --out docs/data/raba118_crack "
-                      "(then keep report.md, results.json, detectability_map.csv and pod.csv)",
+                      "(then keep report.md, results.json, detectability_map.csv, pod.csv "
+                      "and pod_family.csv)",
+    "diagnosis/": "python -m hubvib.identification.montecarlo --records 200 "
+                  "--out docs/data/diagnosis/identification_scatter.md; "
+                  "python -m hubvib.detection.calibration "
+                  "--out docs/data/diagnosis/diagnosis_check.md",
 }
 
 
@@ -470,6 +475,41 @@ def harmonics_ball49() -> str:
     return snippet + console(["hubvib", "harmonics", "--periods", "ball49.csv",
                               "--pulses-per-rev", "2048", "--z1", "1", "--z2", "6",
                               "--stages", "2", "--top", "6"], prepare=prepare)
+
+
+# ---------------------------------------------------------------- diagnosis (issue 22)
+
+def diagnosis_identification_scatter() -> str:
+    """Frequencies identified from simulated records: Monte Carlo against the bound of the
+    shipped method and Au's law."""
+    text = (DATA / "diagnosis" / "identification_scatter.md").read_text().strip()
+    return text + provenance("diagnosis/")
+
+
+def diagnosis_check() -> str:
+    """Verdict rates, interval coverage and the impossible patterns of ``hubvib diagnose``
+    on errors drawn from a heavier-tailed distribution than the diagnosis assumes."""
+    text = (DATA / "diagnosis" / "diagnosis_check.md").read_text().strip()
+    return text + provenance("diagnosis/")
+
+
+def diagnosis_family_pod() -> str:
+    """Family POD of the watched modes per depth and record length, default scene, with
+    and without drift between the records (``pod_family.csv`` of ``hubvib run``)."""
+    import csv
+
+    with open(DATA / "raba118_crack" / "pod_family.csv", newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    records = sorted({float(r["record_s"]) for r in rows})
+    depths = sorted({float(r["depth_mm"]) for r in rows})
+    cell = {(float(r["depth_mm"]), float(r["record_s"])): r for r in rows}
+    header = ["depth [mm]"] + [f"{T:g} s: no drift / drift / compensated" for T in records]
+    body = [[f"{d:g}"] + [" / ".join(f"{float(cell[d, T][k]):.3f}" for k in
+                                    ("pod", "pod_with_drift", "pod_drift_compensated"))
+                          for T in records] for d in depths]
+    run = json.loads((DATA / "raba118_crack" / "results.json").read_text())
+    return (markdown_table(header, body, "r" * len(header))
+            + provenance("raba118_crack/", f"{run['date']}, hubvib {run['hubvib_version']}"))
 
 
 # ---------------------------------------------------------------- entry points

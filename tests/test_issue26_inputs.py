@@ -64,7 +64,7 @@ def fifo(tmp_path):
 
 INPUTS = {  # the flag and the words that name it in the error line
     "design": (["spectrum", "--design"], "design file"),
-    "measured": (["diagnose", "--scene", "raba118", "--measured"], "--measured"),
+    "measured": (["diagnose", "--scene", "raba118_crack", "--measured"], "--measured"),
     "periods": (["harmonics", "--pulses-per-rev", "4", "--z2", "10", "--periods"], "--periods"),
     "params": (["spectrum", "--params"], "parameters file"),
 }
@@ -146,7 +146,7 @@ def test_mode_number_too_large_for_numpy_is_one_line(tmp_path, capsys):
     """Item 2: mode = 99999999999999999999999 in --measured ended in OverflowError."""
     path = tmp_path / "m.csv"
     path.write_text("frequency_hz,mode\n50,99999999999999999999999\n", encoding="utf-8")
-    _fails(capsys, ["diagnose", "--scene", "raba118", "--measured", str(path)],
+    _fails(capsys, ["diagnose", "--scene", "raba118_crack", "--measured", str(path)],
            "line 2: mode = '99999999999999999999999'", "1..10000")
 
 
