@@ -19,3 +19,25 @@ def test_frequency_figure_has_at_most_eight_named_curves_per_panel():
         assert len(styles) == len(curves), "distinct styles within a panel"
         modes += curves
     assert len(modes) == 18 and len(fig.axes) == 3
+
+
+def test_map_figure_where_no_mounting_detects_anything():
+    """The 3D crack-growth study's short cracks: every depth of the map is NaN (nothing
+    detectable at any mounting); the log-scaled mounting axis still gets its limits (it
+    raised 'Data cannot be log-scaled' and ended `hubvib run raba118_crack_3d`)."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from hubvib.detection.plots import map_figure
+
+    mounts = np.geomspace(1e6, 1e12, 5)
+    nothing = np.full((5, 18), np.nan)
+    dmap = SimpleNamespace(
+        mounts=mounts, depth={"c_ru_mount": nothing, "c_r_mount": nothing},
+        carried_by={"c_ru_mount": np.full((5, 18), "c_rp"), "c_r_mount": np.full((5, 18), "c_rp")},
+        fixed={"c_ru_mount": np.inf, "c_r_mount": np.inf},
+        smallest=lambda swept: np.full(5, np.nan))
+    fig = map_figure("none", dmap, deepest=0.009, shallowest=0.003)
+    fig.canvas.draw()
+    assert fig.axes[0].get_xlim() == (1e6, 1e12)

@@ -151,6 +151,9 @@ def map_figure(name: str, dmap, deepest: float, shallowest: float | None = None)
             best = np.where(np.isinf(best), np.nan, best)
             ax.plot(dmap.mounts, 1e3 * best, **style(n), label=f"signal in {carrier}")
         ax.set_xscale("log")
+        # explicit: where no mounting detects anything every curve is NaN, and a log axis
+        # cannot take its limits from no data
+        ax.set_xlim(float(np.min(dmap.mounts)), float(np.max(dmap.mounts)))
         ax.set_ylim(0, 1.05e3 * deepest)
         ax.set_xlabel(f"{swept} [N/m]")
         ax.set_ylabel("smallest detectable crack depth [mm]")

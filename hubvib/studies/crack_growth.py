@@ -83,6 +83,10 @@ def solid_rows(sweep, solid: list[dict], plane: list[dict]) -> list[dict]:
     column = {key: [row[key] for row in plane] for key in
               ("c_rp_engaged_ratio", "c_rp_engaged_min_ratio", "c_rp_engaged_ratio_error")}
     intact = solid[0]
+    # the intact tooth pair's engaged c_rp [N/m] does not depend on the crack: the plane
+    # study's intact case gives it to every solid case
+    tooth = {key: plane[0][key] for key in
+             ("c_rp_engaged_intact_N_m", "c_rp_engaged_intact_min_N_m")}
     rows = []
     for row in solid:
         depth, half = row["depth_m"], row["half_length_m"]
@@ -99,7 +103,7 @@ def solid_rows(sweep, solid: list[dict], plane: list[dict]) -> list[dict]:
             changes[f"{name}_change_error"] = abs(fine - coarse) / intact[f"{name}_N_m"]
             changes[f"{name}_change_poor_cells"] = (halved - fine) / intact[f"{name}_N_m"]
         rows.append(dict(row, c_rp_engaged_ratio=ratio, c_rp_engaged_min_ratio=minimum,
-                         c_rp_engaged_ratio_error=error, **changes))
+                         c_rp_engaged_ratio_error=error, **tooth, **changes))
     return rows
 
 
