@@ -52,6 +52,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from hubvib.foundation.errors import SceneError
+from hubvib.foundation.schema import Field, Schema
 from hubvib.identification.law import fisher_sigma_hz
 
 
@@ -147,54 +148,72 @@ class DetectionOptions:
         return {f.name: getattr(self, f.name) for f in fields(self)}
 
 
-#: TOML key -> (attribute, kind, low, high, open low?, open high?, scale to SI)
-_KEYS = {
-    "record_length_s": ("record_length", float, 0.0, math.inf, True, True, 1.0),
-    "damping_ratio": ("damping_ratio", float, 0.0, 0.5, True, True, 1.0),
-    "snr": ("snr", float, 0.0, math.inf, True, True, 1.0),
-    "watched_modes": ("watched_modes", int, 1, 1000, False, False, 1),
-    "false_alarm_rate": ("false_alarm_rate", float, 0.0, 0.5, True, True, 1.0),
-    "fit_false_alarm_rate": ("fit_false_alarm_rate", float, 0.0, 0.5, True, True, 1.0),
-    "temperature_std_K": ("temperature_std", float, 0.0, 100.0, False, False, 1.0),
-    "modulus_per_K": ("modulus_per_K", float, -0.01, 0.0, False, False, 1.0),
-    "expansion_per_K": ("expansion_per_K", float, 0.0, 0.001, False, False, 1.0),
-    "mesh_load_std_percent": ("mesh_load_std", float, 0.0, 100.0, False, False, 0.01),
-    "detection_probability": ("detection_probability", float, 0.0, 1.0, True, True, 1.0),
-    "scatter_masses_percent": ("scatter_masses", float, 0.0, 100.0, False, False, 0.01),
-    "scatter_stiffnesses_percent": ("scatter_stiffnesses", float, 0.0, 100.0, False, False,
-                                    0.01),
-    "scatter_mounting_percent": ("scatter_mounting", float, 0.0, 100.0, False, False, 0.01),
-    "samples": ("samples", int, 100, 1_000_000, False, False, 1),
-    "map_samples": ("map_samples", int, 20, 100_000, False, False, 1),
-    "seed": ("seed", int, 0, 2**63 - 1, False, False, 1),
-    "mount_min_N_m": ("mount_min", float, 0.0, math.inf, True, True, 1.0),
-    "mount_max_N_m": ("mount_max", float, 0.0, math.inf, True, True, 1.0),
-    "mount_points": ("mount_points", int, 2, 200, False, False, 1),
-    "carrier_speed_rpm": ("carrier_speed", float, 0.0, 1e5, True, False, 2 * math.pi / 60),
-    "confidence": ("confidence", float, 0.0, 1.0, True, True, 1.0),
-}
+_PERCENT = 0.01
+_RPM = 2 * math.pi / 60
+
+
+def _number(key, low, high, open_low, open_high, default, unit, doc, attr=None, scale=1.0):
+    return Field(key, "number", low, high, open_low, open_high, default=default, unit=unit,
+                 doc=doc, attr=attr, scale=scale)
+
+
+def _integer(key, low, high, default, doc):
+    return Field(key, "integer", low, high, default=default, unit="-", doc=doc)
+
+
+#: the ``[detection]`` keys, each with its attribute of ``DetectionOptions`` and the factor
+#: to SI; a new key = one entry here and its attribute
+SCHEMA = Schema("detection", (
+    _number("record_length_s", 0.0, math.inf, True, True, 10.0, "s",
+            "one record; frequency resolution 1/T", "record_length"),
+    _number("damping_ratio", 0.0, 0.5, True, True, 0.02, "-",
+            "ASSUMED modal damping of every mode"),
+    _number("snr", 0.0, math.inf, True, True, 100.0, "-",
+            "modal signal-to-noise ratio of the records"),
+    _integer("watched_modes", 1, 1000, 4, "modes watched together (the alarm family)"),
+    _number("false_alarm_rate", 0.0, 0.5, True, True, 0.01, "-",
+            "family-wise over the watched modes; in diagnose, the rate of crack verdicts "
+            "on an intact reducer"),
+    _number("fit_false_alarm_rate", 0.0, 0.5, True, True, 0.01, "-",
+            "rate at which diagnose calls a pattern a ring crack does produce "
+            "'not explained by a ring crack'"),
+    _number("temperature_std_K", 0.0, 100.0, False, False, 1.0, "K",
+            "ASSUMED: temperature change between two records", "temperature_std"),
+    _number("modulus_per_K", -0.01, 0.0, False, False, -2.6e-4, "1/K",
+            "steel: relative change of Young's modulus per K"),
+    _number("expansion_per_K", 0.0, 0.001, False, False, 1.2e-5, "1/K",
+            "steel: linear thermal expansion per K"),
+    _number("mesh_load_std_percent", 0.0, 100.0, False, False, 0.0, "%",
+            "std of the change of every mesh stiffness between the records from a load "
+            "change (0: same torque)", "mesh_load_std", _PERCENT),
+    _number("detection_probability", 0.0, 1.0, True, True, 0.9, "-",
+            "POD at which a depth counts as detectable"),
+    _number("scatter_masses_percent", 0.0, 100.0, False, False, 2.0, "%",
+            "relative standard deviation of every mass", "scatter_masses", _PERCENT),
+    _number("scatter_stiffnesses_percent", 0.0, 100.0, False, False, 10.0, "%",
+            "... of mesh, bearing and sun/carrier torsion springs", "scatter_stiffnesses",
+            _PERCENT),
+    _number("scatter_mounting_percent", 0.0, 100.0, False, False, 30.0, "%",
+            "... of the ring mounting (c_ru, c_r mounts)", "scatter_mounting", _PERCENT),
+    _integer("samples", 100, 1_000_000, 2000, "Monte Carlo samples per depth (POD, diagnosis)"),
+    _integer("map_samples", 20, 100_000, 200,
+             "... per mounting stiffness of the detectability map"),
+    _integer("seed", 0, 2**63 - 1, 0, "seed of the random generator"),
+    _number("mount_min_N_m", 0.0, math.inf, True, True, 1e6, "N/m",
+            "mounting stiffness sweep of the map, log-spaced, from", "mount_min"),
+    _number("mount_max_N_m", 0.0, math.inf, True, True, 1e12, "N/m", "... to", "mount_max"),
+    _integer("mount_points", 2, 200, 13, "... in this many points"),
+    _number("carrier_speed_rpm", 0.0, 1e5, True, False, 150.0, "min^-1",
+            "ASSUMED: ~28 km/h on a 0.5 m wheel", "carrier_speed", _RPM),
+    _number("confidence", 0.0, 1.0, True, True, 0.9, "-",
+            "two-sided interval of hubvib diagnose"),
+), integers="interval")
 
 
 def parse_detection_table(table: dict) -> DetectionOptions:
-    """Validate a ``[detection]`` table; raise SceneError naming the key, value and range."""
-    unknown = set(table) - set(_KEYS)
-    if unknown:
-        raise SceneError(f"unknown key(s) {sorted(unknown)} at [detection]; allowed: "
-                         f"{sorted(_KEYS)}")
-    values = {}
-    for key, value in table.items():
-        name, kind, low, high, open_low, open_high, scale = _KEYS[key]
-        number = (isinstance(value, int) if kind is int else isinstance(value, (int, float)))
-        inside = number and not isinstance(value, bool) and math.isfinite(value) and (
-            (low < value if open_low else low <= value)
-            and (value < high if open_high else value <= high))
-        if not inside:
-            what = "an integer" if kind is int else "a number"
-            raise SceneError(f"[detection] {key} = {value!r}; allowed: {what} in "
-                             f"{'(' if open_low else '['}{low:g}, {high:g}"
-                             f"{')' if open_high else ']'}")
-        values[name] = kind(value * scale) if kind is float else value
-    options = DetectionOptions(**values)
+    """Validate a ``[detection]`` table (``SCHEMA``); raise SceneError naming the key, value
+    and range."""
+    options = DetectionOptions(**SCHEMA.parse(table))
     if options.mount_min >= options.mount_max:
         raise SceneError(f"[detection] mount_min_N_m = {options.mount_min:g} must be below "
                          f"mount_max_N_m = {options.mount_max:g}")

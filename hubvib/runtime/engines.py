@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import asyncio
 import logging
-import math
 import os
 import socket
 import threading
@@ -26,7 +25,8 @@ from dataclasses import dataclass
 from urllib.parse import urlsplit
 
 from hubvib.foundation.blas import blas_threads
-from hubvib.foundation.errors import InputError, SceneError
+from hubvib.foundation.errors import InputError
+from hubvib.foundation.schema import Field, Schema
 from hubvib.runtime.process_pool import worker_pool
 
 ENGINES = ("local", "dask")
@@ -51,29 +51,31 @@ class Execution:
     timeout: float = 10.0
 
 
+#: the ``[execution]`` keys; a new key = one entry here
+SCHEMA = Schema("execution", (
+    Field("engine", "choice", choices=ENGINES, default="local",
+          doc="local process pool or Dask distributed"),
+    Field("scheduler", "string", default=None,
+          doc='dask: a running scheduler, e.g. "tcp://host:8786"; absent: a LocalCluster',
+          allowed='with engine = "dask": an address like "tcp://host:8786"',
+          message="{label} = {value}; allowed {allowed}"),
+    Field("workers", "integer", 1, 64, default=None, unit="-",
+          doc="local pool / LocalCluster workers (absent: the study's own)",
+          message="{label} = {value}; allowed integers 1..64"),
+    Field("timeout_s", "number", 1, 600, default=10.0, unit="s", attr="timeout",
+          doc="dask: how long to wait for the scheduler and for a worker to join it",
+          message="{label} = {value}; allowed 1..600 [s]"),
+), unknown="unknown key(s) {keys} in [{table}]; allowed: {allowed}")
+
+
 def parse_execution_table(table: dict) -> Execution:
-    """The scene's ``[execution]`` table, checked."""
-    allowed = {"engine", "scheduler", "workers", "timeout_s"}
-    unknown = sorted(set(table) - allowed)
-    if unknown:
-        raise SceneError(f"unknown key(s) {unknown} in [execution]; allowed: {sorted(allowed)}")
-    engine = table.get("engine", "local")
-    if engine not in ENGINES:
-        raise SceneError(f"[execution] engine = {engine!r}; allowed: {', '.join(ENGINES)}")
+    """The scene's ``[execution]`` table, checked (``SCHEMA``)."""
+    values = SCHEMA.parse(table, defaults=True)
     scheduler = table.get("scheduler")
-    if scheduler is not None and (engine != "dask" or not isinstance(scheduler, str)
+    if scheduler is not None and (values["engine"] != "dask" or not isinstance(scheduler, str)
                                   or not scheduler.startswith(("tcp://", "tls://", "inproc://"))):
-        raise SceneError(f"[execution] scheduler = {scheduler!r}; allowed with engine = \"dask\": "
-                         "an address like \"tcp://host:8786\"")
-    workers = table.get("workers")
-    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
-                                or not 1 <= workers <= 64):
-        raise SceneError(f"[execution] workers = {workers!r}; allowed integers 1..64")
-    timeout = table.get("timeout_s", 10.0)
-    if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or not (
-            math.isfinite(timeout) and 1 <= timeout <= 600):
-        raise SceneError(f"[execution] timeout_s = {timeout!r}; allowed 1..600 [s]")
-    return Execution(engine, scheduler, workers, float(timeout))
+        raise SCHEMA.refuse(SCHEMA.by_key["scheduler"], scheduler)
+    return Execution(**values)
 
 
 def run_cases(function, items: list, on_result, execution: Execution, workers: int) -> None:

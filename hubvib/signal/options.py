@@ -44,6 +44,7 @@ import math
 from dataclasses import asdict, dataclass
 
 from hubvib.foundation.errors import SceneError
+from hubvib.foundation.schema import Field, Schema
 from hubvib.signal.mesh_phase import design_teeth
 
 from .errors import StageErrors
@@ -179,87 +180,78 @@ def kinematics(sun_speed_rpm: float, design) -> tuple[float, float]:
     return carrier, teeth["ring"] * carrier
 
 
-_NUMBERS = {  # key: (low, high, low closed, high closed)
-    "sun_speed_rpm": (0.0, math.inf, False, False),
-    "sun_torque_N_m": (0.0, math.inf, False, False),
+_DEG = "deg"
+#: the ``[signal]`` keys in the order of the module docstring; a new key = one entry here
+#: and its attribute in ``SignalOptions``
+SCHEMA = Schema("signal", (
+    Field("sun_speed_rpm", "number", 0.0, math.inf, True, True, default=1500.0,
+          unit="min^-1", doc="input (sun) speed; the carrier turns at z_s / (z_s + z_r) of it"),
+    Field("sun_torque_N_m", "number", 0.0, math.inf, True, True, default=1000.0, unit="N m",
+          doc="input torque on the sun (sets the mesh load)"),
     # >= 2: the samples run 0 <= t < duration, so one revolution is a sample short of the
     # whole revolution the time-synchronous average needs (1 failed after all the work)
-    "revolutions": (2.0, 1e4, True, True),
-    "sample_rate_hz": (0.0, 1e7, False, True),
-    "sensor_angle_deg": (-math.inf, math.inf, False, False),
-    "damping_ratio": (0.0, 1.0, True, False),
-    "noise_level": (0.0, 10.0, True, True),
-    "rigid_path": (0.0, 1e6, True, True),
-    "transmission_error_m": (0.0, 1e-3, True, True),
-    "time_step_s": (0.0, 1.0, True, True),
-    "ring_runout_m": (0.0, 1e-3, True, True),
-    "ring_runout_phase_deg": (-math.inf, math.inf, False, False),
-    "false_alarm_rate": (0.0, 0.5, False, False),
-    "speed_fluctuation": (0.0, 0.5, True, True),
-    "speed_fluctuation_hz": (0.0, 1e3, False, True),
-}
-#: per-planet lists [m]: (low, high) for each value
-_LISTS = {"planet_position_errors_m": (-1e-3, 1e-3, "[m], one per planet"),
-          "pin_hole_radial_errors_m": (-1e-3, 1e-3, "[m], one per planet"),
-          "sensor_angles_from_crack_deg": (-360.0, 360.0, "[deg]")}
-_INTEGERS = {"mesh_harmonics": (1, 50), "noise_seeds": (1, 100), "steps_per_period": (4, 1000),
-             "indicator_max_order": (0, 100000), "roc_records": (0, 10000),
-             "tacho_pulses_per_revolution": (1, 4096)}
-_CHOICES = {"mesh_stiffness": MESH_STIFFNESS, "integrator": INTEGRATORS, "contact": CONTACT}
+    Field("revolutions", "number", 2.0, 1e4, default=10.0, unit="-",
+          doc="recorded duration in carrier revolutions"),
+    Field("sample_rate_hz", "number", 0.0, 1e7, True, False, default=20000.0, unit="Hz",
+          doc="at least 2 x mesh_harmonics x mesh frequency"),
+    Field("mesh_harmonics", "integer", 1, 50, default=3, unit="-",
+          doc="highest mesh harmonic analysed (indicators, checks)"),
+    Field("sensor_angle_deg", "number", -math.inf, math.inf, True, True, default=0.0,
+          unit=_DEG, doc="accelerometer position on the ring, from planet 1 at t = 0"),
+    Field("damping_ratio", "number", 0.0, 1.0, False, True, default=0.05, unit="-",
+          doc="modal damping of every mode"),
+    Field("noise_level", "number", 0.0, 10.0, default=0.05, unit="-",
+          doc="white noise RMS / RMS of the intact signal"),
+    Field("noise_seeds", "integer", 1, 100, default=5, unit="-",
+          doc="noise realisations per depth"),
+    Field("rigid_path", "number", 0.0, 1e6, default=0.0, unit="-",
+          doc="weight of the ring's rigid-body acceleration path"),
+    Field("mesh_stiffness", "choice", choices=MESH_STIFFNESS, default="ratio",
+          doc="ratio: FE curve shape scaled to the preset's mean c_sp, c_rp; direct: FE values"),
+    Field("transmission_error_m", "number", 0.0, 1e-3, default=0.0, unit="m",
+          doc="amplitude of a first-harmonic static TE per mesh"),
+    Field("integrator", "choice", choices=INTEGRATORS, default="newmark",
+          doc="newmark: average acceleration; central: explicit, for checks"),
+    Field("steps_per_period", "integer", 4, 1000, default=20, unit="-",
+          doc="time steps per period of the highest mode"),
+    Field("time_step_s", "number", 0.0, 1.0, default=0.0, unit="s",
+          doc="0: chosen from steps_per_period and the mesh period"),
+    Field("indicator_max_order", "integer", 0, 100000, default=0, unit="-",
+          doc="highest carrier order the indicators see (0: all)"),
+    Field("planet_position_errors_m", "numbers", -1e-3, 1e-3, default=[],
+          unit="[m], one per planet", doc="carrier pin-hole tangential error of each planet"),
+    Field("pin_hole_radial_errors_m", "numbers", -1e-3, 1e-3, default=[],
+          unit="[m], one per planet", doc="carrier pin-hole radial error of each planet"),
+    Field("ring_runout_m", "number", 0.0, 1e-3, default=0.0, unit="m",
+          doc="eccentricity of the ring teeth about the carrier axis"),
+    Field("ring_runout_phase_deg", "number", -math.inf, math.inf, True, True, default=0.0,
+          unit=_DEG, doc="direction of the run-out, fixed in space"),
+    Field("contact", "choice", choices=CONTACT, default="piecewise",
+          doc="piecewise: a mesh that would pull separates; linear: it may pull"),
+    Field("sensor_angles_from_crack_deg", "numbers", -360.0, 360.0, default=[],
+          unit="[deg]", doc="more sensors, at these angles from the cracked tooth"),
+    Field("roc_records", "integer", 0, 10000, default=100, unit="-",
+          doc="records per depth for ROC / POD (0: none); 3x for training"),
+    Field("speed_fluctuation", "number", 0.0, 0.5, default=0.0, unit="-",
+          doc="relative amplitude of a sinusoidal carrier-speed fluctuation"),
+    Field("speed_fluctuation_hz", "number", 0.0, 1e3, True, False, default=1.0, unit="Hz",
+          doc="its frequency; the record is order-tracked by the tacho"),
+    Field("tacho_pulses_per_revolution", "integer", 1, 4096, default=16, unit="-",
+          doc="pulses of the carrier encoder per revolution"),
+    Field("false_alarm_rate", "number", 0.0, 0.5, True, True, default=0.05, unit="-",
+          doc="family-wise false-alarm rate of the POD thresholds"),
+), number="a finite number")
 
 
 def parse_signal_table(table: dict) -> SignalOptions:
-    """Validate a ``[signal]`` table into :class:`SignalOptions`.
+    """Validate a ``[signal]`` table into :class:`SignalOptions` (``SCHEMA``).
 
     Raises
     ------
     hubvib.foundation.errors.SceneError
         Naming ``[signal] key``, the value and the allowed range.
     """
-    allowed = set(_NUMBERS) | set(_INTEGERS) | set(_CHOICES) | set(_LISTS)
-    unknown = set(table) - allowed
-    if unknown:
-        raise SceneError(f"unknown key(s) {sorted(unknown)} at [signal]; allowed: "
-                         f"{sorted(allowed)}")
-    values = {}
-    for key, (low, high, low_closed, high_closed) in _NUMBERS.items():
-        if key not in table:
-            continue
-        value = table[key]
-        ok = (not isinstance(value, bool) and isinstance(value, (int, float))
-              and math.isfinite(value)
-              and (value > low or (low_closed and value == low))
-              and (value < high or (high_closed and value == high)))
-        if not ok:
-            left, right = "[" if low_closed else "(", "]" if high_closed else ")"
-            raise SceneError(f"[signal] {key} = {value!r}; allowed: a finite number in "
-                             f"{left}{low:g}, {high:g}{right}")
-        values[key] = float(value)
-    for key, (low, high) in _INTEGERS.items():
-        if key not in table:
-            continue
-        value = table[key]
-        if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
-            raise SceneError(f"[signal] {key} = {value!r}; allowed: an integer in {low}..{high}")
-        values[key] = value
-    for key, choices in _CHOICES.items():
-        if key in table and table[key] not in choices:
-            raise SceneError(f"[signal] {key} = {table[key]!r}; allowed: {', '.join(choices)}")
-        if key in table:
-            values[key] = table[key]
-    for key, (low, high, unit) in _LISTS.items():
-        if key not in table:
-            continue
-        value = table[key]
-        ok = isinstance(value, list) and 1 <= len(value) <= 12 and all(
-            not isinstance(v, bool) and isinstance(v, (int, float)) and math.isfinite(v)
-            and low <= v <= high for v in value)
-        if not ok:
-            raise SceneError(f"[signal] {key} = {value!r}; allowed: a list of 1 to 12 "
-                             f"numbers in [{low:g}, {high:g}] {unit}")
-        values[key] = tuple(float(v) for v in value)
-    options = SignalOptions(**values)
-    return options
+    return SignalOptions(**SCHEMA.parse(table))
 
 
 def check_sample_rate(options: SignalOptions, design) -> None:
