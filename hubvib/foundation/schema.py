@@ -18,13 +18,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Callable
 
 from .errors import SceneError
 
 #: ``Field.default`` of a key that must be given
 REQUIRED = object()
-KINDS = ("number", "integer", "choice", "bool", "string", "numbers")
+KINDS = ("number", "integer", "choice", "bool", "string", "numbers", "table")
 
 
 @dataclass(frozen=True)
@@ -37,7 +37,8 @@ class Field:
     ``sizes[1]`` numbers.  ``default`` is the documented value at the edge (``REQUIRED``:
     the key must be given), ``unit`` its edge unit, ``scale`` the factor from that unit to
     SI, ``attr`` the attribute it fills (default ``key``).  ``allowed`` replaces the
-    generated "allowed" text and ``message`` the table's message template.
+    generated "allowed" text, ``message`` the table's message template and ``check`` (a
+    predicate) the kind's test of the value.
     """
 
     key: str
@@ -55,6 +56,7 @@ class Field:
     sizes: tuple[int, int] = (1, 12)
     allowed: str | None = None
     message: str | None = None
+    check: Callable[[Any], bool] | None = None
 
     def __post_init__(self):
         if self.kind not in KINDS:
@@ -75,6 +77,8 @@ class Field:
 
     def accepts(self, v) -> bool:
         """Whether ``v`` is an allowed value of this key."""
+        if self.check is not None:
+            return self.check(v)
         if self.kind == "number":
             return self._number(v)
         if self.kind == "integer":
@@ -85,6 +89,8 @@ class Field:
             return isinstance(v, bool)
         if self.kind == "string":
             return isinstance(v, str)
+        if self.kind == "table":
+            return isinstance(v, dict)
         return (isinstance(v, list) and self.sizes[0] <= len(v) <= self.sizes[1]
                 and all(self._number(x) for x in v))
 
@@ -145,6 +151,8 @@ class Schema:
             return "true or false"
         if f.kind == "string":
             return "a string"
+        if f.kind == "table":
+            return "a table"
         return (f"a list of {f.sizes[0]} to {f.sizes[1]} numbers in [{f.low:g}, {f.high:g}]"
                 f"{' ' + f.unit if f.unit else ''}")
 

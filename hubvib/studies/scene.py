@@ -68,12 +68,13 @@ from hubvib.build.stages import lumped_parameters
 from hubvib.design import DesignError, PRESETS, preset_design
 from hubvib.detection.options import parse_detection_table
 from hubvib.foundation.errors import SceneError
+from hubvib.foundation.schema import Field, Schema
 from hubvib.lumped import METHODS, ParameterError, field_names
 from hubvib.runtime.engines import parse_execution_table
 from hubvib.runtime.params_input import apply_overrides, load_parameters, read_text_file
 from hubvib.signal.options import parse_signal_table
 from hubvib.studies.kinds import STUDIES
-from hubvib.studies.study import Scene, check_keys, select_study, string_key, study_tables
+from hubvib.studies.study import Scene, check_keys, select_study, study_tables
 
 __all__ = ["DEFAULT_SCENE", "Scene", "SceneError", "STUDIES", "default_scene_text",
            "load_scene", "parse_scene", "shipped_scene_text", "shipped_scenes"]
@@ -90,13 +91,36 @@ EXTENSION_TABLES = {
     "execution": parse_execution_table,
 }
 
-#: the keys of the common tables (each study kind checks its own tables' keys)
-ALLOWED = {
-    "": {"reducer", "design", "study", "output", *EXTENSION_TABLES},
-    "reducer": {"preset", "parameters"},
-    "study": {"parameter", "values", "detection_threshold_percent", "method"},
-    "output": {"folder", "plots", "renders", "gif", "vtm"},
-}
+#: the common tables (each study kind checks its own tables); a new key = one entry
+_BUT = "{label} = {value}, but it must be {allowed}"
+REDUCER = Schema("reducer", (
+    Field("preset", "string", default="raba118",
+          doc="a shipped design: " + ", ".join(PRESETS)),
+    Field("parameters", "table", default=None,
+          doc="lumped parameter overrides, keys as for --set"),
+), message=_BUT)
+STUDY = Schema("study", (
+    Field("parameter", "string", default="c_ru",
+          doc="lumped sweep: a stiffness or mass field of PlanetaryParameters"),
+    Field("values", "numbers", default=None, allowed="a non-empty list of numbers",
+          check=lambda v: isinstance(v, list) and bool(v) and all(
+              isinstance(x, (int, float)) and not isinstance(x, bool) for x in v),
+          doc="lumped sweep: modified values (SI); the first is not the baseline"),
+    Field("detection_threshold_percent", "number", 0.0, math.inf, True, True, default=1.0,
+          unit="%", doc="frequency shift that counts as detectable", allowed="a number > 0"),
+    Field("method", "choice", choices=tuple(METHODS), default="jacobi",
+          doc="eigensolver, see lumped.METHODS", message="{label} = {value}; allowed: {allowed}"),
+), message=_BUT)
+OUTPUT = Schema("output", (
+    Field("plots", "bool", default=True, doc="PNG figures"),
+    Field("renders", "bool", default=False,
+          doc="pyvista PNG of each lumped mode shape and of the FE ring (crack studies)"),
+    Field("gif", "bool", default=False, doc="... and an animated GIF per lumped mode"),
+    Field("vtm", "bool", default=False, doc="... and VTK files for ParaView"),
+    Field("folder", "string", default="hubvib-out", doc="relative to the current directory"),
+), message=_BUT)
+#: the tables every scene may hold besides its study kind's
+TOP_LEVEL = {"reducer", "design", "study", "output", *EXTENSION_TABLES}
 
 
 #: the shipped scene ``hubvib run`` runs without an argument
@@ -155,23 +179,21 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"scene {name!r} is not valid TOML: {exc}") from None
-    check_keys(data, "", ALLOWED[""] | study_tables())
+    check_keys(data, "", TOP_LEVEL | study_tables())
     reducer = _table(data, "reducer")
     study = _table(data, "study")
     output = _table(data, "output")
-    for where, table in (("reducer", reducer), ("study", study), ("output", output)):
-        check_keys(table, where, ALLOWED[where])
+    for schema, table in ((REDUCER, reducer), (STUDY, study), (OUTPUT, output)):
+        schema.check_keys(table)
     kind = select_study(data)
 
-    overrides = reducer.get("parameters", {})
-    if not isinstance(overrides, dict):
-        raise SceneError(f"[reducer] parameters = {overrides!r}, but it must be a table")
+    overrides = REDUCER.value(reducer, "parameters") or {}
     design = _design(data, reducer, base)
     try:
         if "design" in data:
             params = apply_overrides(lumped_parameters(design), overrides)
         else:
-            params = load_parameters(string_key(reducer, "reducer", "preset", "raba118"),
+            params = load_parameters(REDUCER.value(reducer, "preset"),
                                      overrides=overrides)
     except (ParameterError, ValueError) as exc:
         raise SceneError(f"[reducer]: {exc}") from None
@@ -179,40 +201,27 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
         check_consistent(design, params, "[reducer.parameters]", SceneError)
 
     options = kind.parse(data, design, params)
-    threshold = study.get("detection_threshold_percent", 1.0)
-    if isinstance(threshold, bool) or not isinstance(threshold, (int, float)) or not (
-        math.isfinite(threshold) and threshold > 0
-    ):
-        raise SceneError(
-            f"[study] detection_threshold_percent = {threshold!r}, but it must be a number > 0"
-        )
-    method = string_key(study, "study", "method", "jacobi")
-    if method not in METHODS:
-        raise SceneError(f"[study] method = {method!r}; allowed: {', '.join(METHODS)}")
-    plots = output.get("plots", True)
-    if not isinstance(plots, bool):
-        raise SceneError(f"[output] plots = {plots!r}, but it must be true or false")
-    flags = {}
-    for key in ("renders", "gif", "vtm"):
-        flags[key] = output.get(key, False)
-        if not isinstance(flags[key], bool):
-            raise SceneError(f"[output] {key} = {flags[key]!r}, but it must be true or false")
+    threshold = STUDY.value(study, "detection_threshold_percent")
+    method = STUDY.value(study, "method")
+    out = OUTPUT.parse(output, defaults=True)
+    plots = out.pop("plots")
+    folder = Path(out.pop("folder"))
+    flags = out
     if (flags["gif"] or flags["vtm"]) and not flags["renders"]:
         raise SceneError("[output] gif and vtm need renders = true")
     if flags["renders"] and not kind.renders:
         raise SceneError("[output] renders = true needs a [crack] study (it renders its modes)")
-    folder = Path(string_key(output, "output", "folder", "hubvib-out"))
     tables = {key: _extension(key, data[key]) for key in EXTENSION_TABLES if key in data}
     for table in tables.values():  # checks that need the design (e.g. its mesh frequency)
         if hasattr(table, "check_design"):
             table.check_design(design)
-    return Scene(name, params, float(threshold), method, folder, plots, kind.kind, options,
+    return Scene(name, params, threshold, method, folder, plots, kind.kind, options,
                  data, **flags, design=design, tables=tables)
 
 
 def _design(data, reducer, base: Path | None):
     """The scene's design: its [design] table, else the [reducer] preset's design."""
-    preset = string_key(reducer, "reducer", "preset", "raba118")
+    preset = REDUCER.value(reducer, "preset")
     try:
         if "design" not in data:
             return preset_design(preset) if preset in PRESETS else None
