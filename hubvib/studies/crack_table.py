@@ -7,14 +7,61 @@ from dataclasses import replace
 
 from hubvib.build.stages import ring_gear
 from hubvib.foundation.errors import SceneError
+from hubvib.foundation.schema import Field, Schema
 from hubvib.meshing.crack import MIN_LIGAMENT, STARTS
 from hubvib.meshing.gear import GearGeometryError
 from hubvib.studies.crack_sweep import ACCURACY, APPLY, CrackSweep, MAX_DEPTHS, MODELS, crack_of
-from hubvib.studies.study import check_keys, string_key
 
-#: the keys of [crack]
-KEYS = {"depths", "through_rim", "tooth", "start", "angle_deg", "apply", "accuracy", "workers",
-        "c_ru_mount", "c_r_mount", "model", "half_lengths"}
+
+def _finite_list(v) -> bool:
+    return isinstance(v, list) and bool(v) and all(
+        isinstance(d, (int, float)) and not isinstance(d, bool) and math.isfinite(d) for d in v)
+
+
+def _half_lengths_ok(v) -> bool:
+    return (isinstance(v, list) and 1 <= len(v) <= MAX_HALF_LENGTHS and all(
+        isinstance(c, (int, float)) and not isinstance(c, bool) and math.isfinite(c) and c > 0
+        for c in v) and all(b > a for a, b in zip(v[:-1], v[1:])))
+
+
+#: at most this many half-lengths in a solid sweep
+MAX_HALF_LENGTHS = 8
+_INTEGERS = "{label} = {value}; allowed {allowed}"
+_MOUNT = "a finite stiffness > 0 [N/m]"
+#: the ``[crack]`` keys, each filling the ``CrackSweep`` attribute of its name (``attr``); a
+#: new key = one entry here (and its attribute)
+SCHEMA = Schema("crack", (
+    Field("depths", "numbers", default=[0.0], unit="m", check=_finite_list,
+          allowed="a non-empty list of numbers [m]",
+          message="{label} = {value}, but it must be {allowed}",
+          doc=f"along the crack path, ascending, from 0 (intact); at most {MAX_DEPTHS}"),
+    Field("start", "choice", choices=STARTS, default="root", doc="where the crack starts"),
+    Field("apply", "choice", choices=APPLY, default="series",
+          doc="series: mounting in series with the FE ring body; ratio: FE ratio on the "
+              "preset's c_ru, c_r (an upper bound); direct: FE values alone"),
+    Field("accuracy", "choice", choices=tuple(ACCURACY), default="default",
+          doc="fast: element sizes doubled"),
+    Field("tooth", "integer", 0, math.inf, default=0, unit="-", allowed="integers 0..",
+          message=_INTEGERS, doc="the cracked ring tooth (below the ring's tooth count)"),
+    Field("workers", "integer", 1, 64, default=2, unit="-", allowed="integers 1..64",
+          message=_INTEGERS, doc="worker processes for the FE cases"),
+    Field("angle_deg", "number", -60.0, 60.0, default=0.0, unit="deg", attr="angle",
+          scale=math.pi / 180, allowed="-60..60", message=_INTEGERS,
+          doc="crack direction from the radial"),
+    Field("through_rim", "bool", default=False,
+          message="{label} = {value}, but it must be {allowed}",
+          doc="also the depth that cuts through the rim"),
+    Field("c_ru_mount", "number", 0.0, math.inf, True, True, default=None, unit="N/m",
+          allowed=_MOUNT, doc='with apply = "series"; absent: identified so that the intact '
+                              "total equals the preset's c_ru"),
+    Field("c_r_mount", "number", 0.0, math.inf, True, True, default=None, unit="N/m",
+          allowed=_MOUNT, doc="... and c_r"),
+    Field("model", "choice", choices=MODELS, default="plane",
+          doc="plane, or solid: semi-elliptic root cracks in the solid ring"),
+    Field("half_lengths", "numbers", default=None, unit="m", check=_half_lengths_ok,
+          allowed=f'1..{MAX_HALF_LENGTHS} ascending values > 0 [m] with model = "solid"',
+          doc="solid only: one case per depth > 0 and half-length"),
+))
 
 
 def crack_model(data: dict) -> str:
@@ -37,73 +84,34 @@ def parse_crack_table(table, design) -> CrackSweep:
     against the ring (no meshing) and the through depth added when asked."""
     if not isinstance(table, dict):
         raise SceneError(f"[crack] must be a table, got {table!r}")
-    check_keys(table, "crack", KEYS)
+    SCHEMA.check_keys(table)
     depths = table.get("depths", [0.0])
     if isinstance(depths, list) and len(depths) > MAX_DEPTHS:
         raise SceneError(f"[crack] depths: {len(depths)} values; allowed at most {MAX_DEPTHS}")
-    if not isinstance(depths, list) or not depths or not all(
-            isinstance(d, (int, float)) and not isinstance(d, bool) and math.isfinite(d)
-            for d in depths):
-        raise SceneError(f"[crack] depths = {depths!r}, but it must be a non-empty list of "
-                         "numbers [m]")
+    values = SCHEMA.parse(table, defaults=True)
     if depths[0] != 0 or any(b <= a for a, b in zip(depths[:-1], depths[1:])):
         raise SceneError(f"[crack] depths = {depths!r}: allowed ascending values from 0 "
                          "(the intact ring) [m]")
-    start = string_key(table, "crack", "start", "root")
-    if start not in STARTS:
-        raise SceneError(f"[crack] start = {start!r}; allowed: {', '.join(STARTS)}")
-    apply = string_key(table, "crack", "apply", "series")
-    if apply not in APPLY:
-        raise SceneError(f"[crack] apply = {apply!r}; allowed: {', '.join(APPLY)}")
-    accuracy = string_key(table, "crack", "accuracy", "default")
-    if accuracy not in ACCURACY:
-        raise SceneError(f"[crack] accuracy = {accuracy!r}; allowed: {', '.join(ACCURACY)}")
-    integers = {}
-    for key, default, low, high in (("tooth", 0, 0, None), ("workers", 2, 1, 64)):
-        value = table.get(key, default)
-        if isinstance(value, bool) or not isinstance(value, int) or value < low or (
-                high is not None and value > high):
-            raise SceneError(f"[crack] {key} = {value!r}; allowed integers {low}.."
-                             f"{high if high is not None else ''}")
-        integers[key] = value
-    angle = table.get("angle_deg", 0.0)
-    if isinstance(angle, bool) or not isinstance(angle, (int, float)) or not abs(angle) <= 60:
-        raise SceneError(f"[crack] angle_deg = {angle!r}; allowed -60..60")
-    through = table.get("through_rim", False)
-    if not isinstance(through, bool):
-        raise SceneError(f"[crack] through_rim = {through!r}, but it must be true or false")
-    mounts = {}
     for key in ("c_ru_mount", "c_r_mount"):
-        value = table.get(key)
-        if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))
-                                  or not (math.isfinite(value) and value > 0)):
-            raise SceneError(f"[crack] {key} = {value!r}; allowed: a finite stiffness > 0 [N/m]")
-        if value is not None and apply != "series":
+        if values[key] is not None and values["apply"] != "series":
             raise SceneError(f"[crack] {key} is given, but it applies only with apply = "
-                             f"\"series\" (apply = {apply!r})")
-        mounts[key] = None if value is None else float(value)
-    model = string_key(table, "crack", "model", "plane")
-    if model not in MODELS:
-        raise SceneError(f"[crack] model = {model!r}; allowed: {', '.join(MODELS)}")
-    sweep = CrackSweep(tuple(float(d) for d in depths), integers["tooth"], start,
-                       math.radians(angle), apply, accuracy, integers["workers"], **mounts,
-                       design=design, model=model,
-                       half_lengths=_half_lengths(table, model, start, through))
+                             f"\"series\" (apply = {values['apply']!r})")
+    through = values.pop("through_rim")
+    values["half_lengths"] = _half_lengths(values, through)
+    sweep = CrackSweep(**values, design=design)
     return _checked_depths(sweep, through)
 
 
-#: at most this many half-lengths in a solid sweep
-MAX_HALF_LENGTHS = 8
 #: allowed depth / half-length of a semi-elliptic crack (the shipped scene: 0.19..2.25)
 ASPECT_RATIOS = (0.125, 3.0)
 
 
-def _half_lengths(table, model, start, through) -> tuple[float, ...]:
-    """``[crack] half_lengths`` [m] of a solid sweep (the face width is checked with the
-    depths)."""
-    values = table.get("half_lengths")
+def _half_lengths(values: dict, through: bool) -> tuple[float, ...]:
+    """``[crack] half_lengths`` [m] of a solid sweep, checked against the model and start
+    (the face width is checked with the depths)."""
+    model, start, half_lengths = values["model"], values["start"], values["half_lengths"]
     if model == "plane":
-        if values is not None:
+        if half_lengths is not None:
             raise SceneError("[crack] half_lengths applies only with model = \"solid\" "
                              "(a plane crack runs through the face width)")
         return ()
@@ -111,12 +119,9 @@ def _half_lengths(table, model, start, through) -> tuple[float, ...]:
         raise SceneError(f"[crack] model = \"solid\" grows semi-elliptic root cracks inside "
                          f"the rim: allowed start = \"root\" (got {start!r}) and through_rim "
                          f"= false (got {str(through).lower()})")
-    if not isinstance(values, list) or not 1 <= len(values) <= MAX_HALF_LENGTHS or not all(
-            isinstance(c, (int, float)) and not isinstance(c, bool) and math.isfinite(c)
-            and c > 0 for c in values) or any(b <= a for a, b in zip(values[:-1], values[1:])):
-        raise SceneError(f"[crack] half_lengths = {values!r}; allowed: 1..{MAX_HALF_LENGTHS} "
-                         "ascending values > 0 [m] with model = \"solid\"")
-    return tuple(float(c) for c in values)
+    if half_lengths is None:
+        raise SCHEMA.refuse(SCHEMA.by_key["half_lengths"], None)
+    return half_lengths
 
 
 def _checked_depths(sweep: CrackSweep, through: bool) -> CrackSweep:
