@@ -31,30 +31,87 @@ import tomllib
 from pathlib import Path
 
 from hubvib.foundation.files import read_text
+from hubvib.foundation.schema import REQUIRED, Field, Schema
 
 from .fields import DIAMETER_FIELDS, MASS_FIELDS, STIFFNESS_FIELDS
 from .model import (BearingSpec, DesignError, GearSpec, MaterialSpec, ReducerDesign, RimSpec,
                     SupportSpec)
 
 MAX_FILE_BYTES = 1_000_000
-KEYS = {
-    "design": {"name", "n_planets", "planet_angles_deg", "module", "pressure_angle_deg",
-               "face_width", "sun", "planet", "ring", "supports", "material", "load",
-               "bearings", "lumped"},
-    "sun": {"teeth", "shift", "bore"},
-    "planet": {"teeth", "shift", "bore"},
-    "ring": {"teeth", "shift", "rim_thickness", "mass"},
-    "supports": {"count", "arc_deg", "first_deg"},
-    "material": {"E", "nu", "density"},
-    "load": {"sun_torque"},
-    "bearings": {"planet", "carrier"},
-    "bearings.planet": {"rollers", "roller_length", "load"},
-    "bearings.carrier": {"rollers", "roller_length", "load"},
-}
-REQUIRED = {"design": ("n_planets", "module", "face_width", "sun", "planet", "ring"),
-            "sun": ("teeth",), "planet": ("teeth",), "ring": ("teeth",),
-            "bearings.planet": ("rollers", "roller_length"),
-            "bearings.carrier": ("rollers", "roller_length", "load")}
+_DEG = math.pi / 180
+_STEEL = MaterialSpec()
+
+
+def _schema(table: str, *fields: Field) -> Schema:
+    """A design table's schema: keys named ``design.table.key``, the design's messages."""
+    return Schema(table, fields, error=DesignError, label="{table}.{key}",
+                  unknown="unknown key(s) {labels}; allowed: {names}")
+
+
+def _number(key, low, high, default=REQUIRED, open_low=False, unit="", doc="", scale=1.0):
+    return Field(key, "number", low, high, open_low, default=default, unit=unit, doc=doc,
+                 scale=scale)
+
+
+def _integer(key, low, high, default=REQUIRED, doc=""):
+    return Field(key, "integer", low, high, default=default, unit="-", doc=doc)
+
+
+def _table_field(key, default=None, doc=""):
+    return Field(key, "table", default=default, doc=doc)
+
+
+def _accepted_later(value) -> bool:  # checked with another key (see table_design)
+    return True
+
+
+def _name_ok(value) -> bool:
+    return isinstance(value, str) and bool(value.strip()) and len(value) <= 80
+
+
+#: every design table's keys; a new key = one entry here (and its field in the model)
+DESIGN = _schema(
+    "design",
+    Field("name", "string", default=None, check=_name_ok, doc="default: the file's stem",
+          allowed="a non-empty string of <= 80 characters"),
+    _integer("n_planets", 1, 12),
+    Field("planet_angles_deg", "numbers", default=None, unit="deg", check=_accepted_later,
+          allowed="a list of n_planets finite angles [deg] (one per planet)",
+          doc="default: equally spaced from 0"),
+    _number("module", 0, 0.05, open_low=True, unit="m"),
+    _number("pressure_angle_deg", 10, 35, 20.0, unit="deg", scale=_DEG),
+    _number("face_width", 0, 1, open_low=True, unit="m"),
+    _table_field("sun", REQUIRED, "teeth, shift, bore"),
+    _table_field("planet", REQUIRED, "teeth, shift, bore"),
+    _table_field("ring", REQUIRED, "teeth, shift, rim_thickness or mass"),
+    _table_field("supports", doc="count, arc_deg, first_deg"),
+    _table_field("material", doc="E, nu, density (default steel)"),
+    _table_field("load", doc="sun_torque"),
+    _table_field("bearings", doc="planet, carrier: c_p, c_c by Palmgren line contact"),
+    _table_field("lumped", doc="lumped fields the geometry does not give (SI)"),
+)
+_GEAR = (_integer("teeth", 6, 1000), _number("shift", -2, 2, 0.0),
+         _number("bore", 0, 10, None, True, "m", "default: 0.4 x root diameter"))
+SUN = _schema("design.sun", *_GEAR)
+PLANET = _schema("design.planet", *_GEAR)
+RING = _schema("design.ring", _integer("teeth", 12, 1000), _number("shift", -2, 2, 0.0),
+               _number("rim_thickness", 0, 1, None, True, "m", "or mass"),
+               _number("mass", 0, 1e5, None, True, "kg", "or rim_thickness"))
+SUPPORTS = _schema("design.supports", _integer("count", 0, 360, 6, "0: all"),
+                   _number("arc_deg", 0, 360, 20.0, True, "deg", scale=_DEG),
+                   _number("first_deg", -360, 360, 0.0, unit="deg", scale=_DEG))
+MATERIAL = _schema("design.material", _number("E", 1e6, 1e13, _STEEL.E, unit="Pa"),
+                   _number("nu", -0.99, 0.49, _STEEL.nu, unit="-"),
+                   _number("density", 1, 1e5, _STEEL.density, unit="kg/m^3"))
+LOAD = _schema("design.load", _number("sun_torque", 0, 1e7, 1000.0, True, "N m"))
+BEARINGS = _schema("design.bearings", _table_field("planet"), _table_field("carrier"))
+_ROLLERS = (_integer("rollers", 1, 1000), _number("roller_length", 0, 1, open_low=True, unit="m"))
+BEARING = {"planet": _schema("design.bearings.planet", *_ROLLERS,
+                             _number("load", 0, 1e8, None, True, "N", "default: from the torque")),
+           "carrier": _schema("design.bearings.carrier", *_ROLLERS,
+                              _number("load", 0, 1e8, REQUIRED, True, "N"))}
+#: the tables of a design file, for the docs
+SCHEMAS = (DESIGN, SUN, PLANET, RING, SUPPORTS, MATERIAL, LOAD, BEARINGS, *BEARING.values())
 
 
 def read_design(path: Path) -> ReducerDesign:
@@ -76,79 +133,55 @@ def read_design(path: Path) -> ReducerDesign:
 
 def table_design(table, default_name: str = "design") -> ReducerDesign:
     """A ``[design]`` table (dict) into a ``ReducerDesign``, every key's type and range
-    checked.  ``hubvib.build.parse_design`` adds the assembly rules
+    checked (``SCHEMAS``).  ``hubvib.build.parse_design`` adds the assembly rules
     (``hubvib.build.assembly.check_assembly``).
     """
-    t = _table(table, "design")
-    n = _integer(t, "design", "n_planets", low=1, high=12)
+    d = _parse(DESIGN, table)
+    n = d["n_planets"]
     angles = None
-    if "planet_angles_deg" in t:
-        values = t["planet_angles_deg"]
+    if d["planet_angles_deg"] is not None:
+        values = table["planet_angles_deg"]
         if not isinstance(values, list) or len(values) != n or not all(
                 _is_number(v) and math.isfinite(v) for v in values):
             raise DesignError(f"design.planet_angles_deg = {values!r}; allowed: a list of "
                               f"{n} finite angles [deg] (one per planet)")
         angles = tuple(math.radians(v % 360.0) for v in values)
-    rim = _table(t["ring"], "ring")
-    if ("rim_thickness" in rim) == ("mass" in rim):
+    ring = _parse(RING, d["ring"])
+    if (ring["rim_thickness"] is None) == (ring["mass"] is None):
         raise DesignError("design.ring: give exactly one of rim_thickness [m] or mass [kg]")
-    supports = _table(t.get("supports", {}), "supports")
-    material = _table(t.get("material", {}), "material")
-    load = _table(t.get("load", {}), "load")
-    bearings = _table(t.get("bearings", {}), "bearings")
-    lumped = _lumped(t.get("lumped", {}))
-    name = t.get("name", default_name)
-    if not isinstance(name, str) or not name.strip() or len(name) > 80:
-        raise DesignError(f"design.name = {name!r}; allowed: a non-empty string of <= 80 "
-                          "characters")
-    default_material = MaterialSpec()
-    design = ReducerDesign(
-        name=name, n_planets=n,
-        module=_number(t, "design", "module", low=0, high=0.05, open_low=True),
-        pressure_angle=math.radians(_number(t, "design", "pressure_angle_deg", 20.0, 10, 35)),
-        face_width=_number(t, "design", "face_width", low=0, high=1, open_low=True),
-        sun=_gear(t["sun"], "sun"), planet=_gear(t["planet"], "planet"),
-        ring=GearSpec(_integer(rim, "ring", "teeth", low=12, high=1000),
-                      _number(rim, "ring", "shift", 0.0, -2, 2)),
-        rim=RimSpec(thickness=_number(rim, "ring", "rim_thickness", None, 0, 1, open_low=True),
-                    mass=_number(rim, "ring", "mass", None, 0, 1e5, open_low=True)),
+    supports = _parse(SUPPORTS, d["supports"] or {})
+    bearings = _parse(BEARINGS, d["bearings"] or {})
+    return ReducerDesign(
+        name=default_name if d["name"] is None else d["name"], n_planets=n,
+        module=d["module"], pressure_angle=d["pressure_angle_deg"], face_width=d["face_width"],
+        sun=GearSpec(**_parse(SUN, d["sun"])), planet=GearSpec(**_parse(PLANET, d["planet"])),
+        ring=GearSpec(ring["teeth"], ring["shift"]),
+        rim=RimSpec(thickness=ring["rim_thickness"], mass=ring["mass"]),
         planet_angles=angles,
-        supports=SupportSpec(
-            count=_integer(supports, "supports", "count", 6, 0, 360),
-            arc=math.radians(_number(supports, "supports", "arc_deg", 20.0, 0, 360,
-                                     open_low=True)),
-            first=math.radians(_number(supports, "supports", "first_deg", 0.0, -360, 360))),
-        material=MaterialSpec(
-            E=_number(material, "material", "E", default_material.E, 1e6, 1e13),
-            nu=_number(material, "material", "nu", default_material.nu, -0.99, 0.49),
-            density=_number(material, "material", "density", default_material.density, 1,
-                            1e5)),
-        sun_torque=_number(load, "load", "sun_torque", 1000.0, 0, 1e7, open_low=True),
+        supports=SupportSpec(supports["count"], supports["arc_deg"], supports["first_deg"]),
+        material=MaterialSpec(**_parse(MATERIAL, d["material"] or {})),
+        sun_torque=_parse(LOAD, d["load"] or {})["sun_torque"],
         planet_bearing=_bearing(bearings, "planet"),
         carrier_bearing=_bearing(bearings, "carrier"),
-        lumped=lumped)
-    return design
+        lumped=_lumped(d["lumped"] or {}))
 
 
-def _gear(value, where) -> GearSpec:
-    t = _table(value, where)
-    return GearSpec(_integer(t, where, "teeth", low=6, high=1000),
-                    _number(t, where, "shift", 0.0, -2, 2),
-                    _number(t, where, "bore", None, 0, 10, open_low=True))
+def _parse(schema: Schema, table) -> dict:
+    """The table's SI values (defaults for the keys absent); a table that is not one is
+    refused as ``design.x = value; allowed: a table``."""
+    if not isinstance(table, dict):
+        raise DesignError(f"{schema.table} = {table!r}; allowed: a table")
+    return schema.parse(table, defaults=True)
 
 
 def _bearing(bearings: dict, key: str) -> BearingSpec | None:
-    if key not in bearings:
+    if bearings[key] is None:
         return None
-    where = f"bearings.{key}"
-    t = _table(bearings[key], where)
-    return BearingSpec(_integer(t, where, "rollers", low=1, high=1000),
-                       _number(t, where, "roller_length", low=0, high=1, open_low=True),
-                       _number(t, where, "load", None, 0, 1e8, open_low=True))
+    return BearingSpec(**_parse(BEARING[key], bearings[key]))
 
 
-def _lumped(value) -> dict:
-    t = _table(value, "lumped", check=False)
+def _lumped(t: dict) -> dict:
+    """``[design.lumped]``: any lumped stiffness, mass or diameter field (SI)."""
     allowed = STIFFNESS_FIELDS + MASS_FIELDS + DIAMETER_FIELDS
     for key, v in t.items():
         if key not in allowed:
@@ -159,48 +192,5 @@ def _lumped(value) -> dict:
     return {k: float(v) for k, v in t.items()}
 
 
-def _table(value, where, check=True) -> dict:
-    label = "design" if where == "design" else f"design.{where}"
-    if not isinstance(value, dict):
-        raise DesignError(f"{label} = {value!r}; allowed: a table")
-    if check:
-        unknown = sorted(set(value) - KEYS[where])
-        if unknown:
-            raise DesignError(f"unknown key(s) {', '.join(f'{label}.{k}' for k in unknown)}; "
-                              f"allowed: {', '.join(sorted(KEYS[where]))}")
-        missing = [k for k in REQUIRED.get(where, ()) if k not in value]
-        if missing:
-            raise DesignError(f"missing required key(s) "
-                              f"{', '.join(f'{label}.{k}' for k in missing)}")
-    return value
-
-
 def _is_number(v) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool)
-
-
-def _number(t, where, key, default=..., low=-math.inf, high=math.inf, open_low=False):
-    label = "design" if where == "design" else f"design.{where}"
-    if key not in t:
-        if default is ...:
-            raise DesignError(f"missing required key {label}.{key}")
-        return default
-    v = t[key]
-    ok = _is_number(v) and math.isfinite(v) and (low < v if open_low else low <= v) and v <= high
-    if not ok:
-        bracket = "(" if open_low else "["
-        raise DesignError(f"{label}.{key} = {v!r}; allowed: a number in {bracket}{low:g}, "
-                          f"{high:g}]")
-    return float(v)
-
-
-def _integer(t, where, key, default=..., low=0, high=None):
-    label = "design" if where == "design" else f"design.{where}"
-    if key not in t:
-        if default is ...:
-            raise DesignError(f"missing required key {label}.{key}")
-        return default
-    v = t[key]
-    if isinstance(v, bool) or not isinstance(v, int) or v < low or (high is not None and v > high):
-        raise DesignError(f"{label}.{key} = {v!r}; allowed: an integer in {low}..{high}")
-    return v
