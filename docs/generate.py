@@ -512,6 +512,39 @@ def diagnosis_family_pod() -> str:
             + provenance("raba118_crack/", f"{run['date']}, hubvib {run['hubvib_version']}"))
 
 
+# ---------------------------------------------------------------- key references
+
+def _schema_tables(schemas) -> str:
+    """One Markdown table per schema: key, default, allowed, unit, meaning, read from the
+    same fields the parser checks (``hubvib.foundation.schema``)."""
+    parts = []
+    for schema in schemas:
+        title = schema.table if schema.table.startswith("design") else f"[{schema.table}]"
+        parts.append(f"**`{title}`**\n\n" + markdown_table(
+            ["key", "default", "allowed", "unit", "meaning"], schema.rows()))
+    return "\n\n".join(parts)
+
+
+def scene_keys() -> str:
+    """Every key of every scene table with its default and allowed range, generated from the
+    schemas the scene parser checks (so the reference cannot drift from the parser)."""
+    from hubvib.detection.options import SCHEMA as DETECTION
+    from hubvib.runtime.engines import SCHEMA as EXECUTION
+    from hubvib.signal.options import SCHEMA as SIGNAL
+    from hubvib.studies.crack_table import SCHEMA as CRACK
+    from hubvib.studies.scene import OUTPUT, REDUCER, STUDY
+
+    return _schema_tables((REDUCER, STUDY, OUTPUT, CRACK, DETECTION, SIGNAL, EXECUTION))
+
+
+def design_keys() -> str:
+    """Every key of a design file with its default and allowed range, from the schemas
+    ``hubvib.design.parse`` checks."""
+    from hubvib.design.parse import SCHEMAS
+
+    return _schema_tables(SCHEMAS)
+
+
 # ---------------------------------------------------------------- entry points
 
 TABLES = {name: function for name, function in list(globals().items())

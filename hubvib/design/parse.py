@@ -74,13 +74,13 @@ DESIGN = _schema(
     "design",
     Field("name", "string", default=None, check=_name_ok, doc="default: the file's stem",
           allowed="a non-empty string of <= 80 characters"),
-    _integer("n_planets", 1, 12),
+    _integer("n_planets", 1, 12, doc="number of planets"),
     Field("planet_angles_deg", "numbers", default=None, unit="deg", check=_accepted_later,
           allowed="a list of n_planets finite angles [deg] (one per planet)",
           doc="default: equally spaced from 0"),
-    _number("module", 0, 0.05, open_low=True, unit="m"),
-    _number("pressure_angle_deg", 10, 35, 20.0, unit="deg", scale=_DEG),
-    _number("face_width", 0, 1, open_low=True, unit="m"),
+    _number("module", 0, 0.05, open_low=True, unit="m", doc="normal module"),
+    _number("pressure_angle_deg", 10, 35, 20.0, unit="deg", doc="pressure angle", scale=_DEG),
+    _number("face_width", 0, 1, open_low=True, unit="m", doc="face width of every gear"),
     _table_field("sun", REQUIRED, "teeth, shift, bore"),
     _table_field("planet", REQUIRED, "teeth, shift, bore"),
     _table_field("ring", REQUIRED, "teeth, shift, rim_thickness or mass"),
@@ -90,26 +90,33 @@ DESIGN = _schema(
     _table_field("bearings", doc="planet, carrier: c_p, c_c by Palmgren line contact"),
     _table_field("lumped", doc="lumped fields the geometry does not give (SI)"),
 )
-_GEAR = (_integer("teeth", 6, 1000), _number("shift", -2, 2, 0.0),
+_GEAR = (_integer("teeth", 6, 1000, doc="tooth count"),
+         _number("shift", -2, 2, 0.0, unit="-", doc="profile shift coefficient"),
          _number("bore", 0, 10, None, True, "m", "default: 0.4 x root diameter"))
 SUN = _schema("design.sun", *_GEAR)
 PLANET = _schema("design.planet", *_GEAR)
-RING = _schema("design.ring", _integer("teeth", 12, 1000), _number("shift", -2, 2, 0.0),
+RING = _schema("design.ring", _integer("teeth", 12, 1000, doc="tooth count"),
+               _number("shift", -2, 2, 0.0, unit="-", doc="profile shift coefficient"),
                _number("rim_thickness", 0, 1, None, True, "m", "or mass"),
                _number("mass", 0, 1e5, None, True, "kg", "or rim_thickness"))
-SUPPORTS = _schema("design.supports", _integer("count", 0, 360, 6, "0: all"),
-                   _number("arc_deg", 0, 360, 20.0, True, "deg", scale=_DEG),
-                   _number("first_deg", -360, 360, 0.0, unit="deg", scale=_DEG))
-MATERIAL = _schema("design.material", _number("E", 1e6, 1e13, _STEEL.E, unit="Pa"),
-                   _number("nu", -0.99, 0.49, _STEEL.nu, unit="-"),
-                   _number("density", 1, 1e5, _STEEL.density, unit="kg/m^3"))
-LOAD = _schema("design.load", _number("sun_torque", 0, 1e7, 1000.0, True, "N m"))
-BEARINGS = _schema("design.bearings", _table_field("planet"), _table_field("carrier"))
-_ROLLERS = (_integer("rollers", 1, 1000), _number("roller_length", 0, 1, open_low=True, unit="m"))
+SUPPORTS = _schema("design.supports",
+                   _integer("count", 0, 360, 6, "clamped arcs on the ring's outer surface; 0: all"),
+                   _number("arc_deg", 0, 360, 20.0, True, "deg", "angular width of each arc", _DEG),
+                   _number("first_deg", -360, 360, 0.0, unit="deg",
+                           doc="polar angle of the middle of the first arc", scale=_DEG))
+MATERIAL = _schema("design.material",
+                   _number("E", 1e6, 1e13, _STEEL.E, unit="Pa", doc="Young's modulus"),
+                   _number("nu", -0.99, 0.49, _STEEL.nu, unit="-", doc="Poisson's ratio"),
+                   _number("density", 1, 1e5, _STEEL.density, unit="kg/m^3", doc="density"))
+LOAD = _schema("design.load", _number("sun_torque", 0, 1e7, 1000.0, True, "N m", "input torque"))
+BEARINGS = _schema("design.bearings", _table_field("planet", doc="planet bearing"),
+                   _table_field("carrier", doc="carrier bearing"))
+_ROLLERS = (_integer("rollers", 1, 1000, doc="rolling elements"),
+            _number("roller_length", 0, 1, open_low=True, unit="m", doc="effective length"))
 BEARING = {"planet": _schema("design.bearings.planet", *_ROLLERS,
                              _number("load", 0, 1e8, None, True, "N", "default: from the torque")),
            "carrier": _schema("design.bearings.carrier", *_ROLLERS,
-                              _number("load", 0, 1e8, REQUIRED, True, "N"))}
+                              _number("load", 0, 1e8, REQUIRED, True, "N", "radial load"))}
 #: the tables of a design file, for the docs
 SCHEMAS = (DESIGN, SUN, PLANET, RING, SUPPORTS, MATERIAL, LOAD, BEARINGS, *BEARING.values())
 
