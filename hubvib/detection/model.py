@@ -20,6 +20,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from hubvib.fem.estimate import CrackCaseEstimate
 from hubvib.lumped import PlanetaryParameters
 
 from .series import SERIES, identify_mount, ring_support
@@ -101,22 +102,27 @@ class CrackModel:
                              f"{len(self.depths)} depths")
 
     @classmethod
-    def from_fe(cls, params: PlanetaryParameters, sweep, fe: list[dict],
+    def from_fe(cls, params: PlanetaryParameters, sweep, fe: list,
                 method: str = "jacobi", c_rp_given: bool = True) -> "CrackModel":
-        """From a CrackSweep and its FE rows (keys as written by ``crack_sweep.fe_case``).
+        """From a CrackSweep and its FE cases: ``fem.estimate.CrackCaseEstimate`` objects, or
+        their dict form as the FE cache and ``crack_sweep.fe_case`` hold it (read back with
+        ``CrackCaseEstimate.from_dict``).
 
         ``c_rp_given``: the lumped c_rp of ``params`` is a given value (a preset's table,
         a design's ``lumped.c_rp``, a scene override); otherwise every planet's c_rp is
         the FE intact c_rp (``with_fe_c_rp``)."""
-        def column(key):
-            return tuple(float(row[key]) for row in fe)
+        cases = [CrackCaseEstimate.from_dict(row) if isinstance(row, dict) else row
+                 for row in fe]
+
+        def column(name):
+            return tuple(float(getattr(case, name)) for case in cases)
 
         model = cls(params, tuple(float(d) for d in sweep.depths), sweep.apply,
-                    column("c_ru_N_m"), column("c_ru_error_N_m"), column("c_r_N_m"),
-                    column("c_r_error_N_m"), column("c_rp_engaged_ratio"),
-                    column("c_rp_engaged_ratio_error"), column("c_rp_engaged_min_ratio"),
-                    method=method, c_rp_fe=column("c_rp_engaged_intact_N_m"),
-                    c_rp_fe_min=column("c_rp_engaged_intact_min_N_m"))
+                    column("c_ru"), column("c_ru_error"), column("c_r"), column("c_r_error"),
+                    column("c_rp_engaged_ratio"), column("c_rp_engaged_ratio_error"),
+                    column("c_rp_engaged_min_ratio"), method=method,
+                    c_rp_fe=column("c_rp_engaged_intact"),
+                    c_rp_fe_min=column("c_rp_engaged_intact_min"))
         if not c_rp_given:
             model = model.with_fe_c_rp()
         if sweep.apply != SERIES:

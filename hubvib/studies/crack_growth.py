@@ -35,7 +35,8 @@ from hubvib.runtime.engines import Execution
 from hubvib.runtime.progress import stage, working
 from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe,
                                         provenance, write_crack_study)
-from hubvib.studies.crack_sweep import CrackSweep, case_label, run_fe_cases
+from hubvib.studies.crack_sweep import (CrackSweep, PlaneCase, SolidCase, case_label,
+                                        run_fe_cases)
 from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
 from hubvib.studies.study import Scene, Study
 
@@ -120,29 +121,30 @@ class CrackGrowthResult:
     files: list[Path] = field(default_factory=list)
 
     def grid_rows(self) -> list[dict]:
-        plane = {row["depth_m"]: row for row in self.plane}
+        plane = {case.depth: case.estimate for case in map(PlaneCase.from_dict, self.plane)}
         intact = plane[0.0]
         out = []
         for r in self.rows:
-            through = plane[r["depth_m"]]
+            solid, through = SolidCase.from_dict(r), plane[r["depth_m"]]
+            e = solid.estimate
             out.append({
-                "depth_mm": 1e3 * r["depth_m"], "half_length_mm": 1e3 * r["half_length_m"],
-                "c_ru_N_m": r["c_ru_N_m"], "c_ru_error_N_m": r["c_ru_error_N_m"],
+                "depth_mm": 1e3 * solid.depth, "half_length_mm": 1e3 * solid.half_length,
+                "c_ru_N_m": e.c_ru, "c_ru_error_N_m": e.c_ru_error,
                 "c_ru_change_percent": 100 * r["c_ru_change"],
                 "c_ru_change_error_percent": 100 * r["c_ru_change_error"],
                 "c_ru_change_poor_cells_percent": 100 * r["c_ru_change_poor_cells"],
-                "c_ru_min_N_m": r["c_ru_min_N_m"], "c_ru_max_N_m": r["c_ru_max_N_m"],
-                "c_r_N_m": r["c_r_N_m"], "c_r_error_N_m": r["c_r_error_N_m"],
+                "c_ru_min_N_m": e.c_ru_min, "c_ru_max_N_m": e.c_ru_max,
+                "c_r_N_m": e.c_r, "c_r_error_N_m": e.c_r_error,
                 "c_r_change_percent": 100 * r["c_r_change"],
                 "c_r_change_error_percent": 100 * r["c_r_change_error"],
                 "c_r_change_poor_cells_percent": 100 * r["c_r_change_poor_cells"],
                 "plane_through_c_ru_change_percent":
-                    100 * (through["c_ru_N_m"] / intact["c_ru_N_m"] - 1),
+                    100 * (through.c_ru / intact.c_ru - 1),
                 "c_rp_slice_ratio": r["c_rp_engaged_ratio"],
                 "c_rp_slice_ratio_error": r["c_rp_engaged_ratio_error"],
-                "plane_through_c_rp_ratio": through["c_rp_engaged_ratio"],
-                "min_sicn": r["min_quality"], "poor_cells": r["poor_cells"],
-                "dofs": r["dofs"], "fe_seconds": r["seconds_total"]})
+                "plane_through_c_rp_ratio": through.c_rp_engaged_ratio,
+                "min_sicn": e.min_quality, "poor_cells": e.poor_cells,
+                "dofs": e.dofs, "fe_seconds": solid.seconds_total})
         return out
 
 

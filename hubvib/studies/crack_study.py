@@ -39,7 +39,7 @@ from hubvib.runtime.fe_cache import fe_version
 from hubvib.runtime.progress import stage, working
 from hubvib.signal.report import write_signal_study
 from hubvib.signal.study import run_signal_study
-from hubvib.studies.crack_sweep import ACCURACY, CrackSweep, crack_of, run_fe_cases
+from hubvib.studies.crack_sweep import ACCURACY, CrackSweep, PlaneCase, crack_of, run_fe_cases
 from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
 from hubvib.studies.study import Scene, Study
 
@@ -85,21 +85,28 @@ class CrackStudyResult:
         return 100 * (self.omega / self.omega[0] - 1)
 
     def stiffness_rows(self) -> list[dict]:
-        return [{"depth_mm": 1e3 * f["depth_m"], "fe_c_ru_N_m": f["c_ru_N_m"],
-                 "fe_c_ru_error_N_m": f["c_ru_error_N_m"],
-                 "fe_c_ru_min_N_m": f["c_ru_min_N_m"], "fe_c_ru_max_N_m": f["c_ru_max_N_m"],
-                 "fe_c_r_N_m": f["c_r_N_m"], "fe_c_r_error_N_m": f["c_r_error_N_m"],
-                 "fe_c_rp_engaged_ratio": f["c_rp_engaged_ratio"],
-                 "fe_c_rp_engaged_ratio_error": f["c_rp_engaged_ratio_error"],
-                 "fe_c_rp_engaged_min_ratio": f["c_rp_engaged_min_ratio"],
-                 "lumped_c_ru_N_m": float(cu), "lumped_c_r_N_m": float(cr),
-                 "lumped_c_rp_planet1_N_m": float(self.model.params.c_rp * fp),
-                 "fe_seconds": f["seconds_total"],
-                 "fe_c_rp_engaged_intact_N_m": f["c_rp_engaged_intact_N_m"],
-                 "lumped_c_rp_factor": float(fp),
-                 "lumped_c_rp_planet1_ratio_method_N_m": float(
-                     self.model.params.c_rp * f["c_rp_engaged_ratio"])}
-                for f, cu, cr, fp in zip(self.fe, self.c_ru, self.c_r, self.c_rp_factor)]
+        """Per depth the FE case (read back typed, ``PlaneCase``) beside the lumped values;
+        the keys with units are the CSV / JSON boundary."""
+        rows = []
+        for case, cu, cr, fp in zip(map(PlaneCase.from_dict, self.fe), self.c_ru, self.c_r,
+                                    self.c_rp_factor):
+            f = case.estimate
+            rows.append({
+                "depth_mm": 1e3 * case.depth, "fe_c_ru_N_m": f.c_ru,
+                "fe_c_ru_error_N_m": f.c_ru_error,
+                "fe_c_ru_min_N_m": f.c_ru_min, "fe_c_ru_max_N_m": f.c_ru_max,
+                "fe_c_r_N_m": f.c_r, "fe_c_r_error_N_m": f.c_r_error,
+                "fe_c_rp_engaged_ratio": f.c_rp_engaged_ratio,
+                "fe_c_rp_engaged_ratio_error": f.c_rp_engaged_ratio_error,
+                "fe_c_rp_engaged_min_ratio": f.c_rp_engaged_min_ratio,
+                "lumped_c_ru_N_m": float(cu), "lumped_c_r_N_m": float(cr),
+                "lumped_c_rp_planet1_N_m": float(self.model.params.c_rp * fp),
+                "fe_seconds": case.seconds_total,
+                "fe_c_rp_engaged_intact_N_m": f.c_rp_engaged_intact,
+                "lumped_c_rp_factor": float(fp),
+                "lumped_c_rp_planet1_ratio_method_N_m": float(
+                    self.model.params.c_rp * f.c_rp_engaged_ratio)})
+        return rows
 
     def frequency_rows(self) -> list[dict]:
         rows = []

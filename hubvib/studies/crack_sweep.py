@@ -183,26 +183,29 @@ def check_case(case):
     depth = case
 
     def check(result: dict) -> None:
-        _typed(PlaneCase, result)
+        case = _typed(PlaneCase, result)
         finite_positive(result, POSITIVE_KEYS)
-        if result.get("depth_m") != depth:
-            raise CacheEntryError(f"depth_m = {result.get('depth_m')!r}, the case is {depth!r}")
-        if not result["c_ru_min_N_m"] <= result["c_ru_N_m"] <= result["c_ru_max_N_m"]:
+        if case.depth != depth:
+            raise CacheEntryError(f"depth_m = {case.depth!r}, the case is {depth!r}")
+        e = case.estimate
+        if not e.c_ru_min <= e.c_ru <= e.c_ru_max:
             raise CacheEntryError("c_ru outside its own min..max over carrier positions")
         for key in ("c_rp_engaged_ratio", "c_rp_engaged_min_ratio"):
-            if not result[key] <= 1 + 1e-6 or (depth == 0 and result[key] != 1.0):
-                raise CacheEntryError(f"{key} = {result[key]!r}: a crack cannot stiffen the tooth")
+            value = getattr(e, key)
+            if not value <= 1 + 1e-6 or (depth == 0 and value != 1.0):
+                raise CacheEntryError(f"{key} = {value!r}: a crack cannot stiffen the tooth")
     return check
 
 
 def _check_solid_case(case):
     def check(result: dict) -> None:
         finite_positive(result, SOLID_POSITIVE_KEYS)
-        _typed(SolidCase, result)
-        found = (result.get("depth_m"), result.get("half_length_m"))
+        solid = _typed(SolidCase, result)
+        found = (solid.depth, solid.half_length)
         if found != case:
             raise CacheEntryError(f"(depth_m, half_length_m) = {found!r}, the case is {case!r}")
-        if not result["c_ru_min_N_m"] <= result["c_ru_N_m"] <= result["c_ru_max_N_m"]:
+        e = solid.estimate
+        if not e.c_ru_min <= e.c_ru <= e.c_ru_max:
             raise CacheEntryError("c_ru outside its own min..max over carrier positions")
     return check
 

@@ -8,7 +8,7 @@ import math
 import time
 
 from hubvib.build import bearing_stiffness, gear_body, material, ring_gear
-from hubvib.fem.estimate import estimate_mesh, estimate_ring
+from hubvib.fem.estimate import RingEstimate, estimate_mesh, estimate_ring
 from hubvib.meshing.crack import Crack
 
 
@@ -54,20 +54,19 @@ def stiffness_table(design, crack_depth: float = 0.0, solver: str = "auto",
     out = {}
     for name, crack in cases.items():
         ring_options = dict(solver=solver, material=steel, n_planets=design.n_planets)
-        rows = _ring_rows(estimate_ring(ring, crack, **ring_options).to_dict(), "")
+        rows = _ring_rows(estimate_ring(ring, crack, **ring_options), "")
         if solid:
-            rows.update(_ring_rows(estimate_ring(ring, crack, solid=True,
-                                                 **ring_options).to_dict(), " 3D"))
+            rows.update(_ring_rows(estimate_ring(ring, crack, solid=True, **ring_options),
+                                   " 3D"))
         rows.update(intact_mesh_rows if crack is None else mesh_rows)
         rows.update(bearings)
         out[name] = rows
     return out
 
 
-def _ring_rows(r: dict, suffix: str) -> dict:
-    common = {"seconds_total": r["seconds_total"], "dofs": r["dofs"], "solver": r["solver"]}
-    return {f"c_ru{suffix}": {"value_N_m": r["c_ru_N_m"], "error_N_m": r["c_ru_error_N_m"],
-                              "min_N_m": r["c_ru_min_N_m"], "max_N_m": r["c_ru_max_N_m"],
-                              **common},
-            f"c_r{suffix}": {"value_N_m": r["c_r_N_m"], "error_N_m": r["c_r_error_N_m"],
-                             **common}}
+def _ring_rows(r: RingEstimate, suffix: str) -> dict:
+    """The JSON rows of one ring estimate (keys with units: the output boundary)."""
+    common = {"seconds_total": r.seconds_total, "dofs": r.dofs, "solver": r.solver}
+    return {f"c_ru{suffix}": {"value_N_m": r.c_ru, "error_N_m": r.c_ru_error,
+                              "min_N_m": r.c_ru_min, "max_N_m": r.c_ru_max, **common},
+            f"c_r{suffix}": {"value_N_m": r.c_r, "error_N_m": r.c_r_error, **common}}
