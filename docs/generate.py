@@ -89,8 +89,9 @@ def lumped_spectrum() -> str:
     """The energy-consistent spectrum of the Raba 118/76 preset, with the c_ru shift and
     the relative sensitivity of every mode."""
     from hubvib import lumped
+    from hubvib.build import lumped_preset
 
-    params = lumped.raba118()
+    params = lumped_preset("raba118")
     spectrum = lumped.natural_modes(params)
     shift = lumped.frequency_shift(params, "c_ru", 1e5)
     sens = lumped.frequency_sensitivity(params, "c_ru")
@@ -104,21 +105,23 @@ def lumped_spectrum() -> str:
 
 def raba_validation() -> str:
     """Published spectrum against the printed (indefinite) matrix and the energy model."""
+    from hubvib.build import lumped_preset
     from hubvib.validation.raba118 import validate
 
     rows = [[r["mode"], f"{r['published_rad_s']:.0f}",
              f"{r['printed_rad_s']:.1f}" + (" (λ<0)" if r["printed_lambda_sign"] == "-" else ""),
              f"{r['printed_vs_published_percent']:+.3f}", r["kind"], f"{r['energy_rad_s']:.1f}"]
-            for r in validate().rows]
+            for r in validate(lumped_preset("raba118")).rows]
     return markdown_table(["#", "published [rad/s]", "printed matrix", "deviation [%]", "type",
                            "energy model"], rows, "rrrrlr")
 
 
 def raba_summary() -> str:
     """The headline figures of ``hubvib validate raba118``."""
+    from hubvib.build import lumped_preset
     from hubvib.validation.raba118 import PUBLISHED_TOLERANCE, validate
 
-    result = validate()
+    result = validate(lumped_preset("raba118"))
     negative = ", ".join(f"{v:.4g}" for v in result.negative_eigenvalues)
     rows = [
         ["largest deviation, printed matrix against the published values",
@@ -137,9 +140,11 @@ def raba_summary() -> str:
 def stability() -> str:
     """Error against the 50-digit mpmath reference per case and solver, and the time of
     the default solver, measured while the docs are built."""
+    from hubvib.build import lumped_preset
     from hubvib.validation.stability import run
 
-    rows = [r for r in run(repeats=5) if not math.isnan(r.max_error)]
+    rows = [r for r in run(lumped_preset("raba118"), repeats=5)
+            if not math.isnan(r.max_error)]
     methods = list(dict.fromkeys(r.method for r in rows))
     cases = list(dict.fromkeys(r.case for r in rows))
     by = {(r.case, r.method): r for r in rows}
@@ -155,11 +160,13 @@ def stability() -> str:
 def batch() -> str:
     """The batched solve of the worked example in *Crack detection*."""
     from hubvib import lumped
+    from hubvib.build import lumped_preset
     from hubvib.lumped.batch import batch_frequencies
 
     values = np.geomspace(1e5, 1e7, 10_000)
-    result = batch_frequencies(lumped.raba118(), {"c_ru": values})
-    exact = [lumped.natural_modes(lumped.raba118().replace(c_ru=v)).omega[0] / (2 * math.pi)
+    params = lumped_preset("raba118")
+    result = batch_frequencies(params, {"c_ru": values})
+    exact = [lumped.natural_modes(params.replace(c_ru=v)).omega[0] / (2 * math.pi)
              for v in values[[0, -1]]]
     rows = [[f"{v:.0e}", f"{b:.2f}", f"{e:.2f}"]
             for v, b, e in zip(values[[0, -1]], result.frequency_hz[[0, -1], 0], exact)]

@@ -56,7 +56,20 @@ def test_import_linter_contracts_are_kept(house):
             "sys.exit(lint_imports(config_filename=sys.argv[1], no_cache=True))")
     run = _in_house(house, code, str(ROOT / "pyproject.toml"))
     assert run.returncode == 0, f"import-linter (pyproject.toml [tool.importlinter]):\n{run.stdout}{run.stderr}"
-    assert "2 kept, 0 broken" in run.stdout, run.stdout
+    assert "3 kept, 0 broken" in run.stdout, run.stdout
+
+
+def test_validation_contract_refuses_a_build_import(house, tmp_path):
+    """The validation contract is not vacuous: a validation module importing the build layer
+    (as ``validation/convergence.py`` did) breaks it."""
+    probe = tmp_path / "house"
+    shutil.copytree(house, probe)
+    (probe / "hubvib" / "validation" / "probe.py").write_text("import hubvib.build\n")
+    code = ("import sys\nfrom importlinter.cli import lint_imports\n"
+            "sys.exit(lint_imports(config_filename=sys.argv[1], no_cache=True))")
+    run = _in_house(probe, code, str(ROOT / "pyproject.toml"))
+    assert run.returncode != 0 and "validation imports the stages only" in run.stdout
+    assert "hubvib.validation.probe -> hubvib.build" in run.stdout, run.stdout
 
 
 def _cycles(graph) -> list[list[str]]:

@@ -2,7 +2,8 @@
 import numpy as np
 import pytest
 
-from hubvib.lumped import ParameterError, natural_modes, raba118
+from hubvib.lumped import ParameterError, natural_modes
+from hubvib.build import lumped_preset
 from hubvib.lumped.batch import (batch_frequencies, benchmark_batch, blas_thread_counts,
                                  blas_threads)
 from hubvib.lumped.parameters import MASS_FIELDS, STIFFNESS_FIELDS
@@ -26,7 +27,7 @@ def _one_at_a_time(params, changes):
 
 
 def test_batch_agrees_with_jacobi_to_1e10():
-    params = raba118()
+    params = lumped_preset("raba118")
     changes = _scattered(params, 80, seed=1)
     batch = batch_frequencies(params, changes)
     reference = _one_at_a_time(params, changes)
@@ -41,7 +42,7 @@ def test_batch_agrees_with_jacobi_to_1e10():
 def test_ill_conditioned_points_take_the_accurate_tiers(mesh, torsion, tier):
     # (1e14, 1): hubvib stability's "mesh 1e14 / torsion 1 N/m", where eigh of the assembled
     # matrix loses everything and the Jacobi SVD keeps ~1e-15
-    params = raba118()
+    params = lumped_preset("raba118")
     changes = {"c_sp": np.array([3e8, mesh]), "c_rp": np.array([3e8, mesh]),
                "c_su": np.array([1e6, torsion]), "c_cu": np.array([1e6, torsion]),
                "c_ru": np.array([1e6, torsion])}
@@ -53,7 +54,7 @@ def test_ill_conditioned_points_take_the_accurate_tiers(mesh, torsion, tier):
 
 
 def test_mechanisms_give_exact_zeros_like_the_single_solver():
-    params = raba118()
+    params = lumped_preset("raba118")
     changes = {"c_su": np.array([0.0, 1e6]), "c_cu": np.array([0.0, 1e6])}
     batch = batch_frequencies(params, changes)
     for i in range(2):
@@ -76,7 +77,7 @@ def test_mechanisms_give_exact_zeros_like_the_single_solver():
 ])
 def test_bad_changes_name_the_field(changes, message):
     with pytest.raises(ParameterError, match=message):
-        batch_frequencies(raba118(), changes)
+        batch_frequencies(lumped_preset("raba118"), changes)
 
 
 def test_blas_threads_are_one_inside_and_restored_after():
@@ -89,7 +90,7 @@ def test_blas_threads_are_one_inside_and_restored_after():
 
 
 def test_benchmark_reports_speed_and_agreement():
-    result = benchmark_batch(raba118(), points=300, single=10, workers=1)
+    result = benchmark_batch(lumped_preset("raba118"), points=300, single=10, workers=1)
     assert result["points"] == 300 and result["points_per_second"] > 0
     assert result["speedup"] > 0 and result["fallback_points"] == 0
     assert result["max_relative_difference"] < 1e-10, "benchmark's own agreement check"

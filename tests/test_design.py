@@ -175,9 +175,10 @@ def test_spectrum_from_a_design_needs_the_mountings(tmp_path, capsys):
 
 
 def test_hub4_preset_is_the_lumped_preset_and_has_four_planets():
-    from hubvib.lumped import natural_modes, preset
+    from hubvib.build import lumped_preset
+    from hubvib.lumped import natural_modes
 
-    params = preset("hub4")
+    params = lumped_preset("hub4")
     assert len(params.theta) == 4
     spectrum = natural_modes(params)
     # Lin & Parker: N = 4 equally spaced planets give N - 3 = 1 planet mode per group

@@ -4,8 +4,9 @@ import numpy as np
 import pytest
 
 from hubvib.detection.drift import compensate, drift_model, family_pod, references
+from hubvib.build import lumped_preset
 from hubvib.detection.options import DetectionOptions
-from hubvib.lumped import natural_modes, raba118
+from hubvib.lumped import natural_modes
 from hubvib.lumped.parameters import STIFFNESS_FIELDS
 
 OPTIONS = DetectionOptions(temperature_std=2.0, mesh_load_std=0.01)
@@ -14,7 +15,7 @@ SPRINGS = STIFFNESS_FIELDS
 
 @pytest.fixture(scope="module")
 def drift():
-    params = raba118()
+    params = lumped_preset("raba118")
     f0 = natural_modes(params).omega / (2 * np.pi)
     return params, f0, drift_model(params, f0, OPTIONS)
 

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from hubvib.studies.crack_sweep import CrackSweep
+from hubvib.build import lumped_preset
 from hubvib.detection.carrier import MeshTiming
 from hubvib.detection.model import CrackModel
-from hubvib.lumped import raba118
 
 #: FE ring body of Raba 118/76 (README: c_ru 1.663e10 N/m +-0.15 %, c_r 3.807e10 N/m +-0.03 %);
 #: the through-rim crack lowers c_ru to x0.942 (issue 13)
@@ -46,7 +46,7 @@ def synthetic_model(apply="series", c_ru_mount=None, c_r_mount=None, **rows) -> 
     fe = synthetic_fe_rows(**rows)
     sweep = CrackSweep(tuple(r["depth_m"] for r in fe), apply=apply, c_ru_mount=c_ru_mount,
                        c_r_mount=c_r_mount)
-    return CrackModel.from_fe(raba118(), sweep, fe)
+    return CrackModel.from_fe(lumped_preset("raba118"), sweep, fe)
 
 
 def test_synthetic_rows_pass_the_fe_cache_plausibility_check():

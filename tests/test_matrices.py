@@ -4,11 +4,12 @@ import numpy as np
 import pytest
 
 from hubvib import lumped
+from hubvib.build import lumped_preset
 from energy_reference import stiffness_by_polarisation
 
 
 def _variants():
-    p = lumped.raba118()
+    p = lumped_preset("raba118")
     yield "raba118", p
     yield "unequal, c_s, two angles", p.replace(
         theta=(0.1, 1.9, 4.0, 5.2), c_s=2e7, alpha_s=math.radians(21.0), c_sp=2.5e8)
@@ -34,14 +35,14 @@ def test_stiffness_symmetric_positive_semidefinite(name, params):
 
 
 def test_mass_matrix_is_paper_eq15():
-    p = lumped.raba118()
+    p = lumped_preset("raba118")
     expected = [1.9, 1.9, 13.8, 13.8, 6.8, 6.8, 1.16, 13.88, 5.36] + [0.85, 0.85, 0.52] * 3
     np.testing.assert_array_equal(np.diag(lumped.mass_matrix(p)), expected)
 
 
 def test_printed_matrix_differs_exactly_by_eq10_error():
     """raba118.md fact 2: printed C lacks 1.5 c_sp on x_s, y_s and 1.5 c_rp on x_r, y_r."""
-    p = lumped.raba118()
+    p = lumped_preset("raba118")
     difference = lumped.stiffness_matrix(p) - lumped.printed_stiffness_matrix(p)
     expected = np.zeros((18, 18))
     expected[0, 0] = expected[1, 1] = 1.5 * p.c_sp
@@ -51,7 +52,7 @@ def test_printed_matrix_differs_exactly_by_eq10_error():
 
 def test_printed_matrix_refuses_other_layouts():
     with pytest.raises(lumped.ParameterError, match="N = 3 equally spaced"):
-        lumped.printed_stiffness_matrix(lumped.raba118().replace(theta=(0.0, 2.0, 4.0)))
+        lumped.printed_stiffness_matrix(lumped_preset("raba118").replace(theta=(0.0, 2.0, 4.0)))
 
 
 def test_dof_names_follow_paper_eq5():
@@ -60,7 +61,7 @@ def test_dof_names_follow_paper_eq5():
 
 
 def test_unit_ring_mesh_factors_change_nothing():
-    p = lumped.raba118()
+    p = lumped_preset("raba118")
     np.testing.assert_array_equal(lumped.stiffness_matrix(p.replace(c_rp_factors=(1.0,) * 3)),
                                   lumped.stiffness_matrix(p))
 
@@ -68,4 +69,4 @@ def test_unit_ring_mesh_factors_change_nothing():
 @pytest.mark.parametrize("factors", [(0.9, 1.0), (1.0, 0.0, 1.0), (1.0, float("nan"), 1.0)])
 def test_ring_mesh_factors_checked(factors):
     with pytest.raises(lumped.ParameterError, match="c_rp_factors"):
-        lumped.raba118().replace(c_rp_factors=factors)
+        lumped_preset("raba118").replace(c_rp_factors=factors)

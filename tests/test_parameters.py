@@ -3,11 +3,13 @@ import math
 import pytest
 
 from hubvib import lumped
+from hubvib.build import lumped_preset
+from hubvib.runtime.params_input import preset_parameters
 from hubvib.lumped import ParameterError
 
 
 def test_raba118_preset_matches_paper_table():
-    p = lumped.raba118()  # paper's table (raba118.md)
+    p = lumped_preset("raba118")  # paper's table (raba118.md)
     assert (p.m_s, p.m_r, p.m_c, p.m_p) == (1.9, 6.8, 13.8, 0.85)
     assert (p.mu_s, p.mu_r, p.mu_c, p.mu_p) == (1.16, 5.36, 13.88, 0.52)
     assert (p.c_sp, p.c_rp, p.c_p, p.c_c, p.c_r) == (3e8, 3e8, 1e8, 1e8, 1e8)
@@ -20,18 +22,18 @@ def test_raba118_preset_matches_paper_table():
 @pytest.mark.parametrize("value", [-1.0, math.nan, math.inf, "1e6"])
 def test_bad_stiffness_names_field_and_range(field, value):
     with pytest.raises(ParameterError, match=field):
-        lumped.raba118().replace(**{field: value})
+        lumped_preset("raba118").replace(**{field: value})
 
 
 @pytest.mark.parametrize("field", ["m_s", "m_c", "m_r", "m_p", "mu_s", "mu_c", "mu_r", "mu_p", "d_r"])
 @pytest.mark.parametrize("value", [0.0, -2.0, math.nan, -math.inf])
 def test_bad_mass_or_diameter(field, value):
     with pytest.raises(ParameterError, match=rf"{field} = .* must be"):
-        lumped.raba118().replace(**{field: value})
+        lumped_preset("raba118").replace(**{field: value})
 
 
 def test_zero_stiffness_is_allowed():
-    assert lumped.raba118().replace(c_ru=0.0).c_ru == 0.0
+    assert lumped_preset("raba118").replace(c_ru=0.0).c_ru == 0.0
 
 
 @pytest.mark.parametrize("theta, message", [
@@ -43,20 +45,20 @@ def test_zero_stiffness_is_allowed():
 ])
 def test_bad_planet_angles(theta, message):
     with pytest.raises(ParameterError, match=message):
-        lumped.raba118().replace(theta=theta)
+        lumped_preset("raba118").replace(theta=theta)
 
 
 @pytest.mark.parametrize("value", [0.0, math.pi / 2, -0.1])
 def test_bad_pressure_angle(value):
     with pytest.raises(ParameterError, match=r"alpha_s .*\(0, pi/2\)|alpha_s = .* must be"):
-        lumped.raba118().replace(alpha_s=value)
+        lumped_preset("raba118").replace(alpha_s=value)
 
 
 def test_unknown_field_and_preset():
     with pytest.raises(ParameterError, match="unknown parameter"):
-        lumped.raba118().replace(c_xx=1.0)
+        lumped_preset("raba118").replace(c_xx=1.0)
     with pytest.raises(ParameterError, match="available: .*'raba118'"):
-        lumped.preset("raba119")
+        preset_parameters("raba119")
 
 
 @pytest.mark.parametrize("n", [0, -1, 2.5, True])

@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 
 from hubvib import lumped
+from hubvib.build import lumped_preset
 from hubvib.cli import main
 from hubvib.lumped.parameters import ANGLE_TOLERANCE, MAX_PLANETS
 
@@ -249,7 +250,7 @@ def test_planet_angle_check_agrees_with_every_pair():
                 theta[j] = near
         expected = brute_force(theta)
         try:
-            lumped.raba118().replace(theta=tuple(theta))
+            lumped_preset("raba118").replace(theta=tuple(theta))
             refused_now = False
         except lumped.ParameterError as exc:
             assert "same place" in str(exc)
@@ -264,7 +265,7 @@ def test_most_planets_allowed_still_solve():
     """Item 10: N = MAX_PLANETS is inside the bound and keeps Lin & Parker's structure
     (equally spaced planets): 6 rotational modes, 6 translational pairs and 3 groups of
     N - 3 planet modes, 9 + 3N in all."""
-    params = lumped.raba118().replace(theta=lumped.equally_spaced_angles(MAX_PLANETS))
+    params = lumped_preset("raba118").replace(theta=lumped.equally_spaced_angles(MAX_PLANETS))
     spectrum = lumped.natural_modes(params)
     kinds = spectrum.kind
     assert len(kinds) == 9 + 3 * MAX_PLANETS
@@ -287,7 +288,7 @@ def test_overflowing_spectrum_is_refused(capsys):
 def test_light_but_representable_masses_still_solve():
     """Item 11: only non-finite results are refused.  Every mass x 1e-290 kg is fine, and
     scales every frequency by exactly 1e145 (omega ~ sqrt(k / m): homogeneity), 1e-9."""
-    base = lumped.raba118()
+    base = lumped_preset("raba118")
     scaled = base.replace(**{m: getattr(base, m) * 1e-290 for m in MASSES})
     ratio = lumped.natural_modes(scaled).omega / lumped.natural_modes(base).omega
     assert ratio == pytest.approx(1e145, rel=1e-9)

@@ -7,10 +7,10 @@ pv = pytest.importorskip("pyvista")
 imageio = pytest.importorskip("imageio")
 
 from hubvib.render.modes import render_mode  # noqa: E402
+from hubvib.build import lumped_preset  # noqa: E402
 from hubvib.lumped import natural_modes  # noqa: E402
-from hubvib.lumped.presets import raba118  # noqa: E402
 
-PARAMS = raba118()
+PARAMS = lumped_preset("raba118")
 SPECTRUM = natural_modes(PARAMS)
 
 

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from hubvib import lumped
+from hubvib.build import lumped_preset
 
 
 def _central_difference(params, parameter, h=1e-5):
@@ -16,7 +17,7 @@ def _central_difference(params, parameter, h=1e-5):
 @pytest.mark.parametrize("theta", [None, (0.0, 2.0, 4.4)])
 @pytest.mark.parametrize("parameter", ["c_ru", "c_sp", "c_rp", "c_p", "c_r", "m_s", "mu_r", "m_p"])
 def test_analytic_sensitivity_matches_finite_differences(parameter, theta):
-    params = lumped.raba118() if theta is None else lumped.raba118().replace(theta=theta)
+    params = lumped_preset("raba118") if theta is None else lumped_preset("raba118").replace(theta=theta)
     analytic = lumped.frequency_sensitivity(params, parameter).d_omega
     numeric = _central_difference(params, parameter)
     scale = np.abs(numeric).max()
@@ -26,12 +27,12 @@ def test_analytic_sensitivity_matches_finite_differences(parameter, theta):
 
 def test_sensitivity_rejects_unknown_parameter():
     with pytest.raises(lumped.ParameterError, match="sensitivities exist for"):
-        lumped.frequency_sensitivity(lumped.raba118(), "alpha_s")
+        lumped.frequency_sensitivity(lumped_preset("raba118"), "alpha_s")
 
 
 def test_fig4_ratios_fact5():
     """raba118.md fact 5: c_ru 1e6 -> 1e5 lowers omega_1 ~1.8x and omega_2 ~1.1x."""
-    ratio = lumped.sweep(lumped.raba118(), "c_ru", [1e6, 1e5]).ratio(0, 1)
+    ratio = lumped.sweep(lumped_preset("raba118"), "c_ru", [1e6, 1e5]).ratio(0, 1)
     assert 1 / ratio[0] == pytest.approx(1.8, abs=0.05)
     assert 1 / ratio[1] == pytest.approx(1.1, abs=0.05)
 
@@ -39,7 +40,7 @@ def test_fig4_ratios_fact5():
 def test_tracking_follows_modes_through_crossings():
     """c_ru enters only rotational modes: tracked translational branches stay flat
     (Lin & Parker), although rotational branches cross them (Fig. 4 range)."""
-    result = lumped.sweep(lumped.raba118(), "c_ru", np.geomspace(1e4, 1e8, 61))
+    result = lumped.sweep(lumped_preset("raba118"), "c_ru", np.geomspace(1e4, 1e8, 61))
     translational = [i for i, k in enumerate(result.kind) if k == "translational"]
     np.testing.assert_allclose(result.omega[:, translational],
                                np.broadcast_to(result.omega[0, translational],
@@ -50,7 +51,7 @@ def test_tracking_follows_modes_through_crossings():
 
 
 def test_shift_table_consistency():
-    shift = lumped.frequency_shift(lumped.raba118(), "c_ru", 1e5)
+    shift = lumped.frequency_shift(lumped_preset("raba118"), "c_ru", 1e5)
     np.testing.assert_allclose(shift.delta_hz, shift.delta_rad_s / (2 * math.pi))
     np.testing.assert_allclose(shift.percent, 100 * shift.delta_rad_s / shift.omega_base)
     translational = np.array(shift.kind) == "translational"
@@ -59,12 +60,12 @@ def test_shift_table_consistency():
 
 
 def test_shift_to_same_value_is_zero():
-    shift = lumped.frequency_shift(lumped.raba118(), "c_ru", 1e6)
+    shift = lumped.frequency_shift(lumped_preset("raba118"), "c_ru", 1e6)
     assert np.abs(shift.delta_rad_s).max() == 0.0
 
 
 def test_modal_energy_fractions():
-    s = lumped.natural_modes(lumped.raba118().replace(theta=lumped.equally_spaced_angles(4)))
+    s = lumped.natural_modes(lumped_preset("raba118").replace(theta=lumped.equally_spaced_angles(4)))
     e = lumped.modal_energy(s)
     np.testing.assert_allclose(e.strain.sum(axis=1), 1.0, rtol=1e-12)
     np.testing.assert_allclose(e.kinetic.sum(axis=1), 1.0, rtol=1e-12)

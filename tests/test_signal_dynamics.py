@@ -5,7 +5,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from hubvib.lumped import natural_modes, raba118
+from hubvib.lumped import natural_modes
+from hubvib.build import lumped_preset
 from hubvib.lumped.network import mass_diagonal, spring_network
 from hubvib.signal.dynamics import planetary_dynamics
 from hubvib.signal.mesh_curves import synthetic_curves
@@ -26,7 +27,7 @@ FAST = SignalOptions(sun_speed_rpm=6000.0, sample_rate_hz=20000.0)
 
 
 def _raba_system(damping=None):
-    params = raba118()
+    params = lumped_preset("raba118")
     network = spring_network(params)
     n = params.n_dof
     rows = network.G[[p == "c_rp" for p in network.parameter]]
@@ -110,7 +111,7 @@ def test_undamped_energy_is_conserved_exactly_by_average_acceleration():
 
 
 def test_static_preload_carries_the_input_torque_through_every_mesh():
-    params = raba118()
+    params = lumped_preset("raba118")
     curves = synthetic_curves(RABA).to_preset(params.c_sp, params.c_rp)
     dynamics = planetary_dynamics(params, curves, 0.05, 1000.0)
     expected = 1000.0 / (params.d_s / 2) / params.n_planets   # T_s / (N r_bs)
@@ -119,7 +120,7 @@ def test_static_preload_carries_the_input_torque_through_every_mesh():
 
 
 def _cracked():
-    params = raba118()
+    params = lumped_preset("raba118")
     return params, synthetic_curves(RABA, crack_factor=1.5, depth=0.01).to_preset(params.c_sp,
                                                                             params.c_rp)
 
@@ -162,7 +163,7 @@ def test_static_transmission_error_drives_the_meshes_linearly():
 def test_benchmark_runs_both_integrators_on_the_same_problem():
     from hubvib.signal import benchmark_signal
 
-    result = benchmark_signal(RABA, raba118(), revolutions=1)
+    result = benchmark_signal(RABA, lumped_preset("raba118"), revolutions=1)
     assert result["samples_per_mesh_period"] >= 20
     # accuracy only (never timings): both within 5 % of the Richardson reference
     assert result["newmark_error"] < 0.05 and result["solve_ivp_error"] < 0.05, result

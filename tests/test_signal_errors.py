@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from hubvib.design import preset_design
-from hubvib.lumped import raba118
+from hubvib.build import lumped_preset
 from hubvib.signal.dynamics import planetary_dynamics
 from hubvib.signal.contact import force_ratio, in_contact
 from hubvib.signal.errors import StageErrors, load_sharing, rigid_centre_sharing
@@ -26,7 +26,7 @@ N = 3
 
 
 def _run(options, params=None, crack=False):
-    params = params or raba118()
+    params = params or lumped_preset("raba118")
     curves = synthetic_curves(RABA, crack_factor=1.5 if crack else 1.0,
                               depth=0.01 if crack else 0.0).to_preset(params.c_sp, params.c_rp)
     sim = simulate(params, curves, PHASING, options, 0 if crack else None, 1, 26)
@@ -37,7 +37,7 @@ def test_load_sharing_against_the_quasi_static_closed_form():
     """Centre members held in translation and stiff planet bearings (1e13 N/m): the model's
     static mesh forces against F_i = F - k_sr [c_t de_t + c_r de_r] (errors module)."""
     big = 1e13
-    params = raba118().replace(c_s=big, c_c=big, c_r=big, c_p=big)
+    params = lumped_preset("raba118").replace(c_s=big, c_c=big, c_r=big, c_p=big)
     for tangential, radial in (((20e-6, 0.0, 0.0), ()),
                                ((10e-6, -20e-6, 5e-6), (5e-6, 0.0, -7e-6))):
         options = replace(FAST, planet_position_errors_m=tangential,
@@ -108,7 +108,7 @@ def test_contact_loss_is_modelled_by_separation():
     tension anywhere, and its contact pattern is the one its deflections give."""
     options = replace(FAST, sun_torque_N_m=100.0,
                       planet_position_errors_m=(50e-6, 0.0, 0.0))
-    params = raba118().replace(c_s=1e8)
+    params = lumped_preset("raba118").replace(c_s=1e8)
     sim, _, _ = _run(options, params, crack=True)
     assert sim.linear_min_force_ratio[N] < 0, sim.linear_min_force_ratio
     assert sim.separated[N] > 0.01 and sim.separated[[0, 1, 2, 4, 5]].max() == 0
@@ -124,7 +124,7 @@ def test_contact_loss_is_modelled_by_separation():
 def test_a_planet_that_unloads_is_said_clearly():
     options = replace(FAST, sun_torque_N_m=60.0, planet_position_errors_m=(50e-6, 0.0, 0.0))
     with pytest.raises(ValueError, match="contact loss"):
-        _run(options, raba118().replace(c_s=1e8), crack=True)
+        _run(options, lumped_preset("raba118").replace(c_s=1e8), crack=True)
 
 
 @pytest.mark.parametrize("table, message", [

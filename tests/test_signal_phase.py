@@ -3,8 +3,8 @@ import math
 
 import numpy as np
 
-from hubvib.lumped import raba118
 from hubvib.build import raba118 as geometry
+from hubvib.build import lumped_preset
 from hubvib.meshing.gear import centre_distance, rotation
 from hubvib.signal.mesh_curves import synthetic_curves
 from hubvib.design import preset_design
@@ -101,7 +101,7 @@ def test_equally_spaced_planets_cancel_every_order_that_is_not_a_multiple_of_n()
     k with k = 0 (mod N); the mesh order z_r = 64 itself (not a multiple of 3) vanishes and
     its energy appears at 63 and 66.  A ring crack, met by every planet in turn, keeps the
     rule.  Unequal spacing breaks it."""
-    params = raba118()
+    params = lumped_preset("raba118")
     for factor in (1.0, 1.5):
         spectrum = _sensor_spectrum(params, factor)
         a = spectrum.amplitude[1:]

@@ -8,9 +8,10 @@ import pytest
 
 from hubvib import lumped
 from energy_reference import mp_frequencies
+from hubvib.build import lumped_preset
 from hubvib.validation import stability
 
-CASES = stability.cases()
+CASES = stability.cases(lumped_preset("raba118"))
 
 
 #: the 12-planet case takes seconds in mpmath; the same check on 3..5 planets stays fast
@@ -39,7 +40,7 @@ def test_plain_eigh_fails_where_jacobi_holds():
 
 
 def test_stability_report_rows_cover_every_case_and_method():
-    rows = stability.run(repeats=1)
+    rows = stability.run(lumped_preset("raba118"), repeats=1)
     assert len(rows) == len(CASES) * len(lumped.METHODS) + 1
     default = [r for r in rows if r.method == "jacobi"]
     assert all(r.max_error <= stability.TARGET for r in default)

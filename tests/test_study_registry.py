@@ -12,9 +12,10 @@ from pathlib import Path
 import pytest
 
 from hubvib.cli import main
+from hubvib.build import lumped_preset
 from hubvib.foundation.errors import SceneError
 from hubvib.foundation.output import write_csv, write_text
-from hubvib.lumped import natural_modes, raba118
+from hubvib.lumped import natural_modes
 from hubvib.studies.kinds import STUDIES, study_of
 from hubvib.studies.scene import load_scene, parse_scene
 from hubvib.studies.study import Study, check_keys, register_study, string_key
@@ -92,14 +93,14 @@ def test_a_kind_registered_at_run_time_runs_through_hubvib_run(registered, tmp_p
     out = tmp_path / "out"
     assert main(["run", str(scene_file), "--out", str(out), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
-    expected = natural_modes(raba118(), "jacobi")
+    expected = natural_modes(lumped_preset("raba118"), "jacobi")
     assert summary["modes"] == len(expected.omega) == 9 + 3 * 3, "9 + 3N DOF (N = 3 planets)"
     assert sorted(Path(f).name for f in summary["files"]) == ["modes.csv", "report.md"]
     with open(out / "modes.csv", encoding="utf-8", newline="") as handle:
         rows = list(csv.DictReader(handle))
     got = [float(r["frequency_hz"]) for r in rows]
     assert got == pytest.approx(list(expected.frequency_hz), rel=1e-12, abs=1e-9), (
-        "CSV frequencies against hubvib.lumped.natural_modes(raba118()) called directly "
+        "CSV frequencies against hubvib.lumped.natural_modes(lumped_preset('raba118')) called directly "
         "(float repr round trip: rel 1e-12)")
     assert [r["kind"] for r in rows] == list(expected.kind), "mode types as natural_modes gives"
     report = (out / "report.md").read_text(encoding="utf-8")

@@ -8,9 +8,9 @@ import math
 import pytest
 
 from hubvib.design import preset_design
+from hubvib.build import lumped_preset
 from hubvib.detection.model import CrackModel
 from hubvib.fem.estimate import CrackCaseEstimate, RingEstimate
-from hubvib.lumped import raba118
 from hubvib.studies.crack_growth import CrackGrowthResult, solid_rows
 from hubvib.studies.crack_sweep import CrackSweep, PlaneCase, SolidCase
 from hubvib.studies.stiffness import _ring_rows
@@ -58,8 +58,8 @@ def test_crack_growth_grid_reads_the_typed_cases():
 def test_crack_model_from_typed_cases_equals_from_their_dict_form():
     cases = [_plane(0.0, 1e9, 1.0), _plane(0.003, 0.95e9, 0.9)]
     sweep = CrackSweep((0.0, 0.003), apply="direct")
-    typed = CrackModel.from_fe(raba118(), sweep, [c.estimate for c in cases])
-    from_dicts = CrackModel.from_fe(raba118(), sweep, [c.to_dict() for c in cases])
+    typed = CrackModel.from_fe(lumped_preset("raba118"), sweep, [c.estimate for c in cases])
+    from_dicts = CrackModel.from_fe(lumped_preset("raba118"), sweep, [c.to_dict() for c in cases])
     assert typed == from_dicts
     assert typed.c_ru_body == (1e9, 0.95e9) and typed.c_rp_fe == (1.5e9, 1.5e9)
     assert typed.c_rp_ratio == (1.0, 0.9) and typed.c_r_body_error == (0.02e9, 0.019e9)

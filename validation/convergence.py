@@ -19,11 +19,11 @@ import csv
 import io
 import math
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from hubvib.build import raba118
 from hubvib.fem.annulus import exact_k_theta, fe_k_theta
 from hubvib.fem.edge_crack import fe_rotation_compliance, handbook_added_compliance
 from hubvib.fem.material import Material
@@ -45,12 +45,25 @@ ORDER_RANGE = (0.5, 8.0)
 COLUMNS = ("scale", "dofs", "seconds_mesh", "seconds_assembly", "seconds_solve",
            "seconds_total", "value", "reference", "error", "relative_error")
 QUANTITIES = ("c_ru", "c_r", "c_sp", "c_rp", "annulus", "edge_crack")
+#: the quantities of a reducer's gears (``Gears``); the others have exact references
+GEAR_QUANTITIES = ("c_ru", "c_r", "c_sp", "c_rp")
 UNITS = {"c_ru": "N/m", "c_r": "N/m", "c_sp": "N/m", "c_rp": "N/m", "annulus": "N m/rad",
          "edge_crack": "rad/(N m)"}
 
 
-def _ring_level(scale: float, which: str) -> dict:
-    ring = raba118.ring_gear()
+@dataclass(frozen=True)
+class Gears:
+    """The built gears whose stiffnesses a study converges: the ring gear
+    (``meshing.ring_gear.RingGear``) for c_ru, c_r and the sun and planet bodies
+    (``meshing.gear_body.GearBody``) with it for c_sp, c_rp.  The layers above build them
+    from a design (``hubvib.build``); validation imports the stages only."""
+
+    ring: object
+    sun: object = None
+    planet: object = None
+
+
+def _ring_level(scale: float, which: str, ring) -> dict:
     mesh = ring_mesh(ring, None, scaled_options(scale))
     result = ring_stiffness(ring, mesh)
     return {"dofs": result.dofs, "seconds_mesh": mesh.info["seconds"],
@@ -59,9 +72,11 @@ def _ring_level(scale: float, which: str) -> dict:
             "value": getattr(result, which)}
 
 
-def _mesh_level(scale: float, which: str) -> dict:
-    result = reducer_mesh_stiffness(raba118.gear_body("sun"), raba118.gear_body("planet"),
-                                    raba118.ring_gear(), scaled_options(scale))[which]
+def _mesh_level(scale: float, which: str, gears: Gears) -> dict:
+    if gears.sun is None or gears.planet is None:
+        raise ValueError(f"{which} needs the sun and planet bodies (Gears.sun, Gears.planet)")
+    result = reducer_mesh_stiffness(gears.sun, gears.planet, gears.ring,
+                                    scaled_options(scale))[which]
     return {"dofs": result.dofs, "value": result.value,
             **{f"seconds_{k}": v for k, v in result.seconds.items()}}
 
@@ -88,12 +103,15 @@ def _strip_level(scale: float) -> dict:
             "value": cracked - intact, "reference": handbook_added_compliance(ratio * W, W, t)}
 
 
-def compute_level(quantity: str, scale: float) -> dict:
-    """One level's row (without the error columns)."""
+def compute_level(quantity: str, scale: float, gears: Gears | None = None) -> dict:
+    """One level's row (without the error columns); the reducer's quantities (c_ru, c_r,
+    c_sp, c_rp) are those of ``gears``."""
+    if quantity in GEAR_QUANTITIES and gears is None:
+        raise ValueError(f"quantity {quantity!r} needs the built gears (Gears)")
     if quantity in ("c_ru", "c_r"):
-        row = _ring_level(scale, quantity)
+        row = _ring_level(scale, quantity, gears.ring)
     elif quantity in ("c_sp", "c_rp"):
-        row = _mesh_level(scale, quantity)
+        row = _mesh_level(scale, quantity, gears)
     elif quantity == "annulus":
         row = _annulus_level(scale)
     elif quantity == "edge_crack":
@@ -154,9 +172,11 @@ def with_errors(rows: list[dict]) -> tuple[list[dict], str | None]:
     return out, how
 
 
-def run_study(quantity: str, folder: Path, scales=None, progress=print) -> Path:
+def run_study(quantity: str, folder: Path, gears: Gears | None = None, scales=None,
+              progress=print) -> Path:
     """Compute (or resume) the study over ``scales`` (default ``scales_of(quantity)``);
-    CSV with errors and a log-log plot in ``folder``."""
+    CSV with errors and a log-log plot in ``folder``.  ``gears``: the built gears of the
+    reducer's quantities (c_ru, c_r, c_sp, c_rp)."""
     if quantity not in QUANTITIES:
         raise ValueError(f"quantity {quantity!r}, allowed: {', '.join(QUANTITIES)}")
     scales = scales_of(quantity) if scales is None else scales
@@ -166,7 +186,7 @@ def run_study(quantity: str, folder: Path, scales=None, progress=print) -> Path:
     for scale in scales:
         if any(math.isclose(float(r["scale"]), scale, rel_tol=1e-9) for r in done):
             continue
-        row = compute_level(quantity, scale)
+        row = compute_level(quantity, scale, gears)
         _append(raw, row)
         done.append(row)
         progress(f"{quantity}: scale {scale:.3f}, {row['dofs']} DOFs, "

@@ -1,6 +1,8 @@
 """Raba 118/76: the published spectrum (paper eq. 16) reproduced and explained.
 
-Run by ``hubvib validate raba118 [--out DIR]``.
+Run by ``hubvib validate raba118 [--out DIR]``.  The parameters are an argument (the
+layers above build them from the preset's design, ``hubvib.build.lumped_preset("raba118")``):
+validation imports the stages only.
 """
 from __future__ import annotations
 
@@ -10,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from hubvib.foundation.output import save_figure, write_csv, write_json
-from hubvib.lumped.presets import raba118
+from hubvib.lumped.parameters import PlanetaryParameters
 from hubvib.lumped.spectrum import natural_modes, printed_modes
 from hubvib.lumped.sweep import sweep
 
@@ -38,6 +40,8 @@ class RabaValidation:
     fig4_ratio_second: float
     theory: list[theory.TheoryCheck]
     files: list[Path] = field(default_factory=list)
+    #: the validated parameters (the Fig. 4 sweep starts from them)
+    params: PlanetaryParameters | None = field(default=None, repr=False, compare=False)
 
     @property
     def passed(self) -> bool:
@@ -58,9 +62,9 @@ class RabaValidation:
         }
 
 
-def validate() -> RabaValidation:
-    """Compute the comparison (no files written)."""
-    params = raba118()
+def validate(params: PlanetaryParameters) -> RabaValidation:
+    """Compare the Raba 118/76 parameters ``params`` (the paper's table, SI) with the
+    published spectrum (no files written)."""
     printed = printed_modes(params)
     energy = natural_modes(params)
     deviation = (printed.omega - PUBLISHED_RAD_S) / PUBLISHED_RAD_S
@@ -90,6 +94,7 @@ def validate() -> RabaValidation:
         fig4_ratio_first=float(ratio[0]),
         fig4_ratio_second=float(ratio[1]),
         theory=theory.run(params),
+        params=params,
     )
 
 
@@ -116,19 +121,18 @@ def write_report(result: RabaValidation, out: Path) -> RabaValidation:
         write_csv(out / "spectrum.csv", result.rows),
         write_csv(out / "theory.csv", [c.as_dict() for c in result.theory]),
         write_json(out / "summary.json", result.summary()),
-        save_figure(fig4_figure(), out / "fig4_c_ru_sweep.png"),
+        save_figure(fig4_figure(result.params), out / "fig4_c_ru_sweep.png"),
     ]
     return result
 
 
-def fig4_figure(points: int = 81):
-    """The paper's Fig. 4: every frequency against c_ru, both models."""
+def fig4_figure(params: PlanetaryParameters, points: int = 81):
+    """The paper's Fig. 4: every frequency against c_ru, both models, from ``params``."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    params = raba118()
     values = np.geomspace(*FIG4_RANGE, points)
     tracked = sweep(params, "c_ru", values)
     printed = np.array([printed_modes(params.replace(c_ru=v)).omega for v in values])

@@ -16,7 +16,6 @@ import numpy as np
 from hubvib.lumped.eigensolve import METHODS, IndefiniteStiffnessError, solve_assembled
 from hubvib.lumped.network import mass_diagonal
 from hubvib.lumped.parameters import PlanetaryParameters, equally_spaced_angles
-from hubvib.lumped.presets import raba118
 from hubvib.lumped.printed import printed_stiffness_matrix
 from hubvib.lumped.spectrum import natural_modes
 
@@ -25,9 +24,9 @@ from .reference import reference_eigenvalues
 TARGET = 1e-6  # relative frequency error the default method must meet on every case
 
 
-def cases() -> dict[str, PlanetaryParameters]:
-    """Named parameter sets, from the paper's to the degenerate."""
-    p = raba118()
+def cases(p: PlanetaryParameters) -> dict[str, PlanetaryParameters]:
+    """Named parameter sets, from the paper's (``p``: the Raba 118/76 parameters) to the
+    degenerate."""
     stiff_mesh = dict(c_sp=1e14, c_rp=1e14, c_su=1.0, c_cu=1.0, c_ru=1.0)
     return {
         "raba118 (paper)": p,
@@ -62,16 +61,18 @@ class StabilityRow:
         return self.__dict__.copy()
 
 
-def run(repeats: int = 20, dps: int = 50) -> list[StabilityRow]:
-    """Every case with every method, plus the paper's printed (indefinite) matrix."""
+def run(raba: PlanetaryParameters, repeats: int = 20, dps: int = 50) -> list[StabilityRow]:
+    """Every case made from ``raba`` (the Raba 118/76 parameters; the layers above build
+    them, ``hubvib.build.lumped_preset("raba118")``) with every method, plus the paper's
+    printed (indefinite) matrix."""
     rows = []
-    for name, params in cases().items():
+    for name, params in cases(raba).items():
         reference = np.sqrt(np.clip(reference_eigenvalues(params, dps), 0.0, None))
         for method in METHODS:
             seconds = _median_time(lambda: natural_modes(params, method), repeats)
             spectrum = natural_modes(params, method)
             rows.append(_compare(name, method, spectrum.omega, spectrum.n_rigid, reference, seconds))
-    rows.append(_printed_row())
+    rows.append(_printed_row(raba))
     return rows
 
 
@@ -88,8 +89,7 @@ def _compare(name, method, omega, n_rigid, reference, seconds):
     )
 
 
-def _printed_row() -> StabilityRow:
-    params = raba118()
+def _printed_row(params: PlanetaryParameters) -> StabilityRow:
     try:
         solve_assembled(printed_stiffness_matrix(params), mass_diagonal(params))
     except IndefiniteStiffnessError as exc:

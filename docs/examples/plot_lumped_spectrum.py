@@ -10,8 +10,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from hubvib import lumped
+from hubvib.build import lumped_preset
 
-params = lumped.raba118()                        # the paper's table, SI units
+params = lumped_preset("raba118")                # the paper's table, SI units
 spectrum = lumped.natural_modes(params)          # energy-consistent model
 for i in range(spectrum.omega.size):
     print(f"mode {i + 1:2d}  {spectrum.omega[i]:9.2f} rad/s  {spectrum.kind[i]}")

@@ -16,8 +16,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from hubvib import lumped
+from hubvib.build import lumped_preset
 
-params = lumped.raba118()
+params = lumped_preset("raba118")
 spectrum = lumped.natural_modes(params)
 index = spectrum.kind.index("translational")
 shape = dict(zip(lumped.dof_names(len(params.theta)), spectrum.shapes[:, index]))

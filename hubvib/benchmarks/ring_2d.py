@@ -11,7 +11,7 @@ from hubvib.build import raba118
 from hubvib.fem.ring_stiffness import ring_stiffness
 from hubvib.meshing.levels import ring_options
 from hubvib.meshing.ring_mesh import ring_mesh
-from hubvib.validation.convergence import compute_level, reference_value
+from hubvib.validation.convergence import Gears, compute_level, reference_value
 from hubvib.validation.previous_fe import previous_ring_fe
 
 #: the 2D c_ru level of the headline figure (``levels.ring_options``): the cheapest found
@@ -45,7 +45,7 @@ def ring_2d(scale: float = C_RU_2D_SCALE, reference_scales=REFERENCE_SCALES,
     say(f"2D c_ru at scale {scale:.3f}: FE {min(new):.2f} s, previous FE path {min(old):.2f} s")
     levels = []
     for s in reference_scales:
-        levels.append(compute_level("c_ru", s))
+        levels.append(compute_level("c_ru", s, Gears(ring)))
         say(f"2D c_ru reference level {s:.3f}: {levels[-1]['dofs']} DOFs, "
             f"{levels[-1]['value']:.8e} N/m")
     reference, how = reference_value([r["value"] for r in levels], math.sqrt(2))

@@ -21,12 +21,15 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from hubvib.validation.convergence import run_study
+    from hubvib.build import raba118
+    from hubvib.validation.convergence import GEAR_QUANTITIES, Gears, run_study
 
     # checked and locked before any level is computed; the study writes its own files
     # there as it goes (each finished level is kept, so a killed study resumes)
     with locked_folder(args.out):
-        table = run_study(args.quantity, args.out,
+        gears = (Gears(raba118.ring_gear(), raba118.gear_body("sun"), raba118.gear_body("planet"))
+                 if args.quantity in GEAR_QUANTITIES else None)
+        table = run_study(args.quantity, args.out, gears,
                           progress=lambda line: print(line, file=sys.stderr, flush=True))
     plot = table.with_suffix(".png")
     if args.json:

@@ -15,10 +15,11 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
+    from hubvib.build import lumped_preset
     from hubvib.validation import raba118
 
     with output_set(args.out) as staged:  # checked and locked before the work
-        result = raba118.write_report(raba118.validate(), staged)
+        result = raba118.write_report(raba118.validate(lumped_preset("raba118")), staged)
     files = [args.out / Path(f).relative_to(staged) for f in result.files]
     if args.json:
         print(json_text({**result.summary(), "files": [str(f) for f in files]}))

@@ -19,7 +19,9 @@ import tomllib
 from pathlib import Path
 
 from hubvib.foundation.files import MAX_FILE_BYTES, read_text
-from hubvib.lumped import ParameterError, PlanetaryParameters, equally_spaced_angles, field_names, preset
+from hubvib.build import lumped_preset
+from hubvib.design import PRESETS
+from hubvib.lumped import ParameterError, PlanetaryParameters, equally_spaced_angles, field_names
 
 CONVENIENCE_KEYS = ("n_planets", "theta_deg", "alpha_w_deg")
 TUPLE_KEYS = ("theta", "theta_deg", "c_rp_factors")
@@ -83,12 +85,21 @@ def load_parameters(preset_name: str = "raba118", params_file: Path | None = Non
             raise ParameterError(f"parameters file {str(params_file)!r}: preset = "
                                  f"{preset_name!r}, but it must be a string")
         try:
-            params = apply_overrides(preset(preset_name), file_values)
+            params = apply_overrides(preset_parameters(preset_name), file_values)
         except ParameterError as exc:
             raise ParameterError(f"parameters file {str(params_file)!r}: {exc}") from None
     else:
-        params = preset(preset_name)
+        params = preset_parameters(preset_name)
     return apply_overrides(params, overrides or {})
+
+
+def preset_parameters(name: str) -> PlanetaryParameters:
+    """The lumped parameters of a registered design preset (``hubvib.design.PRESETS``),
+    built from its design (``hubvib.build.lumped_preset``); an unknown name is a
+    ``ParameterError`` naming the presets."""
+    if name not in PRESETS:
+        raise ParameterError(f"unknown preset {name!r}; available: {sorted(PRESETS)}")
+    return lumped_preset(name)
 
 
 def read_toml_file(path: Path, what: str = "parameters file", error=ParameterError) -> dict:
