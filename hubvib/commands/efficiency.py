@@ -44,6 +44,7 @@ def run(args) -> int:
     from hubvib.companion.efficiency_design import gear_design
     from hubvib.companion.efficiency_table import PAPER_RATIOS, paper_table
     from hubvib.companion.track_geometry import check_alpha1, check_diameter
+    from hubvib.companion.efficiency_output import design_with_curve, write_efficiency_files
 
     friction = Friction(args.f1, args.f2, args.f3)
     satellites = {name: check_diameter(name, getattr(args, f"{name}_diameter_mm") * 1e-3)
@@ -62,9 +63,9 @@ def run(args) -> int:
     else:
         designs = tuple(gear_design(i, friction, alpha1, satellites, args.input_power_w)
                         for i in ratios)
-    files = _write(args.out, designs) if args.out else []
+    files = write_efficiency_files(args.out, designs) if args.out else []
     if args.json:
-        data = {"source": report.SOURCE, "designs": [_with_curve(d) for d in designs]}
+        data = {"source": report.SOURCE, "designs": [design_with_curve(d) for d in designs]}
         if args.table:
             data["table"] = [c.to_dict() for c in table.cells]
         data["files"] = [str(f) for f in files]
@@ -83,30 +84,3 @@ def run(args) -> int:
         print(f"\nwritten: {', '.join(str(f) for f in files)}")
     return 0
 
-
-def _with_curve(design) -> dict:
-    from hubvib.companion.efficiency import CURVE_DEGREES, loss_curve
-
-    rows = []
-    for c in loss_curve(design.ratio, CURVE_DEGREES, design.friction):
-        power = c.power(design.power.input_w)
-        rows.append({**c.to_dict(), "driving_w": power.driving_w, "fixed_w": power.fixed_w,
-                     "carrier_w": power.carrier_w, "total_loss_w": power.total_loss_w})
-    return {**design.to_dict(), "curve": rows}
-
-
-def _write(out: Path, designs) -> list[Path]:
-    from hubvib.companion.efficiency_plot import efficiency_figure, link_loss_figure
-    from hubvib.foundation.output import save_figure, write_csv
-
-    rows = [{"ratio": d.ratio, **{k: v for k, v in row.items()}}
-            for d in designs for row in _with_curve(d)["curve"]]
-    files = [write_csv(out / "efficiency_curves.csv", rows)]
-    friction, power = designs[0].friction, designs[0].power.input_w
-    for d in designs:
-        files.append(save_figure(link_loss_figure(d.ratio, friction, power),
-                                 out / f"efficiency_losses_i{d.ratio}.png"))
-    if len(designs) > 1:
-        files.append(save_figure(efficiency_figure([d.ratio for d in designs], friction),
-                                 out / "efficiency_eta.png"))
-    return files
