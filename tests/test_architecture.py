@@ -135,3 +135,14 @@ def test_cycle_finder_finds_a_cycle():
             return self.edges[m]
 
     assert _cycles(Graph()) == [["a", "b"]]
+
+
+def test_validation_takes_the_built_gears_as_an_argument():
+    """No silent Raba default below the build layer: a reducer quantity without its gears is
+    refused, naming what is missing (the command passes hubvib.build's Raba gears)."""
+    from hubvib.validation.convergence import Gears, compute_level
+
+    with pytest.raises(ValueError, match=r"quantity 'c_ru' needs the built gears \(Gears\)"):
+        compute_level("c_ru", 4.0)
+    with pytest.raises(ValueError, match="c_sp needs the sun and planet bodies"):
+        compute_level("c_sp", 4.0, Gears(ring=object()))
