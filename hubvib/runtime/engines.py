@@ -251,6 +251,10 @@ def _wait_for_a_worker(client, execution: Execution) -> None:
                           ) from None
 
 
+#: imported by each LocalCluster worker process: Ctrl-C is left to hubvib (its docstring)
+WORKER_PRELOAD = "hubvib.runtime.dask_worker"
+
+
 def _run_dask(function, items, on_result, execution: Execution, workers: int) -> list:
     ok, version = distributed_version_ok()
     if not ok:
@@ -267,7 +271,8 @@ def _run_dask(function, items, on_result, execution: Execution, workers: int) ->
             with warnings.catch_warnings():
                 warnings.filterwarnings("ignore", message="Port .* is already in use")
                 cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                       dashboard_address=None, silence_logs=logging.CRITICAL)
+                                       dashboard_address=None, silence_logs=logging.CRITICAL,
+                                       preload=[WORKER_PRELOAD])
             client = Client(cluster)
         else:
             check_reachable(execution)  # the whole handshake bounded, not only the connect
