@@ -7,6 +7,10 @@ scene's) and the radial mounting (``c_r_mount``, torsional one fixed), log-space
 and runs the Monte Carlo POD (:mod:`.pod`) at each value: the smallest depth with
 POD >= the required probability and a shift resolved by the FE, per mode.  Each
 row also names the stiffness whose change carries the signal there.
+
+A map of more than ``PROGRESS_SOLVES`` eigen-solves (:func:`.budget.estimate`) reports
+one line per mounting value off a terminal, with the time left
+(:func:`hubvib.runtime.progress.progress`).
 """
 from __future__ import annotations
 
@@ -15,10 +19,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hubvib.runtime.progress import progress
+
+from .budget import estimate
 from .pod import pod_study
 from .series import DIRECT, SERIES
 
 SWEPT = ("c_ru_mount", "c_r_mount")
+#: eigen-solves of a map above which it reports its progress per mounting value [-]
+PROGRESS_SOLVES = 1_000_000
 
 
 @dataclass(frozen=True)
@@ -94,6 +103,10 @@ def detectability_map(model, options, timing, workers: int = 1) -> Detectability
     fixed = {"c_ru_mount": base.c_r_mount, "c_r_mount": base.c_ru_mount}
     depth, carried, frequency = {}, {}, {}
     kind = None
+    solves = len(SWEPT) * mounts.size * estimate(base.params, len(base.depths),
+                                                  options.map_samples, False).solves
+    bar = (progress(len(SWEPT) * mounts.size, "detectability map", "mounting")
+           if solves > PROGRESS_SOLVES else None)
     for swept in SWEPT:
         d_rows, c_rows, f_rows = [], [], []
         for m, mount in enumerate(mounts):
@@ -105,6 +118,10 @@ def detectability_map(model, options, timing, workers: int = 1) -> Detectability
             d_rows.append(result.detectable_depth())
             c_rows.append(result.nominal.carried_by[-1])
             f_rows.append(result.nominal.frequency_hz[0])
+            if bar is not None:
+                bar.update(note=f"{swept} = {mount:.3g} N/m")
         depth[swept], carried[swept] = np.array(d_rows), np.array(c_rows)
         frequency[swept] = np.array(f_rows)
+    if bar is not None:
+        bar.close()
     return DetectabilityMap(mounts, fixed, depth, carried, frequency, kind)

@@ -56,6 +56,7 @@ from hubvib.detection.options import detection_options
 from hubvib.identification.law import fisher_sigma_hz
 from hubvib.studies.crack_sweep import run_fe_cases
 
+from .budget import chunked_frequencies
 from .drift import drift_model
 from .measured import Measured, MeasuredError
 from .options import DetectionOptions
@@ -121,8 +122,8 @@ def reference(model, options, timing, seed: int | None = None, workers: int = 1)
     """Monte Carlo reference of ``model`` (CrackModel) under ``options``."""
     rng = np.random.default_rng(options.seed + 1 if seed is None else seed)
     fraction, long = timing.engaged_fraction, timing.long_record(options.record_length)
-    samples = observed_frequencies(model, draw(model, options, options.samples, rng), fraction,
-                                   long, workers)
+    samples = chunked_frequencies(model, draw(model, options, options.samples, rng),
+                                  fraction, long, workers)
     nominal_hz = observed_frequencies(model, nominal(model), fraction, long)[0]
     drift = drift_model(model.parameters(0), nominal_hz[0], options, model.method)
     return Reference(np.array(model.depths), samples, nominal_hz,

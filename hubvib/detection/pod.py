@@ -44,6 +44,7 @@ from scipy.stats import norm
 from hubvib.identification.law import KAPPA
 from hubvib.lumped import natural_modes
 
+from .budget import chunked_frequencies
 from .drift import Drift, drift_model, references
 from .drift import family_pod as family_pod_mc
 from .numbers import ROUND_OFF
@@ -268,7 +269,8 @@ class PodResult:
 
 
 def pod_study(model, options, timing, samples: int | None = None, model_baseline: bool = True,
-              seed: int | None = None, workers: int = 1) -> PodResult:
+              seed: int | None = None, workers: int = 1,
+              chunk_points: int | None = None) -> PodResult:
     """POD of every mode at every depth of ``model`` (CrackModel).
 
     Parameters
@@ -283,12 +285,15 @@ def pod_study(model, options, timing, samples: int | None = None, model_baseline
         Also compute the POD against the model's intact spectrum.
     seed : int, optional
         Default ``options.seed``.
+    chunk_points : int, optional
+        Parameter points solved at once (default :data:`.budget.CHUNK_POINTS`; the numbers
+        do not depend on it).
     """
     n = samples or options.samples
     rng = np.random.default_rng(options.seed if seed is None else seed)
     fraction, long = timing.engaged_fraction, timing.long_record(options.record_length)
-    frequencies = observed_frequencies(model, draw(model, options, n, rng), fraction, long,
-                                       workers)
+    frequencies = chunked_frequencies(model, draw(model, options, n, rng), fraction, long,
+                                      workers, chunk_points)
     shifts = frequencies - frequencies[:, :1]
     nominal_result = nominal_shifts(model, fraction, long)
     f0 = nominal_result.frequency_hz[0]
@@ -317,9 +322,9 @@ def pod_study(model, options, timing, samples: int | None = None, model_baseline
                                            options.false_alarm_rate, drift_rng, drift, refs)
     threshold_model = pod_model = None
     if model_baseline:
-        calibration = observed_frequencies(model.at_depths([0.0]),
-                                           draw(model, options, n, rng), fraction, long,
-                                           workers)[:, 0]
+        calibration = chunked_frequencies(model.at_depths([0.0]),
+                                          draw(model, options, n, rng), fraction, long,
+                                          workers, chunk_points)[:, 0]
         threshold_model = np.array([_quantile_threshold(calibration[:, i] - f0[i], sigma[i],
                                                         rate) for i in range(f0.size)])
         pod_model = norm.cdf((-threshold_model - (frequencies - f0)) / sigma).mean(axis=0)

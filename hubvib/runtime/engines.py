@@ -25,8 +25,9 @@ from dataclasses import dataclass
 from urllib.parse import urlsplit
 
 from hubvib.foundation.blas import blas_threads
-from hubvib.foundation.errors import InputError
+from hubvib.foundation.errors import InputError, SceneError
 from hubvib.foundation.schema import Field, Schema
+from hubvib.runtime.cluster_signals import held_interrupts
 from hubvib.runtime.process_pool import worker_pool
 
 ENGINES = ("local", "dask")
@@ -266,7 +267,8 @@ def _run_dask(function, items, on_result, execution: Execution, workers: int) ->
         if execution.scheduler is None:
             # quiet: a failed case is reported once, by EngineError, without a traceback;
             # the scheduler's HTTP port moves on if 8787 is taken (a running `dask scheduler`)
-            with warnings.catch_warnings():
+            # SIGINT held while it is built: its workers never see a Ctrl-C (.cluster_signals)
+            with warnings.catch_warnings(), held_interrupts():
                 warnings.filterwarnings("ignore", message="Port .* is already in use")
                 cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                                        dashboard_address=None, silence_logs=logging.CRITICAL)

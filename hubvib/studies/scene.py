@@ -66,6 +66,7 @@ from hubvib.build import load_design, parse_design
 from hubvib.build.consistency import check_consistent
 from hubvib.build.stages import lumped_parameters
 from hubvib.design import DesignError, PRESETS, preset_design
+from hubvib.detection.budget import check_scene as check_detection_budget
 from hubvib.detection.options import parse_detection_table
 from hubvib.foundation.errors import SceneError
 from hubvib.foundation.schema import Field, Schema
@@ -215,6 +216,8 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
     for table in tables.values():  # checks that need the design (e.g. its mesh frequency)
         if hasattr(table, "check_design"):
             table.check_design(design)
+    # memory of the Monte Carlo, from the study's depths, before any FE
+    check_detection_budget(tables.get("detection"), options, params)
     return Scene(name, params, threshold, method, folder, plots, kind.kind, options,
                  data, **flags, design=design, tables=tables)
 
