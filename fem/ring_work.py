@@ -60,11 +60,18 @@ class RingWork:
         return float(np.mean(self.c_ru_tooth_positions))
 
 
+def in_plane_modes(model) -> np.ndarray:
+    """(ndofs, 3): translation x, y and rotation about the ring axis (z) as DOF vectors
+    (``elasticity.rigid_body_modes``; in 3D its columns 0, 1 and 3)."""
+    modes = rigid_body_modes(model.basis)
+    return modes if modes.shape[1] == 3 else modes[:, [0, 1, 3]]
+
+
 def land_rigid_motions(model, lands, teeth, u: np.ndarray) -> np.ndarray:
     """(teeth, 3, columns): translation x, y [m] and rotation [rad] of the rigid motion
     with the same mean u_x, u_y and mean rotation over each tooth's root lands as the
-    displacements ``u`` (ndofs, columns); exact for a rigid ``u``."""
-    modes = rigid_body_modes(model.basis)
+    displacements ``u`` (ndofs, columns); exact for a rigid in-plane ``u``."""
+    modes = in_plane_modes(model)
     rows = lands.rows(teeth)
     measured = np.stack([lands.u_x[rows] @ u, lands.u_y[rows] @ u,
                          lands.rotation[rows] @ u], axis=1)  # (teeth, 3, columns)
@@ -88,7 +95,7 @@ def ring_work(model, ring, loads, u: np.ndarray, forces, lands) -> RingWork:
     positions = len(loads.loaded)
     teeth = list(range(ring.teeth))
     rigid = land_rigid_motions(model, lands, teeth, u[:, :positions])
-    per_unit = forces.resultants(rigid_body_modes(model.basis))  # (teeth, 2, 3)
+    per_unit = forces.resultants(in_plane_modes(model))  # (teeth, 2, 3)
     torque = np.empty(positions)
     rim = np.empty(positions)
     for column, loaded in enumerate(loads.loaded):
