@@ -41,9 +41,10 @@ DATA_SOURCES = {
                        "(then keep report.md, results.json and indicators_summary.csv)",
     "convergence/": "hubvib convergence c_ru --out docs/data/convergence "
                     "(then keep convergence_c_ru.csv)",
-    "convergence_work/": "for q in c_ru_work c_r_work c_ru_rim; do hubvib convergence $q "
-                         "--out docs/data/convergence_work; done (then keep the three "
-                         "convergence_*.csv)",
+    "convergence_work/": "hubvib convergence c_ru_work --out docs/data/convergence_work; "
+                         "hubvib convergence c_r_work --out docs/data/convergence_work; "
+                         "hubvib convergence c_ru_rim --out docs/data/convergence_work "
+                         "(then keep the three convergence_*.csv)",
     "benchmark.json": "hubvib benchmark --json > docs/data/benchmark.json",
     "stiffness_10mm.json": "hubvib stiffness --crack-depth 10e-3 --json "
                            "> docs/data/stiffness_10mm.json",
