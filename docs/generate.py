@@ -18,6 +18,7 @@ Run ``python docs/generate.py NAME`` to print one table.
 from __future__ import annotations
 
 import contextlib
+import csv
 import io
 import json
 import math
@@ -40,6 +41,10 @@ DATA_SOURCES = {
                        "(then keep report.md, results.json and indicators_summary.csv)",
     "convergence/": "hubvib convergence c_ru --out docs/data/convergence "
                     "(then keep convergence_c_ru.csv)",
+    "convergence_work/": "hubvib convergence c_ru_work --out docs/data/convergence_work; "
+                         "hubvib convergence c_r_work --out docs/data/convergence_work; "
+                         "hubvib convergence c_ru_rim --out docs/data/convergence_work "
+                         "(then keep the three convergence_*.csv)",
     "benchmark.json": "hubvib benchmark --json > docs/data/benchmark.json",
     "stiffness_10mm.json": "hubvib stiffness --crack-depth 10e-3 --json "
                            "> docs/data/stiffness_10mm.json",
@@ -395,6 +400,27 @@ def convergence_c_ru() -> str:
     """``hubvib convergence c_ru`` from its committed table [N/m]."""
     return _convergence(DATA / "convergence" / "convergence_c_ru.csv") + provenance(
         "convergence/", _meta("convergence").get("measured"))
+
+
+def convergence_work() -> str:
+    """``hubvib convergence`` of the work-conjugate c_ru, c_r and the rim part on the
+    nested levels, from the committed tables [N/m]: value, observed order per triple and
+    how the reference was obtained (``validation.convergence.study_note``)."""
+    from hubvib.validation.convergence import study_note
+
+    parts = []
+    for quantity in ("c_ru_work", "c_r_work", "c_ru_rim"):
+        path = DATA / "convergence_work" / f"convergence_{quantity}.csv"
+        with path.open(newline="") as handle:
+            orders = [r.get("observed_order", "") for r in csv.DictReader(handle)]
+        rows = [row + [f"{float(o):.2f}" if o and math.isfinite(float(o)) else ""]
+                for row, o in zip(_convergence_rows(path), orders)]
+        note = study_note(quantity, path).splitlines()[0]
+        parts.append(f"`{quantity}` ({note}):\n\n" + markdown_table(
+            ["relative size", "DOFs", "mesh + assembly + solve [s]", "value [N/m]",
+             "relative error", "observed order"], rows, "rrrrrr"))
+    return "\n\n".join(parts) + provenance("convergence_work/",
+                                           _meta("convergence_work").get("measured"))
 
 
 def meshing_2d() -> str:

@@ -11,6 +11,9 @@ point, so the bending of the tooth itself belongs to the mesh stiffness c_rp.
 
 Loads and measurements are sparse maps built once per model (``tooth_forces``,
 ``root_lands``): every carrier position is a load column of one factorisation.
+The same solution also gives the work-conjugate c_ru (with its exact rim / tooth split)
+and c_r (``fem.ring_work``, ``RingStiffness.work``); the lumped model uses the root-land
+c_ru (docs/fe_accuracy.md, "Work-conjugate ring stiffnesses").
 """
 from __future__ import annotations
 
@@ -26,6 +29,7 @@ from hubvib.meshing.ring_gear import RingGear
 
 from .elasticity import plane_model, solve
 from .material import Material
+from .ring_work import RingWork, ring_work
 from .solid import solid_model
 
 
@@ -46,6 +50,9 @@ class RingStiffness:
     dofs : int
     seconds : dict
         assembly/loads/solve/measure wall times [s], and the solver used.
+    work : fem.ring_work.RingWork or None
+        The work-conjugate c_ru (with its rim and tooth parts) and c_r of the same
+        solution; ``c_ru`` and ``c_r`` above are the root-land readings.
     """
 
     c_ru: float
@@ -54,6 +61,7 @@ class RingStiffness:
     c_r: float
     dofs: int
     seconds: dict
+    work: RingWork | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -77,6 +85,14 @@ class ToothForces:
         forces = np.asarray(forces, dtype=float)
         on_facet = forces[self.owner] / self.size[self.owner][:, None, None]
         return sum(b @ on_facet[:, i, :] for i, b in enumerate(self.per_facet))
+
+    def resultants(self, modes: np.ndarray) -> np.ndarray:
+        """(teeth, 2, modes): work of 1 N along x and along y on each tooth's patch on each
+        displacement field ``modes`` (ndofs, modes), e.g. the rigid-body modes [N m/m]."""
+        on_facet = np.stack([b.T @ modes for b in self.per_facet], axis=1)  # (facets, 2, m)
+        total = np.zeros((len(self.teeth),) + on_facet.shape[1:])
+        np.add.at(total, self.owner, on_facet)
+        return total / self.size[:, None, None]
 
 
 def _tooth_groups(model, teeth, part: str):
@@ -218,6 +234,7 @@ class RingLoads:
     loads: np.ndarray
     loaded: list
     carrier_teeth: np.ndarray
+    forces: ToothForces | None = None
 
 
 def ring_loads(model, ring: RingGear, carrier_teeth, n_planets: int) -> RingLoads:
@@ -229,8 +246,9 @@ def ring_loads(model, ring: RingGear, carrier_teeth, n_planets: int) -> RingLoad
         for k in teeth:
             forces[k, :, column] += ring.load_point(k)[1]
     forces[:, 0, -2] = forces[:, 1, -1] = 1.0 / z
-    return RingLoads(tooth_forces(model, range(z)).loads(forces), loaded,
-                     np.asarray(carrier_teeth, dtype=int))
+    spread = tooth_forces(model, range(z))
+    return RingLoads(spread.loads(forces), loaded, np.asarray(carrier_teeth, dtype=int),
+                     spread)
 
 
 def ring_response(model, ring: RingGear, loads: RingLoads, u: np.ndarray
@@ -285,9 +303,12 @@ def ring_stiffness(ring: RingGear, mesh: FEMesh, material: Material = Material()
     solution = solve(model, loads.loads, ["supports"], solver=solver)
     t3 = time.perf_counter()
     c_ru, c_r = ring_response(model, ring, loads, solution.u)
+    work = ring_work(model, ring, loads, solution.u, loads.forces,
+                     root_lands(model, range(ring.teeth)))
     return RingStiffness(float(c_ru.mean()), c_ru, loads.carrier_teeth, c_r, model.ndofs,
                          {"assembly": t1 - t0, "loads": t2 - t1, "solve": t3 - t2,
-                          "measure": time.perf_counter() - t3, "solver": solution.solver})
+                          "measure": time.perf_counter() - t3, "solver": solution.solver},
+                         work)
 
 
 def ring_model(ring: RingGear, mesh: FEMesh, material: Material = Material(),

@@ -81,23 +81,34 @@ FILLET_POINTS = 48    # spline points per fillet piece
 
 
 def ring_mesh(ring: ToothedBody, crack: Crack | None = None,
-              options: MeshOptions = MeshOptions()) -> FEMesh:
+              options: MeshOptions = MeshOptions(), refinements: int = 0) -> FEMesh:
     """Mesh the cross-section of a ring (or of an external ``GearBody``) with gmsh.
 
     Plane, triangles.  A crack of zero depth (or ``None``) gives the intact mesh;
-    cracks are modelled in ring gears only.
+    cracks are modelled in ring gears only.  ``refinements`` (intact meshes, 0..4):
+    split every triangle of the mesh of ``options`` into four that many times (new
+    boundary nodes on the exact curves), so that successive levels are nested and the
+    element size halves everywhere: the uniform refinement convergence theory assumes.
     """
+    if isinstance(refinements, bool) or not isinstance(refinements, int) or not (
+            0 <= refinements <= 4):
+        raise GearGeometryError(f"refinements = {refinements!r}, allowed integers 0..4")
     if crack is not None and crack.depth == 0:
         crack = None
+    if crack is not None and refinements:
+        raise GearGeometryError("refinements: intact meshes only (crack given)")
     if crack is not None and not isinstance(ring, RingGear):
         raise GearGeometryError("crack: only ring gears (RingGear) take a crack")
     crack_path = crack.path(ring) if crack is not None else None
     check_load_patch(ring, options)
     started = time.perf_counter()
     with gmsh_model("ring") as gmsh:
-        mesh = run_builder(RingBuilder(gmsh, ring, crack, crack_path, options),
-                           f"the ring section (options={options}, crack={crack})")
-    return with_info(mesh, started, ring, options, crack, crack_path, exact_area=ring.area())
+        builder = RingBuilder(gmsh, ring, crack, crack_path, options)
+        builder.refinements = refinements
+        mesh = run_builder(builder, f"the ring section (options={options}, crack={crack})")
+    extra = {"refinements": refinements} if refinements else {}
+    return with_info(mesh, started, ring, options, crack, crack_path, exact_area=ring.area(),
+                     **extra)
 
 
 def run_builder(builder, what: str) -> FEMesh:
@@ -149,6 +160,7 @@ class RingBuilder:
         self.inner_curves: list[int] = []
         self.crack_lines: list[int] = []
         self.crack_points: dict[str, int] = {}
+        self.refinements = 0  # uniform splits after meshing (``ring_mesh``)
 
     # geometry ----------------------------------------------------------
     def point(self, xy, size: float = 0.0) -> int:
@@ -338,6 +350,8 @@ class RingBuilder:
                             ("Mesh.LcIntegrationPrecision", 1e-3)):
             gmsh.option.setNumber(name, value)
         gmsh.model.mesh.generate(2)
+        for _ in range(self.refinements):
+            gmsh.model.mesh.refine()
         if opt.order == 2:
             gmsh.model.mesh.setOrder(2)
         if self.crack_lines:

@@ -10,6 +10,15 @@ the value, and its error: against the exact or handbook value where one exists
 stage uses comes from finer ones, not from themselves (issue 17, item 19); at
 the finest ring levels c_ru still rises by ~1.6e-4 per level (the tooth
 boundary's element size drives it), so its reference is the finest value.
+
+The work-conjugate ring stiffnesses (``c_ru_work``, ``c_r_work``, ``fem.ring_work``) and
+the rim part ``c_ru_rim`` run on nested levels instead: one coarse mesh
+(``NESTED_BASE``) split into four 0..3 times, so the element size halves everywhere
+(ratio 2) as the theory of uniform refinement assumes; unstructured levels remeshed at
+each size scatter the observed order by +-0.5 (measured).  Each row carries the observed
+order of the triple of levels ending at it, and a Richardson limit is the reference only
+where the last two orders (four levels) agree within ``STABLE_BAND`` and lie in
+``ORDER_RANGE``; otherwise the finest value, and the errors are lower bounds.
 Rows are appended to ``convergence_<quantity>.levels.csv`` as each level
 finishes; a rerun skips the levels already written (resume).
 """
@@ -31,7 +40,7 @@ from hubvib.fem.ring_stiffness import ring_stiffness
 from hubvib.fem.tooth_stiffness import reducer_mesh_stiffness
 from hubvib.foundation.files import MAX_FILE_BYTES, read_text
 from hubvib.meshing.levels import scaled_options
-from hubvib.meshing.ring_mesh import ring_mesh
+from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
 
 #: coarse to fine; the default mesh is scale 1.  Enough where the reference is exact.
 SCALES = (4.0, 2.0 * math.sqrt(2), 2.0, math.sqrt(2), 1.0)
@@ -42,13 +51,34 @@ MESH_SCALES = SCALES + (1 / math.sqrt(2), 0.5)
 RING_SCALES = MESH_SCALES + (1 / (2 * math.sqrt(2)),)
 #: an observed Richardson order outside this range is not asymptotic convergence
 ORDER_RANGE = (0.5, 8.0)
+#: the last two observed orders must agree within this for Richardson extrapolation
+STABLE_BAND = 0.3
+#: coarse curved-P2 ring mesh of the nested levels [m] (2.0e4 DOFs; split 3 times: 1.1e6)
+NESTED_BASE = MeshOptions(size=16e-3, tooth_size=4e-3, tip_size=1e-3, load_size=0.4e-3,
+                          grading=1.0)
+#: element size relative to ``NESTED_BASE`` of each nested level (0..3 splits)
+NESTED_SCALES = (1.0, 0.5, 0.25, 0.125)
+#: quantities on the nested levels (``RingStiffness.work``) and their attribute
+WORK_QUANTITIES = {"c_ru_work": "c_ru", "c_r_work": "c_r", "c_ru_rim": "c_ru_rim"}
+#: what theory gives for the observed order (in the element size h) of each quantity
+EXPECTED_ORDER = {
+    "c_ru_work": "energy functional f^T u, curved P2: 2p = 4 where the solution is smooth; "
+                 "the traction jumps at the load-patch ends (u ~ r log r) give 2 (with a "
+                 "log) and the clamped-free support ends (u ~ r^0.5, 2 lambda) 1, the "
+                 "asymptotic rate; so the observed order lies in [1, 4] and falls towards "
+                 "1 once the support-end term (graded mesh there) dominates",
+    "c_r_work": "as c_ru_work, in [1, 4]; the x/y loads push on the supports, so the "
+                "support ends' order 1 shows earlier",
+    "c_ru_rim": "a reading on the root lands, not an energy functional: no one-signed "
+                "error, no expected order",
+}
 COLUMNS = ("scale", "dofs", "seconds_mesh", "seconds_assembly", "seconds_solve",
-           "seconds_total", "value", "reference", "error", "relative_error")
-QUANTITIES = ("c_ru", "c_r", "c_sp", "c_rp", "annulus", "edge_crack")
+           "seconds_total", "value", "reference", "error", "relative_error", "observed_order")
+QUANTITIES = ("c_ru", "c_r", "c_sp", "c_rp", "annulus", "edge_crack", *WORK_QUANTITIES)
 #: the quantities of a reducer's gears (``Gears``); the others have exact references
-GEAR_QUANTITIES = ("c_ru", "c_r", "c_sp", "c_rp")
+GEAR_QUANTITIES = ("c_ru", "c_r", "c_sp", "c_rp", *WORK_QUANTITIES)
 UNITS = {"c_ru": "N/m", "c_r": "N/m", "c_sp": "N/m", "c_rp": "N/m", "annulus": "N m/rad",
-         "edge_crack": "rad/(N m)"}
+         "edge_crack": "rad/(N m)", **{q: "N/m" for q in WORK_QUANTITIES}}
 
 
 @dataclass(frozen=True)
@@ -64,12 +94,25 @@ class Gears:
 
 
 def _ring_level(scale: float, which: str, ring) -> dict:
-    mesh = ring_mesh(ring, None, scaled_options(scale))
+    if which in WORK_QUANTITIES:
+        mesh = ring_mesh(ring, None, NESTED_BASE, nested_refinements(scale))
+    else:
+        mesh = ring_mesh(ring, None, scaled_options(scale))
     result = ring_stiffness(ring, mesh)
+    value = (getattr(result.work, WORK_QUANTITIES[which]) if which in WORK_QUANTITIES
+             else getattr(result, which))
     return {"dofs": result.dofs, "seconds_mesh": mesh.info["seconds"],
             "seconds_assembly": result.seconds["assembly"] + result.seconds["loads"],
             "seconds_solve": result.seconds["solve"] + result.seconds["measure"],
-            "value": getattr(result, which)}
+            "value": value}
+
+
+def nested_refinements(scale: float) -> int:
+    """Splits of ``NESTED_BASE`` for the relative element size ``scale`` (1, 1/2, 1/4...)."""
+    n = round(-math.log2(scale))
+    if not 0 <= n <= 4 or not math.isclose(scale, 2.0 ** -n, rel_tol=1e-9):
+        raise ValueError(f"nested level scale {scale!r}, allowed 2^-n with n in 0..4")
+    return n
 
 
 def _mesh_level(scale: float, which: str, gears: Gears) -> dict:
@@ -108,7 +151,7 @@ def compute_level(quantity: str, scale: float, gears: Gears | None = None) -> di
     c_sp, c_rp) are those of ``gears``."""
     if quantity in GEAR_QUANTITIES and gears is None:
         raise ValueError(f"quantity {quantity!r} needs the built gears (Gears)")
-    if quantity in ("c_ru", "c_r"):
+    if quantity in ("c_ru", "c_r", *WORK_QUANTITIES):
         row = _ring_level(scale, quantity, gears.ring)
     elif quantity in ("c_sp", "c_rp"):
         row = _mesh_level(scale, quantity, gears)
@@ -125,9 +168,21 @@ def compute_level(quantity: str, scale: float, gears: Gears | None = None) -> di
 
 def scales_of(quantity: str) -> tuple[float, ...]:
     """The levels of ``quantity``'s study, coarse to fine."""
+    if quantity in WORK_QUANTITIES:
+        return NESTED_SCALES
     if quantity in ("c_ru", "c_r"):
         return RING_SCALES
     return MESH_SCALES if quantity in ("c_sp", "c_rp") else SCALES
+
+
+def ratio_of(quantity: str) -> float:
+    """Element-size ratio between successive levels of ``quantity``'s study."""
+    return 2.0 if quantity in WORK_QUANTITIES else math.sqrt(2)
+
+
+def observed_orders(values, ratio: float) -> list[float]:
+    """Observed order of each triple of successive values (nan where not monotone)."""
+    return [richardson(values[i - 2:i + 1], ratio)[1] for i in range(2, len(values))]
 
 
 def richardson(values, ratio: float) -> tuple[float, float]:
@@ -143,32 +198,43 @@ def richardson(values, ratio: float) -> tuple[float, float]:
 
 def reference_value(values, ratio: float) -> tuple[float, str]:
     """Reference for a sequence without an exact value, and how it was obtained: the
-    Richardson limit of the last three values when their observed order lies in
-    ``ORDER_RANGE``, else the last (finest) value, whose distance to the others is then a
-    lower bound of their error."""
+    Richardson limit of the last three values when the observed orders of the last two
+    triples (four levels) both lie in ``ORDER_RANGE`` and agree within ``STABLE_BAND``,
+    else the last (finest) value, whose distance to the others is then a lower bound of
+    their error."""
     if len(values) < 3:
         return float(values[-1]), "finest level"
     limit, order = richardson(values, ratio)
-    if ORDER_RANGE[0] <= order <= ORDER_RANGE[1]:
-        return limit, f"Richardson, observed order {order:.2f}"
-    shown = "oscillating" if order != order else f"{order:.2f}"
-    return float(values[-1]), f"finest level (observed order {shown}: not asymptotic)"
+    orders = observed_orders(values, ratio)[-2:]
+    shown = ", ".join("oscillating" if o != o else f"{o:.2f}" for o in orders)
+    if len(orders) < 2:
+        return float(values[-1]), (f"finest level (one triple, observed order {shown}: "
+                                   "stability not shown)")
+    if all(ORDER_RANGE[0] <= o <= ORDER_RANGE[1] for o in orders) and (
+            abs(orders[0] - orders[1]) <= STABLE_BAND):
+        return limit, f"Richardson, observed order {order:.2f} (stable: {shown})"
+    return float(values[-1]), f"finest level (observed orders {shown}: not asymptotic)"
 
 
-def with_errors(rows: list[dict]) -> tuple[list[dict], str | None]:
-    """Rows with ``reference`` and errors filled; how the reference was obtained (None when
-    each row carries its exact reference)."""
+def with_errors(rows: list[dict], ratio: float = math.sqrt(2)
+                ) -> tuple[list[dict], str | None]:
+    """Rows with ``reference``, errors and the observed order of the triple ending at each
+    row filled; how the reference was obtained (None when each row carries its exact
+    reference).  ``ratio``: element-size ratio between successive rows."""
     how = None
     if rows and "reference" in rows[0]:
         reference = [r["reference"] for r in rows]
     else:
-        limit, how = (reference_value([r["value"] for r in rows], math.sqrt(2)) if rows
+        limit, how = (reference_value([r["value"] for r in rows], ratio) if rows
                       else (float("nan"), "no levels"))
         reference = [limit] * len(rows)
+    orders = [float("nan")] * min(2, len(rows)) + observed_orders(
+        [r["value"] for r in rows], ratio)
     out = []
-    for row, ref in zip(rows, reference):
+    for row, ref, order in zip(rows, reference, orders):
         error = abs(row["value"] - ref)
-        out.append(dict(row, reference=ref, error=error, relative_error=error / abs(ref)))
+        out.append(dict(row, reference=ref, error=error, relative_error=error / abs(ref),
+                        observed_order=order))
     return out, how
 
 
@@ -192,7 +258,7 @@ def run_study(quantity: str, folder: Path, gears: Gears | None = None, scales=No
         progress(f"{quantity}: scale {scale:.3f}, {row['dofs']} DOFs, "
                  f"{row['seconds_total']:.2f} s, value {row['value']:.8e}")
     numbers = [{k: float(v) for k, v in r.items() if v not in ("", None)} for r in done]
-    rows, how = with_errors(sorted(numbers, key=lambda r: -r["scale"]))
+    rows, how = with_errors(sorted(numbers, key=lambda r: -r["scale"]), ratio_of(quantity))
     table = folder / f"convergence_{quantity}.csv"
     with open(table, "w", newline="") as handle:
         writer = csv.DictWriter(handle, COLUMNS)
@@ -201,6 +267,25 @@ def run_study(quantity: str, folder: Path, gears: Gears | None = None, scales=No
             writer.writerow({k: r.get(k, "") for k in COLUMNS})
     _plot(rows, quantity, how, folder / f"convergence_{quantity}.png")
     return table
+
+
+def study_note(quantity: str, table: Path) -> str:
+    """How the reference of the study in ``table`` was obtained, the observed orders and
+    what theory expects (the lines ``hubvib convergence`` prints under the table)."""
+    with open(table, newline="", encoding="utf-8") as handle:
+        rows = [{k: float(v) for k, v in r.items() if v not in ("", None)}
+                for r in csv.DictReader(handle)]
+    if not rows:
+        return f"{quantity}: no levels"
+    exact = quantity in ("annulus", "edge_crack")
+    how = "exact or handbook value" if exact else reference_value(
+        [r["value"] for r in rows], ratio_of(quantity))[1]
+    orders = ", ".join(f"{r['observed_order']:.2f}" if math.isfinite(
+        r.get("observed_order", math.nan)) else "not monotone" for r in rows[2:])
+    lines = [f"reference: {how}", f"observed orders (successive triples): {orders or '-'}"]
+    if quantity in EXPECTED_ORDER:
+        lines.append(f"expected: {EXPECTED_ORDER[quantity]}")
+    return "\n".join(lines)
 
 
 def _read(path: Path) -> list[dict]:
@@ -228,7 +313,7 @@ def _read(path: Path) -> list[dict]:
 
 
 def _append(path: Path, row: dict) -> None:
-    fields = [c for c in COLUMNS if c not in ("error", "relative_error")]
+    fields = [c for c in COLUMNS if c not in ("error", "relative_error", "observed_order")]
     new = not path.exists()
     with open(path, "a", newline="") as handle:
         writer = csv.DictWriter(handle, fields)

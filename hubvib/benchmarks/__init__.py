@@ -27,7 +27,9 @@ import time
 from hubvib.benchmarks.crack_case import crack_case
 from hubvib.benchmarks.main_job import main_job
 from hubvib.benchmarks.memory import memory_figures
-from hubvib.benchmarks.ring_2d import QUICK_REFERENCE_SCALES, REFERENCE_SCALES, ring_2d
+from hubvib.benchmarks.ring_2d import (QUICK_REFERENCE_SCALES, QUICK_WORK_SCALES,
+                                       REFERENCE_SCALES, ring_2d)
+from hubvib.validation.convergence import NESTED_SCALES
 from hubvib.benchmarks.solid import solid_figures
 from hubvib.benchmarks.tests_command import readme_test_command
 from hubvib.build import lumped_preset
@@ -46,7 +48,7 @@ def run_benchmark(quick: bool = False, progress=None) -> dict:
     started = time.perf_counter()
     out = {"quick": quick}
     out.update(ring_2d(reference_scales=QUICK_REFERENCE_SCALES if quick else REFERENCE_SCALES,
-                       progress=say))
+                       progress=say, work_scales=QUICK_WORK_SCALES if quick else NESTED_SCALES))
     out.update(crack_case(scale=2.0 if quick else 1.0, progress=say))
     skipped = "skipped (--quick)"
     if quick:

@@ -14,7 +14,9 @@ def add_parser(sub) -> None:
 
     p = sub.add_parser("convergence", help="error vs run time of one FE quantity over mesh levels")
     p.add_argument("quantity", choices=QUANTITIES,
-                   help="c_ru, c_r, c_sp, c_rp of the Raba reducer, or an exact benchmark")
+                   help="c_ru, c_r, c_sp, c_rp of the Raba reducer (root-land readings), "
+                        "the work-conjugate c_ru_work, c_r_work and the rim part c_ru_rim "
+                        "(nested levels), or an exact benchmark")
     p.add_argument("--out", type=Path, required=True, metavar="DIR")
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
@@ -22,7 +24,7 @@ def add_parser(sub) -> None:
 
 def run(args) -> int:
     from hubvib.build import raba118
-    from hubvib.validation.convergence import GEAR_QUANTITIES, Gears, run_study
+    from hubvib.validation.convergence import GEAR_QUANTITIES, Gears, run_study, study_note
 
     # checked and locked before any level is computed; the study writes its own files
     # there as it goes (each finished level is kept, so a killed study resumes)
@@ -32,13 +34,15 @@ def run(args) -> int:
         table = run_study(args.quantity, args.out, gears,
                           progress=lambda line: print(line, file=sys.stderr, flush=True))
     plot = table.with_suffix(".png")
+    note = study_note(args.quantity, table)
     if args.json:
         with open(table, newline="", encoding="utf-8") as handle:
             levels = [{k: _number(v) for k, v in row.items()} for row in csv.DictReader(handle)]
         print(json_text({"quantity": args.quantity, "files": [str(table), str(plot)],
-                         "levels": levels}))
+                         "levels": levels, "note": note.splitlines()}))
         return 0
     print(table.read_text(), end="")
+    print(note)
     print(f"written: {table} and {plot.name}")
     return 0
 
