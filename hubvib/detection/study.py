@@ -1,9 +1,17 @@
 """The detection part of a crack study: POD, detectability map, carrier position (SI)."""
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
+
+import hubvib.design
+import hubvib.foundation
+import hubvib.identification
+import hubvib.lumped
+from hubvib.runtime.result_cache import cached_result
 
 from .carrier import CarrierStudy, MeshTiming, carrier_study
 from .detectability import DetectabilityMap, detectability_map
@@ -46,3 +54,15 @@ def detection_study(model, options: DetectionOptions, timing: MeshTiming,
     return DetectionStudy(options, timing, pod_study(model, options, timing, workers=workers),
                           detectability_map(model, options, timing, workers=workers),
                           carrier_study(model, timing, options.record_length))
+
+
+def cached_detection_study(model, options: DetectionOptions, timing: MeshTiming,
+                           workers: int = 1) -> DetectionStudy:
+    """:func:`detection_study`, kept on disk by its inputs and by the source of the packages
+    it runs (:mod:`hubvib.runtime.result_cache`): a rerun of a scene loads it."""
+    folders = tuple(str(Path(package.__file__).parent) for package in (
+        hubvib.foundation, hubvib.design, hubvib.lumped, hubvib.identification,
+        sys.modules[__package__]))
+    return cached_result("detection", (model, options, timing, workers), folders,
+                         lambda: detection_study(model, options, timing, workers=workers),
+                         DetectionStudy)

@@ -180,12 +180,12 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
         from hubvib.detection.carrier import mesh_timing
         from hubvib.detection.mesh_stiffness import compare_methods
         from hubvib.detection.options import detection_options
-        from hubvib.detection.study import detection_study
+        from hubvib.detection.study import cached_detection_study
 
         options = detection_options(scene)
         timing = timing or mesh_timing(scene.crack.reducer, options.carrier_speed)
         if detection:
-            study = detection_study(model, options, timing, workers=workers)
+            study = cached_detection_study(model, options, timing, workers=workers)
         if model.c_rp_differs:
             comparison = compare_methods(model, timing, options.record_length,
                                          options if detection else None, workers=workers)
