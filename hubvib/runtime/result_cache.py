@@ -20,6 +20,7 @@ from __future__ import annotations
 import hashlib
 import pickle
 import sys
+import tempfile
 from functools import lru_cache
 from importlib import metadata
 from pathlib import Path
@@ -102,3 +103,20 @@ def _load(path: Path, expected: type):
 def _notice(path: Path, why: str) -> None:
     print(f"hubvib: result cache entry {path.name}: {why}; computing again", file=sys.stderr)
     return None
+
+
+def cached_figure(path: Path, build, args: tuple, folders: tuple[str, ...]) -> Path:
+    """``save_figure(build(*args), path)`` (PNG), the PNG kept by ``build``'s name, its
+    ``args``, the source in ``folders`` and the matplotlib version: a rerun with the same
+    data copies the picture instead of drawing it."""
+    from hubvib.foundation.output import save_figure
+
+    def png() -> bytes:
+        with tempfile.TemporaryDirectory(prefix="hubvib-figure-") as scratch:
+            return save_figure(build(*args), Path(scratch) / "figure.png").read_bytes()
+
+    inputs = (build.__module__, build.__qualname__, metadata.version("matplotlib"), args)
+    data = cached_result(f"figure-{build.__name__}", inputs, folders, png, bytes)
+    with atomic_path(path) as tmp:
+        tmp.write_bytes(data)
+    return Path(path)
