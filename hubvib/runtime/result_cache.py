@@ -68,14 +68,15 @@ def cached_result(kind: str, inputs, folders: tuple[str, ...], compute, expected
     result = _load(path, expected)
     if result is not None:
         return result
-    result = compute()
-    payload = pickle.dumps(result, protocol=pickle.HIGHEST_PROTOCOL)
+    payload = pickle.dumps(compute(), protocol=pickle.HIGHEST_PROTOCOL)
     try:
         with atomic_path(path) as tmp:
             tmp.write_bytes(FORMAT + hashlib.sha256(payload).hexdigest().encode() + payload)
     except OSError:
         pass  # a cache folder that cannot be written: the result is returned all the same
-    return result
+    # the result as a later run loads it: a first run and a rerun hand on the same objects
+    # (and key what they feed, such as the figures, alike)
+    return pickle.loads(payload)
 
 
 def _load(path: Path, expected: type):
