@@ -7,10 +7,13 @@ from pathlib import Path
 
 import numpy as np
 
+import hubvib.build
 import hubvib.design
+import hubvib.fem
 import hubvib.foundation
 import hubvib.identification
 import hubvib.lumped
+import hubvib.meshing
 from hubvib.runtime.result_cache import cached_figure, cached_result
 
 from .carrier import CarrierStudy, MeshTiming, carrier_study
@@ -58,10 +61,11 @@ def detection_study(model, options: DetectionOptions, timing: MeshTiming,
 
 
 def _folders() -> tuple[str, ...]:
-    """The source a detection result depends on (:func:`cached_detection_study`)."""
+    """The source a detection result depends on (:func:`cached_detection_study`): every
+    package the detection modules import below the studies."""
     return tuple(str(Path(package.__file__).parent) for package in (
-        hubvib.foundation, hubvib.design, hubvib.lumped, hubvib.identification,
-        sys.modules[__package__]))
+        hubvib.foundation, hubvib.design, hubvib.meshing, hubvib.fem, hubvib.lumped,
+        hubvib.build, hubvib.identification, sys.modules[__package__]))
 
 
 def cached_detection_study(model, options: DetectionOptions, timing: MeshTiming,
