@@ -215,69 +215,115 @@ def _benchmark_note() -> str:
         f" *{meta['machine']}.*" if "machine" in meta else "")
 
 
+#: what a table cell says for a figure the committed benchmark run does not hold (a run of
+#: an older hubvib, ``--quick``, or a figure that failed)
+NOT_MEASURED = "not measured"
+
+
+class _Figures(dict):
+    """The committed benchmark JSON; ``fig(key, fmt)`` formats one figure, or says
+    ``NOT_MEASURED`` when the run does not hold it (None or absent)."""
+
+    def fig(self, *keys: str, fmt: str = "{:.2f}") -> str:
+        value = self
+        for key in keys:
+            value = value.get(key) if isinstance(value, dict) else None
+        return NOT_MEASURED if value is None else fmt.format(value)
+
+
 def benchmark_fe() -> str:
-    """The FE and lumped speed figures of the committed ``hubvib benchmark --quick`` run."""
-    b = _benchmark()
+    """The FE and lumped speed figures of the committed ``hubvib benchmark`` run."""
+    b = _Figures(_benchmark())
+    lumped = b.get("lumped") or {}
+    single = lumped.get("single_seconds_per_point")
     rows = [
-        [f"2D c_ru, mesh + FE ({b['c_ru_2d_dofs']:,} DOFs, error {b['c_ru_2d_rel_error']:.1e} "
-         f"against the {b['c_ru_2d_reference']})", f"{b['c_ru_2d_previous_seconds']:.2f} s",
-         f"{b['c_ru_2d_seconds']:.2f} s", f"{b['c_ru_2d_speedup']:.2f}"],
-        ["the same, FE only", "", "", f"{b['c_ru_2d_fe_speedup']:.2f}"],
-        [f"crack case: c_ru, c_r, engaged c_rp, 2 levels (scale {b['crack_case_scale']:g})",
-         f"{b['crack_case_previous_seconds']:.2f} s", f"{b['crack_case_seconds']:.2f} s",
-         f"{b['crack_case_speedup']:.2f}"],
+        [f"2D c_ru, mesh + FE ({b.fig('c_ru_2d_dofs', fmt='{:,}')} DOFs, error "
+         f"{b.fig('c_ru_2d_rel_error', fmt='{:.1e}')} against the "
+         f"{b.get('c_ru_2d_reference') or NOT_MEASURED})",
+         b.fig("c_ru_2d_previous_seconds", fmt="{:.2f} s"), b.fig("c_ru_2d_seconds", fmt="{:.2f} s"),
+         b.fig("c_ru_2d_speedup")],
+        ["the same, FE only", "", "", b.fig("c_ru_2d_fe_speedup")],
+        [f"crack case: c_ru, c_r, engaged c_rp, 2 levels (scale "
+         f"{b.fig('crack_case_scale', fmt='{:g}')})",
+         b.fig("crack_case_previous_seconds", fmt="{:.2f} s"),
+         b.fig("crack_case_seconds", fmt="{:.2f} s"), b.fig("crack_case_speedup")],
         ["lumped spectra, batched against one at a time (points/s)",
-         f"{1 / b['lumped']['single_seconds_per_point']:.0f}",
-         f"{b['lumped']['points_per_second']:.0f}", f"{b['lumped']['speedup']:.0f}"],
+         NOT_MEASURED if not single else f"{1 / single:.0f}",
+         b.fig("lumped", "points_per_second", fmt="{:.0f}"),
+         b.fig("lumped", "speedup", fmt="{:.0f}")],
     ]
     skipped = ", ".join(k.removesuffix("_skipped").replace("_", " ") for k in b
                         if k.endswith("_skipped") and b[k])
     return markdown_table(["figure", "before (previous path)", "now", "ratio"], rows, "lrrr") + (
-        f"\n\nShared against separate solves differ by {b['crack_case_max_rel_difference']:.1e}; "
-        f"the previous 2D path gives the same c_ru to {b['c_ru_2d_previous_max_rel_difference']:.1e}; "
-        f"batched against Jacobi: {b['lumped']['max_relative_difference']:.1e}. "
-        + (f"Not in this run (--quick): {skipped}." if skipped else "")
+        f"\n\nShared against separate solves differ by "
+        f"{b.fig('crack_case_max_rel_difference', fmt='{:.1e}')}; "
+        f"the previous 2D path gives the same c_ru to "
+        f"{b.fig('c_ru_2d_previous_max_rel_difference', fmt='{:.1e}')}; "
+        f"batched against Jacobi: {b.fig('lumped', 'max_relative_difference', fmt='{:.1e}')}. "
+        + (f"Not in this run: {skipped}." if skipped else "")
         + _benchmark_note())
 
 
 def benchmark_full() -> str:
     """The figures only a full ``hubvib benchmark`` measures: the 3D race against CalculiX and
-    the previous path, peak memory, the main job fresh and cached, the test command."""
-    b = _benchmark()
+    the previous path, peak memory, the main job fresh and cached, the test command, the 3D
+    crack-growth scene; a figure the committed run does not hold says ``NOT_MEASURED``."""
+    b = _Figures(_benchmark())
 
-    def row(label, before, now, ratio, unit="s"):
-        if now is None:
-            return None
-        fmt = (lambda v: f"{v:.3g} {unit}" if v is not None else "")
-        return [label, fmt(before), fmt(now), f"{ratio:.3g}" if ratio else ""]
+    def row(label, before, now, ratio=None, unit="s"):
+        cell = "{:.3g} " + unit
+        return [label, b.fig(before, fmt=cell) if before else "", b.fig(now, fmt=cell),
+                b.fig(ratio, fmt="{:.3g}") if ratio else ""]
 
     dofs = f" ({b['solid_dofs']:,} DOFs)" if b.get("solid_dofs") else ""
+    fresh, cached = b.get("main_job_fresh_seconds"), b.get("main_job_cached_seconds")
     rows = [
         row(f"3D c_ru: model + loads + solve{dofs}, against the previous path",
-            b.get("solid_previous_seconds"), b.get("solid_seconds"), b.get("solid_previous_speedup")),
-        row("3D c_ru: CalculiX 2.20 on the same mesh and loads", b.get("calculix_seconds"),
-            b.get("solid_seconds"), b.get("calculix_speedup")),
-        row("peak memory, 3D solve", b.get("solid_solve_peak_memory_gb_previous"),
-            b.get("solid_solve_peak_memory_gb"), b.get("solid_solve_memory_ratio"), "GB"),
-        row("peak memory, `hubvib stiffness --solid`", None, b.get("solid_peak_memory_gb"), None,
-            "GB"),
+            "solid_previous_seconds", "solid_seconds", "solid_previous_speedup"),
+        row("3D c_ru: CalculiX 2.20 on the same mesh and loads", "calculix_seconds",
+            "solid_seconds", "calculix_speedup"),
+        row("peak memory, 3D solve", "solid_solve_peak_memory_gb_previous",
+            "solid_solve_peak_memory_gb", "solid_solve_memory_ratio", "GB"),
+        row("peak memory, `hubvib stiffness --solid`", None, "solid_peak_memory_gb", None, "GB"),
         row("main job (`hubvib run`): empty cache, then FE cases and renders cached",
-            b.get("main_job_fresh_seconds"), b.get("main_job_cached_seconds"),
-            (b["main_job_fresh_seconds"] / b["main_job_cached_seconds"])
-            if b.get("main_job_cached_seconds") else None),
-        row("default test command (`python -m pytest`)", None, b.get("tests_seconds"), None),
+            "main_job_fresh_seconds", "main_job_cached_seconds")[:3]
+        + [f"{fresh / cached:.3g}" if fresh and cached else ""],
+        row("default test command (`python -m pytest`)", None, "tests_seconds"),
+        row("3D crack-growth scene (`hubvib run raba118_crack_3d`)", None,
+            "crack_growth_3d_seconds"),
     ]
-    rows = [r for r in rows if r]
     notes = []
     if b.get("calculix_max_rel_difference") is not None:
         notes.append(f"CalculiX's displacements differ from ours by "
                      f"{b['calculix_max_rel_difference']:.1e} of the largest (its print "
-                     f"precision) and its c_ru by {b['calculix_c_ru_rel_difference']:.1e}.")
+                     f"precision) and its c_ru by {b.fig('calculix_c_ru_rel_difference', fmt='{:.1e}')}.")
     if b.get("tests_summary"):
         notes.append(f"The test command printed: `{b['tests_summary']}`.")
     notes += [f"Skipped: {v}." for k, v in b.items() if k.endswith("_skipped") and v]
     return (markdown_table(["figure", "before (baseline)", "now", "ratio"], rows, "lrrr")
             + ("\n\n" + " ".join(notes) if notes else "") + _benchmark_note())
+
+
+def benchmark_solid_mesh() -> str:
+    """3D Raba ring (P2 tetrahedra) meshing time against element count, from the committed
+    full ``hubvib benchmark`` run (``solid_mesh``: ``tables.solid_mesh_table``)."""
+    rows = _benchmark().get("solid_mesh")
+    if not rows:
+        return (f"*3D meshing times: {NOT_MEASURED} in the committed benchmark run (a full "
+                "`hubvib benchmark` measures them).*" + _benchmark_note())
+    body = [[r["case"], f"{r['tooth_size_mm']:g}", f"{r['elements']:,}", f"{r['nodes_p2']:,}",
+             f"{r['seconds']:.3g}"] for r in rows]
+    return markdown_table(["3D ring (P2 tetrahedra)", "tooth element size [mm]", "tetrahedra",
+                           "nodes", "time [s]"], body, "lrrrr") + _benchmark_note()
+
+
+def benchmark_crack_growth_3d() -> str:
+    """The run time of the 3D crack-growth scene in the committed benchmark run."""
+    seconds = _benchmark().get("crack_growth_3d_seconds")
+    told = (f"took {seconds / 60:.3g} minutes" if seconds is not None
+            else f"run time: {NOT_MEASURED}")
+    return f"*`hubvib run raba118_crack_3d` {told} in the committed `hubvib benchmark` run.*" + (
+        _benchmark_note())
 
 
 def benchmark_signal() -> str:

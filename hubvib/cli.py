@@ -64,7 +64,7 @@ def _main(argv: list[str] | None) -> int:
     try:
         from hubvib.meshing.session import MeshingError
 
-        args = _parser().parse_args(argv)
+        args = _parse(sys.argv[1:] if argv is None else list(argv))
         as_json = bool(getattr(args, "json", False))
         try:
             code = args.handler(args)
@@ -118,16 +118,50 @@ def _silence_stdout() -> None:
         pass  # not a real file (captured in-process): nothing to flush later
 
 
-def _parser() -> argparse.ArgumentParser:
+class _Retry(Exception):
+    """A usage error met by the one-command parser: parse again with every command."""
+
+
+class _OneCommandParser(argparse.ArgumentParser):
+    """The parser of a command line that names its command: that command's module only
+    (the others' imports cost a second or more).  Its usage errors are raised as
+    :class:`_Retry` while it parses, so that the whole parser reports them with the
+    same text as before; its help is the command's own, unchanged."""
+
+    parsing = False
+
+    def error(self, message):
+        if _OneCommandParser.parsing:
+            raise _Retry(message)
+        super().error(message)
+
+
+def _parse(argv: list[str]) -> argparse.Namespace:
+    """``argv`` parsed with its command's module only when its first word names one, else
+    (and on any usage error) with every command."""
+    if argv and not argv[0].startswith("-"):
+        _OneCommandParser.parsing = True
+        try:
+            return _parser(argv[0]).parse_args(argv)
+        except _Retry:
+            pass
+        finally:
+            _OneCommandParser.parsing = False
+    return _parser().parse_args(argv)
+
+
+def _parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The parser of every command, or of ``command`` only (a :class:`_OneCommandParser`;
+    every command when no module is named so)."""
     from .commands import command_modules
 
-    parser = argparse.ArgumentParser(
+    parser = (_OneCommandParser if command else argparse.ArgumentParser)(
         prog="hubvib", description="Natural-frequency shifts of planetary hub reducers with a "
         "cracked ring gear.", epilog="exit codes: 0 done, 1 a check failed (validate, "
         "stability), 2 bad input or output that cannot be written, 130 interrupted, 141 "
         "standard output closed early")
     sub = parser.add_subparsers(dest="command", required=True)
-    for module in command_modules():
+    for module in command_modules(command):
         module.add_parser(sub)
     return parser
 

@@ -179,9 +179,12 @@ class RingBuilder:
         if self.crack_lines:
             self.gmsh.model.mesh.embed(1, self.crack_lines, 2, self.surface)
         model = self.gmsh.model
-        model.addPhysicalGroup(2, [self.surface], name="ring")
-        for name, curves in self.groups.items():
-            model.addPhysicalGroup(1, curves, name=name)
+        # the tags gmsh would number itself (one past the largest), given explicitly: its
+        # own numbering scans every entity per group (0.35 s for the ~200 groups)
+        first = max((tag for _, tag in model.getPhysicalGroups()), default=0) + 1
+        model.addPhysicalGroup(2, [self.surface], tag=first, name="ring")
+        for tag, (name, curves) in enumerate(self.groups.items(), start=first + 1):
+            model.addPhysicalGroup(1, curves, tag=tag, name=name)
 
     def section(self, crack_lines: bool):
         """The cross-section at z = 0: curves, named curve lists and the plane surface."""

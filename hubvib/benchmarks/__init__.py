@@ -15,7 +15,9 @@ is the figure to trust.  The figures and their baselines:
 - the lumped and signal stages report their own baselines
   (``hubvib.lumped.batch.benchmark_batch``, ``hubvib.signal.benchmark.benchmark_signal``);
 - ``main_job``: the default scene from an empty cache and again cached;
-  ``tests_command``: the README's test command, from a source checkout.
+  ``tests_command``: the README's test command, from a source checkout;
+- ``solid_mesh``: the 3D ring's meshing time against its element count
+  (``tables.solid_mesh_table``, no baseline), the docs' table of it.
 
 ``python -m hubvib.benchmarks.tables`` prints the README's tables of error / size against
 time.  Timings are measured here, never asserted in tests.
@@ -31,6 +33,7 @@ from hubvib.benchmarks.ring_2d import (QUICK_REFERENCE_SCALES, QUICK_WORK_SCALES
                                        REFERENCE_SCALES, ring_2d)
 from hubvib.validation.convergence import NESTED_SCALES
 from hubvib.benchmarks.solid import solid_figures
+from hubvib.benchmarks.tables import solid_mesh_table
 from hubvib.benchmarks.tests_command import readme_test_command
 from hubvib.build import lumped_preset
 from hubvib.design import preset_design
@@ -55,12 +58,15 @@ def run_benchmark(quick: bool = False, progress=None) -> dict:
         out.update({key: None for key in (
             "calculix_speedup", "calculix_max_rel_difference", "solid_peak_memory_gb")})
         out["solid_skipped"] = skipped
+        out["solid_mesh"] = None
     else:
         out.update(solid_figures(say))
         if not ccx.available():
             out.update(calculix_speedup=None, calculix_max_rel_difference=None,
                        calculix_skipped="ccx not found: install Debian's calculix-ccx")
         out.update(memory_figures(say))
+        out["solid_mesh"] = solid_mesh_table()
+        say("3D meshing table: done")
     out["lumped"] = benchmark_batch(lumped_preset("raba118"))
     out["lumped_points_per_second"] = out["lumped"]["points_per_second"]
     say(f"lumped: {out['lumped_points_per_second']:.0f} points/s")

@@ -1,11 +1,23 @@
 """The detection part of a crack study: POD, detectability map, carrier position (SI)."""
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
+import hubvib.build
+import hubvib.design
+import hubvib.fem
+import hubvib.foundation
+import hubvib.identification
+import hubvib.lumped
+import hubvib.meshing
+from hubvib.runtime.result_cache import cached_figure, cached_result
+
 from .carrier import CarrierStudy, MeshTiming, carrier_study
+from .mesh_stiffness import MethodComparison, compare_methods
 from .detectability import DetectabilityMap, detectability_map
 from .options import DetectionOptions
 from .pod import PodResult, pod_study
@@ -46,3 +58,36 @@ def detection_study(model, options: DetectionOptions, timing: MeshTiming,
     return DetectionStudy(options, timing, pod_study(model, options, timing, workers=workers),
                           detectability_map(model, options, timing, workers=workers),
                           carrier_study(model, timing, options.record_length))
+
+
+def _folders() -> tuple[str, ...]:
+    """The source a detection result depends on (:func:`cached_detection_study`): every
+    package the detection modules import below the studies."""
+    return tuple(str(Path(package.__file__).parent) for package in (
+        hubvib.foundation, hubvib.design, hubvib.meshing, hubvib.fem, hubvib.lumped,
+        hubvib.build, hubvib.identification, sys.modules[__package__]))
+
+
+def cached_detection_study(model, options: DetectionOptions, timing: MeshTiming,
+                           workers: int = 1) -> DetectionStudy:
+    """:func:`detection_study`, kept on disk by its inputs and by the source of the packages
+    it runs (:mod:`hubvib.runtime.result_cache`): a rerun of a scene loads it."""
+    return cached_result("detection", (model, options, timing, workers), _folders(),
+                         lambda: detection_study(model, options, timing, workers=workers),
+                         DetectionStudy)
+
+
+def cached_compare_methods(model, timing: MeshTiming, record_length: float, options=None,
+                           workers: int = 1):
+    """:func:`.mesh_stiffness.compare_methods`, kept on disk like
+    :func:`cached_detection_study`."""
+    return cached_result("c_rp_methods", (model, timing, record_length, options, workers),
+                         _folders(), lambda: compare_methods(model, timing, record_length,
+                                                              options, workers=workers),
+                         MethodComparison)
+
+
+def cached_plot(path: Path, build, *args) -> Path:
+    """``build(*args)`` (a figure of :mod:`.plots`) saved as PNG at ``path``, drawn once
+    per data and source (:func:`hubvib.runtime.result_cache.cached_figure`)."""
+    return cached_figure(path, build, args, _folders())

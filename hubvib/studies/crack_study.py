@@ -25,7 +25,7 @@ from hubvib.detection.mesh_stiffness import family_depths, iso_c_rp, mesh_stiffn
 from hubvib.detection.model import CrackModel
 from hubvib.detection.numbers import depth_mm, percent, sensitivity, shift_hz
 from hubvib.detection.options import DetectionOptions
-from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
+from hubvib.foundation.output import write_csv, write_json, write_text
 from hubvib.lumped import Spectrum, frequency_sensitivity, natural_modes
 from hubvib.lumped.tracking import match
 from hubvib.meshing.levels import scaled_options
@@ -185,17 +185,17 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
     study = comparison = None
     if detection or model.c_rp_differs:
         from hubvib.detection.carrier import mesh_timing
-        from hubvib.detection.mesh_stiffness import compare_methods
         from hubvib.detection.options import detection_options
-        from hubvib.detection.study import detection_study
+        from hubvib.detection.study import cached_compare_methods, cached_detection_study
 
         options = detection_options(scene)
         timing = timing or mesh_timing(scene.crack.reducer, options.carrier_speed)
         if detection:
-            study = detection_study(model, options, timing, workers=workers)
+            study = cached_detection_study(model, options, timing, workers=workers)
         if model.c_rp_differs:
-            comparison = compare_methods(model, timing, options.record_length,
-                                         options if detection else None, workers=workers)
+            comparison = cached_compare_methods(model, timing, options.record_length,
+                                                options if detection else None,
+                                                workers=workers)
     return CrackStudyResult(scene, fe, c_ru, c_r, c_rp_factor, spectra, omega, computed,
                             model=model, detection=study, c_rp_comparison=comparison)
 
@@ -240,23 +240,22 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
     plots = []
     if scene.plots:
         from hubvib.detection import plots as figures
+        from hubvib.detection.study import cached_plot
 
         name = scene.name
-        plots = [save_figure(figures.relative_shift_figure(name, result.depths, result.omega,
-                                                           result.kind),
-                             folder / "frequency_vs_depth.png")]
+        plots = [cached_plot(folder / "frequency_vs_depth.png", figures.relative_shift_figure,
+                             name, result.depths, result.omega, result.kind)]
         if study is not None:
             deepest = float(result.depths[-1])
             plots += [
-                save_figure(figures.shift_threshold_figure(name, study.pod),
-                            folder / "shift_vs_depth.png"),
-                save_figure(figures.map_figure(name, study.map, deepest,
-                                               float(result.depths[1])),
-                            folder / "detectability_map.png"),
-                save_figure(figures.pod_figure(name, study.pod, _pod_modes(study)),
-                            folder / "pod.png"),
-                save_figure(figures.carrier_figure(name, study.carrier, result.kind),
-                            folder / "carrier_position.png")]
+                cached_plot(folder / "shift_vs_depth.png", figures.shift_threshold_figure,
+                            name, study.pod),
+                cached_plot(folder / "detectability_map.png", figures.map_figure, name,
+                            study.map, deepest, float(result.depths[1])),
+                cached_plot(folder / "pod.png", figures.pod_figure, name, study.pod,
+                            _pod_modes(study)),
+                cached_plot(folder / "carrier_position.png", figures.carrier_figure, name,
+                            study.carrier, result.kind)]
     renders, fe_renders = [], []
     if scene.renders:
         renders = _render_modes(scene, result.spectra[0], folder / "renders")

@@ -1,0 +1,120 @@
+"""The on-disk cache of slow deterministic results (hubvib.runtime.result_cache) and the
+one-command parser of the CLI: what they return is what the uncached path returns."""
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from hubvib.runtime import result_cache
+from hubvib.runtime.result_cache import cached_figure, cached_result
+
+SOURCE = (str(Path(result_cache.__file__).parent),)
+
+
+@pytest.fixture
+def cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path / "cache"))
+    return tmp_path / "cache" / "results"
+
+
+def _counted(value):
+    calls = []
+
+    def compute():
+        calls.append(1)
+        return value
+    return compute, calls
+
+
+def test_second_call_loads_the_same_result_without_computing(cache):
+    value = {"omega": np.linspace(0.0, 1.0, 7), "name": "x"}
+    compute, calls = _counted(value)
+    first = cached_result("probe", (1.5, "a"), SOURCE, compute, dict)
+    second = cached_result("probe", (1.5, "a"), SOURCE, compute, dict)
+    assert len(calls) == 1, "the second call must load the entry, not compute"
+    assert second["name"] == first["name"] and np.array_equal(second["omega"], first["omega"])
+    cached_result("probe", (1.5, "b"), SOURCE, compute, dict)
+    assert len(calls) == 2, "other inputs are another entry"
+    assert len(list(cache.glob("probe-*.pickle"))) == 2
+
+
+def test_a_changed_source_is_another_entry(cache, tmp_path):
+    source = tmp_path / "src"
+    source.mkdir()
+    (source / "a.py").write_text("x = 1\n")
+    compute, calls = _counted(3.0)
+    cached_result("probe", (), (str(source),), compute, float)
+    (source / "a.py").write_text("x = 2\n")
+    result_cache.source_version.cache_clear()
+    cached_result("probe", (), (str(source),), compute, float)
+    assert len(calls) == 2, "an edit to the source must not reuse the old entry"
+
+
+def test_a_damaged_entry_is_computed_again_with_a_notice(cache, capsys):
+    compute, calls = _counted([1.0, 2.0])
+    cached_result("probe", (2,), SOURCE, compute, list)
+    entry, = cache.glob("probe-*.pickle")
+    data = bytearray(entry.read_bytes())
+    data[-3] ^= 0xFF
+    entry.write_bytes(bytes(data))
+    assert cached_result("probe", (2,), SOURCE, compute, list) == [1.0, 2.0]
+    assert len(calls) == 2
+    assert "checksum differs; computing again" in capsys.readouterr().err
+    compute_other, _ = _counted("not a list")
+    entry.write_bytes(b"garbage")
+    assert cached_result("probe", (2,), SOURCE, compute_other, list) == "not a list"
+
+
+def test_an_unwritable_cache_folder_still_returns_the_result(tmp_path, monkeypatch):
+    blocker = tmp_path / "file"
+    blocker.write_text("a file where the cache folder would be")
+    monkeypatch.setenv("HUBVIB_CACHE", str(blocker))
+    compute, calls = _counted(4.0)
+    assert cached_result("probe", (), SOURCE, compute, float) == 4.0
+    assert cached_result("probe", (), SOURCE, compute, float) == 4.0 and len(calls) == 2
+
+
+def test_cached_figure_is_the_picture_save_figure_draws(cache, tmp_path):
+    from hubvib.foundation.output import save_figure
+
+    def figure(values):
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots()
+        ax.plot(values)
+        return fig
+
+    values = np.array([0.0, 1.0, 4.0, 9.0])
+    direct = save_figure(figure(values), tmp_path / "direct.png").read_bytes()
+    for name in ("first.png", "second.png"):  # drawn, then copied from the entry
+        assert cached_figure(tmp_path / name, figure, (values,), SOURCE).read_bytes() == direct
+    assert len(list(cache.glob("figure-figure-*.pickle"))) == 1
+
+
+def _run(*argv):
+    return subprocess.run([sys.executable, "-m", "hubvib.cli", *argv], capture_output=True,
+                          text=True)
+
+
+def test_a_named_command_imports_its_module_only():
+    probe = ("import sys; from hubvib.cli import _parse; _parse(['scenes']); "
+             "print(sorted(m for m in sys.modules if m.startswith('hubvib.commands.')))")
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == "['hubvib.commands.scenes']", out
+
+
+def test_one_command_parser_prints_what_the_whole_parser_prints(capsys):
+    from hubvib.cli import _parser
+
+    for argv in (["spectrum", "--bogus"], ["torus_screw"], ["spectrum", "--method", "nope"],
+                 ["spectrum", "--help"]):
+        with pytest.raises(SystemExit) as stop:
+            _parser().parse_args(argv)  # every command, as before
+        whole = capsys.readouterr()
+        light = _run(*argv)  # the command line: its command's module only
+        assert (light.returncode, light.stdout, light.stderr) == (
+            stop.value.code, whole.out, whole.err), argv
