@@ -38,9 +38,11 @@ def test_work_conjugate_c_ru_converges_at_a_stable_order_in_the_theoretical_band
     and lie in [1, 4] (theory: 2p = 4 on smooth solutions, 1 from the clamped-free support
     ends; convergence.EXPECTED_ORDER), so the reference is the Richardson limit."""
     pytest.importorskip("gmsh")
-    from hubvib.validation.convergence import NESTED_SCALES, compute_level
+    from hubvib.build import raba118
+    from hubvib.validation.convergence import NESTED_SCALES, Gears, compute_level
 
-    values = [compute_level("c_ru_work", s)["value"] for s in NESTED_SCALES]
+    gears = Gears(raba118.ring_gear())
+    values = [compute_level("c_ru_work", s, gears)["value"] for s in NESTED_SCALES]
     assert all(b < a for a, b in zip(values, values[1:])), f"not monotone: {values}"
     orders = observed_orders(values, 2.0)
     assert abs(orders[-1] - orders[-2]) <= 0.3, f"observed orders {orders} not stable (0.3)"
