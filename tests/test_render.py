@@ -66,6 +66,13 @@ def test_fe_renders_are_real_distinct_and_repeatable(tmp_path, cracked_ring_fiel
         assert image.shape[:2] == (900, 900) and image.std() > 20
     assert np.abs(mode1 - mode2).mean() > 1.0 and np.abs(loaded - mode1).mean() > 1.0
     np.testing.assert_array_equal(_image(render_fe(fields, tmp_path / "b")[2]), mode1)
+    # issue 26 item 13: the close-up's title sits on a light box (it was black on dark
+    # navy: 0 % light pixels there) and a labelled length bar sits at the lower left
+    light, dark = tip[..., :3].min(axis=2) > 200, tip[..., :3].max(axis=2) < 60
+    assert light[:22, :470].mean() > 0.4 and dark[:22, :470].mean() > 0.03, \
+        "crack-tip title: light box with dark text expected in the upper-left strip"
+    assert light[785:840, 60:250].mean() > 0.03 and dark[785:840, 60:250].mean() > 0.01, \
+        "crack-tip length scale: white bar and labelled box expected at the lower left"
     grid = pv.read(files[-1])
     np.testing.assert_allclose(grid.point_data["von Mises [Pa]"], fields.von_mises)
     assert grid.point_data["displacement [m]"].shape == (len(fields.points), 3)
