@@ -200,7 +200,8 @@ class Schema:
         return f.convert(table[key])
 
     def rows(self) -> list[list[str]]:
-        """One docs row per key: key, default, allowed, unit, doc."""
+        """One Markdown row per key (the docs' key reference): key, default, allowed, unit,
+        doc."""
         def default(f):
             if f.default is REQUIRED:
                 return "required"
@@ -211,5 +212,8 @@ class Schema:
             if isinstance(f.default, str):
                 return f'"{f.default}"'
             return f"{f.default!r}" if isinstance(f.default, (list, tuple)) else f"{f.default:g}"
-        return [[f"`{f.key}`", default(f), self.allowed(f).replace("|", "\\|"), f.unit or "-",
-                 f.doc] for f in self.fields]
+
+        def cell(text: str) -> str:  # Markdown: no table cell break, no link reference
+            return text.replace("|", "\\|").replace("[", "\\[").replace("]", "\\]")
+        return [[f"`{f.key}`", cell(default(f)), cell(self.allowed(f)), cell(f.unit or "-"),
+                 cell(f.doc)] for f in self.fields]
