@@ -94,11 +94,6 @@ def test_cached_figure_is_the_picture_save_figure_draws(cache, tmp_path):
     assert len(list(cache.glob("figure-figure-*.pickle"))) == 1
 
 
-def _run(*argv):
-    return subprocess.run([sys.executable, "-m", "hubvib.cli", *argv], capture_output=True,
-                          text=True)
-
-
 def test_a_named_command_imports_its_module_only():
     probe = ("import sys; from hubvib.cli import _parse; _parse(['scenes']); "
              "print(sorted(m for m in sys.modules if m.startswith('hubvib.commands.')))")
@@ -107,14 +102,20 @@ def test_a_named_command_imports_its_module_only():
     assert out.strip() == "['hubvib.commands.scenes']", out
 
 
+def _printed(capsys, parse, argv):
+    with pytest.raises(SystemExit) as stop:
+        parse(argv)
+    printed = capsys.readouterr()
+    return stop.value.code, printed.out, printed.err
+
+
 def test_one_command_parser_prints_what_the_whole_parser_prints(capsys):
-    from hubvib.cli import _parser
+    """Usage errors inside a command, a misspelt command and a command's help: the same
+    exit code and text as the parser of every command."""
+    from hubvib.cli import _parse, _parser
 
     for argv in (["spectrum", "--bogus"], ["torus_screw"], ["spectrum", "--method", "nope"],
                  ["spectrum", "--help"]):
-        with pytest.raises(SystemExit) as stop:
-            _parser().parse_args(argv)  # every command, as before
-        whole = capsys.readouterr()
-        light = _run(*argv)  # the command line: its command's module only
-        assert (light.returncode, light.stdout, light.stderr) == (
-            stop.value.code, whole.out, whole.err), argv
+        whole = _printed(capsys, _parser().parse_args, argv)
+        assert _printed(capsys, _parse, argv) == whole, argv
+        assert whole[0] == (0 if "--help" in argv else 2)

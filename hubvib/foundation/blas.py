@@ -44,8 +44,8 @@ def _handles() -> tuple:
     are read on each call, so a library loaded later (MKL with PARDISO) is found too."""
     try:
         with open("/proc/self/maps", encoding="utf-8") as maps:
-            # the substring test on the raw line first: a thousand mapped files, each
-            # split only when it can name a BLAS (6 ms -> 1 ms a call)
+            # the substring test on the raw line first: of ~1,000 mapped lines only those
+            # that can name a BLAS are split (4.0 -> 3.0 ms a call; reading is the rest)
             paths = sorted({line.split()[-1] for line in maps
                             if ("openblas" in (low := line.lower()) or "libmkl_rt" in low)
                             and _is_blas(os.path.basename(line.split()[-1]).lower())})
