@@ -22,7 +22,7 @@ from .ring_outline import tooth_outline
 
 TIP_CLEARANCE = 1e-6  # [m] a crack tip this close to a boundary counts as touching it
 #: [m] a root crack must keep this far from the toothed surface it does not start on
-TOOTH_GAP = 0.25e-3
+TOOTH_GAP = 0.5e-3
 #: [m] spacing of the points at which a root crack's gap to the toothed surface is checked
 GAP_SAMPLING = 0.05e-3
 

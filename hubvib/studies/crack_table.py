@@ -8,13 +8,16 @@ from dataclasses import replace
 from hubvib.build.stages import ring_gear
 from hubvib.foundation.errors import SceneError
 from hubvib.meshing.crack import MIN_LIGAMENT, STARTS
+from hubvib.meshing.crack_kinds import start_kind
 from hubvib.meshing.gear import GearGeometryError
 from hubvib.studies.crack_sweep import ACCURACY, APPLY, CrackSweep, MAX_DEPTHS, MODELS, crack_of
 from hubvib.studies.study import check_keys, string_key
 
 #: the keys of [crack]
 KEYS = {"depths", "through_rim", "tooth", "start", "angle_deg", "apply", "accuracy", "workers",
-        "c_ru_mount", "c_r_mount", "model", "half_lengths"}
+        "c_ru_mount", "c_r_mount", "model", "half_lengths", "path"}
+#: the words ``[crack] path`` takes besides an angle [deg]
+PATH_WORDS = ("predicted", "radial")
 
 
 def crack_model(data: dict) -> str:
@@ -66,9 +69,7 @@ def parse_crack_table(table, design) -> CrackSweep:
             raise SceneError(f"[crack] {key} = {value!r}; allowed integers {low}.."
                              f"{high if high is not None else ''}")
         integers[key] = value
-    angle = table.get("angle_deg", 0.0)
-    if isinstance(angle, bool) or not isinstance(angle, (int, float)) or not abs(angle) <= 60:
-        raise SceneError(f"[crack] angle_deg = {angle!r}; allowed -60..60")
+    angle, path = _path(table, start)
     through = table.get("through_rim", False)
     if not isinstance(through, bool):
         raise SceneError(f"[crack] through_rim = {through!r}, but it must be true or false")
@@ -88,8 +89,43 @@ def parse_crack_table(table, design) -> CrackSweep:
     sweep = CrackSweep(tuple(float(d) for d in depths), integers["tooth"], start,
                        math.radians(angle), apply, accuracy, integers["workers"], **mounts,
                        design=design, model=model,
-                       half_lengths=_half_lengths(table, model, start, through))
+                       half_lengths=_half_lengths(table, model, start, through), path=path)
+    if path == "predicted" and (start != "root" or through or model != "plane"):
+        raise SceneError(f"[crack] path = \"predicted\" follows the LEFM path of a root crack "
+                         f"in the plane model to where it severs the tooth or rim: allowed "
+                         f"start = \"root\" (got {start!r}), through_rim = false (got "
+                         f"{str(through).lower()}) and model = \"plane\" (got {model!r})")
     return _checked_depths(sweep, through)
+
+
+def _angle_range(start: str) -> tuple[float, float]:
+    """The directions [deg] a crack from ``start`` may take."""
+    return tuple(math.degrees(a) for a in start_kind(start).angle_range)
+
+
+def _path(table, start) -> tuple[float, str]:
+    """``[crack] path`` and ``angle_deg``: the angle [deg] and the sweep's path kind.
+    ``path = "radial"`` is a straight radial crack, a number a straight crack at that
+    angle (as ``angle_deg``), ``"predicted"`` the LEFM path."""
+    low, high = _angle_range(start)
+    angle = table.get("angle_deg", 0.0)
+    if isinstance(angle, bool) or not isinstance(angle, (int, float)) or not (
+            low <= angle <= high):
+        raise SceneError(f"[crack] angle_deg = {angle!r}; allowed {low:g}..{high:g} for "
+                         f"start = {start!r}")
+    if "path" not in table:
+        return float(angle), "straight"
+    path = table["path"]
+    allowed = f"allowed: \"predicted\", \"radial\" or an angle {low:g}..{high:g} [deg]"
+    if isinstance(path, str) and path not in PATH_WORDS or not isinstance(path, str) and (
+            isinstance(path, bool) or not isinstance(path, (int, float))
+            or not low <= path <= high):
+        raise SceneError(f"[crack] path = {path!r}; {allowed} for start = {start!r}")
+    direction = 0.0 if isinstance(path, str) else float(path)
+    if "angle_deg" in table and angle != direction:
+        raise SceneError(f"[crack] angle_deg = {angle!r} and path = {path!r} disagree: give "
+                         "the angle as path = <degrees> or as angle_deg, not both")
+    return direction, "predicted" if path == "predicted" else "straight"
 
 
 #: at most this many half-lengths in a solid sweep
@@ -150,6 +186,8 @@ def _checked_depths(sweep: CrackSweep, through: bool) -> CrackSweep:
             raise SceneError(f"[crack]: {exc}") from None
         if depths[-1] < limit:
             depths.append(limit)
+    if sweep.path == "predicted":  # checked against the path when it is grown
+        return replace(sweep, depths=tuple(depths))
     for i, depth in enumerate(depths):
         try:
             crack_of(sweep, depth).path(ring)
