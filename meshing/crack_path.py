@@ -92,6 +92,28 @@ class PathCrack:
         """Never: a path crack's tip is inside the body."""
         return False
 
+    def path(self, ring: RingGear, clearance: float = 0.0) -> np.ndarray:
+        """The polyline [m] (n, 2), checked against ``ring`` (as ``Crack.path``): the mouth
+        is the tooth's critical fillet point and every other point lies inside the body,
+        more than ``clearance`` [m] from its surface (GearGeometryError otherwise)."""
+        if not isinstance(ring, RingGear):
+            raise GearGeometryError("crack: only ring gears (RingGear) take a crack")
+        mouth = Crack(self.tooth, 0.0).mouth(ring)
+        path = self.array
+        if np.hypot(*(path[0] - mouth)) > 1e-9 * ring.outer_radius:
+            raise GearGeometryError(f"crack path starts at {path[0].tolist()} m, not at the "
+                                    f"critical fillet point {mouth.tolist()} m of tooth "
+                                    f"{self.tooth}")
+        segments = boundary_segments(ring, self.tooth)
+        for point in path[1:]:
+            gap = min(distance_to_segments(point, segments),
+                      ring.outer_radius - float(np.hypot(*point)))
+            if gap <= clearance:
+                raise GearGeometryError(
+                    f"crack path point {point.tolist()} m is {gap:.3g} m from the ring's "
+                    f"surface (allowed > {clearance:g} m, inside the body)")
+        return path
+
     def extended(self, point) -> "PathCrack":
         """This crack with one more point (the new tip) [m]."""
         return PathCrack(self.tooth, self.points + (tuple(float(v) for v in point),))
@@ -109,21 +131,7 @@ def path_ring_mesh(ring: RingGear, crack: PathCrack,
     Raises GearGeometryError if the mouth is not the critical fillet point of the tooth or
     a point of the path lies outside the ring (or within a tip size of its surface).
     """
-    if not isinstance(ring, RingGear):
-        raise GearGeometryError("crack: only ring gears (RingGear) take a crack")
-    mouth = Crack(crack.tooth, 0.0).mouth(ring)
-    path = crack.array
-    if np.hypot(*(path[0] - mouth)) > 1e-9 * ring.outer_radius:
-        raise GearGeometryError(f"crack path starts at {path[0].tolist()} m, not at the "
-                                f"critical fillet point {mouth.tolist()} m of tooth {crack.tooth}")
-    segments = boundary_segments(ring, crack.tooth)
-    for point in path[1:]:
-        gap = min(distance_to_segments(point, segments),
-                  ring.outer_radius - float(np.hypot(*point)))
-        if gap <= options.tip_size:
-            raise GearGeometryError(
-                f"crack path point {point.tolist()} m is {gap:.3g} m from the ring's surface "
-                f"(allowed > the tip size {options.tip_size:g} m, inside the body)")
+    path = crack.path(ring, options.tip_size)
     check_load_patch(ring, options)
     started = time.perf_counter()
     with gmsh_model("ring-path") as gmsh:

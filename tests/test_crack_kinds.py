@@ -166,3 +166,15 @@ def test_refined_step_hits_every_depth():
     assert refined_step([0.0, 1.25e-3, 2.5e-3]) == pytest.approx(BASE_STEP / 2, rel=1e-15)
     assert refined_step([0.0, 1e-4]) == pytest.approx(BASE_STEP / 5, rel=1e-15)
     assert refined_step([0.0, math.pi * 1e-3]) == BASE_STEP
+
+
+def test_signal_study_refuses_the_predicted_path(tmp_path, capsys):
+    """The signal study's mesh curves come from straight cracks: ``hubvib signal`` on the
+    shipped predicted-path scene is one line naming the key, exit 2, nothing written."""
+    from hubvib.cli import main
+
+    out = tmp_path / "out"
+    assert main(["signal", "raba118_crack_path", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("hubvib: error: ") and "[crack] path = 'predicted'" in err
+    assert len(err.strip().splitlines()) == 1 and not out.exists()

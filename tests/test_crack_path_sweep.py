@@ -131,3 +131,20 @@ def test_predicted_sweep_follows_the_crack_path(tmp_path, monkeypatch, capsys):
     assert not np.allclose(result.omega[1], other.omega[1], rtol=1e-12, atol=0), (
         "the lumped spectra follow the crack's path")
     assert result.detection is not None
+
+
+@pytest.mark.slow
+def test_fe_render_takes_a_path_crack():
+    """The crack study renders its deepest crack (``render.fe.ring_fields`` through
+    ``ring_mesh``): a polyline crack meshes there too, its tip node on the path's tip
+    (1e-12 m), as ``path_ring_mesh`` meshes it (``hubvib run raba118_crack_path`` failed
+    with "'PathCrack' object has no attribute 'path'")."""
+    from hubvib.meshing.crack_path import initial_crack
+    from hubvib.render.fe import ring_fields
+
+    ring = ring_gear(RABA)
+    crack = initial_crack(ring, 0, 3e-3)
+    crack = crack.extended(crack.tip + np.array([0.0, -1e-3]))
+    fields = ring_fields(RABA, crack, scaled_options(2.0))
+    np.testing.assert_allclose(fields.crack_tip, crack.tip, atol=1e-12)
+    np.testing.assert_array_equal(crack.path(ring), crack.array)
