@@ -90,8 +90,8 @@ def test_predicted_sweep_follows_the_crack_path(tmp_path, monkeypatch, capsys):
     - the FE case at 3 mm meshes the path truncated at 3 mm (its cache inputs hold that
       polyline: the mouth and the first six analysed tips), and its c_ru, c_r equal a
       direct ``crack_level`` on ``path_ring_mesh`` of that polyline (1e-9 relative);
-    - the lumped model takes those rows (c_rp factor = the row's engaged ratio exactly,
-      1e-15) and the predicted 3 mm crack lowers the cracked tooth's mean c_rp more than
+    - the lumped model takes those rows (c_rp factor = the row's extra compliance in
+      series with the lumped c_rp, 1e-12) and the predicted 3 mm crack lowers the cracked tooth's mean c_rp more than
       the radial 3 mm crack (docs/crack_path.md: 0.967 vs 0.974 on the default mesh);
     - the detection study runs on it (a POD per mode at the deepest crack)."""
     monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path / "cache"))
@@ -125,8 +125,11 @@ def test_predicted_sweep_follows_the_crack_path(tmp_path, monkeypatch, capsys):
         "mean c_rp ratio predicted < radial (docs/crack_path.md, 0.967 vs 0.974)")
 
     result = crack_study_from_fe(scene, fe, computed, detection=True)
-    np.testing.assert_allclose(result.c_rp_factor, [1.0, fe[1]["c_rp_engaged_ratio"]],
-                               rtol=1e-15)
+    ratio, c_fe = fe[1]["c_rp_engaged_ratio"], fe[1]["c_rp_engaged_intact_N_m"]
+    series = 1 / (1 + scene.params.c_rp * (1 / ratio - 1) / c_fe)  # the crack's compliance
+    np.testing.assert_allclose(result.c_rp_factor, [1.0, series], rtol=1e-12,
+                               err_msg="lumped c_rp factor: the predicted row's extra "
+                               "compliance in series with the lumped c_rp")
     other = crack_study_from_fe(radial_scene, radial, 0, detection=False)
     assert not np.allclose(result.omega[1], other.omega[1], rtol=1e-12, atol=0), (
         "the lumped spectra follow the crack's path")
