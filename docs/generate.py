@@ -46,7 +46,9 @@ DATA_SOURCES = {
     "raba118_crack/": "hubvib run raba118_crack --out docs/data/raba118_crack "
                       "(then keep report.md, results.json, detectability_map.csv, pod.csv "
                       "and pod_family.csv)",
-    "crack_path/": "hubvib crack-path --tooth 0 --json > docs/data/crack_path/tooth0.json",
+    "crack_path/": "hubvib crack-path --tooth 0 --json > docs/data/crack_path/tooth0.json; "
+                   "hubvib crack-path --tooth 0 --load envelope --json "
+                   "> docs/data/crack_path/tooth0_envelope.json",
     "raba118_crack_path/": "hubvib run raba118_crack_path --out docs/data/raba118_crack_path "
                            "(then keep report.md and results.json)",
     "diagnosis/": "python -m hubvib.identification.montecarlo --records 200 "
@@ -521,12 +523,13 @@ def _crack_path_run(name: str) -> dict:
     return json.loads((DATA / "crack_path" / f"{name}.json").read_text())
 
 
-CRACK_PATH_RUNS = (("worst position (single-contact point)", "tooth0"),)
+CRACK_PATH_RUNS = (("worst position (single-contact point)", "tooth0"),
+                   ("envelope over the mesh cycle", "tooth0_envelope"))
 
 
 def crack_path_default() -> str:
     """The LEFM path of the default scene's crack (Raba 118/76, tooth 0) under the worst
-    load position (``hubvib crack-path``)."""
+    load position and under the envelope over the mesh cycle (``hubvib crack-path``)."""
     from hubvib.build.stages import ring_gear
     from hubvib.design.presets import raba118
 
