@@ -51,6 +51,11 @@ DATA_SOURCES = {
     "raba118_crack/": "hubvib run raba118_crack --out docs/data/raba118_crack "
                       "(then keep report.md, results.json, detectability_map.csv, pod.csv "
                       "and pod_family.csv)",
+    "crack_path/": "hubvib crack-path --tooth 0 --json > docs/data/crack_path/tooth0.json; "
+                   "hubvib crack-path --tooth 0 --load envelope --json "
+                   "> docs/data/crack_path/tooth0_envelope.json",
+    "raba118_crack_path/": "hubvib run raba118_crack_path --out docs/data/raba118_crack_path "
+                           "(then keep report.md and results.json)",
     "diagnosis/": "python -m hubvib.identification.montecarlo --records 200 "
                   "--out docs/data/diagnosis/identification_scatter.md; "
                   "python -m hubvib.detection.calibration "
@@ -622,6 +627,120 @@ def design_keys() -> str:
     from hubvib.design.parse import SCHEMAS
 
     return _schema_tables(SCHEMAS)
+
+
+# ---------------------------------------------------------------- crack path (issue 23)
+
+def _crack_path_run(name: str) -> dict:
+    return json.loads((DATA / "crack_path" / f"{name}.json").read_text())
+
+
+CRACK_PATH_RUNS = (("worst position (single-contact point)", "tooth0"),
+                   ("envelope over the mesh cycle", "tooth0_envelope"))
+
+
+def crack_path_default() -> str:
+    """The LEFM path of the default scene's crack (Raba 118/76, tooth 0) under the worst
+    load position and under the envelope over the mesh cycle (``hubvib crack-path``)."""
+    from hubvib.build.stages import ring_gear
+    from hubvib.design.presets import raba118
+
+    root = ring_gear(raba118()).profile.root_radius
+    rows = []
+    for label, name in CRACK_PATH_RUNS:
+        run = _crack_path_run(name)
+        radii = np.hypot(*np.asarray(run["path_m"]).T)
+        x, y = run["exit_m"]
+        fracture = run["fracture"] + ("" if run["severed"] else " (not severed)")
+        drivers = sorted({round(1e3 * r, 2) for r in run.get("step_load_radius_m", [])})
+        rows.append([label, run["steps"], fracture, f"{1e3 * run['depth_m'][-1]:.4g}",
+                     f"({1e3 * x:.2f}, {1e3 * y:.2f})", f"{run['kink_angle_deg'][0]:.1f}",
+                     f"{run['k_i_mpa_sqrt_m'][0]:.2f} .. {run['k_i_mpa_sqrt_m'][-1]:.1f}",
+                     f"{1e3 * (radii.max() - root):.2f}",
+                     ", ".join(f"{r:g}" for r in drivers) if drivers
+                     else f"{1e3 * run['load_radius_m']:.2f}"])
+    header = ["load", "FE solutions", "fracture", "last crack [mm along the path]",
+              "exit (x, y) [mm]", "first kink [deg]", "K_I first .. last [MPa m^0.5]",
+              "deepest tip below the root circle [mm]", "load radius driving the steps [mm]"]
+    run = _crack_path_run("tooth0")
+    return (markdown_table(header, rows, "lrlrrrrrr")
+            + f"\n\nBackup ratio {run['backup_ratio']:.2f} (rim {1e3 * run['rim_thickness_m']:.2f}"
+            f" mm, tooth height {1e3 * run['tooth_height_m']:.2f} mm), mesh force "
+            f"{run['force_N']:.0f} N, steps of {1e3 * run['step_m']:g} mm."
+            + provenance("crack_path/", _meta("crack_path/").get("measured")))
+
+
+def crack_path_steps() -> str:
+    """Every step of the default scene's crack path (worst load position)."""
+    run = _crack_path_run("tooth0")
+    tips = run["path_m"][1:]
+    rows = [[i, f"{1e3 * d:.1f}", f"{1e3 * tips[i][0]:.3f}", f"{1e3 * tips[i][1]:.3f}",
+             f"{k1:.3f}", f"{k2:.3f}", f"{kink:.2f}"]
+            for i, (d, k1, k2, kink) in enumerate(zip(run["depth_m"], run["k_i_mpa_sqrt_m"],
+                                                      run["k_ii_mpa_sqrt_m"],
+                                                      run["kink_angle_deg"]))]
+    header = ["step", "depth [mm]", "tip x [mm]", "tip y [mm]", "K_I [MPa m^0.5]",
+              "K_II [MPa m^0.5]", "kink [deg]"]
+    return (markdown_table(header, rows, "rrrrrrr")
+            + provenance("crack_path/", _meta("crack_path/").get("measured")))
+
+
+def _scene_rows(folder: str) -> tuple[dict, dict]:
+    run = json.loads((DATA / folder / "results.json").read_text())
+    return run, {round(r["depth_mm"], 6): r for r in run["stiffness"]}
+
+
+def crack_path_fe() -> str:
+    """The FE quantities of the default scene's radial crack against the same lengths along
+    the predicted path (``hubvib run raba118_crack`` and ``raba118_crack_path``): ring
+    body c_ru, c_r over their intact values, the cracked tooth's engaged c_rp ratio (mean
+    and minimum over the mesh cycle)."""
+    radial_run, radial = _scene_rows("raba118_crack")
+    path_run, path = _scene_rows("raba118_crack_path")
+
+    def cells(rows, depth):
+        if depth not in rows:
+            return ["-"] * 4
+        row, intact = rows[depth], rows[0.0]
+        return [f"{row['fe_c_ru_N_m'] / intact['fe_c_ru_N_m']:.4f}",
+                f"{row['fe_c_r_N_m'] / intact['fe_c_r_N_m']:.4f}",
+                f"{row['fe_c_rp_engaged_ratio']:.3f}", f"{row['fe_c_rp_engaged_min_ratio']:.3f}"]
+
+    body = []
+    for depth in sorted(d for d in path if d > 0):
+        p, r = cells(path, depth), cells(radial, depth)
+        body.append([f"{depth:g}"] + [f"{a} / {b}" for a, b in zip(p, r)])
+    header = ["length along the path [mm]", "c_ru predicted / radial", "c_r predicted / radial",
+              "c_rp mean predicted / radial", "c_rp min predicted / radial"]
+    return (markdown_table(header, body, "rrrrr")
+            + provenance("raba118_crack_path/", f"{path_run['date']}, hubvib "
+                         f"{path_run['hubvib_version']}")
+            + provenance("raba118_crack/", f"{radial_run['date']}, hubvib "
+                         f"{radial_run['hubvib_version']}"))
+
+
+def crack_path_detection() -> str:
+    """Family POD of the watched modes per depth and record length, the default scene's
+    radial crack against the predicted path (``results.json`` of the two runs)."""
+    rows = []
+    for label, folder in (("radial", "raba118_crack"), ("predicted", "raba118_crack_path")):
+        run = json.loads((DATA / folder / "results.json").read_text())
+        pod = run["detection"]["family_pod"]
+        records = sorted(pod, key=float)
+        for k, depth in enumerate(run["crack"]["depths"]):
+            if depth > 0:
+                rows.append([label, f"{1e3 * depth:.3g}"]
+                            + [f"{pod[T][k]:.3f}" for T in records]
+                            + [", ".join(str(m) for m in run["detection"]["watched_modes"])])
+    header = ["path", "depth [mm]"] + [f"POD, {float(T):g} s records" for T in records] + [
+        "watched modes"]
+    return (markdown_table(header, rows, "lrrrrl")
+            + provenance("raba118_crack_path/") + provenance("raba118_crack/"))
+
+
+def crack_path_short_answer() -> str:
+    """The short answer of the scene whose crack follows the predicted path."""
+    return report_section("raba118_crack_path", "Short answer")
 
 
 # ---------------------------------------------------------------- entry points

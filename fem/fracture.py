@@ -92,6 +92,17 @@ def mts_angle(k_i: float, k_ii: float) -> float:
     return 2.0 * math.atan((k_i - math.sqrt(k_i ** 2 + 8.0 * k_ii ** 2)) / (4.0 * k_ii))
 
 
+def mts_driving_force(k_i: float, k_ii: float) -> float:
+    """The maximum tangential stress criterion's driving force [Pa sqrt(m)]:
+    ``sigma_theta_theta sqrt(2 pi r)`` at the MTS angle, ``cos(t/2) [K_I cos^2(t/2) -
+    3/2 K_II sin t]`` (Erdogan & Sih 1963); K_I for pure mode I, 2/sqrt(3) |K_II| for pure
+    mode II.  0 for a closed crack (K_I < 0): it does not drive the crack."""
+    scale = math.hypot(k_i, k_ii)
+    if k_i < -1e-9 * scale:
+        return 0.0
+    return float(hoop_stress(mts_angle(k_i, k_ii), k_i, k_ii))
+
+
 def hoop_stress(theta, k_i: float, k_ii: float):
     """sigma_theta_theta sqrt(2 pi r) of the singular near-tip field [Pa sqrt(m)] at the
     angles ``theta`` [rad] from the crack direction (Williams)."""

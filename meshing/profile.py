@@ -25,6 +25,10 @@ from scipy.optimize import brentq
 
 from .gear import GearGeometryError, SpurGear, involute, inverse_involute, rotation
 
+#: ISO 6336-3 critical section: the fillet tangent's angle with the tooth axis [rad]
+ISO_TANGENT_INTERNAL = math.radians(60.0)
+ISO_TANGENT_EXTERNAL = math.radians(30.0)
+
 FILLETS = ("trochoid", "circular")
 
 
@@ -318,7 +322,7 @@ class ToothProfile:
     def critical_parameter(self, tangent_angle: float | None = None) -> float:
         """Fillet parameter t of ``critical_point``."""
         if tangent_angle is None:
-            tangent_angle = math.radians(60.0 if self.gear.internal else 30.0)
+            tangent_angle = ISO_TANGENT_INTERNAL if self.gear.internal else ISO_TANGENT_EXTERNAL
 
         def mismatch(t):
             d = self.fillet_tangents(t)

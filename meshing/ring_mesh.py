@@ -27,6 +27,7 @@ from dataclasses import asdict, dataclass, replace
 import numpy as np
 
 from .crack import Crack
+from .ring_outline import FILLET_POINTS, INVOLUTE_POINTS
 from .fe_mesh import FEMesh
 from .gear import GearGeometryError, rotation
 from .ring_gear import RingGear, ToothedBody
@@ -76,8 +77,6 @@ class MeshOptions:
             raise GearGeometryError(f"mesh.order = {self.order!r}, allowed 1 or 2")
 
 
-INVOLUTE_POINTS = 32  # spline points per involute piece
-FILLET_POINTS = 48    # spline points per fillet piece
 
 
 def ring_mesh(ring: ToothedBody, crack: Crack | None = None,
@@ -191,7 +190,7 @@ class RingBuilder:
         ring, prof, opt = self.ring, self.ring.profile, self.opt
         self.centre = self.geo.addPoint(0, 0, 0)
         z = ring.teeth
-        root_crack_tooth = self.crack.tooth if self.crack and self.crack.start == "root" else None
+        root_crack_tooth = self.crack.tooth if self.crack and self.crack.kind.splits_fillet else None
         t_crit = prof.critical_parameter() if root_crack_tooth is not None else None
 
         # half profile (+psi side), pieces from the tip towards the space centre
@@ -255,8 +254,8 @@ class RingBuilder:
         supports = ring.supports.arcs()
         breaks = [a for arc in supports for a in arc] or [0.0]
         special = {}
-        if self.path is not None and (self.crack.start == "rim" or self.crack.is_through(ring)):
-            end = self.path[0] if self.crack.start == "rim" else self.path[-1]
+        end = None if self.path is None else self.crack.kind.outer_end(self.crack, ring, self.path)
+        if end is not None:
             angle = math.atan2(end[1], end[0])
             special[angle % (2 * math.pi)] = "crack_end"
             breaks.append(angle)
@@ -299,7 +298,7 @@ class RingBuilder:
     def crack_geometry(self, lines: bool = True):
         """Crack points (``mouth``, ``tip``, ``outer_end``) and, if ``lines``, its lines."""
         path, crack = self.path, self.crack
-        if crack.start == "root":
+        if crack.kind.splits_fillet:
             first = self.crack_points["mouth"]
         else:
             first = self.crack_points["outer_end"]
@@ -307,7 +306,7 @@ class RingBuilder:
         tags = [first]
         for i, p in enumerate(path[1:], start=1):
             last = i == len(path) - 1
-            if last and crack.start == "root" and crack.is_through(self.ring):
+            if last and crack.is_through(self.ring):
                 tags.append(self.crack_points["outer_end"])
             else:
                 tags.append(self.point(p, self.opt.tip_size if last else self.opt.tooth_size))

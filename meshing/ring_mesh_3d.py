@@ -22,7 +22,6 @@ import numpy as np
 from .crack import Crack, CrackFront
 from .fe_mesh import TETRA10_EDGES, FEMesh
 from .extract import extract
-from .gear import GearGeometryError
 from .ring_gear import RingGear
 from .ring_mesh import MeshOptions, check_load_patch, RingBuilder, run_builder, with_info
 from .session import MeshingError, gmsh_model, split_crack
@@ -44,12 +43,8 @@ def ring_mesh_3d(ring: RingGear, crack: Crack | None = None, front: CrackFront =
         crack = None
     path = crack.path(ring) if crack is not None else None
     width = ring.gear.face_width
-    if crack is not None and front.shape == "semi_elliptic":
-        front.span(width)
-        if crack.is_through(ring) or crack.is_kinked:
-            raise GearGeometryError(
-                "crack.front = 'semi_elliptic' needs a straight crack that stays inside the rim: "
-                f"allowed crack.depth 0..{crack.through_depth(ring):.6g} m and kink_fraction = 1")
+    if crack is not None:
+        front.check(crack, ring)
     check_load_patch(ring, options)
     started = time.perf_counter()
     with gmsh_model("ring3d") as gmsh:
@@ -65,7 +60,7 @@ class _SolidBuilder(RingBuilder):
         super().__init__(gmsh, ring, crack, path, options)
         self.geo = gmsh.model.occ  # its extrusion is topological: 10x faster than geo's
         self.front = front
-        self.part_width = crack is not None and front.shape == "semi_elliptic"
+        self.part_width = crack is not None and front.kind.part_width
         self.crack_surfaces: list[int] = []
         self.straightened = 0
         self.open_curves: list[int] = []
@@ -80,7 +75,7 @@ class _SolidBuilder(RingBuilder):
     def geometry(self):
         width = self.ring.gear.face_width
         self.section(crack_lines=self.crack is not None and not self.part_width)
-        if self.crack is not None and self.crack.start == "rim":
+        if self.crack is not None and not self.crack.kind.splits_fillet:
             self.crack_points["mouth"] = self.crack_points["outer_end"]
         self.geo.synchronize()
         model = self.gmsh.model

@@ -83,7 +83,7 @@ def test_fig4_scene_detects_the_crack_in_rotational_modes_only():
     ("[crack]\napply = 'both'\n", "apply = 'both'; allowed: .*ratio, direct"),
     ("[crack]\nworkers = 0\n", r"workers = 0; allowed integers 1..64"),
     ("[crack]\ntooth = 64\n", r"tooth = 64.* 64 teeth"),
-    ("[crack]\nangle_deg = 75\n", "angle_deg = 75; allowed -60..60"),
+    ("[crack]\nangle_deg = 75\n", "angle_deg = 75; allowed -90..60"),
     ("[crack]\ncolour = 1\n", r"unknown key\(s\) \['colour'\] at \[crack\]"),
     ("[output]\nrenders = true\n[study]\nvalues = [1e5]\n", "renders = true needs a"),
 ])

@@ -25,6 +25,10 @@ def add_parser(sub) -> None:
                    help="cracked ring tooth; default the one midway between two support pads")
     p.add_argument("--out", type=Path, default=Path("hubvib-out/crack-path"),
                    help="folder for crack_path.png, crack_step_NN.vtu and crack_path.json")
+    p.add_argument("--load", choices=("worst", "envelope"), default="worst",
+                   help="worst: the mesh force at the highest point of single tooth contact "
+                   "(default); envelope: at each step the position of the mesh cycle that "
+                   "drives the crack hardest (largest MTS driving force)")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.set_defaults(handler=run)
 
@@ -41,7 +45,7 @@ def run(args) -> int:
         raise ValueError(f"--step = {args.step!r} m, allowed 1e-5..1e-2 m")
     design = design_from_argument(args.design or args.preset)
     options = GrowthOptions(step=args.step, initial_depth=args.step, max_steps=args.steps)
-    result = crack_path(design, options, args.out, args.tooth)
+    result = crack_path(design, options, args.out, args.tooth, args.load)
     info = result.to_dict()
     if args.json:
         print(json_text(info))

@@ -6,7 +6,7 @@ from pathlib import Path
 
 from hubvib.design import preset_names
 from hubvib.foundation.output import json_text
-from hubvib.meshing.crack import STARTS
+from hubvib.meshing.crack import FRONT_SHAPES, STARTS
 from hubvib.studies.part_mesh import MAX_ELEMENTS, PartMesh, write_part_mesh
 
 
@@ -27,7 +27,7 @@ def add_parser(sub) -> None:
     p.add_argument("--order", type=int, choices=[1, 2], default=2)
     p.add_argument("--dim", type=int, choices=[2, 3], default=2,
                    help="2 (plane section) or 3 (solid, ring only; coarser default sizes)")
-    p.add_argument("--crack-front", choices=["through", "semi_elliptic"], default="through",
+    p.add_argument("--crack-front", choices=FRONT_SHAPES, default="through",
                    help="3D: crack through the face width, or a semi-elliptic surface crack")
     p.add_argument("--crack-half-length", type=float, default=5e-3, metavar="C",
                    help="3D semi-elliptic crack: half its length along the width [m]")

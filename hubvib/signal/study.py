@@ -174,6 +174,11 @@ def check_crack_model(scene) -> None:
             f" mm), but the signal study's mesh stiffness comes from the plane FE tooth, a "
             f"crack through the whole face width; allowed for a signal study: [crack] "
             f"model = \"plane\" (e.g. the scene raba118_signal)")
+    if sweep is not None and sweep.path != "straight":
+        raise SceneError(
+            f"scene {scene.name!r}: [crack] path = {sweep.path!r}, but the signal study's "
+            "mesh curves come from straight cracks; allowed for a signal study: [crack] "
+            "path = \"radial\" or an angle [deg]")
 
 
 def run_signal_study(scene, curves: list[MeshCurves] | None = None,

@@ -9,6 +9,11 @@ pads, where the rim bends most (tooth 0 when the whole outer surface is held).  
 grows from a radial root crack at the critical fillet point (``fem.crack_propagation``)
 until it severs the tooth or the rim.
 
+With ``load = "envelope"`` the crack is driven, at each step, by the position of the
+mesh cycle that maximises the MTS driving force (``mesh_cycle_positions``: contact
+radii along the planet-ring path of contact, the whole mesh force in the single-pair
+zone, half of it where two pairs share the load) instead of the single worst position.
+
 ``crack_path`` runs it and writes, into a folder, the path on the ring (PNG), the cracked
 mesh of every step (VTU) and the result (JSON).
 """
@@ -20,7 +25,9 @@ from pathlib import Path
 
 from hubvib.build.stages import gear_body, material, mesh_force, ring_gear
 from hubvib.design.model import ReducerDesign
-from hubvib.fem.crack_propagation import CrackGrowth, GrowthOptions, grow_crack
+import numpy as np
+
+from hubvib.fem.crack_propagation import CrackGrowth, GrowthOptions, LoadPosition, grow_crack
 from hubvib.fem.mesh_cycle import GearPair
 from hubvib.meshing.crack_path import backup_ratio, tooth_height
 from hubvib.meshing.export import write_vtu
@@ -33,6 +40,10 @@ from hubvib.render.crack_path import render_path
 LEWICKI_TOOTH = (3.3, 1.0)
 LEWICKI_RIM = (0.3,)
 LEWICKI_MIXED = (0.5,)
+#: the loads ``crack_path`` grows the crack under
+LOADS = ("worst", "envelope")
+#: positions of the mesh cycle in the envelope (besides the two single-pair ends)
+ENVELOPE_POSITIONS = 9
 
 
 def single_contact_radius(design: ReducerDesign) -> float:
@@ -43,6 +54,28 @@ def single_contact_radius(design: ReducerDesign) -> float:
     start, end = pair.path
     roll = float(pair.second_roll(end - pair.base_pitch))
     return math.hypot(roll, ring.gear.base_diameter / 2)
+
+
+def mesh_cycle_positions(design: ReducerDesign,
+                         n: int = ENVELOPE_POSITIONS) -> tuple[LoadPosition, ...]:
+    """The load on a ring tooth over its engagement with a planet: ``n`` contact points
+    evenly along the path of contact plus the two ends of the single-pair zone, at each
+    the planet's mesh force [N] (single pair) or half of it (two pairs in contact; equal
+    sharing, the pairs' stiffness difference neglected), on the ring radius [m] of that
+    contact (kept 1e-9 inside the involute's ends)."""
+    ring, planet = ring_gear(design), gear_body(design, "planet")
+    pair = GearPair(planet, ring)
+    start, end = pair.path
+    single = (end - pair.base_pitch, start + pair.base_pitch)
+    rolls = np.unique(np.concatenate([np.linspace(start, end, n), single]))
+    low, high = sorted((ring.profile.form_radius, ring.profile.tip_radius))
+    force = mesh_force(design)
+    positions = []
+    for s in rolls:
+        radius = float(np.clip(pair.radii(s)[1], low * (1 + 1e-9), high * (1 - 1e-9)))
+        shared = not single[0] - 1e-12 <= s <= single[1] + 1e-12
+        positions.append(LoadPosition(radius, force * (0.5 if shared else 1.0)))
+    return tuple(positions)
 
 
 def loaded_ring(design: ReducerDesign) -> RingGear:
@@ -77,6 +110,9 @@ class CrackPathResult:
     options : GrowthOptions
     files : tuple of str
         What was written.
+    load : str
+        ``"worst"`` (the single-contact point) or ``"envelope"`` (the mesh cycle's
+        position that drives each step hardest).
     """
 
     design: str
@@ -86,6 +122,7 @@ class CrackPathResult:
     force: float
     options: GrowthOptions
     files: tuple = ()
+    load: str = "worst"
 
     @property
     def backup_ratio(self) -> float:
@@ -113,14 +150,22 @@ class CrackPathResult:
             "step_m": self.options.step,
             "steps": len(g.steps),
             "files": list(self.files),
+            "load": self.load,
+            **({"step_load_radius_m": [s.load_radius for s in g.steps],
+                "k_eq_mpa_sqrt_m": [s.k_eq / 1e6 for s in g.steps]}
+               if self.load == "envelope" else {}),
         }
 
 
 def crack_path(design: ReducerDesign, options: GrowthOptions = GrowthOptions(),
-               out: Path | None = None, tooth: int | None = None) -> CrackPathResult:
-    """Grow the root crack of ``design`` at ``tooth`` (default ``cracked_tooth``, see the
-    module docstring); with ``out``, write ``crack_path.png``, ``crack_step_NN.vtu`` per
-    step and ``crack_path.json`` there, all or nothing."""
+               out: Path | None = None, tooth: int | None = None,
+               load: str = "worst") -> CrackPathResult:
+    """Grow the root crack of ``design`` at ``tooth`` (default ``cracked_tooth``) under
+    ``load`` (``LOADS``, see the module docstring); with ``out``, write ``crack_path.png``,
+    ``crack_step_NN.vtu`` per step and ``crack_path.json`` there, all or nothing."""
+    if load not in LOADS:
+        raise ValueError(f"load = {load!r}, allowed: {', '.join(LOADS)}")
+    positions = mesh_cycle_positions(design) if load == "envelope" else None
     ring = loaded_ring(design)
     if tooth is None:
         tooth = cracked_tooth(ring)
@@ -129,8 +174,8 @@ def crack_path(design: ReducerDesign, options: GrowthOptions = GrowthOptions(),
     force = mesh_force(design)
     steel = material(design)
     if out is None:
-        growth = grow_crack(ring, tooth, force, steel, options)
-        return CrackPathResult(design.name, growth, ring, tooth, force, options)
+        growth = grow_crack(ring, tooth, force, steel, options, positions=positions)
+        return CrackPathResult(design.name, growth, ring, tooth, force, options, load=load)
     out = Path(out)
     names = []
     with output_set(out) as staged:
@@ -138,9 +183,10 @@ def crack_path(design: ReducerDesign, options: GrowthOptions = GrowthOptions(),
             names.append(f"crack_step_{index:02d}.vtu")
             write_vtu(mesh, staged / names[-1])
 
-        growth = grow_crack(ring, tooth, force, steel, options, on_step=write)
+        growth = grow_crack(ring, tooth, force, steel, options, on_step=write,
+                            positions=positions)
         names.append("crack_path.png")
-        result = CrackPathResult(design.name, growth, ring, tooth, force, options)
+        result = CrackPathResult(design.name, growth, ring, tooth, force, options, load=load)
         verb = "severs the" if growth.severed else "heads for the"
         render_path(ring, tooth, growth.path, staged / names[-1],
                     f"{design.name}: backup ratio {result.backup_ratio:.2f}, crack {verb} "

@@ -364,8 +364,11 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
     info = provenance()
     lines = [f"# {scene.name}: ring-crack sensitivity study", "",
              f"hubvib {info['hubvib_version']}, {info['date']}. Ring crack at tooth "
-             f"{sweep.tooth} ({sweep.start}, {math.degrees(sweep.angle):g} deg from radial), "
-             f"depths {', '.join(f'{1e3 * d:.3g}' for d in sweep.depths)} mm"
+             f"{sweep.tooth} ({sweep.start}, "
+             + ("along the predicted LEFM path of `hubvib crack-path`), "
+                if sweep.path == "predicted" else
+                f"{math.degrees(sweep.angle):g} deg from radial), ")
+             + f"depths {', '.join(f'{1e3 * d:.3g}' for d in sweep.depths)} mm"
              + ("." if sweep.model == "plane" else
                 f" at the deepest point of a semi-elliptic crack of half-length "
                 f"{1e3 * result.fe[-1]['half_length_m']:g} mm in the solid ring."), ""]

@@ -28,14 +28,19 @@ from hubvib.build.stages import gear_body, material, ring_gear
 from hubvib.fem.estimate import CrackCaseEstimate, RingEstimate, estimate_crack_case
 from hubvib.meshing.cache import root_folder
 from hubvib.meshing.crack import Crack, CrackFront
+from hubvib.meshing.crack_path import PathCrack, path_ring_mesh
 from hubvib.runtime import fe_cache
 from hubvib.runtime.engines import Execution, check_reachable, run_cases
 from hubvib.runtime.fe_cache import (CacheEntryError, case_lock, entry_key, finite_positive,
                                      read_entry, write_entry)
 from hubvib.runtime.progress import progress as hubvib_progress
+from hubvib.studies.predicted_path import predicted_crack
 
 APPLY = ("series", "ratio", "direct")
 MODELS = ("plane", "solid")
+#: how the crack runs: straight at ``angle`` ("radial" in a scene: angle 0) or along the
+#: LEFM path of ``hubvib crack-path`` (``hubvib.studies.predicted_path``)
+PATHS = ("straight", "predicted")
 #: mesh size multiplier of each accuracy setting (1.0: c_ru to ~0.3 %, see README)
 ACCURACY = {"default": 1.0, "fast": 2.0}
 #: at most this many depths in one sweep
@@ -81,6 +86,10 @@ class CrackSweep:
         (semi-elliptic root cracks in the solid ring, one per depth and half-length).
     half_lengths : tuple of float
         With ``"solid"``: half the crack mouth's length along the face width [m].
+    path : str
+        ``"straight"`` (the crack runs straight at ``angle``) or ``"predicted"`` (along
+        the LEFM path of ``hubvib crack-path`` at ``tooth``, ``depths`` are arc lengths
+        along it; root cracks in the plane model only).
     """
 
     depths: tuple[float, ...]
@@ -95,6 +104,7 @@ class CrackSweep:
     design: object = None
     model: str = "plane"
     half_lengths: tuple[float, ...] = ()
+    path: str = "straight"
 
     @property
     def cases(self) -> list:
@@ -114,6 +124,11 @@ class CrackSweep:
 
 
 def crack_of(sweep: CrackSweep, depth: float):
+    """The crack of ``sweep`` at ``depth`` [m]: a ``Crack`` straight at ``sweep.angle``,
+    or with ``path = "predicted"`` the predicted path up to arc length ``depth`` (a
+    ``PathCrack``; the intact ring, depth 0, stays a ``Crack``)."""
+    if sweep.path == "predicted" and depth > 0:
+        return predicted_crack(sweep.reducer, sweep.tooth, sweep.depths, float(depth))
     return Crack(sweep.tooth, float(depth), sweep.angle, sweep.start)
 
 
@@ -165,8 +180,10 @@ def fe_case(sweep: CrackSweep, case) -> dict:
         return SolidCase(result, float(depth), float(half_length),
                          time.perf_counter() - started).to_dict()
     depth = case
-    result = estimate_crack_case(ring_gear(design), gear_body(design, "planet"),
-                                 crack_of(sweep, depth), ACCURACY[sweep.accuracy],
+    crack = crack_of(sweep, depth)
+    result = estimate_crack_case(ring_gear(design), gear_body(design, "planet"), crack,
+                                 ACCURACY[sweep.accuracy],
+                                 mesher=path_ring_mesh if isinstance(crack, PathCrack) else None,
                                  material=material(design), n_planets=design.n_planets)
     return PlaneCase(result, float(depth), time.perf_counter() - started).to_dict()
 

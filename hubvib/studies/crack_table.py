@@ -9,6 +9,7 @@ from hubvib.build.stages import ring_gear
 from hubvib.foundation.errors import SceneError
 from hubvib.foundation.schema import Field, Schema
 from hubvib.meshing.crack import MIN_LIGAMENT, STARTS
+from hubvib.meshing.crack_kinds import start_kind
 from hubvib.meshing.gear import GearGeometryError
 from hubvib.studies.crack_sweep import ACCURACY, APPLY, CrackSweep, MAX_DEPTHS, MODELS, crack_of
 
@@ -24,6 +25,8 @@ def _half_lengths_ok(v) -> bool:
         for c in v) and all(b > a for a, b in zip(v[:-1], v[1:])))
 
 
+#: the words ``[crack] path`` takes besides an angle [deg]
+PATH_WORDS = ("predicted", "radial")
 #: at most this many half-lengths in a solid sweep
 MAX_HALF_LENGTHS = 8
 _INTEGERS = "{label} = {value}; allowed {allowed}"
@@ -45,9 +48,14 @@ SCHEMA = Schema("crack", (
           message=_INTEGERS, doc="the cracked ring tooth (below the ring's tooth count)"),
     Field("workers", "integer", 1, 64, default=2, unit="-", allowed="integers 1..64",
           message=_INTEGERS, doc="worker processes for the FE cases"),
-    Field("angle_deg", "number", -60.0, 60.0, default=0.0, unit="deg", attr="angle",
-          scale=math.pi / 180, allowed="-60..60", message=_INTEGERS,
-          doc="crack direction from the radial"),
+    Field("angle_deg", "number", -90.0, 60.0, default=0.0, unit="deg", attr="angle",
+          scale=math.pi / 180, allowed="-90..60 for start = 'root' (-60..60 for 'rim')",
+          message=_INTEGERS, doc="crack direction from the radial (as path = <deg>)"),
+    # checked with the start in ``_path`` (its range depends on the start kind)
+    Field("path", "string", default="radial", unit="-", check=lambda v: True,
+          allowed='"predicted", "radial" or an angle [deg] (as angle_deg)',
+          doc='"radial": straight (at angle_deg); "predicted": the LEFM path of '
+              "`hubvib crack-path`, the depths as lengths along it"),
     Field("through_rim", "bool", default=False,
           message="{label} = {value}, but it must be {allowed}",
           doc="also the depth that cuts through the rim"),
@@ -98,8 +106,46 @@ def parse_crack_table(table, design) -> CrackSweep:
                              f"\"series\" (apply = {values['apply']!r})")
     through = values.pop("through_rim")
     values["half_lengths"] = _half_lengths(values, through)
+    angle, values["path"] = _path(table, values["start"])
+    values["angle"] = math.radians(angle)
     sweep = CrackSweep(**values, design=design)
+    if sweep.path == "predicted" and (sweep.start != "root" or through
+                                      or sweep.model != "plane"):
+        raise SceneError(f"[crack] path = \"predicted\" follows the LEFM path of a root crack "
+                         f"in the plane model to where it severs the tooth or rim: allowed "
+                         f"start = \"root\" (got {sweep.start!r}), through_rim = false (got "
+                         f"{str(through).lower()}) and model = \"plane\" (got {sweep.model!r})")
     return _checked_depths(sweep, through)
+
+
+def _angle_range(start: str) -> tuple[float, float]:
+    """The directions [deg] a crack from ``start`` may take."""
+    return tuple(math.degrees(a) for a in start_kind(start).angle_range)
+
+
+def _path(table, start) -> tuple[float, str]:
+    """``[crack] path`` and ``angle_deg``: the angle [deg] and the sweep's path kind.
+    ``path = "radial"`` is a straight radial crack, a number a straight crack at that
+    angle (as ``angle_deg``), ``"predicted"`` the LEFM path."""
+    low, high = _angle_range(start)
+    angle = table.get("angle_deg", 0.0)
+    if isinstance(angle, bool) or not isinstance(angle, (int, float)) or not (
+            low <= angle <= high):
+        raise SceneError(f"[crack] angle_deg = {angle!r}; allowed {low:g}..{high:g} for "
+                         f"start = {start!r}")
+    if "path" not in table:
+        return float(angle), "straight"
+    path = table["path"]
+    allowed = f"allowed: \"predicted\", \"radial\" or an angle {low:g}..{high:g} [deg]"
+    if isinstance(path, str) and path not in PATH_WORDS or not isinstance(path, str) and (
+            isinstance(path, bool) or not isinstance(path, (int, float))
+            or not low <= path <= high):
+        raise SceneError(f"[crack] path = {path!r}; {allowed} for start = {start!r}")
+    direction = 0.0 if isinstance(path, str) else float(path)
+    if "angle_deg" in table and angle != direction:
+        raise SceneError(f"[crack] angle_deg = {angle!r} and path = {path!r} disagree: give "
+                         "the angle as path = <degrees> or as angle_deg, not both")
+    return direction, "predicted" if path == "predicted" else "straight"
 
 
 #: allowed depth / half-length of a semi-elliptic crack (the shipped scene: 0.19..2.25)

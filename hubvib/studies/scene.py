@@ -22,7 +22,10 @@ A scene is TOML with these tables (all keys shown; SI units)::
     through_rim = true            # also the depth that cuts through the rim
     tooth = 0
     start = "root"                # or "rim"
-    angle_deg = 0.0               # from the radial, |angle| <= 60
+    angle_deg = 0.0               # from the radial: root -90..60, rim -60..60
+    path = "radial"               # or "predicted" (the LEFM path of hubvib crack-path,
+                                  # depths along it; root, plane, no through_rim) or an
+                                  # angle [deg] (= angle_deg)
     apply = "series"              # mounting in series with the FE ring body (default);
                                   # "ratio": FE ratio on the preset's c_ru, c_r (the paper's
                                   # hypothesis, an upper bound); "direct": FE values alone
