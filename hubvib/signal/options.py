@@ -33,6 +33,10 @@ Scene keys (all optional; defaults shown)::
     speed_fluctuation_hz = 1.0    # its frequency [Hz]; the record is order-tracked by the tacho
     tacho_pulses_per_revolution = 16  # pulses of the carrier encoder per revolution
     false_alarm_rate = 0.05       # family-wise false-alarm rate of the POD thresholds
+    ambient_force_psd_N2_Hz = 0.0 # one-sided PSD of broadband random forces on the nine
+                                  # central coordinates, added to the written records (0: none)
+    ambient_corner_hz = 0.0       # first-order low-pass corner of that forcing [Hz] (0: white)
+    ambient_seed = 0              # seed of the ambient forcing
 
 Every check that needs only the table and the Raba gear data (the mesh frequency) is
 made here; the time-step stability check needs the model and is made before the
@@ -117,6 +121,9 @@ class SignalOptions:
         Frequency of the fluctuation [Hz], > 0.
     tacho_pulses_per_revolution : int
         Pulses of the carrier tacho (encoder) per revolution [-], 1..4096.
+    ambient_force_psd_N2_Hz, ambient_corner_hz, ambient_seed : float, float, int
+        Broadband forcing of the written records (:mod:`hubvib.signal.ambient`): one-sided
+        PSD [N^2/Hz], low-pass corner [Hz] (0: white) and seed.
     """
 
     sun_speed_rpm: float = 1500.0
@@ -146,6 +153,9 @@ class SignalOptions:
     speed_fluctuation: float = 0.0
     speed_fluctuation_hz: float = 1.0
     tacho_pulses_per_revolution: int = 16
+    ambient_force_psd_N2_Hz: float = 0.0
+    ambient_corner_hz: float = 0.0
+    ambient_seed: int = 0
 
     @property
     def errors(self) -> StageErrors:
@@ -197,6 +207,8 @@ _NUMBERS = {  # key: (low, high, low closed, high closed)
     "false_alarm_rate": (0.0, 0.5, False, False),
     "speed_fluctuation": (0.0, 0.5, True, True),
     "speed_fluctuation_hz": (0.0, 1e3, False, True),
+    "ambient_force_psd_N2_Hz": (0.0, 1e12, True, True),
+    "ambient_corner_hz": (0.0, 1e6, True, True),
 }
 #: per-planet lists [m]: (low, high) for each value
 _LISTS = {"planet_position_errors_m": (-1e-3, 1e-3, "[m], one per planet"),
@@ -204,7 +216,7 @@ _LISTS = {"planet_position_errors_m": (-1e-3, 1e-3, "[m], one per planet"),
           "sensor_angles_from_crack_deg": (-360.0, 360.0, "[deg]")}
 _INTEGERS = {"mesh_harmonics": (1, 50), "noise_seeds": (1, 100), "steps_per_period": (4, 1000),
              "indicator_max_order": (0, 100000), "roc_records": (0, 10000),
-             "tacho_pulses_per_revolution": (1, 4096)}
+             "tacho_pulses_per_revolution": (1, 4096), "ambient_seed": (0, 2 ** 32 - 1)}
 _CHOICES = {"mesh_stiffness": MESH_STIFFNESS, "integrator": INTEGRATORS, "contact": CONTACT}
 
 
