@@ -104,3 +104,15 @@ def test_notched_identification_ignores_strong_lines_near_the_mode():
     plain = identify_mode(record.values + lines, FS, fn, 0.02)
     assert abs(plain.frequency_hz - fn) > abs(notched.frequency_hz - fn), \
         "without the notch the lines pull the fit away"
+
+
+@pytest.mark.parametrize("key, value", [("ambient_force_psd_N2_Hz", -1.0),
+                                        ("ambient_corner_hz", float("nan")),
+                                        ("ambient_seed", 1.5)])
+def test_ambient_keys_are_checked(key, value):
+    from hubvib.foundation.errors import SceneError
+    from hubvib.signal.options import parse_signal_table
+
+    with pytest.raises(SceneError, match=rf"\[signal\] {key} = "):
+        parse_signal_table({key: value})
+    assert parse_signal_table({}).ambient_force_psd_N2_Hz == 0.0, "default: no ambient part"

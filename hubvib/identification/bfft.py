@@ -16,30 +16,36 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.ndimage import median_filter
+from scipy.ndimage import median_filter, uniform_filter1d
 from scipy.optimize import minimize
 
 from .law import KAPPA, fisher_sigma_hz, response_shape
 
 
-#: half-width of the running median a spectral line is judged against [frequency lines]
-LINE_HALF_WIDTH = 8
+#: half-width of the running mean a spectral line is judged against [frequency lines]
+LINE_HALF_WIDTH = 25
 #: family-wise rate at which a band of a record without lines loses a line [-]
 LINE_FALSE_ALARM = 1e-3
+#: ordinates above this many local medians (over ln 2) are clipped out of the running mean
+LINE_CLIP = 10.0
 
 
 def line_mask(P: np.ndarray) -> np.ndarray:
     """True where a periodogram ordinate ``P`` is a deterministic spectral line (gear mesh
     orders, shaft orders) rather than the broadband response: above ``c`` times the local
-    level, the running median over ``2 LINE_HALF_WIDTH + 1`` lines over ln 2.
+    level, the running mean over ``2 LINE_HALF_WIDTH + 1`` lines of the ordinates clipped
+    at ``LINE_CLIP`` local means (estimated by the running median over ln 2).
 
     Without lines the ordinates are exponential about their mean ``D``, ``P(P > c D) =
     exp(-c)``; ``c = ln(n / LINE_FALSE_ALARM)`` keeps the chance that any of ``n`` lines is
-    dropped at ``LINE_FALSE_ALARM``.  A periodic component's ordinate grows with the record
-    length (``A^2 T / 4``), the broadband one's does not, so long records separate them
-    (notching the lines, as operational modal analysis of gearboxes does)."""
+    dropped near ``LINE_FALSE_ALARM`` (measured in the tests).  A periodic component's
+    ordinate grows with the record length (``A^2 T / 4``), the broadband one's does not, so
+    long records separate them (notching the lines, as operational modal analysis of
+    gearboxes does)."""
     P = np.asarray(P, dtype=float)
-    level = median_filter(P, size=2 * LINE_HALF_WIDTH + 1, mode="nearest") / math.log(2.0)
+    width = 2 * LINE_HALF_WIDTH + 1
+    median = median_filter(P, size=width, mode="nearest") / math.log(2.0)
+    level = uniform_filter1d(np.minimum(P, LINE_CLIP * median), width, mode="nearest")
     return P > math.log(P.size / LINE_FALSE_ALARM) * level
 
 
