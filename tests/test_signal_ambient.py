@@ -12,6 +12,7 @@ from hubvib.signal.ambient import FORCED, AmbientForcing, ambient_record, engage
 from hubvib.signal.dynamics import planetary_dynamics
 from hubvib.signal.mesh_curves import synthetic_curves
 from hubvib.signal.mesh_phase import design_phasing
+from hubvib.signal.sensor import hann_window
 from hubvib.studies.scene import load_scene
 
 FS = 20000.0
@@ -55,7 +56,6 @@ def test_ambient_record_has_the_psd_of_the_lumped_transfer_function(corner_hz):
                             0.0, 0, np.random.default_rng(3))
     f, P = welch(record, FS, nperseg=2048)
     theta = np.array(scene.params.theta)
-    from hubvib.signal.sensor import hann_window
     weights = hann_window(theta, dynamics.n_planets)
     exact = _psd_from_transfer(dynamics, weights, f, forcing)
     peaks = [fn for fn in dynamics.omega / (2 * math.pi) if 1000 < fn < 0.45 * FS]

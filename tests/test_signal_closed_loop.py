@@ -20,7 +20,6 @@ import json
 import math
 from dataclasses import replace
 
-import numpy as np
 import pytest
 
 from hubvib.cli import main

@@ -23,6 +23,7 @@ from hubvib.studies.crack_sweep import ACCURACY
 from .ambient import AmbientForcing, ambient_record
 from .contact import force_ratio, mesh_names
 from .errors import load_sharing
+from .frequency_route import frequency_route
 from .indicators import INDICATORS, GearOrders
 from .mesh_curves import MeshCurves
 from .mesh_phase import design_phasing, design_teeth
@@ -258,6 +259,9 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
     if options.roc_records:
         study.roc = detection_rates([d.depth for d in depths], clean, angle, points, gear,
                                     noise_rms, options.roc_records, options.false_alarm_rate)
+        study.roc["frequency_route"] = frequency_route(
+            params, curves, phasing, options.damping_ratio, duration, options.sample_rate_hz,
+            options.false_alarm_rate)
     study.sensors = [sensor_rows(sims, [d.depth for d in depths], offset, tooth, gear, options,
                                  (varying, angle), points, noise_rms)
                      for offset in options.sensor_angles_from_crack_deg]
