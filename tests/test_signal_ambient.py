@@ -116,3 +116,49 @@ def test_ambient_keys_are_checked(key, value):
     with pytest.raises(SceneError, match=rf"\[signal\] {key} = "):
         parse_signal_table({key: value})
     assert parse_signal_table({}).ambient_force_psd_N2_Hz == 0.0, "default: no ambient part"
+
+
+def test_frequency_route_false_alarm_and_growing_pod():
+    # depth 0: the Bonferroni test's exact family-wise rate 1 - (1 - alpha/m)^m <= alpha;
+    # a softer cracked tooth lowers the frequencies and raises the POD
+    from hubvib.signal.frequency_route import frequency_route
+
+    scene, _, _ = _raba()
+    p = scene.params
+    curves = [synthetic_curves(scene.design, crack_factor=k, depth=0.001 * k).to_preset(
+        p.c_sp, p.c_rp) for k in (1.0, 1.5, 3.0)]
+    route = frequency_route(p, curves, design_phasing(scene.design), 0.01, 600.0, FS, 0.05)
+    m = len(route["modes"])
+    assert m >= 3
+    assert route["pod"][0] == pytest.approx(1 - (1 - 0.05 / m) ** m, rel=1e-9), \
+        "Sidak: exact family-wise rate of m independent one-sided tests at alpha / m"
+    assert route["pod"][0] <= 0.05 and route["pod"][0] <= route["pod"][1] <= route["pod"][2]
+    assert max(route["shift_hz"][2]) <= 1e-9 and min(route["shift_hz"][2]) < 0, \
+        "a softer ring mesh lowers every frequency (Rayleigh)"
+
+
+def test_observed_frequencies_are_those_of_the_time_averaged_stiffness():
+    # first-order averaging (Nayfeh & Mook): the mean of the engaged / free eigenvalues
+    # against the eigenvalues of the time-averaged stiffness matrix (every planet softened
+    # for its share of the time), for the distinct modes: they differ in second order, within
+    # 5 % of the shift for a tooth 1.3 times as compliant
+    from hubvib.lumped import natural_modes
+    from hubvib.signal.frequency_route import observed_hz
+
+    scene, _, _ = _raba()
+    p = scene.params
+    phasing = design_phasing(scene.design)
+    curves = synthetic_curves(scene.design, crack_factor=1.3, depth=0.003).to_preset(
+        p.c_sp, p.c_rp)
+    ratio = engaged_ratio(curves)
+    span = (curves.cracked_s[-1] - curves.cracked_s[0]) / phasing.ring_base_radius
+    share = span / (2 * math.pi)  # of the time each planet holds the cracked window
+    averaged = natural_modes(p.replace(c_rp_factors=(1 + share * (ratio - 1),) * 3)).omega
+    intact = natural_modes(p).omega
+    seen = observed_hz(p, curves, phasing) * 2 * math.pi
+    distinct = [j for j in range(intact.size)
+                if np.min(np.abs(np.delete(intact, j) - intact[j])) > 1e-3 * intact[j]]
+    for j in distinct:
+        assert seen[j] - intact[j] == pytest.approx(averaged[j] - intact[j], rel=0.05,
+                                                    abs=1e-6 * intact[j]), \
+            f"mode {j + 1}: averaged eigenvalues vs the averaged stiffness, 5 % of the shift"
