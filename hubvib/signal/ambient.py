@@ -4,11 +4,9 @@ Natural frequencies show in a running reducer's record through its broadband
 excitation (torque ripple, friction, road input), not through the periodic mesh
 lines.  Here independent random forces act on the nine central coordinates
 (x, y, u of sun, carrier and ring; u in the lumped model's translational units),
-each of one-sided PSD ``G`` [N^2/Hz]: white, or with ``corner_hz`` > 0 white
-noise through a first-order low pass, ``G / (1 + (f / f_c)^2)`` (a coloured
-forcing the identifier, which assumes white force, is not tuned on).
+each white, of one-sided PSD ``G`` [N^2/Hz].
 
-The response is sampled exactly.  The state ``x = [q, q', f]`` obeys
+The response is sampled exactly.  The state ``x = [q, q']`` obeys
 ``dx = A x dt + B dW``; one sample step ``dt`` maps ``x_{k+1} = A_d x_k + w_k``
 with ``A_d = expm(A dt)`` and ``cov(w_k) = Q`` by Van Loan's method (1978), and
 the record starts in the stationary state (``A P + P A^T + B B^T = 0``), so the
@@ -28,7 +26,6 @@ with ``F_i = k_i g_i . q`` the ring-mesh force of planet ``i``.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -54,12 +51,9 @@ class AmbientForcing:
     ----------
     psd : float
         One-sided PSD of each independent force [N^2/Hz] (0: none).
-    corner_hz : float
-        Corner of the first-order low pass [Hz] (0: white).
     """
 
     psd: float
-    corner_hz: float = 0.0
 
 
 def engaged_ratio(curves: MeshCurves) -> float:
@@ -154,18 +148,13 @@ def ambient_record(dynamics, curves: MeshCurves, phasing: MeshPhasing, forcing: 
     ndof = mass.size
     ring_rows = system.rows[N:]
     kbar = dynamics.mean[N:]
-    nf = len(FORCED) if forcing.corner_hz > 0 else 0
-    n = 2 * ndof + nf
+    n = 2 * ndof
     intensity = 0.5 * forcing.psd  # two-sided PSD: the white noise's intensity [N^2/Hz]
     S = np.zeros((ndof, len(FORCED)))
     S[list(FORCED), range(len(FORCED))] = 1.0
     BBt = np.zeros((n, n))
-    if nf:
-        a = 2 * math.pi * forcing.corner_hz
-        BBt[2 * ndof:, 2 * ndof:] = a * a * intensity * np.eye(nf)
-    else:
-        force = S / mass[:, None]
-        BBt[ndof:2 * ndof, ndof:2 * ndof] = intensity * force @ force.T
+    force = S / mass[:, None]
+    BBt[ndof:, ndof:] = intensity * force @ force.T
     ratio = engaged_ratio(curves)
     systems = []
     for planet in range(-1, N):
@@ -177,9 +166,6 @@ def ambient_record(dynamics, curves: MeshCurves, phasing: MeshPhasing, forcing: 
         A[:ndof, ndof:2 * ndof] = np.eye(ndof)
         A[ndof:2 * ndof, :ndof] = -K / mass[:, None]
         A[ndof:2 * ndof, ndof:2 * ndof] = -np.asarray(system.damping) / mass[:, None]
-        if nf:
-            A[ndof:2 * ndof, 2 * ndof:] = S / mass[:, None]
-            A[2 * ndof:, 2 * ndof:] = -a * np.eye(nf)
         systems.append(_Discrete(A, BBt, 1.0 / sample_rate))
     theta = np.array(params.theta)
     carrier_angle = np.asarray(carrier_angle, dtype=float)

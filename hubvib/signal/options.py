@@ -35,7 +35,6 @@ Scene keys (all optional; defaults shown)::
     false_alarm_rate = 0.05       # family-wise false-alarm rate of the POD thresholds
     ambient_force_psd_N2_Hz = 0.0 # one-sided PSD of broadband random forces on the nine
                                   # central coordinates, added to the written records (0: none)
-    ambient_corner_hz = 0.0       # first-order low-pass corner of that forcing [Hz] (0: white)
     ambient_seed = 0              # seed of the ambient forcing
 
 Every check that needs only the table and the Raba gear data (the mesh frequency) is
@@ -121,9 +120,9 @@ class SignalOptions:
         Frequency of the fluctuation [Hz], > 0.
     tacho_pulses_per_revolution : int
         Pulses of the carrier tacho (encoder) per revolution [-], 1..4096.
-    ambient_force_psd_N2_Hz, ambient_corner_hz, ambient_seed : float, float, int
-        Broadband forcing of the written records (:mod:`hubvib.signal.ambient`): one-sided
-        PSD [N^2/Hz], low-pass corner [Hz] (0: white) and seed.
+    ambient_force_psd_N2_Hz, ambient_seed : float, int
+        White broadband forcing of the written records (:mod:`hubvib.signal.ambient`):
+        one-sided PSD [N^2/Hz] and seed.
     """
 
     sun_speed_rpm: float = 1500.0
@@ -154,7 +153,6 @@ class SignalOptions:
     speed_fluctuation_hz: float = 1.0
     tacho_pulses_per_revolution: int = 16
     ambient_force_psd_N2_Hz: float = 0.0
-    ambient_corner_hz: float = 0.0
     ambient_seed: int = 0
 
     @property
@@ -208,7 +206,6 @@ _NUMBERS = {  # key: (low, high, low closed, high closed)
     "speed_fluctuation": (0.0, 0.5, True, True),
     "speed_fluctuation_hz": (0.0, 1e3, False, True),
     "ambient_force_psd_N2_Hz": (0.0, 1e12, True, True),
-    "ambient_corner_hz": (0.0, 1e6, True, True),
 }
 #: per-planet lists [m]: (low, high) for each value
 _LISTS = {"planet_position_errors_m": (-1e-3, 1e-3, "[m], one per planet"),

@@ -243,7 +243,7 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
         d.time, d.record, d.tsa, d.values = t, record, tsa, v
     if options.ambient_force_psd_N2_Hz > 0:
         true_angle = varying.angle(clean[0][0]) if varying else angle
-        forcing = AmbientForcing(options.ambient_force_psd_N2_Hz, options.ambient_corner_hz)
+        forcing = AmbientForcing(options.ambient_force_psd_N2_Hz)
         for k, (d, sim, c) in enumerate(zip(depths, sims, curves)):
             rng = np.random.default_rng([options.ambient_seed, k])
             d.record = d.record + ambient_record(sim.dynamics, c, phasing, forcing, true_angle,
