@@ -51,7 +51,7 @@ from scipy.optimize import linear_sum_assignment
 from scipy.stats import chi2, norm
 
 from hubvib.detection.carrier import mesh_timing
-from hubvib.detection.model import CrackModel
+from hubvib.detection.model import C_RP_RATIO, CrackModel
 from hubvib.detection.options import detection_options
 from hubvib.identification.law import fisher_sigma_hz
 from hubvib.studies.crack_sweep import run_fe_cases
@@ -478,7 +478,9 @@ def synthetic_measurements(model, options, timing, depths: np.ndarray, seed: int
 
 def scene_reference(scene, progress: bool = True, workers: int = 2):
     """The Monte Carlo reference of ``scene``'s crack study and its DetectionOptions (FE
-    cases from the cache or computed)."""
+    cases from the cache or computed).  A scene whose ``[signal]`` table simulates with
+    ``mesh_stiffness = "ratio"`` is diagnosed with the crack entering c_rp by the same
+    ratio (the model its simulated records come from)."""
     if scene.crack is None:
         raise ValueError(f"--scene {scene.name!r} has no [crack] study: diagnosis needs the "
                          "crack sweep it compares the measurement with")
@@ -490,6 +492,11 @@ def scene_reference(scene, progress: bool = True, workers: int = 2):
     fe, _ = run_fe_cases(scene.crack, progress)
     model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
                                c_rp_given=scene.c_rp_given)
+    signal = scene.tables.get("signal")
+    if getattr(signal, "mesh_stiffness", None) == C_RP_RATIO:
+        # the scene's records come from its [signal] model, whose cracked mesh is the FE
+        # ratio on the preset's c_rp (hubvib.signal.study.curves_for): compare like with like
+        model = model.with_c_rp_method(C_RP_RATIO)
     ref = reference(model, options, mesh_timing(scene.crack.reducer, options.carrier_speed),
                     workers=workers)
     return ref, options

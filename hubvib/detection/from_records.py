@@ -1,7 +1,9 @@
 """Measured frequencies from two accelerometer records, intact and now (SI).
 
 Both records are identified mode by mode (:func:`hubvib.identification.modes.identify_modes`)
-around the crack model's intact spectrum with the scene's damping; the modes
+around the crack model's intact spectrum with the scene's damping, the spectral
+lines of the running reducer (mesh and shaft orders) notched out of each band
+(:func:`hubvib.identification.bfft.line_mask`); the modes
 identified in both become the rows of a :class:`.measured.Measured` with the
 intact record as baseline and the identification scatter of each row (the root
 mean square of the two records' Cramer-Rao bounds) as ``sigma_hz``.
@@ -39,8 +41,8 @@ class RecordInput:
 def measured_from_records(record, baseline, predicted_hz, damping_ratio: float,
                           source: str = "record") -> RecordInput:
     """Identify the predicted modes [Hz] in both records (Record objects)."""
-    now = identify_modes(record, predicted_hz, damping_ratio)
-    intact = identify_modes(baseline, predicted_hz, damping_ratio)
+    now = identify_modes(record, predicted_hz, damping_ratio, lines=True)
+    intact = identify_modes(baseline, predicted_hz, damping_ratio, lines=True)
     common = [i for i in now.index if i in intact.index]
     if not common:
         reasons = "; ".join(f"mode {i + 1}: {why}" for i, why in sorted(now.skipped.items()))

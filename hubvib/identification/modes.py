@@ -74,15 +74,16 @@ def identifiable(predicted_hz, damping_ratio: float, record: Record) -> tuple[di
 
 
 def identify_modes(record: Record, predicted_hz, damping_ratio: float,
-                   acceleration: bool = True) -> ModeIdentification:
-    """Identify every identifiable predicted mode [Hz] in ``record``."""
+                   acceleration: bool = True, lines: bool = False) -> ModeIdentification:
+    """Identify every identifiable predicted mode [Hz] in ``record``; ``lines``: leave the
+    spectral lines of a running machine out of each band (:func:`.bfft.line_mask`)."""
     kappas, skipped = identifiable(predicted_hz, damping_ratio, record)
     index, modes = [], []
     for i in sorted(kappas):
         try:
             modes.append(identify_mode(record.values, record.sample_rate,
                                        float(predicted_hz[i]), damping_ratio, kappas[i],
-                                       acceleration))
+                                       acceleration, lines))
             index.append(i)
         except IdentificationError as exc:
             skipped[i] = str(exc)

@@ -33,6 +33,9 @@ Scene keys (all optional; defaults shown)::
     speed_fluctuation_hz = 1.0    # its frequency [Hz]; the record is order-tracked by the tacho
     tacho_pulses_per_revolution = 16  # pulses of the carrier encoder per revolution
     false_alarm_rate = 0.05       # family-wise false-alarm rate of the POD thresholds
+    ambient_force_psd_N2_Hz = 0.0 # one-sided PSD of broadband random forces on the nine
+                                  # central coordinates, added to the written records (0: none)
+    ambient_seed = 0              # seed of the ambient forcing
 
 Every check that needs only the table and the Raba gear data (the mesh frequency) is
 made here; the time-step stability check needs the model and is made before the
@@ -118,6 +121,9 @@ class SignalOptions:
         Frequency of the fluctuation [Hz], > 0.
     tacho_pulses_per_revolution : int
         Pulses of the carrier tacho (encoder) per revolution [-], 1..4096.
+    ambient_force_psd_N2_Hz, ambient_seed : float, int
+        White broadband forcing of the written records (:mod:`hubvib.signal.ambient`):
+        one-sided PSD [N^2/Hz] and seed.
     """
 
     sun_speed_rpm: float = 1500.0
@@ -147,6 +153,8 @@ class SignalOptions:
     speed_fluctuation: float = 0.0
     speed_fluctuation_hz: float = 1.0
     tacho_pulses_per_revolution: int = 16
+    ambient_force_psd_N2_Hz: float = 0.0
+    ambient_seed: int = 0
 
     @property
     def errors(self) -> StageErrors:
@@ -240,6 +248,11 @@ SCHEMA = Schema("signal", (
           doc="pulses of the carrier encoder per revolution"),
     Field("false_alarm_rate", "number", 0.0, 0.5, True, True, default=0.05, unit="-",
           doc="family-wise false-alarm rate of the POD thresholds"),
+    Field("ambient_force_psd_N2_Hz", "number", 0.0, 1e12, default=0.0, unit="N^2/Hz",
+          doc="one-sided PSD of broadband random forces on the nine central coordinates, "
+              "added to the written records (0: none)"),
+    Field("ambient_seed", "integer", 0, 2 ** 32 - 1, default=0, unit="-",
+          doc="seed of the ambient forcing"),
 ), number="a finite number")
 
 

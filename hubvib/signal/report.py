@@ -343,4 +343,16 @@ def roc_section(roc: dict) -> list[str]:
                      + f" | {row['auc'][-1]:.3f} | {'-' if seen is None else f'{seen:g}'} |")
     lines.append("| any | " + " | ".join(f"{p:.2f}" for p in roc["any_indicator_pod"])
                  + " | | |")
+    route = roc.get("frequency_route")
+    if route:
+        seen = route["first_depth_seen_mm"]
+        lines.append("| frequency route (law) | " + " | ".join(f"{p:.2f}" for p in route["pod"])
+                     + f" | | {'-' if seen is None else f'{seen:g}'} |")
+        lines += ["", "Frequency route: natural frequencies identified in this record and an "
+                  "intact one (Bayesian FFT), POD from the identification law (Cramer-Rao "
+                  f"bound at {route['record_s']:.3g} s, damping {route['damping_ratio']:g}, "
+                  f"modal SNR {route['snr']:g}; Bonferroni over the modes at the same "
+                  "family-wise false-alarm rate; nominal reducer, no drift), modes "
+                  + (", ".join(str(m) for m in route["modes"]) or "none")
+                  + " (the others: close modes, band or record too short)."]
     return lines

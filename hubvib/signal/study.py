@@ -20,8 +20,10 @@ from hubvib.lumped import natural_modes
 from hubvib.signal.mesh_curves import fe_mesh_curves
 from hubvib.studies.crack_sweep import ACCURACY
 
+from .ambient import AmbientForcing, ambient_record
 from .contact import force_ratio, mesh_names
 from .errors import load_sharing
+from .frequency_route import frequency_route
 from .indicators import INDICATORS, GearOrders
 from .mesh_curves import MeshCurves
 from .mesh_phase import design_phasing, design_teeth
@@ -244,6 +246,14 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
                                         range(options.noise_seeds))
     for d, (t, _), record, tsa, v in zip(depths, clean, first, tsas, values):
         d.time, d.record, d.tsa, d.values = t, record, tsa, v
+    if options.ambient_force_psd_N2_Hz > 0:
+        true_angle = varying.angle(clean[0][0]) if varying else angle
+        forcing = AmbientForcing(options.ambient_force_psd_N2_Hz)
+        for k, (d, sim, c) in enumerate(zip(depths, sims, curves)):
+            rng = np.random.default_rng([options.ambient_seed, k])
+            d.record = d.record + ambient_record(sim.dynamics, c, phasing, forcing, true_angle,
+                                                 options.sample_rate_hz, options.sensor_angle,
+                                                 tooth, rng)
     study = SignalStudy(scene.name, options, carrier_hz, carrier_hz * teeth["ring"],
                         params.n_planets, sims[0].step, sims[0].steps_per_revolution, points,
                         noise_rms, depths, crack_tooth=tooth, ring_teeth=teeth["ring"])
@@ -254,6 +264,9 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
     if options.roc_records:
         study.roc = detection_rates([d.depth for d in depths], clean, angle, points, gear,
                                     noise_rms, options.roc_records, options.false_alarm_rate)
+        study.roc["frequency_route"] = frequency_route(
+            params, curves, phasing, options.damping_ratio, duration, options.sample_rate_hz,
+            options.false_alarm_rate)
     study.sensors = [sensor_rows(sims, [d.depth for d in depths], offset, tooth, gear, options,
                                  (varying, angle), points, noise_rms)
                      for offset in options.sensor_angles_from_crack_deg]
