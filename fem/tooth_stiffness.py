@@ -138,11 +138,19 @@ class EngagedMesh:
 
     cracked: MeshCycle
     intact: MeshCycle
+    #: roll lengths [m] where the cracked tooth is in contact (the cycles run one base pitch
+    #: further on each side, where cracked and intact coincide)
+    engagement: tuple[float, float]
 
     @property
     def mean_ratio(self) -> float:
-        """Cracked / intact mean stiffness over the engagement [-]."""
-        return self.cracked.mean / self.intact.mean
+        """Cracked / intact mean stiffness while the cracked tooth is in contact [-]: the
+        ratio that holds for the engaged fraction ``N eps_alpha / z_r`` of the time.  (Over
+        the cycles' whole span, eps_alpha + 2 pitches, the mean would dilute the change by
+        eps_alpha / (eps_alpha + 2), about 0.41 for the Raba ring, and the detection model
+        applies the ratio for the contact time only.)"""
+        inside = (self.cracked.s >= self.engagement[0]) & (self.cracked.s <= self.engagement[1])
+        return float(self.cracked.stiffness[inside].mean() / self.intact.stiffness[inside].mean())
 
     @property
     def min_ratio(self) -> float:
@@ -182,7 +190,8 @@ def engaged_mesh(planet: ToothedBody, ring: ToothedBody, cracked: ToothCurve | N
     q_h = hertz_compliance(min(planet.gear.face_width, ring.gear.face_width), material)
     return EngagedMesh(
         mesh_cycle(pair, planet_curve, ring_curve, q_h, marked_pair_compliance=cracked),
-        mesh_cycle(pair, planet_curve, ring_curve, q_h, marked_pair_compliance=ring_curve))
+        mesh_cycle(pair, planet_curve, ring_curve, q_h, marked_pair_compliance=ring_curve),
+        pair.path)
 
 
 def reducer_mesh_stiffness(sun: ToothedBody, planet: ToothedBody, ring: ToothedBody,

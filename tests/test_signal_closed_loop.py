@@ -101,12 +101,6 @@ def test_signal_records_through_diagnose(scene_file, capsys):
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="the diagnosis model applies the engagement "
-                   "window's mean c_rp ratio (contact path plus one pitch either side, "
-                   "fem/mesh_cycle.py) over the engagement share N eps / z_r only "
-                   "(detection/carrier.py), not N (eps + 2) / z_r: its time-averaged "
-                   "softening is eps / (eps + 2) = 0.41 of the simulated one, so 12 mm "
-                   "records fit the deepest crack of the sweep")
 def test_diagnosis_fits_the_12mm_records_inside_the_sweep(scene_file, capsys):
     out = scene_file.parent / "out"
     if not (out / "signal_12mm.csv").exists():
