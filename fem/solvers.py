@@ -38,6 +38,10 @@ PIVOT_RATIO = 1e-13    # a pivot this small relative to the largest: singular
 #: below what a double-precision factorisation leaves on the solid ring (~1e-13..1e-12)
 REFINE_TOLERANCE = 1e-12
 REFINE_STEPS = 8
+#: load columns per refined single-precision solve: the refinement's temporaries and
+#: PARDISO's solve workspace grow with the columns solved at once (the 24 columns of the
+#: solid ring's carrier sweep at once: 1.1 GB over the factorisation, measured)
+SOLVE_COLUMNS = 8
 
 
 class SingularSystemError(ValueError):
@@ -141,6 +145,8 @@ class _PardisoFactor(Factor):
         self._pardiso = self._factorise(single)
 
     def _factorise(self, single: bool):
+        if self._matrix is None:  # dropped after the matvec was built: its CSR has it
+            self._matrix = (*self._matvec.blocks(), self._matvec.block)
         try:
             factor = Pardiso(*self._matrix, single=single)
         except PardisoError as error:
@@ -149,6 +155,8 @@ class _PardisoFactor(Factor):
             raise SingularSystemError(f"PARDISO: the supported stiffness matrix is not positive "
                                       f"definite ({error}): check the supports") from None
         self._single = single
+        if not single:  # no refinement: the matrix is not needed again
+            self._matrix = self._make_matvec = None
         return factor
 
     @classmethod
@@ -158,10 +166,26 @@ class _PardisoFactor(Factor):
         return cls(upper.indptr, upper.indices, upper.data)
 
     def _solve(self, columns):
-        u = self._pardiso.solve(columns).astype(float)
         if not self._single:
-            return u
-        self._matvec = self._matvec or self._make_matvec()
+            return self._pardiso.solve(columns)
+        if self._matvec is None:
+            self._matvec = self._make_matvec()
+            # the matvec's CSR holds the matrix: drop the block copy before the solves'
+            # temporaries (0.19 GB on the solid ring)
+            self._matrix = self._make_matvec = None
+        if columns.shape[1] <= SOLVE_COLUMNS:
+            return self._refined(columns)
+        u = np.empty_like(columns)
+        for first in range(0, columns.shape[1], SOLVE_COLUMNS):
+            part = slice(first, first + SOLVE_COLUMNS)
+            u[:, part] = self._refined(columns[:, part]) if self._single \
+                else self._pardiso.solve(columns[:, part])
+        return u
+
+    def _refined(self, columns):
+        """The single-precision solve refined in double (or, where refinement stalls, the
+        solve of a double-precision factorisation made then)."""
+        u = self._pardiso.solve(columns).astype(float)
         previous = None
         for _ in range(REFINE_STEPS):
             step = self._pardiso.solve(columns - self._matvec(u)).astype(float)
@@ -184,25 +208,38 @@ class _PardisoFactor(Factor):
         self._pardiso.free()
 
 
-def _symmetric_block_matvec(indptr, indices, values):
-    """``x -> K x`` for the symmetric K whose upper block triangle is given (block CSR).
+def _symmetric_block_matvec(indptr, indices, values) -> "_SymmetricMatvec":
+    """``x -> K x`` for the symmetric K whose upper block triangle is given (block CSR)."""
+    return _SymmetricMatvec(indptr, indices, values)
 
-    One CSR copy of the upper triangle serves both halves: its arrays read as CSC are the
-    lower triangle (no transposed copy, which would double the memory at the solve)."""
-    rows = len(indptr) - 1
-    block = values.shape[1]
-    shape = (rows * block, rows * block)
-    upper = sp.bsr_matrix((values, indices, indptr), shape=shape).tocsr()
-    lower = sp.csc_matrix((upper.data, upper.indices, upper.indptr), shape=shape)
-    diagonal = values[indptr[:-1]]  # sorted upper rows start with their diagonal block
 
-    def matvec(x):
+class _SymmetricMatvec:
+    """``K x`` from one CSR copy of K's upper block triangle: its arrays read as CSC are the
+    lower triangle (no transposed copy, which would double the memory at the solve).
+    ``blocks`` gives the block CSR back (for a refactorisation)."""
+
+    def __init__(self, indptr, indices, values):
+        self.rows = len(indptr) - 1
+        self.block = values.shape[1]
+        shape = (self.rows * self.block,) * 2
+        self.upper = sp.bsr_matrix((values, indices, indptr), shape=shape).tocsr()
+        self.lower = sp.csc_matrix((self.upper.data, self.upper.indices, self.upper.indptr),
+                                   shape=shape)
+        self.diagonal = values[indptr[:-1]].copy()  # sorted rows start with their diagonal
+
+    def __call__(self, x):
         x = np.asarray(x)
-        by_node = x.reshape(rows, block, -1)
-        counted_twice = np.einsum("rij,rjk->rik", diagonal, by_node).reshape(x.shape)
-        return upper @ x + lower @ x - counted_twice
+        by_node = x.reshape(self.rows, self.block, -1)
+        y = self.upper @ x  # accumulated in place: each temporary is one more copy of x
+        y += self.lower @ x
+        y -= np.einsum("rij,rjk->rik", self.diagonal, by_node).reshape(x.shape)
+        return y
 
-    return matvec
+    def blocks(self):
+        """``(indptr, indices, values)`` of the upper block triangle, sorted."""
+        b = self.upper.tobsr(blocksize=(self.block, self.block))
+        b.sort_indices()
+        return b.indptr, b.indices, b.data
 
 
 class _AMG(Factor):
