@@ -39,9 +39,10 @@ PIVOT_RATIO = 1e-13    # a pivot this small relative to the largest: singular
 REFINE_TOLERANCE = 1e-12
 REFINE_STEPS = 8
 #: load columns per refined single-precision solve: the refinement's temporaries and
-#: PARDISO's solve workspace grow with the columns solved at once (the 24 columns of the
-#: solid ring's carrier sweep at once: 1.1 GB over the factorisation, measured)
-SOLVE_COLUMNS = 8
+#: PARDISO's solve workspace grow with the columns solved at once.  Solid ring, 24 columns
+#: (carrier sweep), same run: peak 2.70 GB at once, 2.57 GB in chunks of 12 (solve
+#: phase 10 % longer); before this round (at once, block copy kept) 2.85 GB
+SOLVE_COLUMNS = 12
 
 
 class SingularSystemError(ValueError):
