@@ -43,6 +43,8 @@ REFINE_STEPS = 8
 #: (carrier sweep), same run: peak 2.70 GB at once, 2.57 GB in chunks of 12 (solve
 #: phase 10 % longer); before this round (at once, block copy kept) 2.85 GB
 SOLVE_COLUMNS = 12
+#: block rows per transposed slice in the symmetric matvec
+TRANSPOSE_ROWS = 20_000
 
 
 class SingularSystemError(ValueError):
@@ -146,8 +148,6 @@ class _PardisoFactor(Factor):
         self._pardiso = self._factorise(single)
 
     def _factorise(self, single: bool):
-        if self._matrix is None:  # dropped after the matvec was built: its CSR has it
-            self._matrix = (*self._matvec.blocks(), self._matvec.block)
         try:
             factor = Pardiso(*self._matrix, single=single)
         except PardisoError as error:
@@ -171,9 +171,6 @@ class _PardisoFactor(Factor):
             return self._pardiso.solve(columns)
         if self._matvec is None:
             self._matvec = self._make_matvec()
-            # the matvec's CSR holds the matrix: drop the block copy before the solves'
-            # temporaries (0.19 GB on the solid ring)
-            self._matrix = self._make_matvec = None
         if columns.shape[1] <= SOLVE_COLUMNS:
             return self._refined(columns)
         u = np.empty_like(columns)
@@ -215,32 +212,39 @@ def _symmetric_block_matvec(indptr, indices, values) -> "_SymmetricMatvec":
 
 
 class _SymmetricMatvec:
-    """``K x`` from one CSR copy of K's upper block triangle: its arrays read as CSC are the
-    lower triangle (no transposed copy, which would double the memory at the solve).
+    """``K x`` from K's upper block triangle, sharing its arrays (no copy of the matrix:
+    a CSR copy was the peak of the solid ring's solve, 0.28 GB over the factorisation).
+    The upper triangle multiplies as block CSR; the lower one is its transpose, taken
+    ``TRANSPOSE_ROWS`` block rows at a time so only that slice is ever copied.
     ``blocks`` gives the block CSR back (for a refactorisation)."""
 
     def __init__(self, indptr, indices, values):
         self.rows = len(indptr) - 1
         self.block = values.shape[1]
-        shape = (self.rows * self.block,) * 2
-        self.upper = sp.bsr_matrix((values, indices, indptr), shape=shape).tocsr()
-        self.lower = sp.csc_matrix((self.upper.data, self.upper.indices, self.upper.indptr),
-                                   shape=shape)
-        self.diagonal = values[indptr[:-1]].copy()  # sorted rows start with their diagonal
+        self._arrays = (indptr, indices, values)
+        self.n = self.rows * self.block
+        self.upper = sp.bsr_matrix((values, indices, indptr), shape=(self.n, self.n))
+        self.diagonal = values[indptr[:-1]]  # sorted rows start with their diagonal block
 
     def __call__(self, x):
         x = np.asarray(x)
-        by_node = x.reshape(self.rows, self.block, -1)
-        y = self.upper @ x  # accumulated in place: each temporary is one more copy of x
-        y += self.lower @ x
+        indptr, indices, values = self._arrays
+        b = self.block
+        by_node = x.reshape(self.rows, b, -1)
+        y = self.upper @ x
         y -= np.einsum("rij,rjk->rik", self.diagonal, by_node).reshape(x.shape)
+        for first in range(0, self.rows, TRANSPOSE_ROWS):
+            last = min(first + TRANSPOSE_ROWS, self.rows)
+            start, stop = indptr[first], indptr[last]
+            rows = sp.bsr_matrix((values[start:stop], indices[start:stop],
+                                  indptr[first:last + 1] - start),
+                                 shape=(b * (last - first), self.n))
+            y += rows.T @ x[b * first:b * last]
         return y
 
     def blocks(self):
         """``(indptr, indices, values)`` of the upper block triangle, sorted."""
-        b = self.upper.tobsr(blocksize=(self.block, self.block))
-        b.sort_indices()
-        return b.indptr, b.indices, b.data
+        return self._arrays
 
 
 class _AMG(Factor):

@@ -182,8 +182,8 @@ def test_single_precision_solve_in_column_chunks_agrees_with_superlu():
 
 def test_single_precision_falls_back_to_double_where_refinement_stalls(monkeypatch):
     """Where the refinement does not converge (here: no refinement steps allowed), the
-    factor refactorises in double precision from the matrix its matvec kept (the block
-    copy is dropped before the solves) and still agrees with SuperLU to 1e-10."""
+    factor refactorises in double precision (the block arrays its matvec shares) and still
+    agrees with SuperLU to 1e-10."""
     if importlib.util.find_spec("pypardiso") is None:
         pytest.skip("pypardiso not installed")
     import hubvib.fem.solvers as solvers
