@@ -39,10 +39,11 @@ PIVOT_RATIO = 1e-13    # a pivot this small relative to the largest: singular
 REFINE_TOLERANCE = 1e-12
 REFINE_STEPS = 8
 #: load columns per refined single-precision solve: the refinement's temporaries and
-#: PARDISO's solve workspace grow with the columns solved at once.  Solid ring, 24 columns
-#: (carrier sweep), same run: peak 2.70 GB at once, 2.57 GB in chunks of 12 (solve
-#: phase 10 % longer); before this round (at once, block copy kept) 2.85 GB
-SOLVE_COLUMNS = 12
+#: PARDISO's solve workspace grow with the columns solved at once.  Solid ring (5.6e5
+#: DOFs), the 24 columns of the carrier sweep, same run: peak 2.56 GB at once (solve
+#: phase 11.8 s), 2.45 GB in chunks of 12 (13.6 s); the sweep goes at once (speed), more
+#: columns than this in chunks
+SOLVE_COLUMNS = 24
 #: block rows per transposed slice in the symmetric matvec
 TRANSPOSE_ROWS = 20_000
 
