@@ -38,6 +38,14 @@ PIVOT_RATIO = 1e-13    # a pivot this small relative to the largest: singular
 #: below what a double-precision factorisation leaves on the solid ring (~1e-13..1e-12)
 REFINE_TOLERANCE = 1e-12
 REFINE_STEPS = 8
+#: load columns per refined single-precision solve: the refinement's temporaries and
+#: PARDISO's solve workspace grow with the columns solved at once.  Solid ring (5.6e5
+#: DOFs), the 24 columns of the carrier sweep, same run: peak 2.56 GB at once (solve
+#: phase 11.8 s), 2.45 GB in chunks of 12 (13.6 s); the sweep goes at once (speed), more
+#: columns than this in chunks
+SOLVE_COLUMNS = 24
+#: block rows per transposed slice in the symmetric matvec
+TRANSPOSE_ROWS = 20_000
 
 
 class SingularSystemError(ValueError):
@@ -149,6 +157,8 @@ class _PardisoFactor(Factor):
             raise SingularSystemError(f"PARDISO: the supported stiffness matrix is not positive "
                                       f"definite ({error}): check the supports") from None
         self._single = single
+        if not single:  # no refinement: the matrix is not needed again
+            self._matrix = self._make_matvec = None
         return factor
 
     @classmethod
@@ -158,10 +168,23 @@ class _PardisoFactor(Factor):
         return cls(upper.indptr, upper.indices, upper.data)
 
     def _solve(self, columns):
-        u = self._pardiso.solve(columns).astype(float)
         if not self._single:
-            return u
-        self._matvec = self._matvec or self._make_matvec()
+            return self._pardiso.solve(columns)
+        if self._matvec is None:
+            self._matvec = self._make_matvec()
+        if columns.shape[1] <= SOLVE_COLUMNS:
+            return self._refined(columns)
+        u = np.empty_like(columns)
+        for first in range(0, columns.shape[1], SOLVE_COLUMNS):
+            part = slice(first, first + SOLVE_COLUMNS)
+            u[:, part] = self._refined(columns[:, part]) if self._single \
+                else self._pardiso.solve(columns[:, part])
+        return u
+
+    def _refined(self, columns):
+        """The single-precision solve refined in double (or, where refinement stalls, the
+        solve of a double-precision factorisation made then)."""
+        u = self._pardiso.solve(columns).astype(float)
         previous = None
         for _ in range(REFINE_STEPS):
             step = self._pardiso.solve(columns - self._matvec(u)).astype(float)
@@ -184,25 +207,45 @@ class _PardisoFactor(Factor):
         self._pardiso.free()
 
 
-def _symmetric_block_matvec(indptr, indices, values):
-    """``x -> K x`` for the symmetric K whose upper block triangle is given (block CSR).
+def _symmetric_block_matvec(indptr, indices, values) -> "_SymmetricMatvec":
+    """``x -> K x`` for the symmetric K whose upper block triangle is given (block CSR)."""
+    return _SymmetricMatvec(indptr, indices, values)
 
-    One CSR copy of the upper triangle serves both halves: its arrays read as CSC are the
-    lower triangle (no transposed copy, which would double the memory at the solve)."""
-    rows = len(indptr) - 1
-    block = values.shape[1]
-    shape = (rows * block, rows * block)
-    upper = sp.bsr_matrix((values, indices, indptr), shape=shape).tocsr()
-    lower = sp.csc_matrix((upper.data, upper.indices, upper.indptr), shape=shape)
-    diagonal = values[indptr[:-1]]  # sorted upper rows start with their diagonal block
 
-    def matvec(x):
+class _SymmetricMatvec:
+    """``K x`` from K's upper block triangle, sharing its arrays (no copy of the matrix:
+    a CSR copy was the peak of the solid ring's solve, 0.28 GB over the factorisation).
+    The upper triangle multiplies as block CSR; the lower one is its transpose, taken
+    ``TRANSPOSE_ROWS`` block rows at a time so only that slice is ever copied.
+    ``blocks`` gives the block CSR back (for a refactorisation)."""
+
+    def __init__(self, indptr, indices, values):
+        self.rows = len(indptr) - 1
+        self.block = values.shape[1]
+        self._arrays = (indptr, indices, values)
+        self.n = self.rows * self.block
+        self.upper = sp.bsr_matrix((values, indices, indptr), shape=(self.n, self.n))
+        self.diagonal = values[indptr[:-1]]  # sorted rows start with their diagonal block
+
+    def __call__(self, x):
         x = np.asarray(x)
-        by_node = x.reshape(rows, block, -1)
-        counted_twice = np.einsum("rij,rjk->rik", diagonal, by_node).reshape(x.shape)
-        return upper @ x + lower @ x - counted_twice
+        indptr, indices, values = self._arrays
+        b = self.block
+        by_node = x.reshape(self.rows, b, -1)
+        y = self.upper @ x
+        y -= np.einsum("rij,rjk->rik", self.diagonal, by_node).reshape(x.shape)
+        for first in range(0, self.rows, TRANSPOSE_ROWS):
+            last = min(first + TRANSPOSE_ROWS, self.rows)
+            start, stop = indptr[first], indptr[last]
+            rows = sp.bsr_matrix((values[start:stop], indices[start:stop],
+                                  indptr[first:last + 1] - start),
+                                 shape=(b * (last - first), self.n))
+            y += rows.T @ x[b * first:b * last]
+        return y
 
-    return matvec
+    def blocks(self):
+        """``(indptr, indices, values)`` of the upper block triangle, sorted."""
+        return self._arrays
 
 
 class _AMG(Factor):

@@ -156,6 +156,55 @@ def test_pardiso_on_node_blocks_agrees_with_superlu(single):
     assert np.abs(residual).max() <= 10 * REFINE_TOLERANCE * np.abs(box.f).max()
 
 
+def test_single_precision_solve_in_column_chunks_agrees_with_superlu():
+    """More load columns than ``SOLVE_COLUMNS``: the refined single-precision solve runs
+    chunk by chunk (a ragged last chunk too) and gives every column what sparse LU gives,
+    to 1e-10 relative (the refinement's 1e-12 with margin)."""
+    if importlib.util.find_spec("pypardiso") is None:
+        pytest.skip("pypardiso not installed")
+    from hubvib.fem.solvers import SOLVE_COLUMNS, factorise_blocks
+
+    box = _box_with_blocks()
+    fixed = np.unique(box.basis.get_dofs("clamp").flatten())
+    keep = np.ones(box.ndofs, dtype=bool)
+    keep[fixed] = False
+    rng = np.random.default_rng(5)
+    loads = np.zeros((box.ndofs, 2 * SOLVE_COLUMNS + 3))
+    loads[keep] = rng.standard_normal((keep.sum(), loads.shape[1])) * np.abs(box.f).max()
+    reference = solve(box, loads, ["clamp"], solver="superlu").u[keep]
+    factor = factorise_blocks(*box.blocks.upper(keep.reshape(-1, 3)[:, 0]), single=True)
+    u = factor.solve(loads[keep])
+    factor.free()
+    scale = np.abs(reference).max(axis=0)
+    assert np.all(np.abs(u - reference).max(axis=0) <= 1e-10 * scale), \
+        "single precision + refinement, chunked, against SuperLU: 1e-10 relative per column"
+
+
+def test_single_precision_falls_back_to_double_where_refinement_stalls(monkeypatch):
+    """Where the refinement does not converge (here: no refinement steps allowed), the
+    factor refactorises in double precision (the block arrays its matvec shares) and still
+    agrees with SuperLU to 1e-10."""
+    if importlib.util.find_spec("pypardiso") is None:
+        pytest.skip("pypardiso not installed")
+    import hubvib.fem.solvers as solvers
+
+    box = _box_with_blocks()
+    fixed = np.unique(box.basis.get_dofs("clamp").flatten())
+    keep = np.ones(box.ndofs, dtype=bool)
+    keep[fixed] = False
+    reference = solve(box, box.f, ["clamp"], solver="superlu").u[keep]
+    factor = solvers.factorise_blocks(*box.blocks.upper(keep.reshape(-1, 3)[:, 0]),
+                                      single=True)
+    monkeypatch.setattr(solvers, "REFINE_STEPS", 0)
+    u = factor.solve(box.f[keep])
+    assert not factor._single, "the stalled refinement refactorised in double precision"
+    again = factor.solve(box.f[keep])
+    factor.free()
+    for v in (u, again):
+        assert np.abs(v - reference).max() <= 1e-10 * np.abs(reference).max(), \
+            "double refactorisation against SuperLU: 1e-10 relative"
+
+
 def test_block_matrix_is_the_csr_matrix():
     """The upper node blocks, read back whole, are K; their free part is K[free][:, free]
     (an independent scipy slicing)."""
