@@ -596,6 +596,23 @@ def diagnosis_family_pod() -> str:
             + provenance("raba118_crack/", f"{run['date']}, hubvib {run['hubvib_version']}"))
 
 
+def diagnosis_mode13() -> str:
+    """Mode 13 of the default scene: planet 1's lumped c_rp factor by the series and the
+    ratio method and the time-averaged shift a record sees, at 3 mm, 12 mm and the deepest
+    crack (``results.json`` of ``hubvib run raba118_crack``: stiffness rows, c_rp_methods)."""
+    run = json.loads((DATA / "raba118_crack" / "results.json").read_text())
+    rows = {round(r["depth_mm"], 6): r for r in run["stiffness"]}
+    shifts = {round(r["depth_mm"], 6): r for r in run["c_rp_methods"] if r["mode"] == 13}
+    depths = [d for d in (3.0, 12.0, max(rows)) if d in rows]
+    body = [[f"{d:.3g}", f"{rows[d]['lumped_c_rp_factor']:.4f}",
+             f"{rows[d]['fe_c_rp_engaged_ratio']:.4f}",
+             f"{shifts[d]['record_shift_series_hz']:.3g}",
+             f"{shifts[d]['record_shift_ratio_hz']:.3g}"] for d in depths]
+    return (markdown_table(["depth [mm]", "factor series", "factor ratio",
+                            "mode 13 series [Hz]", "mode 13 ratio [Hz]"], body, "rrrrr")
+            + provenance("raba118_crack/", f"{run['date']}, hubvib {run['hubvib_version']}"))
+
+
 # ---------------------------------------------------------------- key references
 
 def _schema_tables(schemas) -> str:

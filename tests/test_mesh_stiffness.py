@@ -20,8 +20,9 @@ from hubvib.studies.crack_study import crack_study_from_fe, write_crack_study
 from hubvib.studies.scene import load_scene, parse_scene
 
 #: the FE intact c_rp of Raba 118/76 (issue 22: 1.48e9 N/m) and the FE cracked/intact
-#: ratio over the engagement at 3 mm (FE cache, default mesh: 0.97394)
-C_RP_FE, RATIO_3MM = 1.48e9, 0.9739433696370778
+#: ratio while the cracked tooth is in contact, at 3 mm (default mesh: 0.93998; it was
+#: 0.97394 over the cycles' eps + 2 pitches, which diluted it by eps / (eps + 2))
+C_RP_FE, RATIO_3MM = 1.48e9, 0.9399812774938344
 PRESET_C_RP = 3.0e8
 fe_stage = pytest.mark.skipif(not all(importlib.util.find_spec(m) for m in ("gmsh", "skfem")),
                               reason="FE extras not installed")
@@ -56,8 +57,8 @@ def test_series_factor_is_the_hand_computed_compliance_sum():
     assert model.c_rp_factor()[1] == pytest.approx(expected, rel=1e-12), \
         "series factor vs 1/(1/c + dq) by hand, 1e-12"
     assert model.parameters(1).c_rp_factors == pytest.approx((expected, 1.0, 1.0), rel=1e-12)
-    # 3e8 in series with dq = 1.808e-11 m/N: 0.99461, five times closer to 1 than the ratio
-    assert expected == pytest.approx(0.99461, abs=1e-5), "hand value 0.99461 (5 digits)"
+    # 3e8 in series with dq = 4.313e-11 m/N: 0.98722, 4.7 times closer to 1 than the ratio
+    assert expected == pytest.approx(0.98722, abs=1e-5), "hand value 0.98722 (5 digits)"
     ratio_model = model.with_c_rp_method(C_RP_RATIO)
     assert ratio_model.parameters(1).c_rp_factors[0] == RATIO_3MM
     # the minimum over the engagement in series with its own intact minimum (0.8 c_FE here)
@@ -76,18 +77,19 @@ def test_series_equals_the_ratio_when_the_lumped_c_rp_is_the_fe_one():
 
 
 def test_mode_13_at_3mm_moves_five_times_less_in_series_than_by_the_ratio():
-    """Issue 22: mode 13 at 3 mm, time-averaged: -0.30 Hz (series) vs -1.52 Hz (ratio)."""
+    """Mode 13 at 3 mm, time-averaged: -0.73 Hz (series) vs -3.76 Hz (ratio) (issue 22's
+    -0.30 / -1.52 Hz with the ratio diluted over the cycles' eps + 2 pitches)."""
     comparison = compare_methods(_model(_rows_3mm()), TIMING, 10.0)
     series, ratio = comparison.shift_hz[1, 12], comparison.other_shift_hz[1, 12]
     assert comparison.method == C_RP_SERIES and comparison.other == C_RP_RATIO
-    assert series == pytest.approx(-0.30, abs=0.03), "issue 22: series -0.30 Hz (+-0.03)"
-    assert ratio == pytest.approx(-1.52, abs=0.08), "issue 22: ratio -1.52 Hz (+-0.08)"
+    assert series == pytest.approx(-0.73, abs=0.03), "series -0.73 Hz (+-0.03)"
+    assert ratio == pytest.approx(-3.76, abs=0.08), "ratio -3.76 Hz (+-0.08)"
     # to first order the shift follows planet 1's c_rp change: the ratio of the shifts is
-    # that of (1 - factor), 4.83 here; the eigen-solves give 5.04 (mode 13 is one of a
-    # degenerate pair the crack splits, not linear in the change): 5 %
+    # that of (1 - factor), 4.70 here; the eigen-solves give 5.16 (mode 13 is one of a
+    # degenerate pair the crack splits, not linear in the change: 10 % at this size)
     expected = (1 - RATIO_3MM) / (1 - _hand_series(RATIO_3MM, C_RP_FE, PRESET_C_RP))
-    assert ratio / series == pytest.approx(expected, rel=0.05), \
-        "shift ratio vs (1 - ratio)/(1 - series factor), first order, 5 %"
+    assert ratio / series == pytest.approx(expected, rel=0.12), \
+        "shift ratio vs (1 - ratio)/(1 - series factor), first order, 12 %"
     assert 4.5 < ratio / series < 5.5, "issue 22: a five times smaller shift"
 
 
@@ -147,7 +149,7 @@ def test_iso_c_rp_of_the_preset_is_the_issue_s_value():
 @fe_stage
 def test_raba_fe_numbers_mode_13_both_methods():
     """The FE cases of the default scene (cache or computed): the intact engaged c_rp is the
-    issue's 1.48e9 N/m and mode 13 at 3 mm moves -0.30 / -1.52 Hz (series / ratio)."""
+    issue's 1.48e9 N/m and mode 13 at 3 mm moves -0.73 / -3.76 Hz (series / ratio)."""
     from hubvib.studies.crack_sweep import run_fe_cases
 
     scene = load_scene(None)
@@ -161,5 +163,5 @@ def test_raba_fe_numbers_mode_13_both_methods():
         _hand_series(fe[k]["c_rp_engaged_ratio"], intact[k], PRESET_C_RP), rel=1e-12)
     comparison = result.c_rp_comparison
     series, ratio = comparison.shift_hz[k, 12], comparison.other_shift_hz[k, 12]
-    assert series == pytest.approx(-0.30, abs=0.03), "issue 22: series -0.30 Hz"
-    assert ratio == pytest.approx(-1.52, abs=0.08), "issue 22: ratio -1.52 Hz"
+    assert series == pytest.approx(-0.73, abs=0.03), "series -0.73 Hz (+-0.03)"
+    assert ratio == pytest.approx(-3.76, abs=0.08), "ratio -3.76 Hz (+-0.08)"
