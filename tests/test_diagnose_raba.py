@@ -9,7 +9,7 @@ so (last test)."""
 import numpy as np
 import pytest
 
-from hubvib.detection.diagnosis import (CRACK, NO_CRACK, NOT_EXPLAINED, NOT_IDENTIFIABLE,
+from hubvib.detection.diagnosis import (CRACK, NO_CRACK, NOT_EXPLAINED,
                                         Posterior, reference, synthetic_measurements)
 
 pytestmark = pytest.mark.slow
@@ -42,18 +42,22 @@ def raba():
     return _raba("ratio")
 
 
-def test_under_the_series_method_10s_records_identify_no_crack():
-    """Issue 22 item 6: mode 13 moves 0.30-0.68 Hz (3 mm..through the rim) against a
-    10 s identification scatter of 1.45 Hz: intact reducers are `not identifiable`."""
+def test_under_the_series_method_intact_reducers_are_called_intact():
+    """Series method, engaged ratio over the contact time: mode 13 moves 0.73-1.74 Hz
+    (3 mm..through the rim) against a 10 s identification scatter of 1.45 Hz, so the deepest
+    cracks are identifiable and intact reducers are `no crack indicated` (docs/diagnosis.md,
+    calibration table: 96.5 %), with the crack verdict at the family-wise false-alarm rate
+    0.01 (binomial 3 sigma).  Before the fix (the ratio diluted by eps / (eps + 2)) 97 % of
+    intact reducers were `not identifiable from these modes`."""
     model, options, timing, ref, posterior = _raba("series")
     trials = 100
     f, own = synthetic_measurements(model, options, timing, np.zeros(trials), seed=5,
                                     errors=student_errors)
     verdicts = [posterior.diagnose(f[j, MODES] - own[j, MODES], "m").verdict
                 for j in range(trials)]
-    assert verdicts.count(NOT_IDENTIFIABLE) >= 0.9 * trials, \
-        "docs/diagnosis.md: 97 % of intact reducers not identifiable (>= 90 %)"
-    assert verdicts.count(CRACK) == 0
+    assert verdicts.count(NO_CRACK) >= 0.9 * trials, \
+        "docs/diagnosis.md: 96.5 % of intact reducers no crack indicated (>= 90 %)"
+    assert verdicts.count(CRACK) <= 0.01 * trials + 3 * np.sqrt(0.0099 * trials)
 
 
 def test_intact_raba_reducer_is_called_intact(raba):
