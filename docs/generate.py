@@ -395,9 +395,9 @@ def stiffness() -> str:
         ["`c_r`", f"{_stiffness_change('c_r'):+.2%}"],
         ["highest `c_ru` over carrier positions",
          f"{cracked['c_ru']['max_N_m'] / intact['c_ru']['max_N_m'] - 1:+.2%}"],
-        ["`c_rp` while the cracked tooth is engaged, mean",
+        ["`c_rp` over the cracked tooth's contact and one base pitch either side, mean",
          f"{rp['engaged_N_m'] / rp['engaged_intact_N_m'] - 1:+.2%}"],
-        ["`c_rp` while the cracked tooth is engaged, minimum",
+        ["`c_rp` over the cracked tooth's contact and one base pitch either side, minimum",
          f"{rp['engaged_min_N_m'] / rp['engaged_intact_min_N_m'] - 1:+.2%}"],
     ]
     return (table + "\n\nWhat a 10 mm root crack changes:\n\n"

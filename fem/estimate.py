@@ -196,9 +196,12 @@ class CrackCaseEstimate:
     c_rp_engaged_min_ratio : float
         The same for the lowest value over the engagement [-].
     c_rp_engaged_intact, c_rp_engaged_intact_min : float
-        The intact tooth's ring-planet mesh stiffness, mean and lowest over the same
-        engagement [N/m] (the denominators of the two ratios): with them the crack's
-        extra compliance ``(1/ratio - 1) / c_rp_engaged_intact`` [m/N] is absolute.
+        The intact tooth's ring-planet mesh stiffness, mean and lowest over the mesh cycle
+        [N/m] (the lumped c_rp of a design-derived scene).  The ratio's denominator is
+        the intact mean over the cracked tooth's contact only, 4.75 % above this mean on
+        the Raba stage, so the crack's extra compliance taken as
+        ``(1/ratio - 1) / c_rp_engaged_intact`` [m/N] is that much too large (the series
+        method; the ratio method does not use it).
     dofs : int
         Degrees of freedom of the fine level.
     solver : str

@@ -122,6 +122,12 @@ def test_path_key_values():
     turned = _scene("depths = [0.0, 0.003]\npath = -75").crack
     assert (turned.path, turned.angle) == ("straight", math.radians(-75))
     assert turned == _scene("depths = [0.0, 0.003]\nangle_deg = -75").crack
+
+
+@pytest.mark.slow
+def test_predicted_path_key():
+    """``path = "predicted"``: parsing checks every depth against the grown LEFM path (on a
+    cold cache the growth's 23 FE solutions, minutes: slow)."""
     predicted = _scene("depths = [0.0, 0.003]\npath = \"predicted\"\nangle_deg = 0.0").crack
     assert predicted.path == "predicted" and predicted.angle == 0.0
 
@@ -168,6 +174,7 @@ def test_refined_step_hits_every_depth():
     assert refined_step([0.0, math.pi * 1e-3]) == BASE_STEP
 
 
+@pytest.mark.slow
 def test_signal_study_refuses_the_predicted_path(tmp_path, capsys):
     """The signal study's mesh curves come from straight cracks: ``hubvib signal`` on the
     shipped predicted-path scene is one line naming the key, exit 2, nothing written."""
@@ -178,3 +185,30 @@ def test_signal_study_refuses_the_predicted_path(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.startswith("hubvib: error: ") and "[crack] path = 'predicted'" in err
     assert len(err.strip().splitlines()) == 1 and not out.exists()
+
+
+@pytest.mark.parametrize("lines, degrees", [
+    ("angle_deg = 60", 60), ("path = 60", 60), ("angle_deg = -90", -90),
+    ("start = \"rim\"\nangle_deg = -60", -60), ("start = \"rim\"\nangle_deg = 60", 60)])
+def test_range_ends_of_the_crack_angle_are_accepted(lines, degrees):
+    """The printed ranges are closed: -90..60 (root) and -60..60 (rim) accept their ends
+    (math.degrees(math.radians(60)) = 59.99999999999999 refused 60 itself)."""
+    crack = _scene(f"depths = [0.0]\n{lines}").crack
+    assert crack.angle == pytest.approx(math.radians(degrees), abs=1e-15)
+
+
+def test_engaged_ratio_is_the_mean_while_the_cracked_tooth_is_in_contact():
+    """Synthetic cycles: intact 1 N/m everywhere, cracked 0.5 N/m on the contact window
+    [1, 2] m only; the cycles run one pitch (1 m) beyond it on each side, as
+    ``mesh_cycle`` does. The ratio over the contact is 0.5 exactly; over the whole span it
+    would be diluted to (0.5 * 101 + 200) / 301."""
+    from hubvib.fem.mesh_cycle import MeshCycle
+    from hubvib.fem.tooth_stiffness import EngagedMesh
+
+    s = np.linspace(0.0, 3.0, 301)
+    inside = (s >= 1.0) & (s <= 2.0)
+    intact = MeshCycle(s, np.ones_like(s), np.ones(s.shape, dtype=int))
+    cracked = MeshCycle(s, np.where(inside, 0.5, 1.0), np.ones(s.shape, dtype=int))
+    engaged = EngagedMesh(cracked, intact, (1.0, 2.0))
+    assert engaged.mean_ratio == pytest.approx(0.5, rel=1e-15)
+    assert cracked.mean / intact.mean == pytest.approx((0.5 * 101 + 200) / 301, rel=1e-12)

@@ -92,7 +92,7 @@ def test_predicted_sweep_follows_the_crack_path(tmp_path, monkeypatch, capsys):
       direct ``crack_level`` on ``path_ring_mesh`` of that polyline (1e-9 relative);
     - the lumped model takes those rows (c_rp factor = the row's extra compliance in
       series with the lumped c_rp, 1e-12) and the predicted 3 mm crack lowers the cracked tooth's mean c_rp more than
-      the radial 3 mm crack (docs/crack_path.md: 0.967 vs 0.974 on the default mesh);
+      the radial 3 mm crack (docs/crack_path.md: 0.923 vs 0.940 on the default mesh);
     - the detection study runs on it (a POD per mode at the deepest crack)."""
     monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path / "cache"))
     scene = parse_scene(SCENE.format(path="predicted"), "predicted")
@@ -122,7 +122,7 @@ def test_predicted_sweep_follows_the_crack_path(tmp_path, monkeypatch, capsys):
     radial_scene = parse_scene(SCENE.format(path="radial"), "radial")
     radial, _ = run_fe_cases(radial_scene.crack, progress=False)
     assert fe[1]["c_rp_engaged_ratio"] < radial[1]["c_rp_engaged_ratio"] < 1, (
-        "mean c_rp ratio predicted < radial (docs/crack_path.md, 0.967 vs 0.974)")
+        "mean c_rp ratio predicted < radial (docs/crack_path.md, 0.923 vs 0.940)")
 
     result = crack_study_from_fe(scene, fe, computed, detection=True)
     ratio, c_fe = fe[1]["c_rp_engaged_ratio"], fe[1]["c_rp_engaged_intact_N_m"]

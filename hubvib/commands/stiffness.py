@@ -46,7 +46,7 @@ def run(args) -> int:
                   + _checks(key, r))
         if "c_rp" in rows and "engaged_N_m" in rows["c_rp"]:
             r = rows["c_rp"]
-            print(f"c_rp while the cracked tooth is engaged: mean {r['engaged_N_m']:.5e} "
+            print(f"c_rp over the cracked tooth's contact +- one base pitch: mean {r['engaged_N_m']:.5e} "
                   f"(intact {r['engaged_intact_N_m']:.5e}, "
                   f"{100 * (r['engaged_N_m'] / r['engaged_intact_N_m'] - 1):+.2f} %), min "
                   f"{r['engaged_min_N_m']:.5e} ({100 * (r['engaged_min_N_m'] / r['engaged_intact_min_N_m'] - 1):+.2f} %)")

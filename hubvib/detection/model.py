@@ -65,8 +65,8 @@ class CrackModel:
     method : str
         Eigensolver of single-point solves.
     c_rp_fe, c_rp_fe_min : tuple of float
-        FE intact c_rp over the cracked tooth's engagement, mean and lowest, per depth
-        [N/m] (empty: unknown, only ``C_RP_RATIO`` possible).
+        FE intact c_rp over the mesh cycle, mean and lowest, per depth [N/m] (empty:
+        unknown, only ``C_RP_RATIO`` possible); see ``fem.estimate.CrackCaseEstimate``.
     c_rp_method : str
         ``C_RP_SERIES`` or ``C_RP_RATIO``: how the crack enters planet 1's c_rp.
     c_rp_source : str

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 from urllib.parse import urlsplit
 
 from hubvib.foundation.blas import blas_threads
-from hubvib.foundation.errors import InputError, SceneError
+from hubvib.foundation.errors import InputError
 from hubvib.foundation.schema import Field, Schema
 from hubvib.runtime.cluster_signals import held_interrupts
 from hubvib.runtime.process_pool import worker_pool

@@ -402,8 +402,8 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
         f"{scene.params.c_r:.4g} N/m.",
         "- c_rp: FE tooth compliance of planet and ring tooth (crack moved to tooth 0) with "
         "Hertz contact added analytically and the load shared over the path of contact; the "
-        "ratio cracked/intact is the mean over the cracked tooth's engagement (its minimum is "
-        "in `fe_c_rp_engaged_min_ratio`), the intact value over it is "
+        "ratio cracked/intact is the mean while the cracked tooth is in contact (its minimum "
+        "is in `fe_c_rp_engaged_min_ratio`), the intact mean over the mesh cycle is "
         "`fe_c_rp_engaged_intact_N_m`. The crack's extra compliance (1/ratio - 1)/c_rp_FE "
         f"enters planet 1's lumped c_rp by the method `{model.c_rp_method}` (see Ring-planet "
         "mesh stiffness). Only planet 1's ring mesh changes, so "

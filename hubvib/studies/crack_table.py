@@ -120,7 +120,8 @@ def parse_crack_table(table, design) -> CrackSweep:
 
 def _angle_range(start: str) -> tuple[float, float]:
     """The directions [deg] a crack from ``start`` may take."""
-    return tuple(math.degrees(a) for a in start_kind(start).angle_range)
+    # rounded: math.degrees(math.radians(60)) is 59.99999999999999, which refused 60 itself
+    return tuple(round(math.degrees(a), 9) for a in start_kind(start).angle_range)
 
 
 def _path(table, start) -> tuple[float, str]:

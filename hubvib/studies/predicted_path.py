@@ -12,8 +12,10 @@ d is the path's polyline up to arc length d (``truncated``).
 from __future__ import annotations
 
 import functools
+import hashlib
 import json
 import sys
+from pathlib import Path
 
 import numpy as np
 
@@ -63,9 +65,24 @@ def truncated(points, depth: float, tooth: int) -> PathCrack:
     return PathCrack(tooth, tuple(map(tuple, np.vstack([points[:end], tip]).tolist())))
 
 
+#: the app-layer sources the path depends on besides fem/ and meshing/ (the cache's FE
+#: version): the growth study (load position, cracked tooth) and the stage builders
+_PATH_SOURCES = (Path(__file__).with_name("crack_path.py"),
+                 Path(__file__).parents[1] / "build" / "stages.py")
+
+
+@functools.cache
+def _path_source_hash() -> str:
+    digest = hashlib.sha256()
+    for source in _PATH_SOURCES:
+        digest.update(source.read_bytes())
+    return digest.hexdigest()
+
+
 def path_inputs(design, tooth: int, step: float) -> dict:
     return {"design": design.fingerprint(), "tooth": int(tooth), "step_m": float(step),
-            "quantities": "predicted crack path (crack-path, default mesh)"}
+            "quantities": "predicted crack path (crack-path, default mesh)",
+            "source": _path_source_hash()}
 
 
 def _check(result: dict) -> None:
