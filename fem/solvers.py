@@ -216,8 +216,7 @@ class _SymmetricMatvec:
     """``K x`` from K's upper block triangle, sharing its arrays (no copy of the matrix:
     a CSR copy was the peak of the solid ring's solve, 0.28 GB over the factorisation).
     The upper triangle multiplies as block CSR; the lower one is its transpose, taken
-    ``TRANSPOSE_ROWS`` block rows at a time so only that slice is ever copied.
-    ``blocks`` gives the block CSR back (for a refactorisation)."""
+    ``TRANSPOSE_ROWS`` block rows at a time so only that slice is ever copied."""
 
     def __init__(self, indptr, indices, values):
         self.rows = len(indptr) - 1
@@ -242,10 +241,6 @@ class _SymmetricMatvec:
                                  shape=(b * (last - first), self.n))
             y += rows.T @ x[b * first:b * last]
         return y
-
-    def blocks(self):
-        """``(indptr, indices, values)`` of the upper block triangle, sorted."""
-        return self._arrays
 
 
 class _AMG(Factor):
