@@ -107,6 +107,6 @@ def test_root_land_reading_is_unchanged():
 
     with open(ROOT / "docs/data/convergence/convergence_c_ru.csv", newline="") as handle:
         rows = {float(r["scale"]): float(r["value"]) for r in csv.DictReader(handle)}
-    value = _ring_level(4.0, "c_ru")["value"]
+    value = _ring_level(4.0, "c_ru", raba118.ring_gear())["value"]
     assert math.isclose(value, rows[4.0], rel_tol=1e-9), \
         f"root-land c_ru {value} vs committed {rows[4.0]} (convergence_c_ru.csv), 1e-9"
