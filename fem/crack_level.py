@@ -21,7 +21,8 @@ from .elasticity import supported
 from .material import Material
 from .mesh_cycle import GearPair
 from .ring_stiffness import (RingStiffness, check_ring_input, default_carrier_teeth,
-                             ring_loads, ring_model, ring_response)
+                             ring_loads, ring_model, ring_response, root_lands)
+from .ring_work import ring_work
 from .tooth_fe import tooth_compliance, tooth_probe
 from .tooth_stiffness import (EngagedMesh, ToothCurve, chebyshev_radii, contact_radii,
                               engaged_mesh)
@@ -44,7 +45,8 @@ class CrackLevel:
 def ring_and_tooth(ring, planet, crack, mesh, material: Material = Material(),
                    n_planets: int = 3, solver: str = "auto"
                    ) -> tuple[RingStiffness, ToothCurve | None]:
-    """c_ru at every carrier position over one planet pitch, c_r and (when ``crack`` has a
+    """c_ru at every carrier position over one planet pitch, c_r (root-land readings and the
+    work-conjugate values with their rim parts, ``RingStiffness.work``) and (when ``crack`` has a
     depth) the cracked ring tooth's compliance at the Chebyshev radii of its contact span
     with ``planet``, all from one factorisation of the model of ``mesh``."""
     check_ring_input(ring, mesh, n_planets)
@@ -68,6 +70,8 @@ def ring_and_tooth(ring, planet, crack, mesh, material: Material = Material(),
     t3 = time.perf_counter()
     ring_columns = loads.loads.shape[1]
     c_ru, c_r = ring_response(model, ring, loads, solution.u[:, :ring_columns])
+    work = ring_work(model, ring, loads, solution.u[:, :ring_columns], loads.forces,
+                     root_lands(model, range(ring.teeth)))
     curve = None
     if cracked:
         curve = ToothCurve(probe.radii, tooth_compliance(probe, solution.u[:, ring_columns:]),
@@ -75,7 +79,7 @@ def ring_and_tooth(ring, planet, crack, mesh, material: Material = Material(),
     t4 = time.perf_counter()
     result = RingStiffness(float(c_ru.mean()), c_ru, loads.carrier_teeth, c_r, model.ndofs,
                            {"assembly": t1 - t0, "loads": t2 - t1, "solve": t3 - t2,
-                            "measure": t4 - t3, "solver": system.method})
+                            "measure": t4 - t3, "solver": system.method}, work)
     return result, curve
 
 

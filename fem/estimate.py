@@ -26,13 +26,19 @@ RING_KEYS = {"c_ru": "c_ru_N_m", "c_ru_error": "c_ru_error_N_m", "c_ru_min": "c_
              "c_ru_coarse": "c_ru_coarse_N_m", "c_r_coarse": "c_r_coarse_N_m",
              "c_ru_poor_half": "c_ru_poor_half_N_m", "c_r_poor_half": "c_r_poor_half_N_m",
              "c_rp_engaged_intact": "c_rp_engaged_intact_N_m",
-             "c_rp_engaged_intact_min": "c_rp_engaged_intact_min_N_m"}
+             "c_rp_engaged_intact_min": "c_rp_engaged_intact_min_N_m",
+             "c_rp_engaged_intact_window": "c_rp_engaged_intact_window_N_m",
+             "c_ru_root_land": "c_ru_root_land_N_m",
+             "c_ru_root_land_error": "c_ru_root_land_error_N_m",
+             "c_r_root_land": "c_r_root_land_N_m", "c_r_root_land_error": "c_r_root_land_error_N_m"}
 #: a cell whose gmsh min SICN is below this counts as poorly shaped
 USABLE_QUALITY = 0.1
 #: version of the dict form of the estimates (``to_dict`` / ``from_dict``), stored with
 #: every FE cache entry: a change of the fields is a new version, and old entries go
-#: (2: the crack case stores the absolute intact engaged c_rp, issue 22 item 6)
-SCHEMA_VERSION = 2
+#: (2: the crack case stores the absolute intact engaged c_rp, issue 22 item 6; 3: the
+#: crack case's c_ru and c_r are the work-conjugate rim parts, the root-land readings and
+#: the intact engaged c_rp over the contact window beside them, issue 25 item 1)
+SCHEMA_VERSION = 3
 
 
 #: the field types of the estimates, as their annotations name them
@@ -90,6 +96,12 @@ class RingEstimate:
     c_ru_poor_half, c_r_poor_half : float
         With ``poor_cells_halved``: the fine level again with those cells at half their
         stiffness [N/m], how much the result hangs on them (NaN otherwise).
+    definition : str
+        What c_ru and c_r are (``RING_DEFINITIONS``): ``"root_land"``, the root-land
+        readings, or ``"rim"``, the work-conjugate rim parts (``fem.ring_work``) the
+        lumped model uses.
+    c_ru_root_land, c_ru_root_land_error, c_r_root_land, c_r_root_land_error : float
+        With ``"rim"``: the root-land readings and their errors beside them [N/m].
     """
 
     c_ru: float
@@ -109,6 +121,11 @@ class RingEstimate:
     poor_cells: int = 0
     c_ru_poor_half: float = float("nan")
     c_r_poor_half: float = float("nan")
+    definition: str = "root_land"
+    c_ru_root_land: float = float("nan")
+    c_ru_root_land_error: float = float("nan")
+    c_r_root_land: float = float("nan")
+    c_r_root_land_error: float = float("nan")
 
     def to_dict(self) -> dict:
         """Keys with units (``c_ru_N_m`` ...), as in the JSON output and the cache."""
@@ -121,10 +138,25 @@ class RingEstimate:
         return _from_dict(cls, data)
 
 
+#: what ``estimate_ring`` gives as c_ru and c_r: the root-land readings or the
+#: work-conjugate rim parts (the lumped model's definition, issue 25)
+RING_DEFINITIONS = ("root_land", "rim")
+
+
+def _ring_values(result, definition: str) -> tuple:
+    """(c_ru, c_ru at each carrier position, c_r) [N/m] of a ``RingStiffness`` by
+    ``definition``."""
+    if definition == "rim":
+        work = result.work
+        return work.c_ru_rim, work.c_ru_rim_positions, work.c_r_rim
+    return result.c_ru, result.c_ru_positions, result.c_r
+
+
 def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
                   solid: bool = False, mesher=None, material=None,
                   n_planets: int = 3, front=None, carrier_teeth=None,
-                  poor_cells_halved: bool = False) -> RingEstimate:
+                  poor_cells_halved: bool = False,
+                  definition: str = "root_land") -> RingEstimate:
     """c_ru and c_r on the default mesh (sizes times ``scale``) and on one twice as coarse.
 
     With ``solid``: the solid ring on the last two ``SOLID_LEVELS``, by default planet 1
@@ -134,8 +166,11 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
     (default: through the face width); ``carrier_teeth`` lists the carrier positions as
     the tooth planet 1 loads (default: every tooth of one planet pitch in the plane);
     ``poor_cells_halved`` (solid) solves the fine level once more with the cells below
-    ``USABLE_QUALITY`` at half stiffness.
+    ``USABLE_QUALITY`` at half stiffness.  ``definition`` (``RING_DEFINITIONS``): the
+    root-land readings, or the work-conjugate rim parts with the root-land readings beside.
     """
+    if definition not in RING_DEFINITIONS:
+        raise ValueError(f"definition = {definition!r}; allowed: {', '.join(RING_DEFINITIONS)}")
     mesher = mesher or ring_mesh
     if solid:
         levels = {"coarse": solid_options(*SOLID_LEVELS[-2]),
@@ -162,18 +197,25 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
         result = ring_stiffness(ring, mesh, material or Material(), n_planets=n_planets,
                                 carrier_teeth=teeth, solver=solver,
                                 cell_scale=np.where(poor, 0.5, 1.0))
-        halved = dict(c_ru_poor_half=result.c_ru, c_r_poor_half=result.c_r)
+        c_ru_half, _, c_r_half = _ring_values(result, definition)
+        halved = dict(c_ru_poor_half=c_ru_half, c_r_poor_half=c_r_half)
         results["halved"] = (result, 0.0, time.perf_counter() - started)
     fine, coarse = results["fine"][0], results["coarse"][0]
+    c_ru, c_ru_positions, c_r = _ring_values(fine, definition)
+    c_ru_coarse, _, c_r_coarse = _ring_values(coarse, definition)
+    land = {} if definition == "root_land" else dict(
+        c_ru_root_land=fine.c_ru, c_ru_root_land_error=abs(fine.c_ru - coarse.c_ru),
+        c_r_root_land=fine.c_r, c_r_root_land_error=abs(fine.c_r - coarse.c_r))
     return RingEstimate(
-        c_ru=fine.c_ru, c_ru_error=abs(fine.c_ru - coarse.c_ru),
-        c_ru_min=float(fine.c_ru_positions.min()), c_ru_max=float(fine.c_ru_positions.max()),
-        c_r=fine.c_r, c_r_error=abs(fine.c_r - coarse.c_r), dofs=fine.dofs,
+        c_ru=c_ru, c_ru_error=abs(c_ru - c_ru_coarse),
+        c_ru_min=float(c_ru_positions.min()), c_ru_max=float(c_ru_positions.max()),
+        c_r=c_r, c_r_error=abs(c_r - c_r_coarse), dofs=fine.dofs,
         solver=fine.seconds["solver"], seconds_mesh=results["fine"][1],
         seconds_fe=results["fine"][2],
         seconds_total=sum(r[1] + r[2] for r in results.values()),
-        c_ru_coarse=coarse.c_ru, c_r_coarse=coarse.c_r,
-        min_quality=float(quality.min()), poor_cells=int(poor.sum()), **halved)
+        c_ru_coarse=c_ru_coarse, c_r_coarse=c_r_coarse,
+        min_quality=float(quality.min()), poor_cells=int(poor.sum()), **halved,
+        definition=definition, **land)
 
 
 @dataclass(frozen=True)
@@ -184,12 +226,18 @@ class CrackCaseEstimate:
     Attributes
     ----------
     c_ru, c_ru_error : float
-        Reduced torsional stiffness, mean over the carrier positions of one planet
-        pitch, and its error [N/m].
+        Reduced torsional stiffness of the ring body as the lumped model uses it: the
+        work-conjugate rim part ``c_ru_rim`` (``fem.ring_work``), mean over the carrier
+        positions of one planet pitch, and its error [N/m].
     c_ru_min, c_ru_max : float
         Lowest and highest c_ru over those carrier positions [N/m].
     c_r, c_r_error : float
-        Radial (support) stiffness and its error [N/m].
+        Radial (support) stiffness, the work-conjugate rim part ``c_r_rim``, and its
+        error [N/m].
+    c_ru_root_land, c_ru_root_land_error, c_r_root_land, c_r_root_land_error : float
+        The root-land readings (``ring_stiffness.ring_response``; the lumped model's c_ru
+        and c_r before issue 25) and their errors [N/m], a secondary output (NaN: not
+        measured, e.g. rows built from a solid case that lacks them).
     c_rp_engaged_ratio, c_rp_engaged_ratio_error : float
         Ring-planet mesh stiffness averaged over the cracked tooth's engagement, as a
         ratio to the same tooth intact, and its error [-] (1 and 0 without a crack).
@@ -197,11 +245,12 @@ class CrackCaseEstimate:
         The same for the lowest value over the engagement [-].
     c_rp_engaged_intact, c_rp_engaged_intact_min : float
         The intact tooth's ring-planet mesh stiffness, mean and lowest over the mesh cycle
-        [N/m] (the lumped c_rp of a design-derived scene).  The ratio's denominator is
-        the intact mean over the cracked tooth's contact only, 4.75 % above this mean on
-        the Raba stage, so the crack's extra compliance taken as
-        ``(1/ratio - 1) / c_rp_engaged_intact`` [m/N] is that much too large (the series
-        method; the ratio method does not use it).
+        [N/m] (the lumped c_rp of a design-derived scene).
+    c_rp_engaged_intact_window : float
+        The intact mean over the cracked tooth's contact only [N/m], the ratio's
+        denominator (``EngagedMesh.intact_window_mean``; 4.75 % above the whole-cycle mean
+        on the Raba stage): the crack's extra compliance is
+        ``(1/ratio - 1) / c_rp_engaged_intact_window`` [m/N] (the series method).
     dofs : int
         Degrees of freedom of the fine level.
     solver : str
@@ -222,15 +271,21 @@ class CrackCaseEstimate:
     c_rp_engaged_min_ratio: float
     c_rp_engaged_intact: float
     c_rp_engaged_intact_min: float
+    c_rp_engaged_intact_window: float
     dofs: int
     solver: str
     seconds_mesh: float
     seconds_fe: float
     seconds_total: float
+    c_ru_root_land: float = float("nan")
+    c_ru_root_land_error: float = float("nan")
+    c_r_root_land: float = float("nan")
+    c_r_root_land_error: float = float("nan")
 
     def to_dict(self) -> dict:
-        """Keys with units, as ``RingEstimate.to_dict`` plus the ``c_rp_engaged_*`` ratios
-        and the intact engaged c_rp (``c_rp_engaged_intact_N_m``, ``..._min_N_m``)."""
+        """Keys with units, as ``RingEstimate.to_dict`` plus the ``c_rp_engaged_*`` ratios,
+        the intact engaged c_rp (``c_rp_engaged_intact_N_m``, ``..._min_N_m``,
+        ``..._window_N_m``) and the root-land readings (``c_ru_root_land_N_m`` ...)."""
         return {RING_KEYS.get(k, k): v for k, v in asdict(self).items()}
 
     @classmethod
@@ -240,9 +295,19 @@ class CrackCaseEstimate:
         return _from_dict(cls, data)
 
 
+def engaged_intact(engaged) -> dict:
+    """The intact ring-planet mesh of an ``EngagedMesh`` as ``CrackCaseEstimate`` fields
+    [N/m]: mean and lowest over the mesh cycle, and the mean over the cracked tooth's
+    contact window (the denominator of its ``mean_ratio``)."""
+    return dict(c_rp_engaged_intact=float(engaged.intact.mean),
+                c_rp_engaged_intact_min=float(engaged.intact.stiffness.min()),
+                c_rp_engaged_intact_window=engaged.intact_window_mean)
+
+
 def estimate_crack_case(ring, planet, crack, scale: float = 1.0, mesher=None, material=None,
                         n_planets: int = 3) -> CrackCaseEstimate:
-    """c_ru, c_r and the cracked tooth's engaged c_rp ratio on the default plane mesh
+    """c_ru, c_r (the work-conjugate rim parts; the root-land readings beside them) and the
+    cracked tooth's engaged c_rp ratio on the default plane mesh
     (sizes times ``scale``) and on one twice as coarse: per level one mesh, one assembly
     and one factorisation serve all three (``fem.crack_level``).
 
@@ -267,19 +332,22 @@ def estimate_crack_case(ring, planet, crack, scale: float = 1.0, mesher=None, ma
     if engaged is None:  # intact: the same tooth's engagement on the fine level's options
         engaged = engaged_mesh(planet, ring, None, scaled_options(scale), material,
                                0 if crack is None else crack.tooth)
-    intact = dict(c_rp_engaged_intact=float(engaged.intact.mean),
-                  c_rp_engaged_intact_min=float(engaged.intact.stiffness.min()))
+    intact = engaged_intact(engaged)
     if fine.engaged is not None:
         ratios = dict(c_rp_engaged_ratio=fine.engaged.mean_ratio,
                       c_rp_engaged_ratio_error=abs(fine.engaged.mean_ratio
                                                    - coarse.engaged.mean_ratio),
                       c_rp_engaged_min_ratio=fine.engaged.min_ratio)
     ring_fine, ring_coarse = fine.ring, coarse.ring
+    rim_fine, rim_coarse = ring_fine.work, ring_coarse.work
     return CrackCaseEstimate(
-        c_ru=ring_fine.c_ru, c_ru_error=abs(ring_fine.c_ru - ring_coarse.c_ru),
-        c_ru_min=float(ring_fine.c_ru_positions.min()),
-        c_ru_max=float(ring_fine.c_ru_positions.max()),
-        c_r=ring_fine.c_r, c_r_error=abs(ring_fine.c_r - ring_coarse.c_r), **ratios, **intact,
+        c_ru=rim_fine.c_ru_rim, c_ru_error=abs(rim_fine.c_ru_rim - rim_coarse.c_ru_rim),
+        c_ru_min=float(rim_fine.c_ru_rim_positions.min()),
+        c_ru_max=float(rim_fine.c_ru_rim_positions.max()),
+        c_r=rim_fine.c_r_rim, c_r_error=abs(rim_fine.c_r_rim - rim_coarse.c_r_rim),
+        **ratios, **intact,
+        c_ru_root_land=ring_fine.c_ru, c_ru_root_land_error=abs(ring_fine.c_ru - ring_coarse.c_ru),
+        c_r_root_land=ring_fine.c_r, c_r_root_land_error=abs(ring_fine.c_r - ring_coarse.c_r),
         dofs=ring_fine.dofs, solver=ring_fine.seconds["solver"],
         seconds_mesh=results["fine"][1], seconds_fe=results["fine"][2],
         seconds_total=sum(r[1] + r[2] for r in results.values()))

@@ -14,7 +14,12 @@ is measured relative to the rigid motion of its root lands (``tooth_fe``).  The 
 boundary splits the work here exactly: the rim part is the work of each loaded tooth's
 forces on the rigid motion of that tooth's root lands (the rigid motion with their mean
 u_x, u_y and mean rotation), the tooth part the rest, so
-``1 / c_ru_work = 1 / c_ru_rim + 1 / c_ru_tooth`` to round-off.
+``1 / c_ru_work = 1 / c_ru_rim + 1 / c_ru_tooth`` to round-off.  The translation loads of
+``c_r_work`` (1 N along x, along y, spread over all teeth) split on the same boundary:
+``c_r_rim`` is the work of every tooth's share on the rigid motion of its root lands.
+
+The lumped model uses the rim parts ``c_ru_rim`` and ``c_r_rim`` (``fem.estimate``):
+the ring body in series with the tooth pairs, each counted once.
 """
 from __future__ import annotations
 
@@ -37,12 +42,16 @@ class RingWork:
         Its rim and loaded-tooth parts (in series) [N/m].
     c_r : float
         ``F^2 / (f^T u)`` of 1 N along x and along y spread over all teeth, mean [N/m].
+    c_r_rim : float
+        Its rim part: ``F^2`` over the work of every tooth's share on the rigid motion of
+        its root lands, mean of x and y [N/m].
     """
 
     c_ru_positions: np.ndarray
     c_ru_rim_positions: np.ndarray
     c_ru_tooth_positions: np.ndarray
     c_r: float
+    c_r_rim: float = float("nan")
 
     @property
     def c_ru(self) -> float:
@@ -107,4 +116,13 @@ def ring_work(model, ring, loads, u: np.ndarray, forces, lands) -> RingWork:
     c_rim = torque ** 2 / rim / rb ** 2
     c_tooth = torque ** 2 / (total - rim) / rb ** 2
     c_r = float(np.mean(1.0 / work[positions:positions + 2]))
-    return RingWork(c_ru, c_rim, c_tooth, c_r)
+    # the translation loads: 1/z N along x (column 0) and along y (column 1) on every tooth
+    shifted = land_rigid_motions(model, lands, teeth, u[:, positions:positions + 2])
+    share = 1.0 / ring.teeth
+    rim_r = [share * sum(per_unit[forces.teeth.index(k), axis] @ shifted[k, :, axis]
+                         for k in teeth) for axis in (0, 1)]
+    if min(rim_r) <= 0:
+        raise ValueError(f"the rim work of the translation loads is not positive "
+                         f"({min(rim_r):.3e} N m): the model is not supported")
+    c_r_rim = float(np.mean([1.0 / w for w in rim_r]))
+    return RingWork(c_ru, c_rim, c_tooth, c_r, c_r_rim)

@@ -149,8 +149,19 @@ class EngagedMesh:
         the cycles' whole span, eps_alpha + 2 pitches, the mean would dilute the change by
         eps_alpha / (eps_alpha + 2), about 0.41 for the Raba ring, and the detection model
         applies the ratio for the contact time only.)"""
-        inside = (self.cracked.s >= self.engagement[0]) & (self.cracked.s <= self.engagement[1])
+        inside = self._window
         return float(self.cracked.stiffness[inside].mean() / self.intact.stiffness[inside].mean())
+
+    @property
+    def _window(self) -> np.ndarray:
+        return (self.cracked.s >= self.engagement[0]) & (self.cracked.s <= self.engagement[1])
+
+    @property
+    def intact_window_mean(self) -> float:
+        """Intact mean stiffness while the cracked tooth is in contact [N/m], the
+        denominator of ``mean_ratio``: the crack's extra compliance over the window is
+        ``(1 / mean_ratio - 1) / intact_window_mean`` [m/N] exactly."""
+        return float(self.intact.stiffness[self._window].mean())
 
     @property
     def min_ratio(self) -> float:

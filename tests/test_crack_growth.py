@@ -145,7 +145,8 @@ def test_solid_rows_change_and_its_error():
 
     plane = [{"depth_m": d, "c_rp_engaged_ratio": r, "c_rp_engaged_min_ratio": r,
               "c_rp_engaged_ratio_error": e, "c_rp_engaged_intact_N_m": 1.5e9,
-              "c_rp_engaged_intact_min_N_m": 1.2e9} for d, r, e in ((0.0, 1.0, 0.0),
+              "c_rp_engaged_intact_min_N_m": 1.2e9, "c_rp_engaged_intact_window_N_m": 1.57e9}
+             for d, r, e in ((0.0, 1.0, 0.0),
                                                               (0.003, 0.9, 0.01))]
     rows = solid_rows(sweep, [row(0, 0, 100.0, 110.0), row(0.003, 0.004, 99.0, 108.5)], plane)
     assert rows[1]["c_ru_change"] == pytest.approx(-0.01)
@@ -155,6 +156,7 @@ def test_solid_rows_change_and_its_error():
     assert rows[0]["c_rp_engaged_ratio"] == 1.0
     # the intact tooth pair's c_rp is the plane study's, for every solid case
     assert [r["c_rp_engaged_intact_N_m"] for r in rows] == [1.5e9, 1.5e9]
+    assert [r["c_rp_engaged_intact_window_N_m"] for r in rows] == [1.57e9, 1.57e9]
     expected = 1 - 2 * 0.004 / WIDTH * 0.1 * math.pi / 4
     assert rows[1]["c_rp_engaged_ratio"] == pytest.approx(expected, rel=1e-5)
     assert rows[1]["c_rp_engaged_ratio_error"] == pytest.approx(

@@ -37,6 +37,12 @@ def synthetic_fe_rows(depths=None, c_ru_drop=0.058, c_r_drop=0.05, c_rp_drop=0.1
              "c_rp_engaged_ratio": 1 - c_rp_drop * t, "c_rp_engaged_ratio_error": c_rp_error * t,
              "c_rp_engaged_min_ratio": 1 - 2 * c_rp_drop * t,
              "c_rp_engaged_intact_N_m": c_rp_fe, "c_rp_engaged_intact_min_N_m": 0.8 * c_rp_fe,
+             "c_rp_engaged_intact_window_N_m": c_rp_fe,
+             # the root-land readings beside (secondary; the lumped model does not read them)
+             "c_ru_root_land_N_m": 1.55 * body_scale * C_RU * (1 - c_ru_drop * t * t),
+             "c_ru_root_land_error_N_m": 1.3 * c_ru_error * body_scale,
+             "c_r_root_land_N_m": 1.01 * body_scale * C_R * (1 - c_r_drop * t * t),
+             "c_r_root_land_error_N_m": c_r_error * body_scale,
              "dofs": 1, "solver": "synthetic",
              "seconds_mesh": 0.0, "seconds_fe": 0.0, "seconds_total": 0.0}
             for d, t in zip(depths, x)]

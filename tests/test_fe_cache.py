@@ -44,7 +44,10 @@ def synthetic(depth: float) -> dict:
             "solver": "synthetic", "seconds_mesh": 0.01, "seconds_fe": 0.02,
             "seconds_total": 0.03, "depth_m": float(depth), "c_rp_engaged_ratio": ratio,
             "c_rp_engaged_ratio_error": 1e-4, "c_rp_engaged_min_ratio": 1.0 - 80.0 * depth,
-            "c_rp_engaged_intact_N_m": 1.48e9, "c_rp_engaged_intact_min_N_m": 1.2e9}
+            "c_rp_engaged_intact_N_m": 1.48e9, "c_rp_engaged_intact_min_N_m": 1.2e9,
+            "c_rp_engaged_intact_window_N_m": 1.55e9, "c_ru_root_land_N_m": 1.5 * C_RU0 * factor,
+            "c_r_root_land_N_m": 1.01 * C_R0 * factor, "c_ru_root_land_error_N_m": 2e-3 * C_RU0,
+            "c_r_root_land_error_N_m": 1e-3 * C_R0}
 
 
 @pytest.fixture

@@ -21,7 +21,8 @@ def _plane(depth: float, c_ru: float, ratio: float) -> PlaneCase:
         c_ru=c_ru, c_ru_error=0.01 * c_ru, c_ru_min=0.9 * c_ru, c_ru_max=1.1 * c_ru,
         c_r=2 * c_ru, c_r_error=0.02 * c_ru, c_rp_engaged_ratio=ratio,
         c_rp_engaged_ratio_error=1e-3, c_rp_engaged_min_ratio=ratio - 0.05,
-        c_rp_engaged_intact=1.5e9, c_rp_engaged_intact_min=1.2e9, dofs=1000, solver="splu",
+        c_rp_engaged_intact=1.5e9, c_rp_engaged_intact_min=1.2e9,
+        c_rp_engaged_intact_window=1.5e9, dofs=1000, solver="splu",
         seconds_mesh=0.1, seconds_fe=0.2, seconds_total=0.3)
     return PlaneCase(estimate, depth, 0.4)
 

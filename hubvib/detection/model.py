@@ -6,11 +6,14 @@ follow :func:`hubvib.detection.series.ring_support`.
 
 Planet 1's ring mesh while the cracked tooth is in mesh (issue 22 item 6): the
 crack adds the compliance ``dq = (1/ratio - 1) / c_rp_FE`` [m/N] to the tooth
-pair, where ``ratio`` is the FE cracked / intact c_rp over the engagement and
-``c_rp_FE`` the FE intact c_rp over it; in series with the lumped ``c_rp`` it
+pair, where ``ratio`` is the FE cracked / intact c_rp over the cracked tooth's contact
+window and ``c_rp_FE`` the FE intact mean over the same window (the ratio's
+denominator; before issue 25 the mean over the whole mesh cycle, 4.75 % lower on the
+Raba stage, which made dq that much too large); in series with the lumped ``c_rp`` it
 gives the factor ``1 / (1 + c_rp dq)`` (``C_RP_SERIES``, the primary method).
-When the lumped ``c_rp`` is the FE one (design-derived scenes: ``with_fe_c_rp``)
-this factor equals the FE ratio.  ``C_RP_RATIO`` multiplies the lumped ``c_rp``
+When the lumped ``c_rp`` equals that window mean this factor equals the FE ratio; the
+FE c_rp of design-derived scenes (``with_fe_c_rp``) is the whole-cycle mean, so there
+the factor is the ratio's crack effect times about 1 / 1.0475.  ``C_RP_RATIO`` multiplies the lumped ``c_rp``
 by the ratio itself (before issue 22: an upper bound of the crack's effect when
 the lumped ``c_rp`` is below the FE one, as the paper's 3e8 N/m is).
 """
@@ -67,6 +70,9 @@ class CrackModel:
     c_rp_fe, c_rp_fe_min : tuple of float
         FE intact c_rp over the mesh cycle, mean and lowest, per depth [N/m] (empty:
         unknown, only ``C_RP_RATIO`` possible); see ``fem.estimate.CrackCaseEstimate``.
+    c_rp_fe_window : tuple of float
+        FE intact c_rp over the cracked tooth's contact window, mean per depth [N/m]: the
+        denominator of ``c_rp_ratio`` and of the series method's compliance.
     c_rp_method : str
         ``C_RP_SERIES`` or ``C_RP_RATIO``: how the crack enters planet 1's c_rp.
     c_rp_source : str
@@ -89,6 +95,7 @@ class CrackModel:
     method: str = "jacobi"
     c_rp_fe: tuple[float, ...] = ()
     c_rp_fe_min: tuple[float, ...] = ()
+    c_rp_fe_window: tuple[float, ...] = ()
     c_rp_method: str = C_RP_SERIES
     c_rp_source: str = "given"
 
@@ -96,9 +103,11 @@ class CrackModel:
         if self.c_rp_method not in C_RP_METHODS:
             raise ValueError(f"c_rp_method = {self.c_rp_method!r}; allowed: "
                              f"{', '.join(C_RP_METHODS)}")
-        if self.c_rp_method == C_RP_SERIES and len(self.c_rp_fe) != len(self.depths):
-            raise ValueError(f"c_rp_method = {C_RP_SERIES!r} needs the FE intact c_rp at "
-                             f"every depth: {len(self.c_rp_fe)} values for "
+        if self.c_rp_method == C_RP_SERIES and not (
+                len(self.c_rp_fe) == len(self.c_rp_fe_window) == len(self.depths)):
+            raise ValueError(f"c_rp_method = {C_RP_SERIES!r} needs the FE intact c_rp (mean "
+                             f"over the cycle and over the contact window) at every depth: "
+                             f"{len(self.c_rp_fe)} and {len(self.c_rp_fe_window)} values for "
                              f"{len(self.depths)} depths")
 
     @classmethod
@@ -122,7 +131,8 @@ class CrackModel:
                     column("c_rp_engaged_ratio"), column("c_rp_engaged_ratio_error"),
                     column("c_rp_engaged_min_ratio"), method=method,
                     c_rp_fe=column("c_rp_engaged_intact"),
-                    c_rp_fe_min=column("c_rp_engaged_intact_min"))
+                    c_rp_fe_min=column("c_rp_engaged_intact_min"),
+                    c_rp_fe_window=column("c_rp_engaged_intact_window"))
         if not c_rp_given:
             model = model.with_fe_c_rp()
         if sweep.apply != SERIES:
@@ -153,7 +163,9 @@ class CrackModel:
     def c_rp_factor(self, k=None, ratio=None, c_rp_lumped=None,
                     minimum: bool = False) -> np.ndarray:
         """Factor on planet 1's lumped c_rp [-] while the cracked tooth is in mesh, at depth
-        index ``k`` (an int, one index per sample, or None: every depth).  ``ratio``
+        index ``k`` (an int, one index per sample, or None: every depth).  The series
+        method divides the mean ratio's compliance by the FE intact mean over the contact
+        window (``c_rp_fe_window``), the ratio of the minima's by the lowest intact value.  ``ratio``
         replaces the FE mean ratio there (or the ratio of the minima with ``minimum``)
         and ``c_rp_lumped`` [N/m] the model's c_rp (e.g. per sample)."""
         at = slice(None) if k is None else k
@@ -161,7 +173,7 @@ class CrackModel:
             ratio = np.asarray(self.c_rp_min_ratio if minimum else self.c_rp_ratio)[at]
         if self.c_rp_method == C_RP_RATIO:
             return np.asarray(ratio, dtype=float)
-        fe = np.asarray(self.c_rp_fe_min if minimum else self.c_rp_fe)[at]
+        fe = np.asarray(self.c_rp_fe_min if minimum else self.c_rp_fe_window)[at]
         return series_factor(ratio, fe, self.params.c_rp if c_rp_lumped is None
                              else c_rp_lumped)
 
@@ -212,7 +224,8 @@ class CrackModel:
             return tuple(float(v) for v in np.interp(depths, known, values))
 
         names = ("c_ru_body", "c_ru_body_error", "c_r_body", "c_r_body_error", "c_rp_ratio",
-                 "c_rp_ratio_error", "c_rp_min_ratio", "c_rp_fe", "c_rp_fe_min")
+                 "c_rp_ratio_error", "c_rp_min_ratio", "c_rp_fe", "c_rp_fe_min",
+                 "c_rp_fe_window")
         return replace(self, depths=tuple(float(d) for d in depths), **{
             name: interpolated(getattr(self, name)) for name in names
             if len(getattr(self, name)) == len(known)})

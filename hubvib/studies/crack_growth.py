@@ -87,7 +87,8 @@ def solid_rows(sweep, solid: list[dict], plane: list[dict]) -> list[dict]:
     # the intact tooth pair's engaged c_rp [N/m] does not depend on the crack: the plane
     # study's intact case gives it to every solid case
     tooth = {key: plane[0][key] for key in
-             ("c_rp_engaged_intact_N_m", "c_rp_engaged_intact_min_N_m")}
+             ("c_rp_engaged_intact_N_m", "c_rp_engaged_intact_min_N_m",
+              "c_rp_engaged_intact_window_N_m")}
     rows = []
     for row in solid:
         depth, half = row["depth_m"], row["half_length_m"]

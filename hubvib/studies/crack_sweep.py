@@ -48,7 +48,8 @@ MAX_DEPTHS = 64
 #: every value of a case's result that must be a finite number > 0
 POSITIVE_KEYS = ("c_ru_N_m", "c_r_N_m", "c_ru_min_N_m", "c_ru_max_N_m", "c_rp_engaged_ratio",
                  "c_rp_engaged_min_ratio", "c_rp_engaged_intact_N_m",
-                 "c_rp_engaged_intact_min_N_m")
+                 "c_rp_engaged_intact_min_N_m", "c_rp_engaged_intact_window_N_m",
+                 "c_ru_root_land_N_m", "c_r_root_land_N_m")
 #: keys a solid case must hold although ``RingEstimate`` has defaults for them
 SOLID_REQUIRED = ("min_quality", "poor_cells")
 #: the same for a solid case (its c_rp comes from the plane cases)
@@ -161,7 +162,8 @@ def fe_case(sweep: CrackSweep, case) -> dict:
 
     Plane: per mesh level one mesh, one assembly and one factorisation serve c_ru, c_r
     and the cracked tooth's compliance (``fem.estimate.estimate_crack_case``).  Solid:
-    c_ru over every carrier position of one planet pitch and c_r on the last two
+    c_ru over every carrier position of one planet pitch and c_r (the work-conjugate rim
+    parts, the root-land readings beside them) on the last two
     ``SOLID_LEVELS``, and on the fine one again with its poorly shaped cells at half
     stiffness."""
     started = time.perf_counter()
@@ -176,7 +178,7 @@ def fe_case(sweep: CrackSweep, case) -> dict:
                                front=front_of(half_length) if depth > 0 else None,
                                material=material(design), n_planets=design.n_planets,
                                carrier_teeth=default_carrier_teeth(ring, design.n_planets),
-                               poor_cells_halved=True)
+                               poor_cells_halved=True, definition="rim")
         return SolidCase(result, float(depth), float(half_length),
                          time.perf_counter() - started).to_dict()
     depth = case
