@@ -16,6 +16,9 @@ from hubvib.detection.mesh_stiffness import compare_methods, iso_c_rp
 from hubvib.detection.model import C_RP_RATIO, C_RP_SERIES, CrackModel
 from hubvib.detection.options import DetectionOptions
 from hubvib.design.presets import raba118
+from hubvib.fem.estimate import engaged_intact
+from hubvib.fem.mesh_cycle import MeshCycle
+from hubvib.fem.tooth_stiffness import EngagedMesh
 from hubvib.studies.crack_study import crack_study_from_fe, write_crack_study
 from hubvib.studies.scene import load_scene, parse_scene
 
@@ -74,6 +77,56 @@ def test_series_equals_the_ratio_when_the_lumped_c_rp_is_the_fe_one():
     assert not model.c_rp_differs
     assert model.mesh_stiffness() == {"c_rp_method": "series", "c_rp_source": "fe",
                                       "c_rp_lumped_N_m": C_RP_FE, "c_rp_fe_intact_N_m": C_RP_FE}
+
+
+def _synthetic_engagement(eps: float) -> EngagedMesh:
+    """A mesh cycle whose intact stiffness varies (1.48e9 N/m (1 + 0.25 cos), the contact
+    window where it is high) and a crack that lowers the window by up to ``eps``."""
+    s = np.linspace(-1.0, 1.0, 2001)  # roll length [m], any scale
+    intact = C_RP_FE * (1 + 0.25 * np.cos(np.pi * s))
+    window = (-0.3, 0.3)
+    inside = (s >= window[0]) & (s <= window[1])
+    cracked = intact * (1 - eps * np.where(inside, np.cos(np.pi * s / 0.6) ** 2, 0.0))
+    pairs = np.ones(s.size, dtype=int)
+    return EngagedMesh(MeshCycle(s, cracked, pairs), MeshCycle(s, intact, pairs), window)
+
+
+@pytest.mark.parametrize("eps", [1e-3, 0.05])
+def test_series_compliance_uses_the_intact_mean_over_the_contact_window(eps):
+    """Issue 25: the crack's extra compliance is exact, dq = 1/mean(cracked) - 1/mean(intact)
+    over the contact window, when the series method divides by the window's intact mean
+    (``c_rp_engaged_intact_window_N_m``): the factor equals 1 / (1 + c dq_exact) to 1e-12.
+    With the lumped c_rp at the window's intact mean both methods give the exact cracked
+    window mean (1e-12).  The whole-cycle mean (before issue 25) makes the crack's effect
+    too large by the ratio of the means to first order (1e-3 relative at eps = 1e-3), so
+    this test fails on the old denominator."""
+    engaged = _synthetic_engagement(eps)
+    fields = engaged_intact(engaged)
+    inside = (engaged.intact.s >= -0.3) & (engaged.intact.s <= 0.3)
+    k_window, k_cracked = engaged.intact.stiffness[inside].mean(), \
+        engaged.cracked.stiffness[inside].mean()
+    assert fields["c_rp_engaged_intact_window"] == pytest.approx(k_window, rel=1e-14)
+    means = k_window / fields["c_rp_engaged_intact"]
+    assert means > 1.1, "the synthetic window's intact mean lies well above the cycle's"
+    rows = synthetic_fe_rows([0.0, 0.003], c_ru_drop=0.0, c_r_drop=0.0, c_rp_error=0.0)
+    for row in rows:
+        row.update(c_rp_engaged_intact_N_m=fields["c_rp_engaged_intact"],
+                   c_rp_engaged_intact_window_N_m=fields["c_rp_engaged_intact_window"])
+    rows[1]["c_rp_engaged_ratio"] = engaged.mean_ratio
+    model = _model(rows)
+    dq = 1 / k_cracked - 1 / k_window  # exact extra compliance over the window [m/N]
+    factor = model.c_rp_factor()[1]
+    assert factor == pytest.approx(1 / (1 + PRESET_C_RP * dq), rel=1e-12), \
+        "series factor vs exact compliance over the contact window, 1e-12"
+    at_window = replace(model, params=model.params.replace(c_rp=k_window))
+    for method in (C_RP_SERIES, C_RP_RATIO):
+        value = at_window.with_c_rp_method(method).c_rp_factor()[1] * k_window
+        assert value == pytest.approx(k_cracked, rel=1e-12), \
+            f"{method}: the exact cracked window mean, 1e-12"
+    old = 1 / (1 + PRESET_C_RP * (1 / engaged.mean_ratio - 1) / fields["c_rp_engaged_intact"])
+    if eps < 0.01:
+        assert (1 - old) / (1 - factor) == pytest.approx(means, rel=1e-3), \
+            "whole-cycle denominator: crack effect too large by the means' ratio, 1e-3"
 
 
 def test_mode_13_at_3mm_moves_five_times_less_in_series_than_by_the_ratio():
