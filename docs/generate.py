@@ -533,6 +533,32 @@ def crack_study_stiffness() -> str:
     return report_section("raba118_crack", "FE stiffness against crack depth")
 
 
+def ring_definitions() -> str:
+    """The ring body's c_ru and c_r of both Raba crack scenes per depth, as the lumped model
+    uses them (work-conjugate rim parts) and as the root lands read them, each with its
+    relative change against the intact ring, from the committed runs' ``results.json``."""
+    parts = []
+    for folder, name in (("raba118_crack", "radial crack (default scene)"),
+                         ("raba118_crack_path", "crack along the predicted path")):
+        rows_in = json.loads((DATA / folder / "results.json").read_text())["stiffness"]
+        intact = rows_in[0]
+        rows = []
+        for r in rows_in:
+            change = {k: 100 * (r[k] / intact[k] - 1) for k in
+                      ("fe_c_ru_N_m", "fe_c_ru_root_land_N_m", "fe_c_r_N_m",
+                       "fe_c_r_root_land_N_m")}
+            rows.append([f"{r['depth_mm']:.4g}", _g(r["fe_c_ru_N_m"]),
+                         f"{change['fe_c_ru_N_m']:+.3f}", _g(r["fe_c_ru_root_land_N_m"]),
+                         f"{change['fe_c_ru_root_land_N_m']:+.3f}", _g(r["fe_c_r_N_m"]),
+                         f"{change['fe_c_r_N_m']:+.3f}", _g(r["fe_c_r_root_land_N_m"]),
+                         f"{change['fe_c_r_root_land_N_m']:+.3f}"])
+        parts.append(f"{name}:\n\n" + markdown_table(
+            ["depth [mm]", "c_ru rim [N/m]", "change [%]", "c_ru root land [N/m]",
+             "change [%]", "c_r rim [N/m]", "change [%]", "c_r root land [N/m]",
+             "change [%]"], rows, "rrrrrrrrr") + provenance(f"{folder}/"))
+    return "\n\n".join(parts)
+
+
 # ---------------------------------------------------------------- seed companions
 
 BALL49_SNIPPET = """\

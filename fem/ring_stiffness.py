@@ -12,8 +12,9 @@ point, so the bending of the tooth itself belongs to the mesh stiffness c_rp.
 Loads and measurements are sparse maps built once per model (``tooth_forces``,
 ``root_lands``): every carrier position is a load column of one factorisation.
 The same solution also gives the work-conjugate c_ru (with its exact rim / tooth split)
-and c_r (``fem.ring_work``, ``RingStiffness.work``); the lumped model uses the root-land
-c_ru (docs/fe_accuracy.md, "Work-conjugate ring stiffnesses").
+and c_r (``fem.ring_work``, ``RingStiffness.work``); the lumped model uses their rim parts
+``c_ru_rim``, ``c_r_rim`` (``fem.estimate``; docs/fe_accuracy.md, "Work-conjugate ring
+stiffnesses"), the root-land readings here are a secondary output.
 """
 from __future__ import annotations
 

@@ -76,7 +76,8 @@ def test_series_equals_the_ratio_when_the_lumped_c_rp_is_the_fe_one():
     assert model.c_rp_factor()[1] == RATIO_3MM, "equal c_rp: the series factor is the ratio"
     assert not model.c_rp_differs
     assert model.mesh_stiffness() == {"c_rp_method": "series", "c_rp_source": "fe",
-                                      "c_rp_lumped_N_m": C_RP_FE, "c_rp_fe_intact_N_m": C_RP_FE}
+                                      "c_rp_lumped_N_m": C_RP_FE, "c_rp_fe_intact_N_m": C_RP_FE,
+                                      "c_rp_fe_intact_window_N_m": C_RP_FE}
 
 
 def _synthetic_engagement(eps: float) -> EngagedMesh:

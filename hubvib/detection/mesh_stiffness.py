@@ -110,20 +110,23 @@ def mesh_stiffness_section(model, iso: float, comparison: MethodComparison | Non
     fe = model.c_rp_fe[0]
     lumped = model.params.c_rp
     lines = ["## Ring-planet mesh stiffness", ""]
-    numbers = (f"FE intact c_rp over the cracked tooth's engagement {fe:.4g} N/m, "
-               f"ISO 6336-1 c_gamma_alpha b {iso:.4g} N/m")
+    window = model.c_rp_fe_window[0] if model.c_rp_fe_window else float("nan")
+    numbers = (f"FE intact c_rp {fe:.4g} N/m over the mesh cycle and {window:.4g} N/m over "
+               f"the cracked tooth's contact window, ISO 6336-1 c_gamma_alpha b {iso:.4g} N/m")
     if model.c_rp_source == "fe":
         lines.append(
             f"The lumped model uses the FE intact c_rp = {fe:.4g} N/m for every planet "
             f"({numbers}): the design gives no c_rp, and one mesh stiffness serves the intact "
-            "and the cracked tooth, so the crack's FE compliance in series with it scales "
-            "planet 1's c_rp by exactly the FE cracked/intact ratio.")
+            "and the cracked tooth. The crack's FE compliance (1/ratio - 1) over the window's "
+            "intact mean, in series with it, scales planet 1's c_rp by the FE cracked/intact "
+            f"ratio's change times {fe / window:.4g} to first order (the two means' ratio).")
     else:
         lines.append(
             f"The lumped model uses the given c_rp = {lumped:.4g} N/m ({numbers}). A given "
             "value is an effective mesh stiffness that holds more compliance than the tooth "
             "pair's (for the paper's Raba 118/76 preset, its table's value). The crack adds "
-            "the FE compliance (1/ratio - 1)/c_rp_FE in series with it (method `series`, "
+            "the FE compliance (1/ratio - 1)/c_rp_FE (c_rp_FE: the intact mean over the "
+            "contact window, the ratio's denominator) in series with it (method `series`, "
             "primary). Multiplying the given c_rp by the FE ratio instead (method `ratio`, "
             "used before issue 22) treats all of it as the tooth pair's: an upper bound of "
             "the crack's effect.")

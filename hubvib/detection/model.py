@@ -186,10 +186,13 @@ class CrackModel:
     def mesh_stiffness(self) -> dict:
         """The ring-planet mesh stiffness the model uses, as the JSON outputs give it:
         ``c_rp_method``, ``c_rp_source``, ``c_rp_lumped_N_m`` (every planet intact),
-        ``c_rp_fe_intact_N_m`` (FE, over the cracked tooth's engagement; None unknown)."""
+        ``c_rp_fe_intact_N_m`` (FE, over the mesh cycle; None unknown),
+        ``c_rp_fe_intact_window_N_m`` (FE, over the cracked tooth's contact window)."""
         return {"c_rp_method": self.c_rp_method, "c_rp_source": self.c_rp_source,
                 "c_rp_lumped_N_m": float(self.params.c_rp),
-                "c_rp_fe_intact_N_m": float(self.c_rp_fe[0]) if self.c_rp_fe else None}
+                "c_rp_fe_intact_N_m": float(self.c_rp_fe[0]) if self.c_rp_fe else None,
+                "c_rp_fe_intact_window_N_m": (float(self.c_rp_fe_window[0])
+                                              if self.c_rp_fe_window else None)}
 
     @property
     def c_ru(self) -> np.ndarray:

@@ -105,7 +105,10 @@ class CrackStudyResult:
                 "fe_c_rp_engaged_intact_N_m": f.c_rp_engaged_intact,
                 "lumped_c_rp_factor": float(fp),
                 "lumped_c_rp_planet1_ratio_method_N_m": float(
-                    self.model.params.c_rp * f.c_rp_engaged_ratio)})
+                    self.model.params.c_rp * f.c_rp_engaged_ratio),
+                "fe_c_rp_engaged_intact_window_N_m": f.c_rp_engaged_intact_window,
+                "fe_c_ru_root_land_N_m": f.c_ru_root_land,
+                "fe_c_r_root_land_N_m": f.c_r_root_land})
         return rows
 
     def frequency_rows(self) -> list[dict]:
@@ -399,12 +402,21 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
         f"- Ring support: {sections.mounting_sentence(model)}",
         f"- The FE ring body alone gives c_ru = {intact['c_ru_N_m']:.4g} N/m and c_r = "
         f"{intact['c_r_N_m']:.4g} N/m against the preset's {scene.params.c_ru:.4g} and "
-        f"{scene.params.c_r:.4g} N/m.",
+        f"{scene.params.c_r:.4g} N/m. These are the work-conjugate rim parts: the work of "
+        "each loaded tooth's forces on the rigid motion of its root lands (fem/ring_work.py). "
+        "The lumped model puts the ring body in series with the tooth pair c_rp, whose ring "
+        "tooth is measured relative to that same rigid motion, so each compliance is counted "
+        "once. The whole work-conjugate c_ru would count the ring tooth twice, and the "
+        "root-land reading is not work-conjugate to the flank loads: where the crack mouth "
+        "cuts a root land it hides most of a shallow crack's effect. The root-land readings "
+        "stay beside them (`fe_c_ru_root_land_N_m`, `fe_c_r_root_land_N_m`).",
         "- c_rp: FE tooth compliance of planet and ring tooth (crack moved to tooth 0) with "
         "Hertz contact added analytically and the load shared over the path of contact; the "
         "ratio cracked/intact is the mean while the cracked tooth is in contact (its minimum "
         "is in `fe_c_rp_engaged_min_ratio`), the intact mean over the mesh cycle is "
-        "`fe_c_rp_engaged_intact_N_m`. The crack's extra compliance (1/ratio - 1)/c_rp_FE "
+        "`fe_c_rp_engaged_intact_N_m` and over the cracked tooth's contact window "
+        "`fe_c_rp_engaged_intact_window_N_m` (c_rp_FE, the ratio's denominator). The crack's "
+        "extra compliance (1/ratio - 1)/c_rp_FE "
         f"enters planet 1's lumped c_rp by the method `{model.c_rp_method}` (see Ring-planet "
         "mesh stiffness). Only planet 1's ring mesh changes, so "
         "the crack splits the repeated (translational) frequencies."

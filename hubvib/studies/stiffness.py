@@ -1,5 +1,6 @@
 """Every stiffness of a design's lumped model with its error estimate and run time: the FE
-ring (c_ru, c_r; plane, and solid on request), the FE mesh stiffness (c_sp, c_rp, mean over
+ring (c_ru, c_r: the work-conjugate rim parts the lumped model uses, the root-land
+readings beside them; plane, and solid on request), the FE mesh stiffness (c_sp, c_rp, mean over
 the mesh cycle) and the bearings (c_p, c_c, Palmgren line contact).  ``hubvib stiffness``
 prints it.  SI units: N/m, m, s."""
 from __future__ import annotations
@@ -53,7 +54,8 @@ def stiffness_table(design, crack_depth: float = 0.0, solver: str = "auto",
     bearings = bearing_rows(design)
     out = {}
     for name, crack in cases.items():
-        ring_options = dict(solver=solver, material=steel, n_planets=design.n_planets)
+        ring_options = dict(solver=solver, material=steel, n_planets=design.n_planets,
+                            definition="rim")
         rows = _ring_rows(estimate_ring(ring, crack, **ring_options), "")
         if solid:
             rows.update(_ring_rows(estimate_ring(ring, crack, solid=True, **ring_options),
@@ -65,8 +67,13 @@ def stiffness_table(design, crack_depth: float = 0.0, solver: str = "auto",
 
 
 def _ring_rows(r: RingEstimate, suffix: str) -> dict:
-    """The JSON rows of one ring estimate (keys with units: the output boundary)."""
+    """The JSON rows of one ring estimate (keys with units: the output boundary); the
+    root-land readings beside the values (``root_land_N_m``, ``root_land_error_N_m``)."""
     common = {"seconds_total": r.seconds_total, "dofs": r.dofs, "solver": r.solver}
     return {f"c_ru{suffix}": {"value_N_m": r.c_ru, "error_N_m": r.c_ru_error,
-                              "min_N_m": r.c_ru_min, "max_N_m": r.c_ru_max, **common},
-            f"c_r{suffix}": {"value_N_m": r.c_r, "error_N_m": r.c_r_error, **common}}
+                              "min_N_m": r.c_ru_min, "max_N_m": r.c_ru_max,
+                              "root_land_N_m": r.c_ru_root_land,
+                              "root_land_error_N_m": r.c_ru_root_land_error, **common},
+            f"c_r{suffix}": {"value_N_m": r.c_r, "error_N_m": r.c_r_error,
+                             "root_land_N_m": r.c_r_root_land,
+                             "root_land_error_N_m": r.c_r_root_land_error, **common}}
