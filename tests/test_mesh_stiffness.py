@@ -213,8 +213,11 @@ def test_raba_fe_numbers_mode_13_both_methods():
     assert max(intact) == min(intact), "the intact tooth is the same at every depth"
     result = crack_study_from_fe(scene, fe, detection=False)
     k = scene.crack.depths.index(0.003)
+    window = fe[k]["c_rp_engaged_intact_window_N_m"]
+    assert window / intact[k] == pytest.approx(1.0475, abs=5e-4), \
+        "the window's intact mean 4.75 % above the cycle's (issue 25)"
     assert result.c_rp_factor[k] == pytest.approx(
-        _hand_series(fe[k]["c_rp_engaged_ratio"], intact[k], PRESET_C_RP), rel=1e-12)
+        _hand_series(fe[k]["c_rp_engaged_ratio"], window, PRESET_C_RP), rel=1e-12)
     comparison = result.c_rp_comparison
     series, ratio = comparison.shift_hz[k, 12], comparison.other_shift_hz[k, 12]
     assert series == pytest.approx(-0.73, abs=0.03), "series -0.73 Hz (+-0.03)"
