@@ -101,10 +101,9 @@ def test_default_scene_runs_in_series_and_its_report_opens_with_the_answer(defau
     assert re.match(r"hubvib \d+\.\d+\.\d+\S*, \d{4}-\d\d-\d\d \d\d:\d\d UTC", provenance)
     short = report.split("## Detectability")[0]
     assert "Watch modes" in short and "the mounting decides" in short
-    # the identified mounting holds nearly all of the compliance: 1e6 against the FE body's
-    # 1.075e10 N/m (rim part, issue 25; 1.00006e+06 with the root-land 1.663e10):
-    # 1 / (1/1e6 - 1/1.0754e10) = 1.00009e6 by hand
-    assert "c_ru mounting 1.00009e+06 N/m" in short and "99.99 % of the ring's torsional" in short
+    # the identified mounting holds nearly all of the compliance: 1e6 against the synthetic
+    # rows' 1.663e10 N/m (the FE rim part since issue 25, 1.075e10, gives 1.00009e6)
+    assert "c_ru mounting 1.00006e+06 N/m" in short and "99.99 % of the ring's torsional" in short
     for name in ("pod.csv", "detectability_map.csv"):
         assert (folder / name).stat().st_size > 0, name
     json.loads((folder / "results.json").read_text(),

@@ -43,7 +43,7 @@ def raba():
 
 
 def test_under_the_series_method_intact_reducers_are_called_intact():
-    """Series method, engaged ratio over the contact time: mode 13 moves 0.73-1.74 Hz
+    """Series method, engaged ratio over the contact time: mode 13 moves 0.69-1.65 Hz
     (3 mm..through the rim) against a 10 s identification scatter of 1.45 Hz, so the deepest
     cracks are identifiable and intact reducers are `no crack indicated` (docs/diagnosis.md,
     calibration table: 96.5 %), with the crack verdict at the family-wise false-alarm rate

@@ -203,7 +203,8 @@ def test_iso_c_rp_of_the_preset_is_the_issue_s_value():
 @fe_stage
 def test_raba_fe_numbers_mode_13_both_methods():
     """The FE cases of the default scene (cache or computed): the intact engaged c_rp is the
-    issue's 1.48e9 N/m and mode 13 at 3 mm moves -0.73 / -3.76 Hz (series / ratio)."""
+    issue's 1.48e9 N/m and mode 13 at 3 mm moves -0.69 / -3.76 Hz (series / ratio; the
+    series -0.73 before issue 25 divided by the whole-cycle mean: docs/data/raba118_crack)."""
     from hubvib.studies.crack_sweep import run_fe_cases
 
     scene = load_scene(None)
@@ -220,5 +221,5 @@ def test_raba_fe_numbers_mode_13_both_methods():
         _hand_series(fe[k]["c_rp_engaged_ratio"], window, PRESET_C_RP), rel=1e-12)
     comparison = result.c_rp_comparison
     series, ratio = comparison.shift_hz[k, 12], comparison.other_shift_hz[k, 12]
-    assert series == pytest.approx(-0.73, abs=0.03), "series -0.73 Hz (+-0.03)"
+    assert series == pytest.approx(-0.69, abs=0.015), "series -0.69 Hz (+-0.015)"
     assert ratio == pytest.approx(-3.76, abs=0.08), "ratio -3.76 Hz (+-0.08)"
