@@ -271,3 +271,29 @@ def test_blas_threads_are_set_and_restored():
     with blas_threads(1):
         assert all(get() == 1 for get, _ in _handles())
     assert [get() for get, _ in _handles()] == before
+
+
+@pytest.mark.slow
+def test_rim_split_works_on_the_solid_model(coarse_solid_ring):
+    """Issue 25: the work-conjugate rim parts (the lumped model's c_ru, c_r) on the solid
+    model (the solid crack cases use them): the rigid motion fitted on the root lands of an
+    in-plane rigid displacement is that motion (1e-9); the rim parts are stiffer than the
+    whole work-conjugate values; and like the root-land readings they lie between plane
+    stress and plane strain (factor 1 / (1 - nu^2) = 1.099) against the plane rim parts."""
+    from hubvib.build import raba118
+    from hubvib.fem.ring_stiffness import ring_model, ring_stiffness, root_lands
+    from hubvib.fem.ring_work import land_rigid_motions
+    from hubvib.meshing.ring_mesh import ring_mesh
+
+    ring = raba118.ring_gear()
+    model = ring_model(ring, coarse_solid_ring)
+    motion = rigid_body_modes(model.basis)[:, [0, 1, 3]] @ np.array([1e-6, -2e-6, 3e-5])
+    fitted = land_rigid_motions(model, root_lands(model, range(ring.teeth)), [0, 5],
+                                motion[:, None])[:, :, 0]
+    np.testing.assert_allclose(fitted, [[1e-6, -2e-6, 3e-5]] * 2, rtol=1e-9, atol=1e-15,
+                               err_msg="solid: rigid motion of the lands reproduced, 1e-9")
+    solid = ring_stiffness(ring, coarse_solid_ring, carrier_teeth=[0]).work
+    plane = ring_stiffness(ring, ring_mesh(ring), carrier_teeth=[0]).work
+    assert solid.c_ru_rim > solid.c_ru and solid.c_r_rim > solid.c_r, "rim stiffer than whole"
+    assert 1.0 < solid.c_ru_rim / plane.c_ru_rim < 1 / (1 - 0.3 ** 2), "c_ru_rim, 3D vs 2D"
+    assert 1.0 < solid.c_r_rim / plane.c_r_rim < 1 / (1 - 0.3 ** 2), "c_r_rim, 3D vs 2D"

@@ -282,8 +282,9 @@ def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str])
         "## Assumptions", "",
         "- Solid ring: curved quadratic tetrahedra, supports clamped, every planet's mesh "
         "force spread over its tooth's load surface across the face; c_ru is the mean over "
-        "every carrier position of one planet pitch, read on the root lands as in the plane "
-        "study; error estimate: the default solid level against the one before it "
+        "every carrier position of one planet pitch, c_ru and c_r the work-conjugate rim "
+        "parts as in the plane study (issue 25; the root-land readings in "
+        "`c_ru_root_land_N_m`, `c_r_root_land_N_m`); error estimate: the default solid level against the one before it "
         "(`hubvib.meshing.levels.SOLID_LEVELS`).",
         "- c_rp of the cracked tooth: the slice method (Chen & Shao 2011): the face width in "
         f"{SLICES} independent slices in parallel, each with the plane c_rp ratio at its local "
