@@ -56,8 +56,8 @@ def run(args) -> int:
             f"{k} {100 * (cracked[k]['value_N_m'] / intact[k]['value_N_m'] - 1):+.2f} %"
             for k in ("c_ru", "c_r")))
         print("the highest c_ru over carrier positions can rise with the crack: where a planet "
-              "loads the cracked tooth, the rotation read on its root land is cut by the crack "
-              "mouth (the tooth's own softening is in c_rp's engaged value); the mean falls")
+              "loads the cracked tooth, its root land is cut by the crack mouth (the tooth's "
+              "own softening is in c_rp's engaged value); the mean falls")
     m = design.material
     print(f"design {design.name!r}: plane stress, E {m.E / 1e9:g} GPa, nu {m.nu:g}, face width "
           f"{1e3 * design.face_width:g} mm; ring supports clamped; +- = fine minus twice-coarser "
@@ -82,4 +82,6 @@ def _checks(key: str, r: dict) -> str:
         return (f"secant {r['secant_N_m']:.4e} at {r['load_N'] / 1e3:.1f} kN; "
                 f"{r['rollers']} rollers x {1e3 * r['roller_length_m']:.0f} mm")
     where = "solid, planet 1 on tooth 0" if key.endswith("3D") else "plane stress"
-    return f"{r['dofs']} DOFs, {r['solver']}, {where}"
+    land = (f"; rim part (lumped model's), root land {r['root_land_N_m']:.4e}"
+            if "root_land_N_m" in r else "")
+    return f"{r['dofs']} DOFs, {r['solver']}, {where}{land}"
