@@ -207,6 +207,10 @@ def test_one_factorisation_gives_the_ring_and_the_cracked_tooth():
     alone = ring_stiffness(RING, mesh, solver="superlu")  # and a second solver
     np.testing.assert_allclose(ring.c_ru_positions, alone.c_ru_positions, rtol=1e-9)
     assert ring.c_r == pytest.approx(alone.c_r, rel=1e-9)
+    # the work-conjugate rim parts (the lumped model's, issue 25) from the shared solve too
+    np.testing.assert_allclose(ring.work.c_ru_rim_positions, alone.work.c_ru_rim_positions,
+                               rtol=1e-9)
+    assert ring.work.c_r_rim == pytest.approx(alone.work.c_r_rim, rel=1e-9)
     separate = fe_tooth_compliance(RING, mesh, tooth.radii)
     np.testing.assert_allclose(tooth.compliance, separate.compliance, rtol=1e-9)
 
@@ -215,7 +219,8 @@ def test_one_factorisation_gives_the_ring_and_the_cracked_tooth():
 def test_crack_case_equals_separate_solves():
     """A crack case computed with one assembly and factorisation per level gives the values
     of the separate path (ring: estimate_ring; cracked tooth: engaged_ring_mesh, each with its
-    own assembly and SuperLU factorisation) to 1e-9; scale 4 keeps it cheap."""
+    own assembly and SuperLU factorisation) to 1e-9, the work-conjugate rim parts (the lumped
+    model's c_ru, c_r) and the root-land readings beside them; scale 4 keeps it cheap."""
     import functools
 
     from hubvib.fem.estimate import estimate_crack_case, estimate_ring
@@ -226,16 +231,20 @@ def test_crack_case_equals_separate_solves():
     crack = Crack(0, 8e-3)
     mesher = functools.lru_cache(maxsize=2)(ring_mesh)
     shared = estimate_crack_case(RING, planet, crack, 4.0, mesher=mesher)
-    ring = estimate_ring(RING, crack, 4.0, mesher=mesher)
+    ring = estimate_ring(RING, crack, 4.0, mesher=mesher, definition="rim")
     fine, coarse = (engaged_ring_mesh(planet, RING, crack, scaled_options(s), mesher=mesher)
                     for s in (4.0, 8.0))
     pairs = [(shared.c_ru, ring.c_ru), (shared.c_ru_min, ring.c_ru_min),
              (shared.c_ru_max, ring.c_ru_max), (shared.c_r, ring.c_r),
              (shared.c_rp_engaged_ratio, fine.mean_ratio),
-             (shared.c_rp_engaged_min_ratio, fine.min_ratio)]
+             (shared.c_rp_engaged_min_ratio, fine.min_ratio),
+             (shared.c_ru_root_land, ring.c_ru_root_land),
+             (shared.c_r_root_land, ring.c_r_root_land)]
     for ours, theirs in pairs:
         assert ours == pytest.approx(theirs, rel=1e-9), "shared against separate solves"
     assert shared.c_ru_error == pytest.approx(ring.c_ru_error, rel=1e-6)
+    assert shared.c_ru_root_land_error == pytest.approx(ring.c_ru_root_land_error, rel=1e-6)
+    assert shared.c_ru < shared.c_ru_root_land, "rim part softer than the root-land reading"
     assert shared.c_rp_engaged_ratio_error == pytest.approx(
         abs(fine.mean_ratio - coarse.mean_ratio), rel=1e-6)
     assert shared.c_rp_engaged_ratio < 1 and shared.dofs == ring.dofs
