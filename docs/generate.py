@@ -382,6 +382,9 @@ def stiffness() -> str:
                      f"{'' if q['iso_in_range'] else ', shifts outside ISO fitted range'})")
         rows.append([f"`{name}`", f"{q['value_N_m']:.4g}",
                      f"{100 * q['error_N_m'] / q['value_N_m']:.2g} %", spread, check])
+        if "root_land_N_m" in q:
+            rows.append([f"`{name}` root-land reading (secondary)", f"{q['root_land_N_m']:.4g}",
+                         f"{100 * q['root_land_error_N_m'] / q['root_land_N_m']:.2g} %", "", ""])
     for name in ("c_p", "c_c"):
         q = intact[name]
         rows.append([f"`{name}`", f"{q['tangent_N_m']:.3g} tangent, {q['secant_N_m']:.3g} secant",
@@ -393,6 +396,8 @@ def stiffness() -> str:
     changes = [
         ["`c_ru` (mean over carrier positions)", f"{_stiffness_change('c_ru'):+.2%}"],
         ["`c_r`", f"{_stiffness_change('c_r'):+.2%}"],
+        ["`c_ru` root-land reading",
+         f"{cracked['c_ru']['root_land_N_m'] / intact['c_ru']['root_land_N_m'] - 1:+.2%}"],
         ["highest `c_ru` over carrier positions",
          f"{cracked['c_ru']['max_N_m'] / intact['c_ru']['max_N_m'] - 1:+.2%}"],
         ["`c_rp` over the cracked tooth's contact and one base pitch either side, mean",
