@@ -115,8 +115,11 @@ def test_predicted_sweep_follows_the_crack_path(tmp_path, monkeypatch, capsys):
     options = scaled_options(ACCURACY["fast"])
     direct = crack_level(ring, planet, at_3mm, path_ring_mesh(ring, at_3mm, options), options,
                          steel, RABA.n_planets)
-    assert fe[1]["c_ru_N_m"] == pytest.approx(direct.ring.c_ru, rel=1e-9)
-    assert fe[1]["c_r_N_m"] == pytest.approx(direct.ring.c_r, rel=1e-9)
+    # c_ru, c_r: the work-conjugate rim parts (issue 25), the root-land readings beside
+    assert fe[1]["c_ru_N_m"] == pytest.approx(direct.ring.work.c_ru_rim, rel=1e-9)
+    assert fe[1]["c_r_N_m"] == pytest.approx(direct.ring.work.c_r_rim, rel=1e-9)
+    assert fe[1]["c_ru_root_land_N_m"] == pytest.approx(direct.ring.c_ru, rel=1e-9)
+    assert fe[1]["c_r_root_land_N_m"] == pytest.approx(direct.ring.c_r, rel=1e-9)
     assert fe[1]["c_rp_engaged_ratio"] == pytest.approx(direct.engaged.mean_ratio, rel=1e-9)
 
     radial_scene = parse_scene(SCENE.format(path="radial"), "radial")
@@ -125,7 +128,8 @@ def test_predicted_sweep_follows_the_crack_path(tmp_path, monkeypatch, capsys):
         "mean c_rp ratio predicted < radial (docs/crack_path.md, 0.923 vs 0.940)")
 
     result = crack_study_from_fe(scene, fe, computed, detection=True)
-    ratio, c_fe = fe[1]["c_rp_engaged_ratio"], fe[1]["c_rp_engaged_intact_N_m"]
+    # the intact mean over the contact window is the ratio's denominator (issue 25)
+    ratio, c_fe = fe[1]["c_rp_engaged_ratio"], fe[1]["c_rp_engaged_intact_window_N_m"]
     series = 1 / (1 + scene.params.c_rp * (1 / ratio - 1) / c_fe)  # the crack's compliance
     np.testing.assert_allclose(result.c_rp_factor, [1.0, series], rtol=1e-12,
                                err_msg="lumped c_rp factor: the predicted row's extra "
