@@ -68,8 +68,15 @@ def markdown_table(header: list[str], rows: list[list], align: str | None = None
 
 
 def provenance(name: str, measured: str | None = None) -> str:
+    """The source line under a table read from ``docs/data/name``: when it ran and the
+    commands that regenerate it (more than three: the script that runs them)."""
     when = f", measured {measured}" if measured else ""
-    return f"\n\n*Source: `docs/data/{name}`{when}; regenerate with `{DATA_SOURCES[name]}`.*"
+    command = DATA_SOURCES[name]
+    if command.count("; ") >= 3:
+        entry = name.rstrip("/")
+        command = (f"docs/data/regenerate.sh {entry}` (the {command.count('; ') + 1} "
+                   f"commands of `docs/data/{entry}.meta.json`")
+    return f"\n\n*Source: `docs/data/{name}`{when}; regenerate with `{command}`.*"
 
 
 def _meta(name: str) -> dict:
