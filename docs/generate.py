@@ -9,9 +9,11 @@ Two kinds of source:
 * computed now by the library (lumped spectra, the Raba 118/76 validation, the stability
   table, the design check, the series mounting, batched solves): cheap and deterministic;
 * read from files in ``docs/data/`` that a named ``hubvib`` command wrote (benchmark timings,
-  the FE stiffness table, the default crack study, the signal scene and the c_ru
-  convergence); each
-  such table says which command regenerates its file (``DATA_SOURCES``) and when it ran.
+  the FE stiffness table, the default crack study, the signal scene and its variants, the
+  crack paths and the backup-ratio variants, the c_ru convergence); each such table says
+  which command regenerates its file (``DATA_SOURCES``, read from the entry's
+  ``docs/data/<entry>.meta.json``) and when it ran; ``docs/data/regenerate.sh`` reruns them.
+  Scene and design variants the commands read sit in ``docs/data/inputs/``.
 
 Run ``python docs/generate.py NAME`` to print one table.
 """
@@ -34,33 +36,24 @@ import numpy as np
 
 DATA = Path(__file__).resolve().parent / "data"
 
-# file in docs/data -> the command that (re)writes it; the provenance line of every table
-# read from a file names it
-DATA_SOURCES = {
-    "raba118_signal/": "hubvib signal raba118_signal --out docs/data/raba118_signal "
-                       "(then keep report.md, results.json and indicators_summary.csv)",
-    "convergence/": "hubvib convergence c_ru --out docs/data/convergence "
-                    "(then keep convergence_c_ru.csv)",
-    "convergence_work/": "hubvib convergence c_ru_work --out docs/data/convergence_work; "
-                         "hubvib convergence c_r_work --out docs/data/convergence_work; "
-                         "hubvib convergence c_ru_rim --out docs/data/convergence_work "
-                         "(then keep the three convergence_*.csv)",
-    "benchmark.json": "hubvib benchmark --json > docs/data/benchmark.json",
-    "stiffness_10mm.json": "hubvib stiffness --crack-depth 10e-3 --json "
-                           "> docs/data/stiffness_10mm.json",
-    "raba118_crack/": "hubvib run raba118_crack --out docs/data/raba118_crack "
-                      "(then keep report.md, results.json, detectability_map.csv, pod.csv "
-                      "and pod_family.csv)",
-    "crack_path/": "hubvib crack-path --tooth 0 --json > docs/data/crack_path/tooth0.json; "
-                   "hubvib crack-path --tooth 0 --load envelope --json "
-                   "> docs/data/crack_path/tooth0_envelope.json",
-    "raba118_crack_path/": "hubvib run raba118_crack_path --out docs/data/raba118_crack_path "
-                           "(then keep report.md and results.json)",
-    "diagnosis/": "python -m hubvib.identification.montecarlo --records 200 "
-                  "--out docs/data/diagnosis/identification_scatter.md; "
-                  "python -m hubvib.detection.calibration "
-                  "--out docs/data/diagnosis/diagnosis_check.md",
-}
+# Every entry of docs/data (a file, or a folder "name/") has a meta file
+# docs/data/<name>.meta.json: "command", the exact shell commands, run from the repository
+# root, that (re)write it (docs/data/regenerate.sh runs them all, in order); "keep", for a
+# folder a scene writes, the files kept of its output; "measured", when and on what.
+def _data_sources() -> dict[str, str]:
+    sources = {}
+    for path in sorted(DATA.glob("*.meta.json")):
+        name = path.name.removesuffix(".meta.json")
+        key = name + "/" if (DATA / name).is_dir() else name
+        meta = json.loads(path.read_text())
+        keep = f" (then keep {', '.join(meta['keep'])})" if meta.get("keep") else ""
+        sources[key] = "; ".join(meta["command"]) + keep
+    return sources
+
+
+#: data entry ("file" or "folder/") -> its regenerating commands, as the provenance line of
+#: every table read from it names them
+DATA_SOURCES = _data_sources()
 
 
 # ---------------------------------------------------------------- helpers
@@ -75,12 +68,19 @@ def markdown_table(header: list[str], rows: list[list], align: str | None = None
 
 
 def provenance(name: str, measured: str | None = None) -> str:
+    """The source line under a table read from ``docs/data/name``: when it ran and the
+    commands that regenerate it (more than three: the script that runs them)."""
     when = f", measured {measured}" if measured else ""
-    return f"\n\n*Source: `docs/data/{name}`{when}; regenerate with `{DATA_SOURCES[name]}`.*"
+    command = DATA_SOURCES[name]
+    if command.count("; ") >= 3:
+        entry = name.rstrip("/")
+        command = (f"docs/data/regenerate.sh {entry}` (the {command.count('; ') + 1} "
+                   f"commands of `docs/data/{entry}.meta.json`")
+    return f"\n\n*Source: `docs/data/{name}`{when}; regenerate with `{command}`.*"
 
 
 def _meta(name: str) -> dict:
-    path = DATA / f"{name}.meta.json"
+    path = DATA / f"{name.rstrip('/')}.meta.json"
     return json.loads(path.read_text()) if path.exists() else {}
 
 
@@ -564,6 +564,156 @@ def ring_definitions() -> str:
     return "\n\n".join(parts)
 
 
+# ---------------------------------------------------------------- signal route (issue 24)
+
+#: the committed ``hubvib signal`` runs of the detection page: the shipped scene and its
+#: variants (scene files in ``docs/data/inputs/signal/``)
+SIGNAL_RUNS = ("raba118_signal", "raba118_signal_planet_error", "raba118_signal_noise0.5",
+               "raba118_signal_noise2")
+INDICATOR_NAMES = {"rms": "RMS", "crest_factor": "crest factor", "kurtosis": "kurtosis",
+                   "fm0": "FM0", "fm4": "FM4", "na4": "NA4", "nb4": "NB4", "m6a": "M6A",
+                   "m8a": "M8A", "er": "ER", "ser": "SER"}
+
+
+@lru_cache(maxsize=None)
+def _signal_run(folder: str) -> dict:
+    return json.loads((DATA / folder / "results.json").read_text())
+
+
+def _signal_case(run: dict) -> str:
+    """What sets a run apart: its noise and its manufacturing errors."""
+    o = run["options"]
+    errors = [f"{1e6 * e:g} um on planet {i + 1}"
+              for i, e in enumerate(o["planet_position_errors_m"]) if e]
+    shipped = " (shipped scene)" if run["scene"] == SIGNAL_RUNS[0] else ""
+    return ", ".join([f"{o['noise_level']:g}{shipped}"] + errors)
+
+
+def _signal_provenance(folders) -> str:
+    return "".join(provenance(f"{folder}/", _meta(folder).get("measured")) for folder in folders)
+
+
+def _first_depths(roc: dict) -> str:
+    """Indicators grouped by the first depth with POD >= 0.9 (``first_depth_seen_mm``)."""
+    by_depth: dict = {}
+    for key, name in INDICATOR_NAMES.items():
+        by_depth.setdefault(roc["indicators"][key]["first_depth_seen_mm"], []).append(name)
+    deepest = max(roc["depth_mm"])
+    parts = [f"{', '.join(names)} {depth:g} mm" for depth, names in
+             sorted((d, n) for d, n in by_depth.items() if d is not None)]
+    if None in by_depth:
+        if len(by_depth) == 1:
+            auc = max(ind["auc"][-1] for ind in roc["indicators"].values())
+            return f"none by {deepest:g} mm (AUC at {deepest:g} mm <= {auc:.2f})"
+        parts.append(f"{', '.join(by_depth[None])} not by {deepest:g} mm")
+    return "; ".join(parts)
+
+
+def signal_detection_rates() -> str:
+    """Family-wise false alarms and the first depth each indicator detects (POD >= 0.9)
+    of the shipped signal scene and its variants (other noise, a planet position error),
+    with the false-alarm rates of the same thresholds under coloured and heavy-tailed
+    noise (``roc`` of each run's ``results.json``)."""
+    rows = []
+    for folder in SIGNAL_RUNS:
+        run = _signal_run(folder)
+        roc, o = run["roc"], run["options"]
+        rows.append([_signal_case(run), ", ".join(f"{d:g}" for d in roc["depth_mm"]),
+                     f"{roc['family_false_alarm_measured']:.2f} ± "
+                     f"{roc['family_false_alarm_standard_error']:.2f}",
+                     f"{roc['family_false_alarm_coloured']:.2f}",
+                     f"{roc['family_false_alarm_heavy_tail']:.2f}", _first_depths(roc)])
+    run = _signal_run(SIGNAL_RUNS[0])
+    o, roc = run["options"], run["roc"]
+    header = ["noise (x intact RMS), errors", "depths [mm]",
+              "family-wise false alarms (measured)", "same thresholds, coloured noise",
+              "same thresholds, heavy-tailed noise", "first depth with POD >= 0.9"]
+    return (markdown_table(header, rows, "llrrrl")
+            + f"\n\nEvery run: FE curves, {o['sun_speed_rpm']:g} min^-1, "
+            f"{o['sun_torque_N_m']:g} N m, {o['revolutions']:g} revolutions, "
+            f"{roc['records_per_depth']} records per depth, {roc['training_records']} "
+            f"training records, alpha = {roc['false_alarm_rate']:g}; coloured: "
+            f"{roc['coloured_noise']}; heavy-tailed: {roc['heavy_tail_noise']}."
+            + _signal_provenance(SIGNAL_RUNS))
+
+
+def _indicator_means(depths: list, keys, at_mm) -> list[str]:
+    by = {round(d["depth_mm"], 6): d["indicators"] for d in depths}
+    return [" -> ".join(f"{by[d][key]['mean']:.3g}" for d in at_mm if d in by) for key in keys]
+
+
+SIGNAL_INDICATOR_DEPTHS = (0.0, 3.0, 12.0)
+
+
+def signal_indicators() -> str:
+    """FM4, NA4 and ER (mean over the noise seeds) at 0, 3 and 12 mm, without and with a
+    planet position error (``depths`` of the two runs' ``results.json``)."""
+    keys = ("fm4", "na4", "er")
+    rows = []
+    for folder in SIGNAL_RUNS[:2]:
+        run = _signal_run(folder)
+        rows.append([_signal_case(run)] + _indicator_means(run["depths"], keys,
+                                                           SIGNAL_INDICATOR_DEPTHS))
+    depths = ", ".join(f"{d:g}" for d in SIGNAL_INDICATOR_DEPTHS)
+    return (markdown_table(["noise (x intact RMS), errors"]
+                           + [f"{INDICATOR_NAMES[k]} at {depths} mm" for k in keys],
+                           rows, "lrrr")
+            + f"\n\nMeans over {_signal_run(SIGNAL_RUNS[0])['options']['noise_seeds']} "
+            "noise seeds." + _signal_provenance(SIGNAL_RUNS[:2]))
+
+
+def signal_sensors() -> str:
+    """FM4 and NA4 at 0, 3 and 12 mm seen by sensors at other angles from the crack, with
+    a planet position error (``sensors`` of the run's ``results.json``)."""
+    folder = SIGNAL_RUNS[1]
+    run = _signal_run(folder)
+    keys = ("fm4", "na4")
+    rows = [["0 (the study's sensor)"] + _indicator_means(run["depths"], keys,
+                                                          SIGNAL_INDICATOR_DEPTHS)]
+    rows += [[f"{sensor['angle_from_crack_deg']:g}"]
+             + _indicator_means(sensor["depths"], keys, SIGNAL_INDICATOR_DEPTHS)
+             for sensor in run["sensors"]]
+    depths = ", ".join(f"{d:g}" for d in SIGNAL_INDICATOR_DEPTHS)
+    return (markdown_table(["sensor angle from the crack [deg]"]
+                           + [f"{INDICATOR_NAMES[k]} at {depths} mm" for k in keys], rows, "lrr")
+            + f"\n\nNoise and errors: {_signal_case(run)}." + _signal_provenance([folder]))
+
+
+def signal_non_multiple() -> str:
+    """Energy share off the multiples of N (smallest and largest over the depths), without
+    and with a planet position error (``non_multiple_fraction`` of the runs)."""
+    rows = []
+    for folder in SIGNAL_RUNS[:2]:
+        run = _signal_run(folder)
+        values = [r["fraction"] for r in run["non_multiple_fraction"]]
+        depths = ", ".join(f"{r['depth_mm']:g}" for r in run["non_multiple_fraction"])
+        low, high = f"{min(values):.2g}", f"{max(values):.2g}"
+        rows.append([_signal_case(run), depths, low if low == high else f"{low} to {high}"])
+    return (markdown_table(["noise (x intact RMS), errors", "depths [mm]",
+                            "non-multiple energy share"], rows, "llr")
+            + _signal_provenance(SIGNAL_RUNS[:2]))
+
+
+def signal_contact() -> str:
+    """The smallest total-over-static mesh force of the linear model over every mesh and
+    depth, where it occurs, and the largest separated share of the revolution, per run
+    (``contact`` of each depth)."""
+    rows = []
+    for folder in SIGNAL_RUNS[:2]:
+        run = _signal_run(folder)
+        ratio, depth, mesh = min((r, d["depth_mm"], m) for d in run["depths"]
+                                 for m, r in d["contact"]["min_force_ratio"].items())
+        separated = max(max(d["contact"]["separated_fraction"].values())
+                        for d in run["depths"])
+        rows.append([_signal_case(run), f"{ratio:.2f}", f"{mesh}, {depth:g} mm",
+                     f"{100 * separated:.3g}"])
+    o = _signal_run(SIGNAL_RUNS[0])["options"]
+    return (markdown_table(["noise (x intact RMS), errors",
+                            "smallest total/static mesh force (linear)", "mesh, depth",
+                            "largest separated share [% of a revolution]"], rows, "lrlr")
+            + f"\n\nSun torque {o['sun_torque_N_m']:g} N m." + _signal_provenance(SIGNAL_RUNS[:2]))
+
+
 # ---------------------------------------------------------------- seed companions
 
 BALL49_SNIPPET = """\
@@ -624,6 +774,40 @@ def diagnosis_family_pod() -> str:
                           for T in records] for d in depths]
     run = json.loads((DATA / "raba118_crack" / "results.json").read_text())
     return (markdown_table(header, body, "r" * len(header))
+            + provenance("raba118_crack/", f"{run['date']}, hubvib {run['hubvib_version']}"))
+
+
+def diagnosis_figures() -> str:
+    """The figures the diagnosis page's text quotes, from the default scene's run
+    (``results.json`` of ``hubvib run raba118_crack``): each watched mode's intact
+    frequency, identification scatter of one record and time-averaged shift at 3 mm and
+    the deepest crack (series method), and its drift per kelvin and per 0.1 % of mesh
+    stiffness (``hubvib.detection.drift.drift_model`` on the preset)."""
+    from types import SimpleNamespace
+
+    from hubvib.build import lumped_preset
+    from hubvib.detection.drift import drift_model
+
+    run = json.loads((DATA / "raba118_crack" / "results.json").read_text())
+    options = run["detection"]["options"]
+    modes = {m["mode"]: m for m in run["modes"]}
+    shifts = {(round(r["depth_mm"], 6), r["mode"]): r["record_shift_series_hz"]
+              for r in run["c_rp_methods"]}
+    deepest = max(d for d, _ in shifts)
+    frequency = [m["frequency_intact_hz"] for m in run["modes"]]
+    drift = drift_model(lumped_preset("raba118"), frequency, SimpleNamespace(
+        modulus_per_K=options["modulus_per_K"], expansion_per_K=options["expansion_per_K"],
+        temperature_std=1.0, mesh_load_std=0.0))
+    rows = [[k, f"{modes[k]['frequency_intact_hz']:.1f}", f"{modes[k]['sigma_hz']:.2f}",
+             f"{shifts[3.0, k]:+.2f}", f"{shifts[deepest, k]:+.2f}",
+             f"{drift.per_kelvin_hz[k - 1]:+.2f}", f"{1e-3 * drift.per_load_hz[k - 1]:+.2f}"]
+            for k in run["detection"]["watched_modes"]]
+    header = ["mode", "intact [Hz]",
+              f"sigma of one {options['record_length']:g} s record [Hz]",
+              "shift at 3 mm [Hz]", f"shift at {deepest:.3g} mm [Hz]", "per K [Hz]",
+              "per 0.1 % of mesh stiffness [Hz]"]
+    return (markdown_table(header, rows, "rrrrrrr")
+            + f"\n\nDamping {options['damping_ratio']:g}, modal SNR {options['snr']:g}."
             + provenance("raba118_crack/", f"{run['date']}, hubvib {run['hubvib_version']}"))
 
 
@@ -731,6 +915,55 @@ def crack_path_steps() -> str:
               "K_II [MPa m^0.5]", "kink [deg]"]
     return (markdown_table(header, rows, "rrrrrrr")
             + provenance("crack_path/", _meta("crack_path/").get("measured")))
+
+
+def _backup_ratio_runs() -> dict[tuple[int, float], dict]:
+    """(tooth, backup ratio) -> the ``hubvib crack-path --json`` run of that Raba variant
+    (``crack_path_backup_ratio/``; the Raba ring itself at tooth 0 from ``crack_path/``)."""
+    runs = [json.loads(path.read_text())
+            for path in sorted((DATA / "crack_path_backup_ratio").glob("*.json"))]
+    runs.append(_crack_path_run("tooth0"))
+    return {(run["tooth"], round(run["backup_ratio"], 6)): run for run in runs}
+
+
+def crack_path_backup_ratio() -> str:
+    """What the crack severs, tooth or rim, against the backup ratio m_B (rim below the root
+    circle over the tooth height) of Raba variants, midway between two support pads (tooth
+    5) and over a pad (tooth 0), with the transition each row shows."""
+    runs = _backup_ratio_runs()
+    ratios = sorted({ratio for _, ratio in runs})
+    raba = max(ratios)  # the preset's own rim, thicker than every variant
+    teeth = {5: "midway between pads", 0: "over a pad"}
+
+    def cell(run):
+        return "" if run is None else run["fracture"] + ("" if run["severed"] else
+                                                            " (not severed)")
+
+    rows = [[f"tooth {tooth}, {where}"] + [cell(runs.get((tooth, r))) for r in ratios]
+            for tooth, where in teeth.items()]
+    header = ["backup ratio m_B"] + [f"{r:.4g}" + (" (Raba)" if r == raba else "")
+                                     for r in ratios]
+    notes = []
+    for tooth in teeth:
+        found = sorted((r, run["fracture"]) for (t, r), run in runs.items()
+                       if t == tooth and run["severed"])
+        rim = [r for r, f in found if f == "rim"]
+        tooth_ = [r for r, f in found if f == "tooth"]
+        if rim and tooth_ and max(rim) < min(tooth_):
+            notes.append(f"tooth {tooth}: rim fracture up to m_B = {max(rim):.4g}, tooth "
+                         f"fracture from {min(tooth_):.4g}")
+        elif not rim:
+            notes.append(f"tooth {tooth}: tooth fracture at every ratio run, down to "
+                         f"m_B = {min(tooth_):.4g}")
+        else:
+            notes.append(f"tooth {tooth}: rim and tooth fracture alternate: {found}")
+    height = runs[5, raba]["tooth_height_m"]
+    return (markdown_table(header, rows, "l" * len(header))
+            + f"\n\nTooth height {1e3 * height:.4g} mm; {'; '.join(notes)}. The default mesh "
+            f"and step of `hubvib crack-path` ({1e3 * runs[5, raba]['step_m']:g} mm)."
+            + provenance("crack_path_backup_ratio/",
+                         _meta("crack_path_backup_ratio").get("measured"))
+            + provenance("crack_path/", _meta("crack_path").get("measured")))
 
 
 def _scene_rows(folder: str) -> tuple[dict, dict]:

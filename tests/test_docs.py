@@ -2,6 +2,7 @@
 exists, every committed data file names the command that regenerates it, and the site builds
 in strict mode (broken links, a failing example or a failing table fail it)."""
 import importlib.util
+import json
 import os
 import re
 import subprocess
@@ -11,6 +12,7 @@ from pathlib import Path
 import pytest
 
 from hubvib.cli import _parser
+from hubvib.studies.scene import shipped_scenes
 
 ROOT = Path(__file__).parents[1]
 DOCS = ROOT / "docs"
@@ -42,19 +44,59 @@ def test_every_marker_names_a_table_or_a_hubvib_command():
             assert argv[0] == "hubvib" and argv[1] in commands, f"{page}: {body!r}"
 
 
+def _data_entries() -> list[str]:
+    return sorted(e.name for e in (DOCS / "data").iterdir()
+                  if e.name != "inputs" and not e.name.endswith(".meta.json")
+                  and e.suffix != ".sh")
+
+
 def test_every_data_file_names_the_command_that_regenerates_it():
+    """Each docs/data entry has docs/data/<entry>.meta.json whose "command" list holds
+    exact shell commands, run from the repository root, of an existing ``hubvib``
+    subcommand (or a library module's entry point); every scene or design file a command
+    names exists (a shipped scene by its name, else a file), every output it writes lies in
+    the entry; the tables' provenance lines (``DATA_SOURCES``) name the same commands."""
+    import shlex
+
     generate = _generate()
     commands = set(_parser()._subparsers._group_actions[0].choices)
-    for entry in sorted((DOCS / "data").iterdir()):
-        if entry.name == "inputs" or entry.name.endswith(".meta.json"):
-            continue
-        key = entry.name + ("/" if entry.is_dir() else "")
-        assert key in generate.DATA_SOURCES, f"docs/data/{key} has no regenerating command"
-        for command in (c.split() for c in generate.DATA_SOURCES[key].split(";")):
-            if command[0] == "python":  # a library module's own entry point
-                assert command[1] == "-m" and importlib.util.find_spec(command[2]), command
+    metas = sorted(p.name.removesuffix(".meta.json") for p in (DOCS / "data").glob("*.meta.json"))
+    assert metas == _data_entries(), "one meta file per docs/data entry, none without its data"
+    for name in _data_entries():
+        meta_path = DOCS / "data" / f"{name}.meta.json"
+        assert meta_path.exists(), f"docs/data/{name} has no {meta_path.name}"
+        meta = json.loads(meta_path.read_text())
+        assert meta.get("command"), f"{meta_path.name}: no regenerating command"
+        key = name + ("/" if (DOCS / "data" / name).is_dir() else "")
+        assert generate.DATA_SOURCES[key].startswith("; ".join(meta["command"])), key
+        for command in meta["command"]:
+            argv = shlex.split(command)
+            if argv[0] == "python":  # a library module's own entry point
+                assert argv[1] == "-m" and importlib.util.find_spec(argv[2]), command
             else:
-                assert command[0] == "hubvib" and command[1] in commands, command
+                assert argv[0] == "hubvib" and argv[1] in commands, command
+            if argv[:2] in (["hubvib", "run"], ["hubvib", "signal"]):
+                scene = argv[2]
+                assert scene in shipped_scenes() or (ROOT / scene).is_file(), (
+                    f"{meta_path.name}: {command!r} names no shipped scene or file {scene!r}")
+            for flag in ("--design", "--params"):
+                if flag in argv:
+                    path = argv[argv.index(flag) + 1]
+                    assert (ROOT / path).is_file(), f"{meta_path.name}: no file {path}"
+            outputs = [argv[i + 1] for i, a in enumerate(argv[:-1]) if a in (">", "--out")]
+            assert outputs, f"{meta_path.name}: {command!r} writes into docs/data"
+            for out in outputs:
+                assert out == f"docs/data/{name}" or out.startswith(f"docs/data/{name}/"), (
+                    f"{meta_path.name}: {command!r} writes {out}, outside docs/data/{name}")
+
+
+def test_regenerate_script_covers_every_data_entry():
+    """docs/data/regenerate.sh reruns every entry once (its ENTRIES list) and reads the
+    commands from the meta files."""
+    script = (DOCS / "data" / "regenerate.sh").read_text()
+    listed = re.search(r"ENTRIES=\((.*?)\)", script, re.S).group(1).split()
+    assert sorted(listed) == _data_entries(), "regenerate.sh ENTRIES against docs/data"
+    assert len(set(listed)) == len(listed), "each entry once"
 
 
 def test_generated_tables_are_the_library_figures():

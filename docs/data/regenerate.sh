@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Rerun the commands whose output docs/data holds, in order, from the repository root, with
+# the hubvib (and python) of the current environment: each entry's commands are the
+# "command" list of docs/data/<entry>.meta.json; a folder entry with a "keep" list keeps only
+# those files of what its commands wrote. Prints each command and its seconds.
+#
+#   docs/data/regenerate.sh                 every entry (the benchmark alone takes ~30 min)
+#   docs/data/regenerate.sh raba118_signal  only the entries named
+#
+# Then record the date and the hubvib version in the entry's "measured" and rebuild the docs.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+PYTHON=${PYTHON:-python}
+
+# cheap first; every docs/data entry once (tests/test_docs.py checks the list)
+ENTRIES=(
+  stiffness_10mm.json
+  crack_path
+  crack_path_backup_ratio
+  convergence
+  convergence_work
+  raba118_crack
+  raba118_crack_path
+  raba118_signal
+  raba118_signal_planet_error
+  raba118_signal_noise0.5
+  raba118_signal_noise2
+  diagnosis
+  benchmark.json
+)
+
+meta() {  # meta ENTRY FIELD: the field's lines (a list field one item per line)
+  "$PYTHON" -c 'import json, sys
+value = json.load(open(sys.argv[1])).get(sys.argv[2], [])
+print("\n".join(value))' "docs/data/$1.meta.json" "$2"
+}
+
+selected=("${ENTRIES[@]}")
+if (($#)); then selected=("$@"); fi
+for entry in "${selected[@]}"; do
+  [[ -f docs/data/$entry.meta.json ]] || { echo "regenerate.sh: no docs/data/$entry.meta.json" >&2; exit 2; }
+  while IFS= read -r command; do
+    [[ -n $command ]] || continue
+    echo "+ $command"
+    start=$(date +%s)
+    bash -c "$command" </dev/null
+    echo "  $(($(date +%s) - start)) s"
+  done < <(meta "$entry" command)
+  mapfile -t keep < <(meta "$entry" keep)
+  if ((${#keep[@]})) && [[ -n ${keep[0]} ]]; then
+    for path in "docs/data/$entry"/* "docs/data/$entry"/.[!.]*; do
+      [[ -e $path ]] || continue
+      name=${path##*/}
+      [[ " ${keep[*]} " == *" $name "* ]] || rm -rf -- "$path"
+    done
+  fi
+done
