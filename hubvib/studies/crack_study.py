@@ -13,6 +13,7 @@ from __future__ import annotations
 import datetime
 import math
 import time
+from contextlib import ExitStack
 from dataclasses import asdict, dataclass, field
 from importlib import metadata
 from pathlib import Path
@@ -29,11 +30,12 @@ from hubvib.foundation.output import write_csv, write_json, write_text
 from hubvib.lumped import Spectrum, frequency_sensitivity, natural_modes
 from hubvib.lumped.tracking import match
 from hubvib.meshing.levels import scaled_options
-from hubvib.render.cache import array_digest, cached_render
+from hubvib.render.cache import array_digest, cached_render, is_cached
 from hubvib.render.captions import figure_lines
 from hubvib.render.html import write_html_reports
 from hubvib.render.fe import render_fe, ring_fields
 from hubvib.render.modes import render_modes
+from hubvib.runtime.background import background
 from hubvib.runtime.engines import Execution
 from hubvib.runtime.fe_cache import fe_version
 from hubvib.runtime.progress import stage, working
@@ -154,10 +156,13 @@ class CrackStudyResult:
 
 
 def run_crack_study(scene: Scene, progress: bool = True, detection: bool = True,
-                    workers: int = 2) -> CrackStudyResult:
-    """FE cases (cached), lumped spectra per depth, and the detection study."""
+                    workers: int = 2, after_fe=None) -> CrackStudyResult:
+    """FE cases (cached), lumped spectra per depth, and the detection study;
+    ``after_fe()`` is called between the FE cases and the lumped stage."""
     fe, computed = run_fe_cases(scene.crack, progress,
                                 scene.tables.get("execution", Execution()))
+    if after_fe is not None:
+        after_fe()
     return crack_study_from_fe(scene, fe, computed, detection=detection, workers=workers)
 
 
@@ -200,8 +205,10 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
                             model=model, detection=study, c_rp_comparison=comparison)
 
 
-def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResult:
-    """Tables (CSV, JSON), plots, renders and ``report.md`` in ``folder``."""
+def write_crack_study(result: CrackStudyResult, folder: Path,
+                      fe_render=None) -> CrackStudyResult:
+    """Tables (CSV, JSON), plots, renders and ``report.md`` in ``folder``; ``fe_render``
+    (``fe_render_beside(scene, folder)``), the FE ring's render begun earlier."""
     folder = Path(folder)
     scene = result.scene
     study = result.detection
@@ -260,7 +267,8 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
     if scene.renders:
         renders = _render_modes(scene, result.spectra[0], folder / "renders")
         # the FE render is of the plane ring; a solid study's crack is part-width
-        fe_renders = _render_fe(scene, folder / "renders") if scene.crack.model == "plane" else []
+        fe_renders = ([] if scene.crack.model != "plane" else fe_render.result()
+                      if fe_render is not None else _render_fe(scene, folder / "renders"))
     files += plots + renders + fe_renders
 
     def pictures(paths):
@@ -343,18 +351,43 @@ def _render_modes(scene: Scene, spectrum, folder: Path) -> list[Path]:
 def _render_fe(scene: Scene, folder: Path) -> list[Path]:
     """The FE ring at the rendered depth (``fe_render``), from the render cache when the
     same design, crack and mesh were rendered by this FE stage before."""
-    depth = rendered_depth(scene.crack)
-    crack = crack_of(scene.crack, depth) if depth > 0 else None
-    options = scaled_options(ACCURACY[scene.crack.accuracy])
+    return render_fe_ring(scene.crack, scene.vtm, folder)
+
+
+def _fe_render_case(sweep: CrackSweep, vtm: bool) -> tuple:
+    """The crack and mesh options the FE ring is rendered with, and the render cache's
+    inputs (everything that decides the pictures)."""
+    depth = rendered_depth(sweep)
+    crack = crack_of(sweep, depth) if depth > 0 else None
+    options = scaled_options(ACCURACY[sweep.accuracy])
+    inputs = {"design": sweep.reducer.fingerprint(),
+              "crack": None if crack is None else asdict(crack), "options": asdict(options),
+              "vtu": vtm, "fe": fe_version()}
+    return crack, options, inputs
+
+
+def render_fe_ring(sweep: CrackSweep, vtm: bool, folder: Path) -> list[Path]:
+    """``_render_fe`` from the sweep alone (picklable arguments: it may run in a worker,
+    ``fe_render_beside``)."""
+    crack, options, inputs = _fe_render_case(sweep, vtm)
 
     def render(target):
-        return render_fe(ring_fields(scene.crack.reducer, crack, options), target,
-                         vtu=scene.vtm)
+        return render_fe(ring_fields(sweep.reducer, crack, options), target, vtu=vtm)
 
-    inputs = {"design": scene.crack.reducer.fingerprint(),
-              "crack": None if crack is None else asdict(crack), "options": asdict(options),
-              "vtu": scene.vtm, "fe": fe_version()}
     return cached_render("fe-ring", inputs, folder, render)
+
+
+def fe_render_beside(scene: Scene, folder: Path):
+    """A context whose value renders the FE ring into ``folder / "renders"`` (its
+    ``result()``: the files), in a worker process beside the caller's lumped, detection
+    and plotting work when the scene renders a plane ring that the render cache does not
+    hold; otherwise (nothing to render, or a cached copy) in this process on ``result()``.
+    The FE ring's pictures need only the scene, not the FE results."""
+    sweep = scene.crack
+    wanted = scene.renders and sweep.model == "plane"
+    inline = not wanted or is_cached("fe-ring", _fe_render_case(sweep, scene.vtm)[2])
+    return background(render_fe_ring, sweep, scene.vtm, Path(folder) / "renders",
+                      inline=inline)
 
 
 def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
@@ -487,22 +520,30 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
 
 
 def _run(scene: Scene, staged: Path) -> CrackStudyResult:
-    started = time.perf_counter()
-    with working("FE stage and lumped spectra"):
-        result = run_crack_study(scene)
-    stage(f"FE stage ({result.computed} of {len(result.fe)} cases computed) and lumped "
-          "spectra", started)
-    started = time.perf_counter()
-    if "signal" in scene.tables:  # the vibration signature beside the frequency study
-        with working("signals"):
-            study = run_signal_study(scene)
-        stage(f"signals of {len(study.depths)} crack depth(s)", started)
-        with working("signal tables and plots"):
-            signal_files = write_signal_study(study, staged / "signal",
-                                              plots=scene.plots)["files"]
+    """FE cases, lumped and detection stages, files; the FE ring's render (it needs only
+    the scene) runs in a worker from the end of the FE cases until the files need it."""
+    with ExitStack() as beside:
+        fe_render = []
+
+        def begin_render():
+            fe_render.append(beside.enter_context(fe_render_beside(scene, staged)))
+
         started = time.perf_counter()
-    with working("tables, plots, renders and report"):
-        write_crack_study(result, staged)
+        with working("FE stage and lumped spectra"):
+            result = run_crack_study(scene, after_fe=begin_render)
+        stage(f"FE stage ({result.computed} of {len(result.fe)} cases computed) and lumped "
+              "spectra", started)
+        started = time.perf_counter()
+        if "signal" in scene.tables:  # the vibration signature beside the frequency study
+            with working("signals"):
+                study = run_signal_study(scene)
+            stage(f"signals of {len(study.depths)} crack depth(s)", started)
+            with working("signal tables and plots"):
+                signal_files = write_signal_study(study, staged / "signal",
+                                                  plots=scene.plots)["files"]
+            started = time.perf_counter()
+        with working("tables, plots, renders and report"):
+            write_crack_study(result, staged, fe_render[0] if fe_render else None)
     if "signal" in scene.tables:
         report = staged / "report.md"
         write_text(report, report.read_text(encoding="utf-8") + SIGNAL_SECTION)
