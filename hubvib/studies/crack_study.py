@@ -39,6 +39,7 @@ from hubvib.runtime.background import background
 from hubvib.runtime.engines import Execution
 from hubvib.runtime.fe_cache import fe_version
 from hubvib.runtime.progress import stage, working
+from hubvib.runtime.stage_seconds import timed
 from hubvib.signal.report import write_signal_study
 from hubvib.signal.study import run_signal_study
 from hubvib.studies.crack_sweep import ACCURACY, CrackSweep, PlaneCase, crack_of, run_fe_cases
@@ -159,8 +160,9 @@ def run_crack_study(scene: Scene, progress: bool = True, detection: bool = True,
                     workers: int = 2, after_fe=None) -> CrackStudyResult:
     """FE cases (cached), lumped spectra per depth, and the detection study;
     ``after_fe()`` is called between the FE cases and the lumped stage."""
-    fe, computed = run_fe_cases(scene.crack, progress,
-                                scene.tables.get("execution", Execution()))
+    with timed("fe"):
+        fe, computed = run_fe_cases(scene.crack, progress,
+                                    scene.tables.get("execution", Execution()))
     if after_fe is not None:
         after_fe()
     return crack_study_from_fe(scene, fe, computed, detection=detection, workers=workers)
@@ -174,19 +176,29 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
     ``timing`` (a ``detection.carrier.MeshTiming``) defaults to the scene's design at
     the ``[detection]`` carrier speed.
     """
-    model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
-                               c_rp_given=scene.c_rp_given)
-    c_ru, c_r = model.c_ru, model.c_r
-    c_rp_factor = np.asarray(model.c_rp_factor())
-    spectra = [natural_modes(model.parameters(k), scene.method) for k in range(len(fe))]
-    n = spectra[0].omega.size
-    omega = np.empty((len(spectra), n))
-    omega[0] = spectra[0].omega
-    order = np.arange(n)
-    for k in range(1, len(spectra)):
-        step, _ = match(spectra[k - 1], spectra[k])
-        order = step[order]
-        omega[k] = spectra[k].omega[order]
+    with timed("lumped"):
+        model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
+                                   c_rp_given=scene.c_rp_given)
+        c_ru, c_r = model.c_ru, model.c_r
+        c_rp_factor = np.asarray(model.c_rp_factor())
+        spectra = [natural_modes(model.parameters(k), scene.method) for k in range(len(fe))]
+        n = spectra[0].omega.size
+        omega = np.empty((len(spectra), n))
+        omega[0] = spectra[0].omega
+        order = np.arange(n)
+        for k in range(1, len(spectra)):
+            step, _ = match(spectra[k - 1], spectra[k])
+            order = step[order]
+            omega[k] = spectra[k].omega[order]
+    with timed("detection"):
+        study, comparison = _detection(scene, model, detection, timing, workers)
+    return CrackStudyResult(scene, fe, c_ru, c_r, c_rp_factor, spectra, omega, computed,
+                            model=model, detection=study, c_rp_comparison=comparison)
+
+
+def _detection(scene: Scene, model: CrackModel, detection: bool, timing, workers: int):
+    """The detection study (if ``detection``) and the comparison of the c_rp methods (where
+    they differ), each from its result cache."""
     study = comparison = None
     if detection or model.c_rp_differs:
         from hubvib.detection.carrier import mesh_timing
@@ -201,8 +213,7 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
             comparison = cached_compare_methods(model, timing, options.record_length,
                                                 options if detection else None,
                                                 workers=workers)
-    return CrackStudyResult(scene, fe, c_ru, c_r, c_rp_factor, spectra, omega, computed,
-                            model=model, detection=study, c_rp_comparison=comparison)
+    return study, comparison
 
 
 def write_crack_study(result: CrackStudyResult, folder: Path,
@@ -246,29 +257,15 @@ def write_crack_study(result: CrackStudyResult, folder: Path,
         "c_rp_other_method_family_pod": _other_family_pod(result.c_rp_comparison)})))
     plots = []
     if scene.plots:
-        from hubvib.detection import plots as figures
-        from hubvib.detection.study import cached_plot
-
-        name = scene.name
-        plots = [cached_plot(folder / "frequency_vs_depth.png", figures.relative_shift_figure,
-                             name, result.depths, result.omega, result.kind)]
-        if study is not None:
-            deepest = float(result.depths[-1])
-            plots += [
-                cached_plot(folder / "shift_vs_depth.png", figures.shift_threshold_figure,
-                            name, study.pod),
-                cached_plot(folder / "detectability_map.png", figures.map_figure, name,
-                            study.map, deepest, float(result.depths[1])),
-                cached_plot(folder / "pod.png", figures.pod_figure, name, study.pod,
-                            _pod_modes(study)),
-                cached_plot(folder / "carrier_position.png", figures.carrier_figure, name,
-                            study.carrier, result.kind)]
+        with timed("plots"):
+            plots = _plots(scene, result, study, folder)
     renders, fe_renders = [], []
     if scene.renders:
-        renders = _render_modes(scene, result.spectra[0], folder / "renders")
-        # the FE render is of the plane ring; a solid study's crack is part-width
-        fe_renders = ([] if scene.crack.model != "plane" else fe_render.result()
-                      if fe_render is not None else _render_fe(scene, folder / "renders"))
+        with timed("render"):
+            renders = _render_modes(scene, result.spectra[0], folder / "renders")
+            # the FE render is of the plane ring; a solid study's crack is part-width
+            fe_renders = ([] if scene.crack.model != "plane" else fe_render.result()
+                          if fe_render is not None else _render_fe(scene, folder / "renders"))
     files += plots + renders + fe_renders
 
     def pictures(paths):
@@ -278,6 +275,28 @@ def write_crack_study(result: CrackStudyResult, folder: Path,
         result, [p.name for p in plots], pictures(renders), pictures(fe_renders))))
     result.files = files
     return result
+
+
+def _plots(scene: Scene, result: CrackStudyResult, study, folder: Path) -> list[Path]:
+    """The study's PNG figures (each from the result cache when drawn before)."""
+    from hubvib.detection import plots as figures
+    from hubvib.detection.study import cached_plot
+
+    name = scene.name
+    plots = [cached_plot(folder / "frequency_vs_depth.png", figures.relative_shift_figure,
+                         name, result.depths, result.omega, result.kind)]
+    if study is not None:
+        deepest = float(result.depths[-1])
+        plots += [
+            cached_plot(folder / "shift_vs_depth.png", figures.shift_threshold_figure,
+                        name, study.pod),
+            cached_plot(folder / "detectability_map.png", figures.map_figure, name,
+                        study.map, deepest, float(result.depths[1])),
+            cached_plot(folder / "pod.png", figures.pod_figure, name, study.pod,
+                        _pod_modes(study)),
+            cached_plot(folder / "carrier_position.png", figures.carrier_figure, name,
+                        study.carrier, result.kind)]
+    return plots
 
 
 def _other_family_pod(comparison) -> dict | None:
@@ -542,13 +561,14 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
                 signal_files = write_signal_study(study, staged / "signal",
                                                   plots=scene.plots)["files"]
             started = time.perf_counter()
-        with working("tables, plots, renders and report"):
+        with working("tables, plots, renders and report"), timed("write"):
             write_crack_study(result, staged, fe_render[0] if fe_render else None)
-    if "signal" in scene.tables:
-        report = staged / "report.md"
-        write_text(report, report.read_text(encoding="utf-8") + SIGNAL_SECTION)
-        result.files += [staged / "signal" / f for f in signal_files]
-    result.files += [p for p in write_html_reports(staged) if p not in result.files]
+    with timed("write"):
+        if "signal" in scene.tables:
+            report = staged / "report.md"
+            write_text(report, report.read_text(encoding="utf-8") + SIGNAL_SECTION)
+            result.files += [staged / "signal" / f for f in signal_files]
+        result.files += [p for p in write_html_reports(staged) if p not in result.files]
     stage("tables, plots, renders and report", started)
     return result
 
