@@ -79,7 +79,8 @@ def parse_execution_table(table: dict) -> Execution:
     return Execution(**values)
 
 
-def run_cases(function, items: list, on_result, execution: Execution, workers: int) -> None:
+def run_cases(function, items: list, on_result, execution: Execution, workers: int,
+              pool=None) -> None:
     """``on_result(item, function(item))`` for every item, in completion order.
 
     A case that raises does not stop the others; afterwards one ``EngineError``
@@ -87,7 +88,9 @@ def run_cases(function, items: list, on_result, execution: Execution, workers: i
     thread each (``SINGLE_THREADED``), so both engines give the same numbers to the
     last digit; with one worker (or one case left, as after a killed run) the local
     engine runs the cases in this process, with its BLAS limited to one thread as
-    well: same threads, same digits.
+    well: same threads, same digits.  ``pool`` (a ``worker_pool``, local engine): run
+    them there instead of in a pool of their own, and leave it open (the caller goes on
+    using its warm workers, see ``submit``).
     """
     if not items:
         return
@@ -97,7 +100,7 @@ def run_cases(function, items: list, on_result, execution: Execution, workers: i
     elif workers == 1 or len(items) == 1:
         failures = _run_here(function, items, on_result)
     else:
-        failures = _run_pool(function, items, on_result, workers)
+        failures = _run_pool(function, items, on_result, workers, pool)
     if failures:
         raise EngineError(_failure_text(failures))
 
@@ -197,18 +200,26 @@ def _environment(values: dict):
                 os.environ[key] = value
 
 
-def _run_pool(function, items, on_result, workers) -> list:
+def submit(pool, function, *args):
+    """``pool.submit(function, *args)`` with the environment of ``SINGLE_THREADED`` (a
+    worker spawned by this submit gets one BLAS thread, as every case worker)."""
+    with _environment(SINGLE_THREADED):  # the workers are spawned on submit
+        return pool.submit(function, *args)
+
+
+def _run_pool(function, items, on_result, workers, pool=None) -> list:
+    if pool is None:
+        with worker_pool(min(workers, len(items))) as own:
+            return _run_pool(function, items, on_result, workers, own)
     failures = []
-    with worker_pool(min(workers, len(items))) as pool:
-        with _environment(SINGLE_THREADED):  # the workers are spawned on submit
-            futures = {pool.submit(function, item): item for item in items}
-        for future in as_completed(futures):
-            try:
-                result = future.result()
-            except Exception as exc:  # noqa: BLE001 - reported per case below
-                failures.append((futures[future], f"{type(exc).__name__}: {exc}"))
-                continue
-            on_result(futures[future], result)
+    futures = {submit(pool, function, item): item for item in items}
+    for future in as_completed(futures):
+        try:
+            result = future.result()
+        except Exception as exc:  # noqa: BLE001 - reported per case below
+            failures.append((futures[future], f"{type(exc).__name__}: {exc}"))
+            continue
+        on_result(futures[future], result)
     return failures
 
 

@@ -35,9 +35,9 @@ from hubvib.render.captions import figure_lines
 from hubvib.render.html import write_html_reports
 from hubvib.render.fe import render_fe, ring_fields
 from hubvib.render.modes import render_modes
-from hubvib.runtime.background import background
-from hubvib.runtime.engines import Execution
+from hubvib.runtime.engines import Execution, submit
 from hubvib.runtime.fe_cache import fe_version
+from hubvib.runtime.process_pool import worker_pool
 from hubvib.runtime.progress import stage, working
 from hubvib.runtime.stage_seconds import timed
 from hubvib.signal.report import write_signal_study
@@ -157,24 +157,28 @@ class CrackStudyResult:
 
 
 def run_crack_study(scene: Scene, progress: bool = True, detection: bool = True,
-                    workers: int = 2, after_fe=None) -> CrackStudyResult:
-    """FE cases (cached), lumped spectra per depth, and the detection study;
-    ``after_fe()`` is called between the FE cases and the lumped stage."""
+                    workers: int = 2, pool=None, after_fe=None,
+                    on_spectra=None) -> CrackStudyResult:
+    """FE cases (cached; in ``pool``, a ``worker_pool``, when given), lumped spectra per
+    depth, and the detection study; ``after_fe()`` is called between the FE cases and the
+    lumped stage, ``on_spectra`` as in ``crack_study_from_fe``."""
     with timed("fe"):
         fe, computed = run_fe_cases(scene.crack, progress,
-                                    scene.tables.get("execution", Execution()))
+                                    scene.tables.get("execution", Execution()), pool)
     if after_fe is not None:
         after_fe()
-    return crack_study_from_fe(scene, fe, computed, detection=detection, workers=workers)
+    return crack_study_from_fe(scene, fe, computed, detection=detection, workers=workers,
+                               on_spectra=on_spectra)
 
 
 def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
                         detection: bool = True, timing=None,
-                        workers: int = 1) -> CrackStudyResult:
+                        workers: int = 1, on_spectra=None) -> CrackStudyResult:
     """The lumped and detection stages from FE rows (``crack_sweep.fe_case`` keys).
 
     ``timing`` (a ``detection.carrier.MeshTiming``) defaults to the scene's design at
-    the ``[detection]`` carrier speed.
+    the ``[detection]`` carrier speed; ``on_spectra(spectra)`` is called with the lumped
+    spectra before the detection stage.
     """
     with timed("lumped"):
         model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
@@ -190,6 +194,8 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
             step, _ = match(spectra[k - 1], spectra[k])
             order = step[order]
             omega[k] = spectra[k].omega[order]
+    if on_spectra is not None:
+        on_spectra(spectra)
     with timed("detection"):
         study, comparison = _detection(scene, model, detection, timing, workers)
     return CrackStudyResult(scene, fe, c_ru, c_r, c_rp_factor, spectra, omega, computed,
@@ -217,9 +223,10 @@ def _detection(scene: Scene, model: CrackModel, detection: bool, timing, workers
 
 
 def write_crack_study(result: CrackStudyResult, folder: Path,
-                      fe_render=None) -> CrackStudyResult:
-    """Tables (CSV, JSON), plots, renders and ``report.md`` in ``folder``; ``fe_render``
-    (``fe_render_beside(scene, folder)``), the FE ring's render begun earlier."""
+                      begun: dict | None = None) -> CrackStudyResult:
+    """Tables (CSV, JSON), plots, renders and ``report.md`` in ``folder``; ``begun``: the
+    renders begun in workers (``"modes"``, ``"fe"``: each with ``result()``, the files)."""
+    begun = begun or {}
     folder = Path(folder)
     scene = result.scene
     study = result.detection
@@ -262,10 +269,11 @@ def write_crack_study(result: CrackStudyResult, folder: Path,
     renders, fe_renders = [], []
     if scene.renders:
         with timed("render"):
-            renders = _render_modes(scene, result.spectra[0], folder / "renders")
+            renders = (begun["modes"].result() if "modes" in begun else
+                       _render_modes(scene, result.spectra[0], folder / "renders"))
             # the FE render is of the plane ring; a solid study's crack is part-width
-            fe_renders = ([] if scene.crack.model != "plane" else fe_render.result()
-                          if fe_render is not None else _render_fe(scene, folder / "renders"))
+            fe_renders = ([] if scene.crack.model != "plane" else begun["fe"].result()
+                          if "fe" in begun else _render_fe(scene, folder / "renders"))
     files += plots + renders + fe_renders
 
     def pictures(paths):
@@ -358,13 +366,23 @@ def rendered_depth(sweep) -> float:
 def _render_modes(scene: Scene, spectrum, folder: Path) -> list[Path]:
     """Every elastic lumped mode (``render.render_modes``), from the render cache when the
     same spectrum was rendered before."""
-    def render(target):
-        return render_modes(scene.params, spectrum, target, gif=scene.gif, vtm=scene.vtm)
+    return render_mode_shapes(scene.params, spectrum, scene.gif, scene.vtm, folder)
 
-    inputs = {"params": scene.params.to_dict(), "omega": array_digest(spectrum.omega),
-              "shapes": array_digest(spectrum.shapes), "kind": list(spectrum.kind),
-              "gif": scene.gif, "vtm": scene.vtm}
-    return cached_render("modes", inputs, folder, render)
+
+def _mode_render_inputs(params, spectrum, gif: bool, vtm: bool) -> dict:
+    """The render cache's inputs of the lumped mode pictures."""
+    return {"params": params.to_dict(), "omega": array_digest(spectrum.omega),
+            "shapes": array_digest(spectrum.shapes), "kind": list(spectrum.kind),
+            "gif": gif, "vtm": vtm}
+
+
+def render_mode_shapes(params, spectrum, gif: bool, vtm: bool, folder: Path) -> list[Path]:
+    """``_render_modes`` from picklable arguments (it may run in a worker)."""
+    def render(target):
+        return render_modes(params, spectrum, target, gif=gif, vtm=vtm)
+
+    return cached_render("modes", _mode_render_inputs(params, spectrum, gif, vtm), folder,
+                         render)
 
 
 def _render_fe(scene: Scene, folder: Path) -> list[Path]:
@@ -396,17 +414,23 @@ def render_fe_ring(sweep: CrackSweep, vtm: bool, folder: Path) -> list[Path]:
     return cached_render("fe-ring", inputs, folder, render)
 
 
-def fe_render_beside(scene: Scene, folder: Path):
-    """A context whose value renders the FE ring into ``folder / "renders"`` (its
-    ``result()``: the files), in a worker process beside the caller's lumped, detection
-    and plotting work when the scene renders a plane ring that the render cache does not
-    hold; otherwise (nothing to render, or a cached copy) in this process on ``result()``.
-    The FE ring's pictures need only the scene, not the FE results."""
-    sweep = scene.crack
-    wanted = scene.renders and sweep.model == "plane"
-    inline = not wanted or is_cached("fe-ring", _fe_render_case(sweep, scene.vtm)[2])
-    return background(render_fe_ring, sweep, scene.vtm, Path(folder) / "renders",
-                      inline=inline)
+def begin_renders(scene: Scene, folder: Path, pool, begun: dict, spectrum=None) -> None:
+    """Submit to ``pool`` (a ``worker_pool``) the renders that the render cache does not
+    hold: the FE ring's (``spectrum`` None: it needs only the scene) or the lumped modes'
+    (of ``spectrum``, the intact one), into ``folder / "renders"``; ``begun`` gets their
+    futures (``write_crack_study``).  They then run on the pool's workers, idle after the
+    FE cases, beside this process's detection stage and plots."""
+    if not scene.renders or pool is None:
+        return
+    target = Path(folder) / "renders"
+    if spectrum is not None:
+        inputs = _mode_render_inputs(scene.params, spectrum, scene.gif, scene.vtm)
+        if not is_cached("modes", inputs):
+            begun["modes"] = submit(pool, render_mode_shapes, scene.params, spectrum,
+                                    scene.gif, scene.vtm, target)
+    elif scene.crack.model == "plane" and not is_cached(
+            "fe-ring", _fe_render_case(scene.crack, scene.vtm)[2]):
+        begun["fe"] = submit(pool, render_fe_ring, scene.crack, scene.vtm, target)
 
 
 def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
@@ -539,17 +563,27 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
 
 
 def _run(scene: Scene, staged: Path) -> CrackStudyResult:
-    """FE cases, lumped and detection stages, files; the FE ring's render (it needs only
-    the scene) runs in a worker from the end of the FE cases until the files need it."""
+    """FE cases, lumped and detection stages, files.  With the local engine and more than
+    one worker, one pool serves the FE cases and then the renders (the FE ring's needs only
+    the scene, the modes' the intact spectrum): they run on its warm workers beside the
+    detection stage and the plots here."""
+    execution = scene.tables.get("execution", Execution())
+    workers = execution.workers or scene.crack.workers
     with ExitStack() as beside:
-        fe_render = []
+        pool = (beside.enter_context(worker_pool(workers))
+                if execution.engine == "local" and workers > 1 else None)
+        begun = {}
 
-        def begin_render():
-            fe_render.append(beside.enter_context(fe_render_beside(scene, staged)))
+        def after_fe():
+            begin_renders(scene, staged, pool, begun)
+
+        def on_spectra(spectra):
+            begin_renders(scene, staged, pool, begun, spectra[0])
 
         started = time.perf_counter()
         with working("FE stage and lumped spectra"):
-            result = run_crack_study(scene, after_fe=begin_render)
+            result = run_crack_study(scene, pool=pool, after_fe=after_fe,
+                                     on_spectra=on_spectra)
         stage(f"FE stage ({result.computed} of {len(result.fe)} cases computed) and lumped "
               "spectra", started)
         started = time.perf_counter()
@@ -562,7 +596,7 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
                                                   plots=scene.plots)["files"]
             started = time.perf_counter()
         with working("tables, plots, renders and report"), timed("write"):
-            write_crack_study(result, staged, fe_render[0] if fe_render else None)
+            write_crack_study(result, staged, begun)
     with timed("write"):
         if "signal" in scene.tables:
             report = staged / "report.md"
