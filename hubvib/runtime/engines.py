@@ -14,6 +14,7 @@ Workers compute and return results; the calling process alone writes them
 from __future__ import annotations
 
 import asyncio
+import importlib.util
 import logging
 import os
 import socket
@@ -167,6 +168,7 @@ def _failure_text(failures: list) -> str:
 
 def _run_here(function, items, on_result) -> list:
     """In this process, one item after the other; a failure does not stop the others."""
+    _load_mkl()
     failures = []
     for item in items:
         try:
@@ -177,6 +179,20 @@ def _run_here(function, items, on_result) -> list:
             continue
         on_result(item, result)
     return failures
+
+
+def _load_mkl() -> None:
+    """Load MKL (PARDISO's library) before ``blas_threads(1)`` looks for the loaded BLAS
+    libraries: loaded inside the block, by the first case, it kept its default threads
+    there, and that case's last digits differed from a pool worker's."""
+    if importlib.util.find_spec("pypardiso") is None:
+        return
+    from hubvib.fem.pardiso import _library
+
+    try:
+        _library()
+    except (OSError, AttributeError, ImportError):
+        pass  # no MKL: the FE stage uses SuperLU, which blas_threads limits
 
 
 #: set in every worker, as Dask's nanny does (``distributed.nanny.pre-spawn-environ``):
