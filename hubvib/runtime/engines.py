@@ -81,7 +81,7 @@ def parse_execution_table(table: dict) -> Execution:
 
 
 def run_cases(function, items: list, on_result, execution: Execution, workers: int,
-              pool=None) -> None:
+              pool=None, after_submit=None) -> None:
     """``on_result(item, function(item))`` for every item, in completion order.
 
     A case that raises does not stop the others; afterwards one ``EngineError``
@@ -91,7 +91,8 @@ def run_cases(function, items: list, on_result, execution: Execution, workers: i
     engine runs the cases in this process, with its BLAS limited to one thread as
     well: same threads, same digits.  ``pool`` (a ``worker_pool``, local engine): run
     them there instead of in a pool of their own, and leave it open (the caller goes on
-    using its warm workers, see ``submit``).
+    using its warm workers, see ``submit``); ``after_submit()`` is then called once every
+    case is queued, so that what it submits runs on the first worker the cases leave idle.
     """
     if not items:
         return
@@ -101,7 +102,7 @@ def run_cases(function, items: list, on_result, execution: Execution, workers: i
     elif workers == 1 or len(items) == 1:
         failures = _run_here(function, items, on_result)
     else:
-        failures = _run_pool(function, items, on_result, workers, pool)
+        failures = _run_pool(function, items, on_result, workers, pool, after_submit)
     if failures:
         raise EngineError(_failure_text(failures))
 
@@ -223,12 +224,14 @@ def submit(pool, function, *args):
         return pool.submit(function, *args)
 
 
-def _run_pool(function, items, on_result, workers, pool=None) -> list:
+def _run_pool(function, items, on_result, workers, pool=None, after_submit=None) -> list:
     if pool is None:
         with worker_pool(min(workers, len(items))) as own:
             return _run_pool(function, items, on_result, workers, own)
     failures = []
     futures = {submit(pool, function, item): item for item in items}
+    if after_submit is not None:
+        after_submit()
     for future in as_completed(futures):
         try:
             result = future.result()

@@ -160,11 +160,13 @@ def run_crack_study(scene: Scene, progress: bool = True, detection: bool = True,
                     workers: int = 2, pool=None, after_fe=None,
                     on_spectra=None) -> CrackStudyResult:
     """FE cases (cached; in ``pool``, a ``worker_pool``, when given), lumped spectra per
-    depth, and the detection study; ``after_fe()`` is called between the FE cases and the
-    lumped stage, ``on_spectra`` as in ``crack_study_from_fe``."""
+    depth, and the detection study; ``after_fe()`` is called when the FE cases are queued
+    in the pool (if they are) and again when they are done, ``on_spectra`` as in
+    ``crack_study_from_fe``."""
     with timed("fe"):
         fe, computed = run_fe_cases(scene.crack, progress,
-                                    scene.tables.get("execution", Execution()), pool)
+                                    scene.tables.get("execution", Execution()), pool,
+                                    after_fe)
     if after_fe is not None:
         after_fe()
     return crack_study_from_fe(scene, fe, computed, detection=detection, workers=workers,
@@ -418,9 +420,11 @@ def begin_renders(scene: Scene, folder: Path, pool, begun: dict, spectrum=None) 
     """Submit to ``pool`` (a ``worker_pool``) the renders that the render cache does not
     hold: the FE ring's (``spectrum`` None: it needs only the scene) or the lumped modes'
     (of ``spectrum``, the intact one), into ``folder / "renders"``; ``begun`` gets their
-    futures (``write_crack_study``).  They then run on the pool's workers, idle after the
-    FE cases, beside this process's detection stage and plots."""
-    if not scene.renders or pool is None:
+    futures (``write_crack_study``; one already begun is not submitted again).  Queued
+    behind the FE cases, they run on the pool's workers as the cases leave them idle,
+    beside this process's detection stage and plots."""
+    kind = "fe" if spectrum is None else "modes"
+    if not scene.renders or pool is None or kind in begun:
         return
     target = Path(folder) / "renders"
     if spectrum is not None:
