@@ -192,8 +192,8 @@ def _load_mkl() -> None:
 
     try:
         _library()
-    except (OSError, AttributeError, ImportError):
-        pass  # no MKL: the FE stage uses SuperLU, which blas_threads limits
+    except Exception:  # noqa: BLE001 - no usable MKL: the case reports it if it needs it
+        pass
 
 
 #: set in every worker, as Dask's nanny does (``distributed.nanny.pre-spawn-environ``):
