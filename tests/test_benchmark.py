@@ -127,6 +127,7 @@ def test_main_job_and_test_command_failures_are_named_not_timed(monkeypatch):
     monkeypatch.setattr(subprocess, "run", failing)
     assert main_job() == {"main_job_fresh_seconds": None,
                                     "main_job_cached_seconds": None,
+                                    "main_job_stage_seconds": None,
                                     "main_job_skipped": "hubvib run (fresh) failed: hubvib: "
                                                         "error: no display"}
     assert readme_test_command() == {

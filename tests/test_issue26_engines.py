@@ -38,6 +38,9 @@ def test_a_case_run_in_process_has_the_pool_workers_blas_threads():
 def test_in_process_cases_restore_the_threads_after():
     """Item 11: the limit holds only while the case runs (the lumped batch and the report
     keep the process's own threads)."""
+    from hubvib.runtime.engines import _load_mkl
+
+    _load_mkl()  # as in-process cases do first: MKL's threads are among those compared
     before = blas_thread_counts()
     here = _collect(["c"], workers=1)
     assert set(here["c"][1]) <= {1}

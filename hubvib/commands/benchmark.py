@@ -55,6 +55,9 @@ def run(args) -> int:
         ratio = f"{base / value:7.2f}" if base else f"{'':7}"
         base_text = f"{base:11.3g}" if base else f"{'':11}"
         print(f"{label + (f' [{unit}]' if unit else ''):<52} {value:11.3g} {base_text} {ratio}")
+    if figures.get("main_job_stage_seconds"):
+        print("main job, empty cache, per stage [s]: " + ", ".join(
+            f"{key} {value:.3g}" for key, value in figures["main_job_stage_seconds"].items()))
     for key in ("solid_skipped", "calculix_skipped", "lumped_skipped", "signal_skipped",
                 "main_job_skipped", "tests_skipped"):
         if key in figures:

@@ -64,8 +64,7 @@ def cached_render(kind: str, inputs: dict, folder: Path, render) -> list[Path]:
     """``render(target)`` (returns the files it wrote below ``target``) once per ``inputs``;
     the files land in ``folder`` either way and their paths there are returned."""
     folder = Path(folder)
-    key = hashlib.sha256(canonical([kind, render_version(), inputs]).encode()).hexdigest()[:24]
-    entry = cache_folder() / f"{kind}-{key}"
+    entry = _entry(kind, inputs)
     listed = _verified(entry, notice=True) or _render_into(entry, render)
     if listed is not None:
         try:
@@ -77,6 +76,17 @@ def cached_render(kind: str, inputs: dict, folder: Path, render) -> list[Path]:
         except OSError:  # the entry went away meanwhile (another run replacing it)
             pass
     return render(folder)
+
+
+def is_cached(kind: str, inputs: dict) -> bool:
+    """Whether ``cached_render(kind, inputs, ...)`` would copy a complete, checked entry
+    (no notice printed here: ``cached_render`` says it when it renders again)."""
+    return _verified(_entry(kind, inputs)) is not None
+
+
+def _entry(kind: str, inputs: dict) -> Path:
+    key = hashlib.sha256(canonical([kind, render_version(), inputs]).encode()).hexdigest()[:24]
+    return cache_folder() / f"{kind}-{key}"
 
 
 def _safe(name) -> bool:

@@ -14,6 +14,7 @@ Workers compute and return results; the calling process alone writes them
 from __future__ import annotations
 
 import asyncio
+import importlib.util
 import logging
 import os
 import socket
@@ -79,7 +80,8 @@ def parse_execution_table(table: dict) -> Execution:
     return Execution(**values)
 
 
-def run_cases(function, items: list, on_result, execution: Execution, workers: int) -> None:
+def run_cases(function, items: list, on_result, execution: Execution, workers: int,
+              pool=None, after_submit=None) -> None:
     """``on_result(item, function(item))`` for every item, in completion order.
 
     A case that raises does not stop the others; afterwards one ``EngineError``
@@ -87,7 +89,10 @@ def run_cases(function, items: list, on_result, execution: Execution, workers: i
     thread each (``SINGLE_THREADED``), so both engines give the same numbers to the
     last digit; with one worker (or one case left, as after a killed run) the local
     engine runs the cases in this process, with its BLAS limited to one thread as
-    well: same threads, same digits.
+    well: same threads, same digits.  ``pool`` (a ``worker_pool``, local engine): run
+    them there instead of in a pool of their own, and leave it open (the caller goes on
+    using its warm workers, see ``submit``); ``after_submit()`` is then called once every
+    case is queued, so that what it submits runs on the first worker the cases leave idle.
     """
     if not items:
         return
@@ -97,7 +102,7 @@ def run_cases(function, items: list, on_result, execution: Execution, workers: i
     elif workers == 1 or len(items) == 1:
         failures = _run_here(function, items, on_result)
     else:
-        failures = _run_pool(function, items, on_result, workers)
+        failures = _run_pool(function, items, on_result, workers, pool, after_submit)
     if failures:
         raise EngineError(_failure_text(failures))
 
@@ -164,6 +169,7 @@ def _failure_text(failures: list) -> str:
 
 def _run_here(function, items, on_result) -> list:
     """In this process, one item after the other; a failure does not stop the others."""
+    _load_mkl()
     failures = []
     for item in items:
         try:
@@ -174,6 +180,20 @@ def _run_here(function, items, on_result) -> list:
             continue
         on_result(item, result)
     return failures
+
+
+def _load_mkl() -> None:
+    """Load MKL (PARDISO's library) before ``blas_threads(1)`` looks for the loaded BLAS
+    libraries: loaded inside the block, by the first case, it kept its default threads
+    there, and that case's last digits differed from a pool worker's."""
+    if importlib.util.find_spec("pypardiso") is None:
+        return
+    from hubvib.fem.pardiso import _library
+
+    try:
+        _library()
+    except Exception:  # noqa: BLE001 - no usable MKL: the case reports it if it needs it
+        pass
 
 
 #: set in every worker, as Dask's nanny does (``distributed.nanny.pre-spawn-environ``):
@@ -197,18 +217,28 @@ def _environment(values: dict):
                 os.environ[key] = value
 
 
-def _run_pool(function, items, on_result, workers) -> list:
+def submit(pool, function, *args):
+    """``pool.submit(function, *args)`` with the environment of ``SINGLE_THREADED`` (a
+    worker spawned by this submit gets one BLAS thread, as every case worker)."""
+    with _environment(SINGLE_THREADED):  # the workers are spawned on submit
+        return pool.submit(function, *args)
+
+
+def _run_pool(function, items, on_result, workers, pool=None, after_submit=None) -> list:
+    if pool is None:
+        with worker_pool(min(workers, len(items))) as own:
+            return _run_pool(function, items, on_result, workers, own)
     failures = []
-    with worker_pool(min(workers, len(items))) as pool:
-        with _environment(SINGLE_THREADED):  # the workers are spawned on submit
-            futures = {pool.submit(function, item): item for item in items}
-        for future in as_completed(futures):
-            try:
-                result = future.result()
-            except Exception as exc:  # noqa: BLE001 - reported per case below
-                failures.append((futures[future], f"{type(exc).__name__}: {exc}"))
-                continue
-            on_result(futures[future], result)
+    futures = {submit(pool, function, item): item for item in items}
+    if after_submit is not None:
+        after_submit()
+    for future in as_completed(futures):
+        try:
+            result = future.result()
+        except Exception as exc:  # noqa: BLE001 - reported per case below
+            failures.append((futures[future], f"{type(exc).__name__}: {exc}"))
+            continue
+        on_result(futures[future], result)
     return failures
 
 

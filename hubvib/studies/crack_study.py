@@ -13,6 +13,7 @@ from __future__ import annotations
 import datetime
 import math
 import time
+from contextlib import ExitStack
 from dataclasses import asdict, dataclass, field
 from importlib import metadata
 from pathlib import Path
@@ -29,14 +30,16 @@ from hubvib.foundation.output import write_csv, write_json, write_text
 from hubvib.lumped import Spectrum, frequency_sensitivity, natural_modes
 from hubvib.lumped.tracking import match
 from hubvib.meshing.levels import scaled_options
-from hubvib.render.cache import array_digest, cached_render
+from hubvib.render.cache import array_digest, cached_render, is_cached
 from hubvib.render.captions import figure_lines
 from hubvib.render.html import write_html_reports
 from hubvib.render.fe import render_fe, ring_fields
 from hubvib.render.modes import render_modes
-from hubvib.runtime.engines import Execution
+from hubvib.runtime.engines import Execution, submit
 from hubvib.runtime.fe_cache import fe_version
+from hubvib.runtime.process_pool import worker_pool
 from hubvib.runtime.progress import stage, working
+from hubvib.runtime.stage_seconds import timed
 from hubvib.signal.report import write_signal_study
 from hubvib.signal.study import run_signal_study
 from hubvib.studies.crack_sweep import ACCURACY, CrackSweep, PlaneCase, crack_of, run_fe_cases
@@ -157,34 +160,56 @@ class CrackStudyResult:
 
 
 def run_crack_study(scene: Scene, progress: bool = True, detection: bool = True,
-                    workers: int = 2) -> CrackStudyResult:
-    """FE cases (cached), lumped spectra per depth, and the detection study."""
-    fe, computed = run_fe_cases(scene.crack, progress,
-                                scene.tables.get("execution", Execution()))
-    return crack_study_from_fe(scene, fe, computed, detection=detection, workers=workers)
+                    workers: int = 2, pool=None, after_fe=None,
+                    on_spectra=None) -> CrackStudyResult:
+    """FE cases (cached; in ``pool``, a ``worker_pool``, when given), lumped spectra per
+    depth, and the detection study; ``after_fe()`` is called when the FE cases are queued
+    in the pool (if they are) and again when they are done, ``on_spectra`` as in
+    ``crack_study_from_fe``."""
+    with timed("fe"):
+        fe, computed = run_fe_cases(scene.crack, progress,
+                                    scene.tables.get("execution", Execution()), pool,
+                                    after_fe)
+    if after_fe is not None:
+        after_fe()
+    return crack_study_from_fe(scene, fe, computed, detection=detection, workers=workers,
+                               on_spectra=on_spectra)
 
 
 def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
                         detection: bool = True, timing=None,
-                        workers: int = 1) -> CrackStudyResult:
+                        workers: int = 1, on_spectra=None) -> CrackStudyResult:
     """The lumped and detection stages from FE rows (``crack_sweep.fe_case`` keys).
 
     ``timing`` (a ``detection.carrier.MeshTiming``) defaults to the scene's design at
-    the ``[detection]`` carrier speed.
+    the ``[detection]`` carrier speed; ``on_spectra(spectra)`` is called with the lumped
+    spectra before the detection stage.
     """
-    model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
-                               c_rp_given=scene.c_rp_given)
-    c_ru, c_r = model.c_ru, model.c_r
-    c_rp_factor = np.asarray(model.c_rp_factor())
-    spectra = [natural_modes(model.parameters(k), scene.method) for k in range(len(fe))]
-    n = spectra[0].omega.size
-    omega = np.empty((len(spectra), n))
-    omega[0] = spectra[0].omega
-    order = np.arange(n)
-    for k in range(1, len(spectra)):
-        step, _ = match(spectra[k - 1], spectra[k])
-        order = step[order]
-        omega[k] = spectra[k].omega[order]
+    with timed("lumped"):
+        model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
+                                   c_rp_given=scene.c_rp_given)
+        c_ru, c_r = model.c_ru, model.c_r
+        c_rp_factor = np.asarray(model.c_rp_factor())
+        spectra = [natural_modes(model.parameters(k), scene.method) for k in range(len(fe))]
+        n = spectra[0].omega.size
+        omega = np.empty((len(spectra), n))
+        omega[0] = spectra[0].omega
+        order = np.arange(n)
+        for k in range(1, len(spectra)):
+            step, _ = match(spectra[k - 1], spectra[k])
+            order = step[order]
+            omega[k] = spectra[k].omega[order]
+    if on_spectra is not None:
+        on_spectra(spectra)
+    with timed("detection"):
+        study, comparison = _detection(scene, model, detection, timing, workers)
+    return CrackStudyResult(scene, fe, c_ru, c_r, c_rp_factor, spectra, omega, computed,
+                            model=model, detection=study, c_rp_comparison=comparison)
+
+
+def _detection(scene: Scene, model: CrackModel, detection: bool, timing, workers: int):
+    """The detection study (if ``detection``) and the comparison of the c_rp methods (where
+    they differ), each from its result cache."""
     study = comparison = None
     if detection or model.c_rp_differs:
         from hubvib.detection.carrier import mesh_timing
@@ -199,12 +224,14 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
             comparison = cached_compare_methods(model, timing, options.record_length,
                                                 options if detection else None,
                                                 workers=workers)
-    return CrackStudyResult(scene, fe, c_ru, c_r, c_rp_factor, spectra, omega, computed,
-                            model=model, detection=study, c_rp_comparison=comparison)
+    return study, comparison
 
 
-def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResult:
-    """Tables (CSV, JSON), plots, renders and ``report.md`` in ``folder``."""
+def write_crack_study(result: CrackStudyResult, folder: Path,
+                      begun: dict | None = None) -> CrackStudyResult:
+    """Tables (CSV, JSON), plots, renders and ``report.md`` in ``folder``; ``begun``: the
+    renders begun in workers (``"modes"``, ``"fe"``: each with ``result()``, the files)."""
+    begun = begun or {}
     folder = Path(folder)
     scene = result.scene
     study = result.detection
@@ -242,28 +269,16 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
         "c_rp_other_method_family_pod": _other_family_pod(result.c_rp_comparison)})))
     plots = []
     if scene.plots:
-        from hubvib.detection import plots as figures
-        from hubvib.detection.study import cached_plot
-
-        name = scene.name
-        plots = [cached_plot(folder / "frequency_vs_depth.png", figures.relative_shift_figure,
-                             name, result.depths, result.omega, result.kind)]
-        if study is not None:
-            deepest = float(result.depths[-1])
-            plots += [
-                cached_plot(folder / "shift_vs_depth.png", figures.shift_threshold_figure,
-                            name, study.pod),
-                cached_plot(folder / "detectability_map.png", figures.map_figure, name,
-                            study.map, deepest, float(result.depths[1])),
-                cached_plot(folder / "pod.png", figures.pod_figure, name, study.pod,
-                            _pod_modes(study)),
-                cached_plot(folder / "carrier_position.png", figures.carrier_figure, name,
-                            study.carrier, result.kind)]
+        with timed("plots"):
+            plots = _plots(scene, result, study, folder)
     renders, fe_renders = [], []
     if scene.renders:
-        renders = _render_modes(scene, result.spectra[0], folder / "renders")
-        # the FE render is of the plane ring; a solid study's crack is part-width
-        fe_renders = _render_fe(scene, folder / "renders") if scene.crack.model == "plane" else []
+        with timed("render"):
+            renders = (begun["modes"].result() if "modes" in begun else
+                       _render_modes(scene, result.spectra[0], folder / "renders"))
+            # the FE render is of the plane ring; a solid study's crack is part-width
+            fe_renders = ([] if scene.crack.model != "plane" else begun["fe"].result()
+                          if "fe" in begun else _render_fe(scene, folder / "renders"))
     files += plots + renders + fe_renders
 
     def pictures(paths):
@@ -273,6 +288,28 @@ def write_crack_study(result: CrackStudyResult, folder: Path) -> CrackStudyResul
         result, [p.name for p in plots], pictures(renders), pictures(fe_renders))))
     result.files = files
     return result
+
+
+def _plots(scene: Scene, result: CrackStudyResult, study, folder: Path) -> list[Path]:
+    """The study's PNG figures (each from the result cache when drawn before)."""
+    from hubvib.detection import plots as figures
+    from hubvib.detection.study import cached_plot
+
+    name = scene.name
+    plots = [cached_plot(folder / "frequency_vs_depth.png", figures.relative_shift_figure,
+                         name, result.depths, result.omega, result.kind)]
+    if study is not None:
+        deepest = float(result.depths[-1])
+        plots += [
+            cached_plot(folder / "shift_vs_depth.png", figures.shift_threshold_figure,
+                        name, study.pod),
+            cached_plot(folder / "detectability_map.png", figures.map_figure, name,
+                        study.map, deepest, float(result.depths[1])),
+            cached_plot(folder / "pod.png", figures.pod_figure, name, study.pod,
+                        _pod_modes(study)),
+            cached_plot(folder / "carrier_position.png", figures.carrier_figure, name,
+                        study.carrier, result.kind)]
+    return plots
 
 
 def _other_family_pod(comparison) -> dict | None:
@@ -334,30 +371,73 @@ def rendered_depth(sweep) -> float:
 def _render_modes(scene: Scene, spectrum, folder: Path) -> list[Path]:
     """Every elastic lumped mode (``render.render_modes``), from the render cache when the
     same spectrum was rendered before."""
-    def render(target):
-        return render_modes(scene.params, spectrum, target, gif=scene.gif, vtm=scene.vtm)
+    return render_mode_shapes(scene.params, spectrum, scene.gif, scene.vtm, folder)
 
-    inputs = {"params": scene.params.to_dict(), "omega": array_digest(spectrum.omega),
-              "shapes": array_digest(spectrum.shapes), "kind": list(spectrum.kind),
-              "gif": scene.gif, "vtm": scene.vtm}
-    return cached_render("modes", inputs, folder, render)
+
+def _mode_render_inputs(params, spectrum, gif: bool, vtm: bool) -> dict:
+    """The render cache's inputs of the lumped mode pictures."""
+    return {"params": params.to_dict(), "omega": array_digest(spectrum.omega),
+            "shapes": array_digest(spectrum.shapes), "kind": list(spectrum.kind),
+            "gif": gif, "vtm": vtm}
+
+
+def render_mode_shapes(params, spectrum, gif: bool, vtm: bool, folder: Path) -> list[Path]:
+    """``_render_modes`` from picklable arguments (it may run in a worker)."""
+    def render(target):
+        return render_modes(params, spectrum, target, gif=gif, vtm=vtm)
+
+    return cached_render("modes", _mode_render_inputs(params, spectrum, gif, vtm), folder,
+                         render)
 
 
 def _render_fe(scene: Scene, folder: Path) -> list[Path]:
     """The FE ring at the rendered depth (``fe_render``), from the render cache when the
     same design, crack and mesh were rendered by this FE stage before."""
-    depth = rendered_depth(scene.crack)
-    crack = crack_of(scene.crack, depth) if depth > 0 else None
-    options = scaled_options(ACCURACY[scene.crack.accuracy])
+    return render_fe_ring(scene.crack, scene.vtm, folder)
+
+
+def _fe_render_case(sweep: CrackSweep, vtm: bool) -> tuple:
+    """The crack and mesh options the FE ring is rendered with, and the render cache's
+    inputs (everything that decides the pictures)."""
+    depth = rendered_depth(sweep)
+    crack = crack_of(sweep, depth) if depth > 0 else None
+    options = scaled_options(ACCURACY[sweep.accuracy])
+    inputs = {"design": sweep.reducer.fingerprint(),
+              "crack": None if crack is None else asdict(crack), "options": asdict(options),
+              "vtu": vtm, "fe": fe_version()}
+    return crack, options, inputs
+
+
+def render_fe_ring(sweep: CrackSweep, vtm: bool, folder: Path) -> list[Path]:
+    """``_render_fe`` from the sweep alone (picklable arguments: it may run in a worker,
+    ``fe_render_beside``)."""
+    crack, options, inputs = _fe_render_case(sweep, vtm)
 
     def render(target):
-        return render_fe(ring_fields(scene.crack.reducer, crack, options), target,
-                         vtu=scene.vtm)
+        return render_fe(ring_fields(sweep.reducer, crack, options), target, vtu=vtm)
 
-    inputs = {"design": scene.crack.reducer.fingerprint(),
-              "crack": None if crack is None else asdict(crack), "options": asdict(options),
-              "vtu": scene.vtm, "fe": fe_version()}
     return cached_render("fe-ring", inputs, folder, render)
+
+
+def begin_renders(scene: Scene, folder: Path, pool, begun: dict, spectrum=None) -> None:
+    """Submit to ``pool`` (a ``worker_pool``) the renders that the render cache does not
+    hold: the FE ring's (``spectrum`` None: it needs only the scene) or the lumped modes'
+    (of ``spectrum``, the intact one), into ``folder / "renders"``; ``begun`` gets their
+    futures (``write_crack_study``; one already begun is not submitted again).  Queued
+    behind the FE cases, they run on the pool's workers as the cases leave them idle,
+    beside this process's detection stage and plots."""
+    kind = "fe" if spectrum is None else "modes"
+    if not scene.renders or pool is None or kind in begun:
+        return
+    target = Path(folder) / "renders"
+    if spectrum is not None:
+        inputs = _mode_render_inputs(scene.params, spectrum, scene.gif, scene.vtm)
+        if not is_cached("modes", inputs):
+            begun["modes"] = submit(pool, render_mode_shapes, scene.params, spectrum,
+                                    scene.gif, scene.vtm, target)
+    elif scene.crack.model == "plane" and not is_cached(
+            "fe-ring", _fe_render_case(scene.crack, scene.vtm)[2]):
+        begun["fe"] = submit(pool, render_fe_ring, scene.crack, scene.vtm, target)
 
 
 def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
@@ -499,27 +579,46 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
 
 
 def _run(scene: Scene, staged: Path) -> CrackStudyResult:
-    started = time.perf_counter()
-    with working("FE stage and lumped spectra"):
-        result = run_crack_study(scene)
-    stage(f"FE stage ({result.computed} of {len(result.fe)} cases computed) and lumped "
-          "spectra", started)
-    started = time.perf_counter()
-    if "signal" in scene.tables:  # the vibration signature beside the frequency study
-        with working("signals"):
-            study = run_signal_study(scene)
-        stage(f"signals of {len(study.depths)} crack depth(s)", started)
-        with working("signal tables and plots"):
-            signal_files = write_signal_study(study, staged / "signal",
-                                              plots=scene.plots)["files"]
+    """FE cases, lumped and detection stages, files.  With the local engine and more than
+    one worker, one pool serves the FE cases and then the renders (the FE ring's needs only
+    the scene, the modes' the intact spectrum): they run on its warm workers beside the
+    detection stage and the plots here."""
+    execution = scene.tables.get("execution", Execution())
+    workers = execution.workers or scene.crack.workers
+    with ExitStack() as beside:
+        pool = (beside.enter_context(worker_pool(workers))
+                if execution.engine == "local" and workers > 1 else None)
+        begun = {}
+
+        def after_fe():
+            begin_renders(scene, staged, pool, begun)
+
+        def on_spectra(spectra):
+            begin_renders(scene, staged, pool, begun, spectra[0])
+
         started = time.perf_counter()
-    with working("tables, plots, renders and report"):
-        write_crack_study(result, staged)
-    if "signal" in scene.tables:
-        report = staged / "report.md"
-        write_text(report, report.read_text(encoding="utf-8") + SIGNAL_SECTION)
-        result.files += [staged / "signal" / f for f in signal_files]
-    result.files += [p for p in write_html_reports(staged) if p not in result.files]
+        with working("FE stage and lumped spectra"):
+            result = run_crack_study(scene, pool=pool, after_fe=after_fe,
+                                     on_spectra=on_spectra)
+        stage(f"FE stage ({result.computed} of {len(result.fe)} cases computed) and lumped "
+              "spectra", started)
+        started = time.perf_counter()
+        if "signal" in scene.tables:  # the vibration signature beside the frequency study
+            with working("signals"):
+                study = run_signal_study(scene)
+            stage(f"signals of {len(study.depths)} crack depth(s)", started)
+            with working("signal tables and plots"):
+                signal_files = write_signal_study(study, staged / "signal",
+                                                  plots=scene.plots)["files"]
+            started = time.perf_counter()
+        with working("tables, plots, renders and report"), timed("write"):
+            write_crack_study(result, staged, begun)
+    with timed("write"):
+        if "signal" in scene.tables:
+            report = staged / "report.md"
+            write_text(report, report.read_text(encoding="utf-8") + SIGNAL_SECTION)
+            result.files += [staged / "signal" / f for f in signal_files]
+        result.files += [p for p in write_html_reports(staged) if p not in result.files]
     stage("tables, plots, renders and report", started)
     return result
 

@@ -292,9 +292,12 @@ def _number(data: dict, key: str) -> float:
 
 
 def run_fe_cases(sweep: CrackSweep, progress: bool = True,
-                 execution: Execution = Execution()) -> tuple[list[dict], int]:
+                 execution: Execution = Execution(), pool=None,
+                 after_submit=None) -> tuple[list[dict], int]:
     """Every case's FE result (``sweep.cases`` order), from the cache or computed; returns
-    them and how many ran."""
+    them and how many ran.  ``pool``: a ``worker_pool`` of ``sweep.workers`` to run them
+    in (left open), ``after_submit``: called when they are queued there
+    (``runtime.engines.run_cases``)."""
     if sweep.design is not None and not sweep.reducer.equally_spaced:
         raise ValueError(f"design {sweep.reducer.name!r}: the FE ring model loads equally spaced "
                          "planets only; unequal planet_angles_deg work in the lumped model but "
@@ -337,7 +340,8 @@ def run_fe_cases(sweep: CrackSweep, progress: bool = True,
                         busy.append(case)
                     else:
                         bar.update(1)
-                run_cases(_Case(sweep, fe_cache.fe_version()), mine, store, execution, sweep.workers)
+                run_cases(_Case(sweep, fe_cache.fe_version()), mine, store, execution,
+                          sweep.workers, pool, after_submit)
                 computed += len(mine)
             todo = [d for d in busy if not cached(d, notice=False)]
             if not todo:

@@ -1,0 +1,154 @@
+"""The main job's shared worker pool: the FE cases and then the renders on the same warm
+workers.  The numbers and pictures are the same as in one process (exact), a cached
+rerun submits nothing (counted, not timed), and the benchmark's per-stage seconds add up."""
+import json
+from dataclasses import replace
+
+import pytest
+
+from hubvib.benchmarks.main_job import STAGES, stage_breakdown
+from hubvib.render.cache import cached_render
+from hubvib.runtime import stage_seconds
+from hubvib.runtime.process_pool import worker_pool
+from hubvib.studies import crack_study
+from hubvib.studies.scene import load_scene
+
+
+@pytest.fixture
+def cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path / "cache"))
+    return tmp_path
+
+
+class _CountingPool:
+    """Stands in for a ``worker_pool``: counts what is submitted, runs nothing."""
+
+    def __init__(self):
+        self.submitted = []
+
+    def submit(self, function, *args):
+        self.submitted.append(function.__name__)
+        return None
+
+
+def _fill_render_cache(kind, inputs, tmp_path):
+    """A complete, checked render cache entry for ``inputs`` (a stand-in picture)."""
+    def render(target):
+        target.mkdir(parents=True, exist_ok=True)
+        (target / "picture.png").write_bytes(b"png")
+        return [target / "picture.png"]
+
+    cached_render(kind, inputs, tmp_path / "first", render)
+
+
+def test_renders_are_submitted_only_when_the_render_cache_lacks_them(cache):
+    """Counter, not time: the default scene submits the FE ring's render and the modes'
+    render once each on an empty render cache, and nothing once the cache holds them (a
+    cached rerun computes no picture and starts no worker)."""
+    from hubvib.build import lumped_preset
+    from hubvib.lumped import natural_modes
+
+    scene = load_scene(None)
+    spectrum = natural_modes(lumped_preset("raba118"), scene.method)
+    pool, begun = _CountingPool(), {}
+    crack_study.begin_renders(scene, cache / "out", pool, begun)
+    crack_study.begin_renders(scene, cache / "out", pool, begun)  # queued, then FE done
+    crack_study.begin_renders(scene, cache / "out", pool, begun, spectrum)
+    assert pool.submitted == ["render_fe_ring", "render_mode_shapes"], \
+        f"an empty render cache: both renders go to the pool once, got {pool.submitted}"
+    assert set(begun) == {"fe", "modes"}
+    _fill_render_cache("fe-ring", crack_study._fe_render_case(scene.crack, scene.vtm)[2],
+                       cache)
+    _fill_render_cache("modes", crack_study._mode_render_inputs(
+        scene.params, spectrum, scene.gif, scene.vtm), cache)
+    pool, begun = _CountingPool(), {}
+    crack_study.begin_renders(scene, cache / "out", pool, begun)
+    crack_study.begin_renders(scene, cache / "out", pool, begun, spectrum)
+    assert pool.submitted == [] and begun == {}, \
+        f"the render cache holds both: nothing may be submitted, got {pool.submitted}"
+
+
+def test_no_renders_no_pool_work(cache):
+    """A scene without renders (or without a pool) submits nothing."""
+    scene = replace(load_scene(None), renders=False)
+    pool, begun = _CountingPool(), {}
+    crack_study.begin_renders(scene, cache / "out", pool, begun)
+    crack_study.begin_renders(load_scene(None), cache / "out", None, begun)
+    assert pool.submitted == [] and begun == {}
+
+
+def test_stage_breakdown_adds_up_to_the_wall_time():
+    """The disjoint stages of ``main_job_stage_seconds`` sum to the measured total (the
+    nested ``write`` holds ``plots`` and ``render``)."""
+    parts = {"fe": 20.0, "lumped": 0.5, "detection": 8.0, "write": 12.0, "plots": 4.0,
+             "render": 6.0}
+    out = stage_breakdown(parts, total=45.0)
+    assert tuple(out) == STAGES
+    assert out["write"] == 2.0 and out["other"] == 4.5, out
+    assert sum(out.values()) == pytest.approx(45.0, abs=1e-9), \
+        "stages must add up to the run's wall time (exact arithmetic, rounding to 0.01 s)"
+
+
+def test_timed_parts_are_written_on_request(tmp_path, monkeypatch):
+    """``timed`` adds up per part; ``write_requested`` writes them to the file the
+    environment names (what ``hubvib benchmark`` reads), and nothing without it."""
+    monkeypatch.setattr(stage_seconds, "_SECONDS", {})
+    with stage_seconds.timed("fe"):
+        pass
+    with stage_seconds.timed("fe"):
+        pass
+    assert set(stage_seconds.stage_seconds()) == {"fe"}
+    assert stage_seconds.stage_seconds()["fe"] >= 0.0
+    monkeypatch.delenv(stage_seconds.ENV, raising=False)
+    stage_seconds.write_requested()
+    assert list(tmp_path.iterdir()) == []
+    path = tmp_path / "stages.json"
+    monkeypatch.setenv(stage_seconds.ENV, str(path))
+    stage_seconds.write_requested()
+    assert json.loads(path.read_text()) == stage_seconds.stage_seconds()
+
+
+@pytest.mark.slow
+def test_fe_cases_in_the_shared_pool_equal_one_process(cache):
+    """Two FE cases (Raba ring, fast accuracy) in a shared pool of 2 workers and in this
+    process give the same values to the last digit (one BLAS thread each: same
+    arithmetic); only the wall times differ."""
+    pytest.importorskip("gmsh")
+    from hubvib.studies.crack_sweep import cache_folder, run_fe_cases
+
+    sweep = replace(load_scene(None).crack, depths=(0.0, 0.006), accuracy="fast")
+    with worker_pool(2) as pool:
+        pooled, computed = run_fe_cases(sweep, progress=False, pool=pool)
+    assert computed == 2
+    for entry in cache_folder().iterdir():
+        entry.unlink()
+    here, computed = run_fe_cases(replace(sweep, workers=1), progress=False)
+    assert computed == 2
+
+    def numbers(row):
+        return {k: v for k, v in row.items() if not k.startswith("seconds")}
+
+    assert [numbers(r) for r in pooled] == [numbers(r) for r in here], \
+        "pool and serial FE cases must agree exactly (same single-threaded arithmetic)"
+
+
+@pytest.mark.slow
+def test_mode_renders_in_a_worker_equal_this_process(tmp_path, monkeypatch):
+    """The lumped mode pictures rendered on a pool worker are byte-identical to those
+    rendered here (each from an empty render cache)."""
+    pytest.importorskip("pyvista")
+    from hubvib.build import lumped_preset
+    from hubvib.lumped import natural_modes
+    from hubvib.runtime.engines import submit
+
+    params = lumped_preset("raba118")
+    spectrum = natural_modes(params, "jacobi")
+    monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path / "cache-worker"))
+    with worker_pool(1) as pool:
+        there = submit(pool, crack_study.render_mode_shapes, params, spectrum, False, False,
+                       tmp_path / "worker").result()
+    monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path / "cache-here"))
+    here = crack_study.render_mode_shapes(params, spectrum, False, False, tmp_path / "here")
+    assert [p.name for p in there] == [p.name for p in here] and len(here) >= 10
+    for a, b in zip(there, here):
+        assert a.read_bytes() == b.read_bytes(), f"{a.name}: worker and here differ"
