@@ -233,7 +233,7 @@ def test_kill_minus_9_mid_sweep_then_resume(tmp_path):
     folder = cache / "stiffness"
     deadline = time.monotonic() + 300
     while time.monotonic() < deadline and len(list(folder.glob("*.json"))) < 2:
-        time.sleep(0.05)
+        time.sleep(0.05)  # polls for two finished cases (the event), up to the deadline
     os.killpg(process.pid, signal.SIGKILL)
     process.wait()
     before = {p: p.stat().st_mtime_ns for p in folder.glob("*.json")}
