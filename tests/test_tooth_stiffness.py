@@ -85,6 +85,8 @@ def sun_compliance():
                                involute_radii(SUN)).compliance
 
 
+@pytest.mark.slow  # a mesh with every size halved (~2 s idle); the default run solves the same
+# path on the default mesh in test_fe_tooth_compliance_matches_the_potential_energy_method
 def test_fe_tooth_compliance_is_mesh_converged(sun_compliance):
     """Default mesh vs all sizes halved: the tooth compliance changes < 0.1 % (P2 curved)."""
     radii = involute_radii(SUN)
