@@ -22,28 +22,35 @@ HEAVY = ["gmsh", "skfem", "pyvista", "matplotlib", "dask", "distributed"]
 
 PROBE = textwrap.dedent("""
     import importlib, json, sys
-    packages, heavy = json.loads(sys.argv[1])
+    packages, heavy, resolve = json.loads(sys.argv[1])
     seen = {}
     for name in packages:  # each package as imported alone: what it adds to sys.modules
         before = set(sys.modules)
         importlib.import_module(name)
         seen[name] = sorted(m for m in set(sys.modules) - before
                             if m.split(".")[0] in heavy or m.startswith(name + "."))
-    for name in packages:  # then every name of every face, resolved
-        module = sys.modules[name]
-        for attribute in module.__all__:
-            getattr(module, attribute)
+    if resolve:  # then every name of every face
+        for name in packages:
+            module = sys.modules[name]
+            for attribute in module.__all__:
+                getattr(module, attribute)
     seen["faces"] = sorted(m for m in sys.modules if m.split(".")[0] in heavy)
     print(json.dumps(seen))
 """)
 
 
-@pytest.fixture(scope="module")
-def imported():
-    """What importing each package, then resolving every face, loads: one fresh process."""
-    run = subprocess.run([sys.executable, "-c", PROBE, json.dumps([FACES, HEAVY])],
+def _probe(resolve: bool) -> dict:
+    """What importing each package (and, with ``resolve``, every face name) loads, measured
+    in one fresh process."""
+    run = subprocess.run([sys.executable, "-c", PROBE, json.dumps([FACES, HEAVY, resolve])],
                          capture_output=True, text=True, check=True)
     return json.loads(run.stdout)
+
+
+@pytest.fixture(scope="module")
+def imported():
+    """What importing each package loads: one fresh process (the faces not resolved)."""
+    return _probe(resolve=False)
 
 
 @pytest.mark.parametrize("package", FACES)
@@ -54,10 +61,23 @@ def test_import_package_loads_no_submodule_and_nothing_heavy(package, imported):
     assert imported[package] == allowed, f"import {package} loaded {imported[package]}"
 
 
-def test_every_face_resolves_without_heavy_imports(imported):
-    """Every name of every face imports (no stale name), and all of them together still
-    load none of the heavy dependencies: those stay inside the functions that use them."""
-    assert imported["faces"] == [], f"resolving the faces loaded {imported['faces']}"
+@pytest.mark.parametrize("package", FACES)
+def test_every_face_name_resolves(package):
+    """Every name of the face imports (no stale name) and is its module's object."""
+    module = importlib.import_module(package)
+    for name in module.__all__:
+        value = getattr(module, name)
+        assert getattr(value, "__name__", name) == name or not callable(value), \
+            f"{package}.{name} resolves to {value!r}"
+
+
+@pytest.mark.slow  # imports every module of hubvib in a fresh process (~2 s); the default
+# run resolves every name in test_every_face_name_resolves and checks the package imports
+def test_every_face_resolves_without_heavy_imports():
+    """All names of all faces together load none of the heavy dependencies: those stay
+    inside the functions that use them (measured in a fresh process)."""
+    seen = _probe(resolve=True)
+    assert seen["faces"] == [], f"resolving the faces loaded {seen['faces']}"
 
 
 @pytest.mark.parametrize("package", FACES)
