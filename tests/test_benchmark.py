@@ -56,7 +56,7 @@ def test_previous_path_solves_the_same_problem():
     from hubvib.validation.previous_fe import previous_ring_fe
 
     ring = raba118.ring_gear()
-    mesh = ring_mesh(ring, None, scaled_options(4.0))
+    mesh = ring_mesh(ring, None, scaled_options(8.0))  # any mesh: both paths solve it
     ours = ring_stiffness(ring, mesh)
     previous = previous_ring_fe(ring, mesh)
     np.testing.assert_allclose(previous["c_ru"], ours.c_ru_positions, rtol=1e-10)

@@ -24,6 +24,8 @@ from hubvib.studies.crack_sweep import ACCURACY, case_inputs, run_fe_cases
 from hubvib.studies.predicted_path import predicted_path, truncated
 from hubvib.studies.scene import parse_scene
 
+from crack_scenes import fast_crack_scene
+
 RABA = raba118()
 COARSE = MeshOptions(size=3e-3, tooth_size=0.8e-3, load_size=0.3e-3)
 THIN = replace(RABA, name="raba118_mB0.5",
@@ -63,24 +65,6 @@ def test_root_crack_meshes_and_solves_at_large_angles(design, degrees):
             "(a crack through the rim splits it: softer)")
 
 
-SCENE = """
-[reducer]
-preset = "raba118"
-[crack]
-depths = [0.0, 0.003]
-path = "{path}"
-accuracy = "fast"
-workers = 1
-[detection]
-samples = 200
-map_samples = 30
-mount_points = 3
-[output]
-plots = false
-renders = false
-"""
-
-
 @pytest.mark.slow
 def test_predicted_sweep_follows_the_crack_path(tmp_path, monkeypatch, capsys):
     """``path = "predicted"`` (issue 23 item 3), Raba tooth 0, depths 0 and 3 mm:
@@ -95,7 +79,7 @@ def test_predicted_sweep_follows_the_crack_path(tmp_path, monkeypatch, capsys):
       the radial 3 mm crack (docs/crack_path.md: 0.923 vs 0.940 on the default mesh);
     - the detection study runs on it (a POD per mode at the deepest crack)."""
     monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path / "cache"))
-    scene = parse_scene(SCENE.format(path="predicted"), "predicted")
+    scene = parse_scene(fast_crack_scene((0.0, 0.003), 1, "predicted"), "predicted")
     sweep = scene.crack
     grown = predicted_path(RABA, 0, sweep.depths)
     assert main(["crack-path", "--tooth", "0", "--steps", "2", "--json", "--out",
@@ -122,7 +106,7 @@ def test_predicted_sweep_follows_the_crack_path(tmp_path, monkeypatch, capsys):
     assert fe[1]["c_r_root_land_N_m"] == pytest.approx(direct.ring.c_r, rel=1e-9)
     assert fe[1]["c_rp_engaged_ratio"] == pytest.approx(direct.engaged.mean_ratio, rel=1e-9)
 
-    radial_scene = parse_scene(SCENE.format(path="radial"), "radial")
+    radial_scene = parse_scene(fast_crack_scene((0.0, 0.003), 1, "radial"), "radial")
     radial, _ = run_fe_cases(radial_scene.crack, progress=False)
     assert fe[1]["c_rp_engaged_ratio"] < radial[1]["c_rp_engaged_ratio"] < 1, (
         "mean c_rp ratio predicted < radial (docs/crack_path.md, 0.923 vs 0.940)")

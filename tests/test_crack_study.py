@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from crack_scenes import fast_crack_scene
 from test_detection_helpers import TIMING, synthetic_fe_rows
 
 from hubvib.cli import main
@@ -23,21 +24,6 @@ from hubvib.lumped import natural_modes
 from hubvib.lumped.tracking import match
 from hubvib.studies.scene import load_scene
 
-FAST = """
-[reducer]
-preset = "raba118"
-[crack]
-depths = {depths}
-accuracy = "fast"
-workers = {workers}
-[detection]
-samples = 200
-map_samples = 30
-mount_points = 3
-[output]
-plots = false
-renders = false
-"""
 #: the FE stage needs gmsh and scikit-fem
 fe_stage = pytest.mark.skipif(not all(importlib.util.find_spec(m) for m in ("gmsh", "skfem")),
                               reason="FE extras not installed")
@@ -151,7 +137,7 @@ def test_mode_rows_carry_the_physics_detection(default_report):
 
 def _scene(tmp_path, depths=(0.0, 0.008, 0.016), workers=2) -> Path:
     path = tmp_path / "scene.toml"
-    path.write_text(FAST.format(depths=list(depths), workers=workers))
+    path.write_text(fast_crack_scene(depths, workers))
     return path
 
 
@@ -248,7 +234,7 @@ def test_kill_minus_9_mid_sweep_then_resume(tmp_path):
     folder = cache / "stiffness"
     deadline = time.monotonic() + 300
     while time.monotonic() < deadline and len(list(folder.glob("*.json"))) < 2:
-        time.sleep(0.05)
+        time.sleep(0.05)  # polls for two finished cases (the event), up to the deadline
     os.killpg(process.pid, signal.SIGKILL)
     process.wait()
     before = {p: p.stat().st_mtime_ns for p in folder.glob("*.json")}

@@ -158,36 +158,57 @@ def test_local_pool_workers_run_one_blas_thread(monkeypatch):
 
 def test_one_at_a_time_serialises_threads_of_one_process():
     """A Dask worker started with several threads runs one FE case at a time (gmsh has
-    one current model per process)."""
+    one current model per process).  Events, not sleeps: a wrapped case waits inside until
+    every thread has called in (the others then queue on the lock); the control, unwrapped,
+    waits at a barrier that only opens with all four inside at once."""
     import threading
-    import time
 
-    running, most = [0], [0]
-    guard = threading.Lock()
+    running, most, called = [0], [0], [0]
+    guard = threading.Condition()
+    inside = threading.Barrier(4, timeout=30)
 
-    def case(item):
+    def enter():
         with guard:
             running[0] += 1
             most[0] = max(most[0], running[0])
-        time.sleep(0.1)
+
+    def leave(item):
         with guard:
             running[0] -= 1
         return item
 
-    wrapped = OneAtATime(case)
-    threads = [threading.Thread(target=wrapped, args=(i,)) for i in range(4)]
+    def queued_case(item):
+        enter()
+        with guard:  # every thread has asked to run a case: the others wait on the lock
+            assert guard.wait_for(lambda: called[0] == 4, timeout=30), "a thread never called"
+        return leave(item)
+
+    def call(item):
+        with guard:
+            called[0] += 1
+            guard.notify_all()
+        wrapped(item)
+
+    def barrier_case(item):
+        enter()
+        inside.wait()  # BrokenBarrierError after 30 s if the four never overlap
+        return leave(item)
+
+    wrapped = OneAtATime(queued_case)
+    threads = [threading.Thread(target=call, args=(i,)) for i in range(4)]
     for thread in threads:
         thread.start()
     for thread in threads:
         thread.join()
-    assert most[0] == 1
+    assert most[0] == 1 and called[0] == 4
     most[0] = 0
-    threads = [threading.Thread(target=case, args=(i,)) for i in range(4)]  # the control
+    threads = [threading.Thread(target=barrier_case, args=(i,)) for i in range(4)]  # control
     for thread in threads:
         thread.start()
     for thread in threads:
         thread.join()
-    assert most[0] > 1, "without the lock the threads overlap (else the check above is void)"
+    assert most[0] == 4, "without the lock the four threads run at once (else the check " \
+        "above is void)"
 
 
 # ---- run_cases, dask engine ------------------------------------------------------------
@@ -245,7 +266,8 @@ def test_dask_local_cluster_killed_worker_and_failing_case(tmp_path):
             os._exit(1)
         if item == failing:
             raise ValueError(message)
-        time.sleep(0.05)
+        time.sleep(0.05)  # a case that takes time (what is simulated here): the kill lands
+        # while the other worker still holds cases
         return math.sin(item + 0.1) * 1.234567890123e10 / 3.0  # = expected(item)
 
     on_result, delivered = collector()

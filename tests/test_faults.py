@@ -108,6 +108,7 @@ def test_sigint_to_a_real_run_exits_130_with_one_line(tmp_path):
     deadline = time.monotonic() + 60
     while not out.exists() and run.poll() is None and time.monotonic() < deadline:
         time.sleep(0.01)  # the folder appears when the run has checked it, before the work
+    assert out.exists() and run.poll() is None, "waited for the run's output folder while it ran"
     run.send_signal(signal.SIGINT)
     stdout, stderr = run.communicate(timeout=60)
     assert run.returncode == 130, stderr
@@ -159,7 +160,7 @@ def test_pool_workers_exit_when_only_the_parent_is_killed(sig, tmp_path):
         parent.communicate(timeout=30)  # EOF on its pipes: no child holds them any more
         deadline = time.monotonic() + 30
         while _descendants_alive(children) and time.monotonic() < deadline:
-            time.sleep(0.05)
+            time.sleep(0.05)  # polls for the workers' exit (the event), up to the deadline
         assert _descendants_alive(children) == []
     finally:
         for pid in _descendants_alive(children):
@@ -177,7 +178,7 @@ def test_ctrl_c_to_the_process_group_stops_the_pool_quietly(tmp_path):
         assert parent.returncode == 130 and stderr == "parent: interrupted\n", stderr
         deadline = time.monotonic() + 30
         while _descendants_alive(children) and time.monotonic() < deadline:
-            time.sleep(0.05)
+            time.sleep(0.05)  # polls for the workers' exit (the event), up to the deadline
         assert _descendants_alive(children) == []
     finally:
         for pid in _descendants_alive(children):

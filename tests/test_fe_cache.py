@@ -354,6 +354,8 @@ def test_killed_run_resumes_from_its_finished_cases(fake, tmp_path):
     assert results == [synthetic(d) for d in DEPTHS]
 
 
+#: a slow FE case, simulated: the sleep IS what the concurrency test needs (two runs
+#: overlap on a case in progress), not a wait for an event
 SLOW_CASE_S = 0.4
 
 

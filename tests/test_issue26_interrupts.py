@@ -9,6 +9,7 @@ cluster is up and the other cases are running on its workers (it waits on that l
 a sleep)."""
 from __future__ import annotations
 
+import importlib.util
 import os
 import re
 import signal
@@ -19,7 +20,10 @@ from pathlib import Path
 
 import pytest
 
-pytest.importorskip("distributed")
+#: only the slow test below needs dask.distributed: found, not imported, so collecting this
+#: module in the default run costs no second of dask imports
+pytestmark = pytest.mark.skipif(importlib.util.find_spec("distributed") is None,
+                                reason="distributed not installed")
 
 SCENE = """
 [reducer]

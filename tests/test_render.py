@@ -50,7 +50,9 @@ def cracked_ring_fields():
     from hubvib.build import raba118
     from hubvib.meshing.crack import Crack
 
-    return ring_fields(raba118.design(), Crack(0, 0.012), scaled_options(4.0), modes=2)
+    # scale 8 (was 4): every property checked below still shows with margin (near-tip
+    # stress 21x the intact ring's at 8, 33x at 4; softer; lower first mode)
+    return ring_fields(raba118.design(), Crack(0, 0.012), scaled_options(8.0), modes=2)
 
 
 def test_fe_renders_are_real_distinct_and_repeatable(tmp_path, cracked_ring_fields):
@@ -84,7 +86,7 @@ def test_fe_ring_fields_physics(cracked_ring_fields):
     from hubvib.build import raba118
 
     fields = cracked_ring_fields
-    intact = ring_fields(raba118.design(), None, scaled_options(4.0), modes=1)
+    intact = ring_fields(raba118.design(), None, scaled_options(8.0), modes=1)
     # LEFM: the stress is singular at the crack tip; intact, the rim there is barely loaded
     near = lambda f: f.von_mises[np.hypot(*(f.points - fields.crack_tip).T) < 3e-3].max()
     assert near(fields) > 5 * near(intact)

@@ -77,21 +77,31 @@ def test_tip_interference_is_refused():
 
 
 # tooth compliance ------------------------------------------------------------
-def test_fe_tooth_compliance_is_mesh_converged():
+@pytest.fixture(scope="module")
+def sun_compliance():
+    """FE compliance of the sun tooth on the default mesh at ``involute_radii(SUN)`` [m/N]
+    (computed once: two tests read it)."""
+    return fe_tooth_compliance(SUN, ring_mesh(SUN, None, MeshOptions()),
+                               involute_radii(SUN)).compliance
+
+
+@pytest.mark.slow  # a mesh with every size halved (~2 s idle); the default run solves the same
+# path on the default mesh in test_fe_tooth_compliance_matches_the_potential_energy_method
+def test_fe_tooth_compliance_is_mesh_converged(sun_compliance):
     """Default mesh vs all sizes halved: the tooth compliance changes < 0.1 % (P2 curved)."""
     radii = involute_radii(SUN)
-    coarse = fe_tooth_compliance(SUN, ring_mesh(SUN, None, MeshOptions()), radii).compliance
+    coarse = sun_compliance
     fine = fe_tooth_compliance(SUN, ring_mesh(SUN, None, MeshOptions(
         size=1e-3, tooth_size=0.25e-3, load_size=0.05e-3)), radii).compliance
     assert np.max(np.abs(coarse / fine - 1)) < 1e-3
 
 
-def test_fe_tooth_compliance_matches_the_potential_energy_method():
+def test_fe_tooth_compliance_matches_the_potential_energy_method(sun_compliance):
     """Sun tooth: FE within 10 % of bending + shear + axial + Sainsot foundation (Sainsot et al.
     2004 report their foundation fit within a few % of FE; measured here 5-7 %); both grow
     monotonically towards the tip."""
     radii = involute_radii(SUN)
-    fe = fe_tooth_compliance(SUN, ring_mesh(SUN), radii).compliance
+    fe = sun_compliance
     beam = np.array([beam_compliance(SUN, r).total for r in radii])
     assert np.all(np.abs(fe / beam - 1) < 0.10), fe / beam
     assert np.all(np.diff(fe) > 0) and np.all(np.diff(beam) > 0)

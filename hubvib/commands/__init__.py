@@ -12,6 +12,8 @@ from __future__ import annotations
 import importlib
 import pkgutil
 
+__all__ = ["command_names", "command_modules"]
+
 
 def command_names() -> list[str]:
     """Every command module's name (``torus_screw``), in name order, none imported."""

@@ -8,5 +8,29 @@ sees), ``pod`` (probability of detection), ``detectability`` (smallest detectabl
 depth against the mounting stiffness), ``study`` (the three together),
 ``measured`` (a CSV of identified frequencies), ``diagnosis`` (crack depth from
 measured frequencies), ``numbers`` (round-off prints as 0), ``report`` and
-``plots``.  Nothing heavy is imported here; matplotlib only in ``plots``.
+``plots``.  Nothing heavy is imported here; matplotlib only in ``plots``.  Every name
+below is imported on first use (PEP 562).
 """
+from typing import TYPE_CHECKING
+
+from hubvib.foundation.lazy import lazy_face
+
+if TYPE_CHECKING:
+    from .carrier import CarrierStudy, MeshTiming, carrier_study, mesh_timing
+    from .detectability import DetectabilityMap, detectability_map
+    from .diagnosis import Diagnosis, diagnose, diagnose_scene
+    from .measured import Measured, MeasuredError, read_measured
+    from .model import CrackModel
+    from .options import DetectionOptions, parse_detection_table
+    from .pod import PodResult, pod_study
+    from .series import identify_mount, ring_support
+    from .study import DetectionStudy, detection_study
+
+__all__ = [
+    "DetectionOptions", "parse_detection_table", "CrackModel", "identify_mount",
+    "ring_support", "MeshTiming", "mesh_timing", "CarrierStudy", "carrier_study",
+    "PodResult", "pod_study", "DetectabilityMap", "detectability_map", "DetectionStudy",
+    "detection_study", "Measured", "MeasuredError", "read_measured", "Diagnosis",
+    "diagnose", "diagnose_scene",
+]
+__getattr__, __dir__ = lazy_face(__name__, __file__, __all__)

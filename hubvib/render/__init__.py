@@ -1,2 +1,21 @@
 """Off-screen pictures: mode shapes of the lumped model (``modes``), FE fields of the
-ring (``fe``), and the render cache (``cache``).  pyvista is imported where it is used."""
+ring (``fe``), the crack path (``crack_path``), figure captions (``captions``), the HTML
+report (``html``) and the render cache (``cache``).  pyvista is imported where it is
+used; every name below is imported on first use (PEP 562)."""
+from typing import TYPE_CHECKING
+
+from hubvib.foundation.lazy import lazy_face
+
+if TYPE_CHECKING:
+    from .cache import cached_render
+    from .captions import caption
+    from .crack_path import render_path
+    from .fe import RingFields, render_fe, ring_fields
+    from .html import write_html_report
+    from .modes import render_mode, render_modes
+
+__all__ = [
+    "render_mode", "render_modes", "RingFields", "ring_fields", "render_fe", "render_path",
+    "caption", "write_html_report", "cached_render",
+]
+__getattr__, __dir__ = lazy_face(__name__, __file__, __all__)
