@@ -18,6 +18,14 @@ factorised in single precision and refined in double to 1e-12 (``fem/pardiso.py`
 on the solid ring about twice as fast as pypardiso's CSR path, same run: README).  SuperLU runs
 with one BLAS thread (``fem/threads.py``).  Every solver refuses a singular
 (unsupported) system with ``SingularSystemError``.
+
+Measured on the solid ring (5.6e5 DOFs, one load column, 2 loaded cores, issue 25) and
+not taken: pyamg smoothed aggregation with the six rigid-body modes (symmetric strength,
+4 levels, operator complexity 1.11) needs 45 s to set up and 63 / 77 / 92 CG iterations
+(80-165 s) for 1e-8 / 1e-10 / 1e-12, against 15-22 s for PARDISO in the same run (c_ru
+within 7e-11 already at 1e-8); PARDISO's parallel nested dissection (``iparm[1] = 3``)
+and improved two-level factorisation (``iparm[23] = 10``) gave the same times as METIS
+and the two-level default within the load's noise (alternated, same run).
 """
 from __future__ import annotations
 
