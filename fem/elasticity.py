@@ -21,7 +21,7 @@ from .facets import facet_basis
 from .fast_assembly import BlockMatrix, elasticity_block_matrix
 from .locate import reference_coordinates
 from .material import Material, MaterialError
-from .solvers import SingularSystemError, factorise, factorise_blocks, pick
+from .solvers import SingularSystemError, factorise, factorise_free_blocks, pick
 
 __all__ = ["PlaneModel", "plane_model", "Solution", "solve", "supported", "SupportedSystem",
            "rigid_body_modes", "SingularSystemError"]
@@ -258,7 +258,7 @@ def supported(model, fixed_groups: list[str], fixed_dofs=(), solver: str = "auto
     if method == "pardiso" and blocks is not None and whole_nodes.all():
         # single precision pays off where the factorisation dominates (3D), not in 2D,
         # where the refinement of many load columns costs more than it saves
-        factor = factorise_blocks(*blocks.upper(keep.reshape(-1, dim)[:, 0]), single=dim == 3)
+        factor = factorise_free_blocks(blocks, keep.reshape(-1, dim)[:, 0], single=dim == 3)
     else:
         near_null = rigid[free] if method == "amg" else None
         factor = factorise(submatrix(model.K, keep), method, near_null)

@@ -18,6 +18,14 @@ factorised in single precision and refined in double to 1e-12 (``fem/pardiso.py`
 on the solid ring about twice as fast as pypardiso's CSR path, same run: README).  SuperLU runs
 with one BLAS thread (``fem/threads.py``).  Every solver refuses a singular
 (unsupported) system with ``SingularSystemError``.
+
+Measured on the solid ring (5.6e5 DOFs, one load column, 2 loaded cores, issue 25) and
+not taken: pyamg smoothed aggregation with the six rigid-body modes (symmetric strength,
+4 levels, operator complexity 1.11) needs 45 s to set up and 63 / 77 / 92 CG iterations
+(80-165 s) for 1e-8 / 1e-10 / 1e-12, against 15-22 s for PARDISO in the same run (c_ru
+within 7e-11 already at 1e-8); PARDISO's parallel nested dissection (``iparm[1] = 3``)
+and improved two-level factorisation (``iparm[23] = 10``) gave the same times as METIS
+and the two-level default within the load's noise (alternated, same run).
 """
 from __future__ import annotations
 
@@ -102,8 +110,32 @@ def factorise_blocks(indptr, indices, values, single: bool = True) -> Factor:
     precision until its estimated relative error is ``REFINE_TOLERANCE`` (what a double
     factorisation leaves); if that fails, factorise again in double precision.
     """
-    return _PardisoFactor(indptr, indices, values, values.shape[1], single,
+    def matrix(dtype):
+        return indptr, indices, values.astype(dtype, copy=False)
+
+    return _PardisoFactor(matrix, values.shape[1], single,
                           lambda: _symmetric_block_matvec(indptr, indices, values))
+
+
+def factorise_free_blocks(blocks, keep: np.ndarray, single: bool = True) -> Factor:
+    """PARDISO on the rows and columns of the nodes where ``keep`` is true of a symmetric
+    ``BlockMatrix`` ``blocks`` (``fem.fast_assembly``): ``factorise_blocks`` of
+    ``blocks.upper(keep)``, without a second double-precision copy of the matrix.
+
+    PARDISO gets the free upper block triangle in the factorisation's precision only
+    (single: float32, half the bytes); the refinement multiplies by ``blocks`` itself,
+    the free unknowns set in a whole vector with zeros at the other nodes.  On the solid
+    ring (5.6e5 DOFs) this saves the 0.17 GB double copy during the factorisation's peak.
+    """
+    def matrix(dtype):
+        return blocks.upper(keep, dtype)
+
+    def matvec():
+        p = blocks.pattern
+        return _FreeMatvec(_symmetric_block_matvec(p.indptr, p.indices, blocks.values),
+                           np.repeat(np.asarray(keep, dtype=bool), p.dim))
+
+    return _PardisoFactor(matrix, blocks.pattern.dim, single, matvec)
 
 
 def _csc_of_symmetric(K):
@@ -140,9 +172,9 @@ class _SuperLU(Factor):
 class _PardisoFactor(Factor):
     method = "pardiso"
 
-    def __init__(self, indptr, indices, data, block: int = 1, single: bool = False,
-                 matvec=None):
-        self._matrix = (indptr, indices, data, block)
+    def __init__(self, matrix, block: int = 1, single: bool = False, matvec=None):
+        self._matrix = matrix  # dtype -> the upper (block) triangle (indptr, indices, values)
+        self._block = block
         self._single = single
         self._make_matvec = matvec  # built when first needed: after the factorisation's peak
         self._matvec = None
@@ -150,7 +182,8 @@ class _PardisoFactor(Factor):
 
     def _factorise(self, single: bool):
         try:
-            factor = Pardiso(*self._matrix, single=single)
+            factor = Pardiso(*self._matrix(np.float32 if single else np.float64),
+                             self._block, single=single)
         except PardisoError as error:
             if single:  # too ill-conditioned for float32: try again in double
                 return self._factorise(False)
@@ -165,7 +198,7 @@ class _PardisoFactor(Factor):
     def from_csr(cls, K) -> "_PardisoFactor":
         upper = sp.triu(K, format="csr")
         upper.sort_indices()
-        return cls(upper.indptr, upper.indices, upper.data)
+        return cls(lambda dtype: (upper.indptr, upper.indices, upper.data.astype(dtype)))
 
     def _solve(self, columns):
         if not self._single:
@@ -210,6 +243,21 @@ class _PardisoFactor(Factor):
 def _symmetric_block_matvec(indptr, indices, values) -> "_SymmetricMatvec":
     """``x -> K x`` for the symmetric K whose upper block triangle is given (block CSR)."""
     return _SymmetricMatvec(indptr, indices, values)
+
+
+class _FreeMatvec:
+    """``x -> K_ff x`` on the free unknowns (``free`` mask over all of K's rows) from the
+    whole matrix's ``matvec``: x goes into a whole vector with zeros elsewhere."""
+
+    def __init__(self, matvec, free: np.ndarray):
+        self._matvec = matvec
+        self._free = free
+
+    def __call__(self, x):
+        x = np.asarray(x)
+        whole = np.zeros((len(self._free),) + x.shape[1:])
+        whole[self._free] = x
+        return self._matvec(whole)[self._free]
 
 
 class _SymmetricMatvec:

@@ -14,6 +14,9 @@ the face width [m].
 """
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
+import functools
 import time
 from dataclasses import asdict
 
@@ -47,12 +50,35 @@ def ring_mesh_3d(ring: RingGear, crack: Crack | None = None, front: CrackFront =
         front.check(crack, ring)
     check_load_patch(ring, options)
     started = time.perf_counter()
-    with gmsh_model("ring3d") as gmsh:
-        mesh = run_builder(_SolidBuilder(gmsh, ring, crack, path, options, front),
-                           f"the solid ring (options={options}, crack={crack}, front={front})")
+    try:
+        with gmsh_model("ring3d") as gmsh:
+            mesh = run_builder(_SolidBuilder(gmsh, ring, crack, path, options, front),
+                               f"the solid ring (options={options}, crack={crack}, "
+                               f"front={front})")
+    finally:
+        release_freed_heap()
     return with_info(mesh, started, ring, options, crack, path,
                      front=None if crack is None else asdict(front),
                      exact_volume=ring.area() * width)
+
+
+def release_freed_heap() -> None:
+    """Hand the heap memory gmsh freed back to the operating system (glibc's
+    ``malloc_trim``; elsewhere nothing).  gmsh frees its model in many small pieces that
+    glibc keeps resident: 0.56 GB after the default solid mesh, measured, which the
+    factorisation that follows then stacked its own peak on (``hubvib stiffness --solid``)."""
+    trim = _malloc_trim()
+    if trim is not None:
+        trim(0)
+
+
+@functools.cache
+def _malloc_trim():
+    """glibc's ``malloc_trim``, or None where the C library has none."""
+    try:
+        return ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6").malloc_trim
+    except (OSError, AttributeError):
+        return None
 
 
 class _SolidBuilder(RingBuilder):

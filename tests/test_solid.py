@@ -207,6 +207,45 @@ def test_single_precision_falls_back_to_double_where_refinement_stalls(monkeypat
             "double refactorisation against SuperLU: 1e-10 relative"
 
 
+@needs_pardiso
+@pytest.mark.parametrize("steps", [None, 0])
+def test_free_blocks_factor_agrees_with_superlu(box, monkeypatch, steps):
+    """PARDISO on the free node blocks given in float32 only, refined against the whole
+    block matrix (``factorise_free_blocks``): the displacements of sparse LU on the
+    independently sliced CSR matrix to 1e-10 relative, its residual at the double
+    factorisation's level (10 x REFINE_TOLERANCE); with no refinement steps allowed
+    (``steps`` 0) the double refactorisation from the same blocks agrees as well."""
+    import hubvib.fem.solvers as solvers
+
+    keep = _free(box)
+    reference = solve(box, box.f, ["clamp"], solver="superlu").u[keep]
+    factor = solvers.factorise_free_blocks(box.blocks, keep.reshape(-1, 3)[:, 0])
+    if steps is not None:
+        monkeypatch.setattr(solvers, "REFINE_STEPS", steps)
+    u = factor.solve(box.f[keep])
+    assert factor._single == (steps is None), "float32 kept unless the refinement stalls"
+    factor.free()
+    assert np.abs(u - reference).max() <= 1e-10 * np.abs(reference).max(), \
+        "free-block PARDISO against SuperLU: 1e-10 relative"
+    residual = box.K[keep][:, keep] @ u - box.f[keep]
+    assert np.abs(residual).max() <= 10 * solvers.REFINE_TOLERANCE * np.abs(box.f).max()
+
+
+def test_block_matrix_upper_in_single_precision_is_the_rounded_double(box, monkeypatch):
+    """``BlockMatrix.upper(keep, float32)`` (copied slice by slice) is the double upper
+    block triangle rounded to float32, bit for bit, with the same structure."""
+    import hubvib.fem.fast_assembly as fast_assembly
+
+    keep = np.ones(box.ndofs // 3, dtype=bool)
+    keep[::7] = False
+    double = box.blocks.upper(keep)
+    monkeypatch.setattr(fast_assembly, "UPPER_CHUNK", 97)  # many ragged slices on the box
+    single = box.blocks.upper(keep, np.float32)
+    assert single[2].dtype == np.float32
+    assert np.array_equal(single[0], double[0]) and np.array_equal(single[1], double[1])
+    assert np.array_equal(single[2], double[2].astype(np.float32))
+
+
 def test_block_matrix_is_the_csr_matrix(box):
     """The upper node blocks, read back whole, are K; their free part is K[free][:, free]
     (an independent scipy slicing)."""
