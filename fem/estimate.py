@@ -26,7 +26,9 @@ RING_KEYS = {"c_ru": "c_ru_N_m", "c_ru_error": "c_ru_error_N_m", "c_ru_min": "c_
              "c_ru_coarse": "c_ru_coarse_N_m", "c_r_coarse": "c_r_coarse_N_m",
              "c_ru_poor_half": "c_ru_poor_half_N_m", "c_r_poor_half": "c_r_poor_half_N_m",
              "c_rp_engaged_intact": "c_rp_engaged_intact_N_m",
-             "c_rp_engaged_intact_min": "c_rp_engaged_intact_min_N_m"}
+             "c_rp_engaged_intact_min": "c_rp_engaged_intact_min_N_m",
+             "tooth_radii": "tooth_radii_m", "tooth_compliance": "tooth_compliance_m_N",
+             "tooth_compliance_coarse": "tooth_compliance_coarse_m_N"}
 #: a cell whose gmsh min SICN is below this counts as poorly shaped
 USABLE_QUALITY = 0.1
 #: version of the dict form of the estimates (``to_dict`` / ``from_dict``), stored with
@@ -36,7 +38,7 @@ SCHEMA_VERSION = 2
 
 
 #: the field types of the estimates, as their annotations name them
-_TYPES = {"float": float, "int": int, "str": str}
+_TYPES = {"float": float, "int": int, "str": str, "tuple": tuple}
 
 
 def _from_dict(cls, data: dict):
@@ -52,6 +54,12 @@ def _from_dict(cls, data: dict):
                 missing.append(key)
             continue
         value, kind = data[key], _TYPES[f.type]
+        if kind is tuple:  # a list of numbers
+            if not isinstance(value, (list, tuple)) or not all(
+                    isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
+                raise ValueError(f"{key} = {value!r}; allowed: a list of numbers")
+            values[f.name] = tuple(float(v) for v in value)
+            continue
         if isinstance(value, bool) or not (isinstance(value, (int, float)) if kind is float
                                            else isinstance(value, kind)):
             raise ValueError(f"{key} = {value!r}; allowed: {kind.__name__}")
@@ -90,6 +98,9 @@ class RingEstimate:
     c_ru_poor_half, c_r_poor_half : float
         With ``poor_cells_halved``: the fine level again with those cells at half their
         stiffness [N/m], how much the result hangs on them (NaN otherwise).
+    tooth_radii, tooth_compliance, tooth_compliance_coarse : tuple of float
+        With ``tooth`` (solid): the flank radii [m] and the tooth's line-load compliance
+        [m/N] there on the fine and the coarse level (``fem.tooth_solid``; empty otherwise).
     """
 
     c_ru: float
@@ -109,6 +120,9 @@ class RingEstimate:
     poor_cells: int = 0
     c_ru_poor_half: float = float("nan")
     c_r_poor_half: float = float("nan")
+    tooth_radii: tuple = ()
+    tooth_compliance: tuple = ()
+    tooth_compliance_coarse: tuple = ()
 
     def to_dict(self) -> dict:
         """Keys with units (``c_ru_N_m`` ...), as in the JSON output and the cache."""
@@ -124,7 +138,7 @@ class RingEstimate:
 def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
                   solid: bool = False, mesher=None, material=None,
                   n_planets: int = 3, front=None, carrier_teeth=None,
-                  poor_cells_halved: bool = False) -> RingEstimate:
+                  poor_cells_halved: bool = False, tooth=None) -> RingEstimate:
     """c_ru and c_r on the default mesh (sizes times ``scale``) and on one twice as coarse.
 
     With ``solid``: the solid ring on the last two ``SOLID_LEVELS``, by default planet 1
@@ -134,7 +148,9 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
     (default: through the face width); ``carrier_teeth`` lists the carrier positions as
     the tooth planet 1 loads (default: every tooth of one planet pitch in the plane);
     ``poor_cells_halved`` (solid) solves the fine level once more with the cells below
-    ``USABLE_QUALITY`` at half stiffness.
+    ``USABLE_QUALITY`` at half stiffness.  ``tooth`` (solid: a
+    ``fem.tooth_solid.SolidToothLoad``) measures that tooth's line-load compliance on both
+    levels with the same factorisations.
     """
     mesher = mesher or ring_mesh
     if solid:
@@ -150,7 +166,7 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
                 else mesher(ring, crack, options))
         meshed = time.perf_counter()
         result = ring_stiffness(ring, mesh, material or Material(), n_planets=n_planets,
-                                carrier_teeth=teeth, solver=solver)
+                                carrier_teeth=teeth, solver=solver, tooth=tooth)
         results[name] = (result, meshed - started, time.perf_counter() - meshed)
     quality = mesh.cell_quality
     if quality is None:
@@ -165,6 +181,10 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
         halved = dict(c_ru_poor_half=result.c_ru, c_r_poor_half=result.c_r)
         results["halved"] = (result, 0.0, time.perf_counter() - started)
     fine, coarse = results["fine"][0], results["coarse"][0]
+    teeth_values = {} if tooth is None else dict(
+        tooth_radii=tuple(float(r) for r in fine.tooth.radii),
+        tooth_compliance=tuple(float(q) for q in fine.tooth.compliance),
+        tooth_compliance_coarse=tuple(float(q) for q in coarse.tooth.compliance))
     return RingEstimate(
         c_ru=fine.c_ru, c_ru_error=abs(fine.c_ru - coarse.c_ru),
         c_ru_min=float(fine.c_ru_positions.min()), c_ru_max=float(fine.c_ru_positions.max()),
@@ -173,7 +193,8 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
         seconds_fe=results["fine"][2],
         seconds_total=sum(r[1] + r[2] for r in results.values()),
         c_ru_coarse=coarse.c_ru, c_r_coarse=coarse.c_r,
-        min_quality=float(quality.min()), poor_cells=int(poor.sum()), **halved)
+        min_quality=float(quality.min()), poor_cells=int(poor.sum()), **halved,
+        **teeth_values)
 
 
 @dataclass(frozen=True)
