@@ -186,10 +186,11 @@ def test_part_width_ratio_against_the_slice_ratio_and_the_through_crack():
 
 @pytest.mark.slow
 def test_centred_crack_deflects_the_tooth_symmetrically():
-    """The extra deflection of a centred 6 mm x 8 mm crack across the width (coarsest solid
+    """The extra deflection of a centred 3 mm x 8 mm crack across the width (default solid
     level) is symmetric about mid-width: the means of the two halves agree within 10 % (the
-    mesh is not symmetric), and it is largest in the middle third."""
-    cracked, intact = solid(0, 6e-3, 8e-3), solid(0)
+    mesh is not symmetric: measured up to 9.5 %, on the coarsest level 10 %), and it is
+    largest in the middle third."""
+    cracked, intact = solid(2, DEPTH, 8e-3), solid(2)
     extra = cracked.profile - intact.profile
     half = extra.shape[1] // 2
     left, right = extra[:, :half].mean(axis=1), extra[:, half:][:, ::-1].mean(axis=1)
