@@ -30,19 +30,22 @@ RING_KEYS = {"c_ru": "c_ru_N_m", "c_ru_error": "c_ru_error_N_m", "c_ru_min": "c_
              "c_rp_engaged_intact_window": "c_rp_engaged_intact_window_N_m",
              "c_ru_root_land": "c_ru_root_land_N_m",
              "c_ru_root_land_error": "c_ru_root_land_error_N_m",
-             "c_r_root_land": "c_r_root_land_N_m", "c_r_root_land_error": "c_r_root_land_error_N_m"}
+             "c_r_root_land": "c_r_root_land_N_m", "c_r_root_land_error": "c_r_root_land_error_N_m",
+             "tooth_radii": "tooth_radii_m", "tooth_compliance": "tooth_compliance_m_N",
+             "tooth_compliance_coarse": "tooth_compliance_coarse_m_N"}
 #: a cell whose gmsh min SICN is below this counts as poorly shaped
 USABLE_QUALITY = 0.1
 #: version of the dict form of the estimates (``to_dict`` / ``from_dict``), stored with
 #: every FE cache entry: a change of the fields is a new version, and old entries go
 #: (2: the crack case stores the absolute intact engaged c_rp, issue 22 item 6; 3: the
 #: crack case's c_ru and c_r are the work-conjugate rim parts, the root-land readings and
-#: the intact engaged c_rp over the contact window beside them, issue 25 item 1)
-SCHEMA_VERSION = 3
+#: the intact engaged c_rp over the contact window beside them, issue 25 item 1; 4: the
+#: solid case stores its cracked tooth's line-load compliance, issue 23 item 4)
+SCHEMA_VERSION = 4
 
 
 #: the field types of the estimates, as their annotations name them
-_TYPES = {"float": float, "int": int, "str": str}
+_TYPES = {"float": float, "int": int, "str": str, "tuple": tuple}
 
 
 def _from_dict(cls, data: dict):
@@ -58,6 +61,12 @@ def _from_dict(cls, data: dict):
                 missing.append(key)
             continue
         value, kind = data[key], _TYPES[f.type]
+        if kind is tuple:  # a list of numbers
+            if not isinstance(value, (list, tuple)) or not all(
+                    isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
+                raise ValueError(f"{key} = {value!r}; allowed: a list of numbers")
+            values[f.name] = tuple(float(v) for v in value)
+            continue
         if isinstance(value, bool) or not (isinstance(value, (int, float)) if kind is float
                                            else isinstance(value, kind)):
             raise ValueError(f"{key} = {value!r}; allowed: {kind.__name__}")
@@ -102,6 +111,9 @@ class RingEstimate:
         lumped model uses.
     c_ru_root_land, c_ru_root_land_error, c_r_root_land, c_r_root_land_error : float
         With ``"rim"``: the root-land readings and their errors beside them [N/m].
+    tooth_radii, tooth_compliance, tooth_compliance_coarse : tuple of float
+        With ``tooth`` (solid): the flank radii [m] and the tooth's line-load compliance
+        [m/N] there on the fine and the coarse level (``fem.tooth_solid``; empty otherwise).
     """
 
     c_ru: float
@@ -126,6 +138,9 @@ class RingEstimate:
     c_ru_root_land_error: float = float("nan")
     c_r_root_land: float = float("nan")
     c_r_root_land_error: float = float("nan")
+    tooth_radii: tuple = ()
+    tooth_compliance: tuple = ()
+    tooth_compliance_coarse: tuple = ()
 
     def to_dict(self) -> dict:
         """Keys with units (``c_ru_N_m`` ...), as in the JSON output and the cache."""
@@ -156,7 +171,7 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
                   solid: bool = False, mesher=None, material=None,
                   n_planets: int = 3, front=None, carrier_teeth=None,
                   poor_cells_halved: bool = False,
-                  definition: str = "root_land") -> RingEstimate:
+                  definition: str = "root_land", tooth=None) -> RingEstimate:
     """c_ru and c_r on the default mesh (sizes times ``scale``) and on one twice as coarse.
 
     With ``solid``: the solid ring on the last two ``SOLID_LEVELS``, by default planet 1
@@ -168,6 +183,8 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
     ``poor_cells_halved`` (solid) solves the fine level once more with the cells below
     ``USABLE_QUALITY`` at half stiffness.  ``definition`` (``RING_DEFINITIONS``): the
     root-land readings, or the work-conjugate rim parts with the root-land readings beside.
+    ``tooth`` (solid: a ``fem.tooth_solid.SolidToothLoad``) measures that tooth's line-load
+    compliance on both levels with the same factorisations.
     """
     if definition not in RING_DEFINITIONS:
         raise ValueError(f"definition = {definition!r}; allowed: {', '.join(RING_DEFINITIONS)}")
@@ -185,7 +202,7 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
                 else mesher(ring, crack, options))
         meshed = time.perf_counter()
         result = ring_stiffness(ring, mesh, material or Material(), n_planets=n_planets,
-                                carrier_teeth=teeth, solver=solver)
+                                carrier_teeth=teeth, solver=solver, tooth=tooth)
         results[name] = (result, meshed - started, time.perf_counter() - meshed)
     quality = mesh.cell_quality
     if quality is None:
@@ -206,6 +223,10 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
     land = {} if definition == "root_land" else dict(
         c_ru_root_land=fine.c_ru, c_ru_root_land_error=abs(fine.c_ru - coarse.c_ru),
         c_r_root_land=fine.c_r, c_r_root_land_error=abs(fine.c_r - coarse.c_r))
+    teeth_values = {} if tooth is None else dict(
+        tooth_radii=tuple(float(r) for r in fine.tooth.radii),
+        tooth_compliance=tuple(float(q) for q in fine.tooth.compliance),
+        tooth_compliance_coarse=tuple(float(q) for q in coarse.tooth.compliance))
     return RingEstimate(
         c_ru=c_ru, c_ru_error=abs(c_ru - c_ru_coarse),
         c_ru_min=float(c_ru_positions.min()), c_ru_max=float(c_ru_positions.max()),
@@ -215,7 +236,7 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
         seconds_total=sum(r[1] + r[2] for r in results.values()),
         c_ru_coarse=c_ru_coarse, c_r_coarse=c_r_coarse,
         min_quality=float(quality.min()), poor_cells=int(poor.sum()), **halved,
-        definition=definition, **land)
+        definition=definition, **land, **teeth_values)
 
 
 @dataclass(frozen=True)

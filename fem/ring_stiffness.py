@@ -32,6 +32,7 @@ from .elasticity import plane_model, solve
 from .material import Material
 from .ring_work import RingWork, ring_work
 from .solid import solid_model
+from .tooth_solid import SolidToothCompliance, solid_tooth_compliance, solid_tooth_probe
 
 
 @dataclass(frozen=True)
@@ -63,6 +64,7 @@ class RingStiffness:
     dofs: int
     seconds: dict
     work: RingWork | None = None
+    tooth: SolidToothCompliance | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -284,32 +286,41 @@ def default_carrier_teeth(ring: RingGear, n_planets: int) -> np.ndarray:
 
 def ring_stiffness(ring: RingGear, mesh: FEMesh, material: Material = Material(),
                    n_planets: int = 3, carrier_teeth=None, solver: str = "auto",
-                   cell_scale=None) -> RingStiffness:
+                   cell_scale=None, tooth=None) -> RingStiffness:
     """c_ru at each carrier position (default: every tooth over one planet pitch) and c_r.
 
     A plane mesh is solved in plane stress over the face width; a solid mesh
     in 3D, with the loads spread over the tooth's load surface across the face.
     ``solver``: see ``fem.solvers``.  One factorisation serves every load column.
     ``cell_scale`` (solid meshes: one stiffness factor per cell) measures how much the
-    result depends on some cells.
+    result depends on some cells.  ``tooth`` (solid meshes: a
+    ``fem.tooth_solid.SolidToothLoad``) adds that tooth's line loads as further columns of
+    the same factorisation; ``RingStiffness.tooth`` is then its compliance.
     """
     check_ring_input(ring, mesh, n_planets)
+    if tooth is not None and mesh.dim != 3:
+        raise ValueError("tooth: the line-load tooth compliance needs a solid mesh")
     if carrier_teeth is None:
         carrier_teeth = default_carrier_teeth(ring, n_planets)
     t0 = time.perf_counter()
     model = ring_model(ring, mesh, material, cell_scale)
     t1 = time.perf_counter()
     loads = ring_loads(model, ring, carrier_teeth, n_planets)
+    probe = solid_tooth_probe(ring, model, tooth) if tooth is not None else None
+    columns = loads.loads if probe is None else np.column_stack([loads.loads, probe.loads])
     t2 = time.perf_counter()
-    solution = solve(model, loads.loads, ["supports"], solver=solver)
+    solution = solve(model, columns, ["supports"], solver=solver)
     t3 = time.perf_counter()
-    c_ru, c_r = ring_response(model, ring, loads, solution.u)
-    work = ring_work(model, ring, loads, solution.u, loads.forces,
+    ring_u = solution.u[:, :loads.loads.shape[1]]
+    c_ru, c_r = ring_response(model, ring, loads, ring_u)
+    work = ring_work(model, ring, loads, ring_u, loads.forces,
                      root_lands(model, range(ring.teeth)))
+    measured = (solid_tooth_compliance(probe, solution.u[:, loads.loads.shape[1]:])
+                if probe is not None else None)
     return RingStiffness(float(c_ru.mean()), c_ru, loads.carrier_teeth, c_r, model.ndofs,
                          {"assembly": t1 - t0, "loads": t2 - t1, "solve": t3 - t2,
                           "measure": time.perf_counter() - t3, "solver": solution.solver},
-                         work)
+                         work, measured)
 
 
 def ring_model(ring: RingGear, mesh: FEMesh, material: Material = Material(),

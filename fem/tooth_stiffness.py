@@ -173,6 +173,13 @@ def _intact_curve(body, span, material, options, tooth: int = 0) -> ToothCurve:
     return fe_curve(body, span, material, options, tooth=tooth)
 
 
+def intact_curve(body: ToothedBody, span, material: Material, options, tooth: int = 0
+                 ) -> ToothCurve:
+    """The intact FE curve of ``tooth`` over the contact radii ``span`` [m], kept between
+    calls (the one ``engaged_mesh`` uses)."""
+    return _intact_curve(body, tuple(float(r) for r in span), material, options, tooth)
+
+
 def engaged_ring_mesh(planet: ToothedBody, ring: ToothedBody, crack, options=None,
                       material: Material = Material(), mesher=None) -> EngagedMesh:
     """c_rp over the engagement of ring tooth 0 carrying ``crack`` (depth > 0).

@@ -77,8 +77,13 @@ def test_a_cached_solid_case_of_another_crack_is_refused():
            "c_r_poor_half_N_m": 0.9, "depth_m": 0.003, "half_length_m": 0.004,
            "c_ru_error_N_m": 0.1, "c_r_error_N_m": 0.1, "min_quality": 0.01, "poor_cells": 9,
            "dofs": 99, "solver": "synthetic", "seconds_mesh": 0.4, "seconds_fe": 0.5,
-           "seconds_total": 1.0}
+           "seconds_total": 1.0, "tooth_radii_m": [0.105, 0.11],
+           "tooth_compliance_m_N": [6e-10, 4e-11], "tooth_compliance_coarse_m_N": [6e-10, 4e-11]}
     check_case((0.003, 0.004))(row)
+    with pytest.raises(CacheEntryError, match="tooth_compliance = "):
+        check_case((0.003, 0.004))(dict(row, tooth_compliance_m_N=[6e-10]))
+    with pytest.raises(CacheEntryError, match="tooth_compliance_coarse = "):
+        check_case((0.003, 0.004))(dict(row, tooth_compliance_coarse_m_N=[6e-10, -1.0]))
     with pytest.raises(CacheEntryError, match="half_length_m"):
         check_case((0.003, 0.008))(row)
     with pytest.raises(CacheEntryError, match="c_ru outside"):
@@ -153,14 +158,24 @@ def test_solid_rows_change_and_its_error():
     assert rows[1]["c_ru_change_error"] == pytest.approx(0.005)
     assert rows[1]["c_ru_change_poor_cells"] == pytest.approx(-0.003)  # -0.3 / 100
     assert rows[1]["c_r_change_poor_cells"] == 0
-    assert rows[0]["c_rp_engaged_ratio"] == 1.0
+    assert rows[0]["c_rp_slice_ratio"] == 1.0
     # the intact tooth pair's c_rp is the plane study's, for every solid case
     assert [r["c_rp_engaged_intact_N_m"] for r in rows] == [1.5e9, 1.5e9]
     assert [r["c_rp_engaged_intact_window_N_m"] for r in rows] == [1.57e9, 1.57e9]
     expected = 1 - 2 * 0.004 / WIDTH * 0.1 * math.pi / 4
-    assert rows[1]["c_rp_engaged_ratio"] == pytest.approx(expected, rel=1e-5)
-    assert rows[1]["c_rp_engaged_ratio_error"] == pytest.approx(
+    assert rows[1]["c_rp_slice_ratio"] == pytest.approx(expected, rel=1e-5)
+    assert rows[1]["c_rp_slice_ratio_error"] == pytest.approx(
         2 * 0.004 / WIDTH * 0.01 * math.pi / 4, rel=1e-5)
+    # without the 3D ratios the rows' c_rp is the slice method's; with them, theirs
+    assert rows[1]["c_rp_engaged_ratio"] == rows[1]["c_rp_slice_ratio"]
+    three_d = [dict(c_rp_engaged_ratio=1.0, c_rp_engaged_min_ratio=1.0,
+                    c_rp_engaged_ratio_error=0.0),
+               dict(c_rp_engaged_ratio=0.99, c_rp_engaged_min_ratio=0.98,
+                    c_rp_engaged_ratio_error=0.001)]
+    used = solid_rows(sweep, [row(0, 0, 100.0, 110.0), row(0.003, 0.004, 99.0, 108.5)], plane,
+                      three_d)
+    assert used[1]["c_rp_engaged_ratio"] == 0.99 and used[1]["c_rp_engaged_min_ratio"] == 0.98
+    assert used[1]["c_rp_slice_ratio"] == pytest.approx(expected, rel=1e-5)
 
 
 @pytest.mark.slow
@@ -244,7 +259,8 @@ def test_3d_scene_on_a_local_cluster(tmp_path):
     must meet: a crack never stiffens the ring (within the change's error), a part-width
     crack softens it less than the plane crack through the width at the same depth, a
     longer crack more than a shorter one; the slice c_rp ratio lies between the plane
-    crack's and 1. A second run takes every case from the cache. (The full shipped scene
+    crack's and 1, and so does the solid tooth's (used), a longer crack's lower.
+    A second run takes every case from the cache. (The full shipped scene
     runs in ``hubvib benchmark``, key ``crack_growth_3d_seconds``.)"""
     out = tmp_path / "out"
     scene = tmp_path / "small_3d.toml"
@@ -263,6 +279,9 @@ def test_3d_scene_on_a_local_cluster(tmp_path):
         assert abs(r["c_ru_change_percent"]) <= abs(r["plane_through_c_ru_change_percent"]) \
             + error
         assert r["plane_through_c_rp_ratio"] < r["c_rp_slice_ratio"] < 1
+        assert r["plane_through_c_rp_ratio"] < r["c_rp_3d_ratio"] < 1, \
+            "the solid tooth's c_rp ratio: below 1, above the plane crack's through the width"
+    assert grid[2]["c_rp_3d_ratio"] < grid[1]["c_rp_3d_ratio"], "a longer crack: lower c_rp"
     changes = [r["c_ru_change_percent"] for r in grid[1:]]
     errors = [max(r["c_ru_change_error_percent"], abs(r["c_ru_change_poor_cells_percent"]))
               for r in grid[1:]]
@@ -272,6 +291,7 @@ def test_3d_scene_on_a_local_cluster(tmp_path):
         assert (out / f"half_length_{half}mm" / "report.md").is_file()
     report = (out / "report.md").read_text(encoding="utf-8")
     assert "slice method" in report and "min SICN" in report
+    assert "c_rp ratio (3D, used)" in report
     second = subprocess.run(command, capture_output=True, text=True, timeout=600, env=env)
     assert second.returncode == 0, second.stderr
     assert json.loads(second.stdout)["fe_cases_computed"] == 0

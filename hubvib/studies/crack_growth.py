@@ -4,13 +4,18 @@ Each crack is a semi-elliptic surface crack at the critical fillet point of the
 ring tooth, centred on the face width: depth ``a`` at its deepest point, mouth
 ``2 c`` long on the fillet.  The solid ring gives ``c_ru`` (mean over every
 carrier position of one planet pitch) and ``c_r`` with their error estimates
-(``fem.estimate.estimate_ring``).  The cracked tooth's mesh stiffness is not
-solved in 3D: the slice method (the face width cut into independent slices in
-parallel, each with the plane c_rp ratio at its local depth ``a(z)``; Z. Chen,
-Y. Shao, Engineering Failure Analysis 18 (2011) 2149-2164) carries the plane
-cases of the same depths over to the part-width crack.  Slices that do not hold
-each other up are softer than the solid tooth, so the slice ratio overstates the
-crack's effect on c_rp.
+(``fem.estimate.estimate_ring``).  The same factorisations give the cracked
+tooth's compliance under a line load across the face width at the plane tooth
+curve's flank radii (``fem.tooth_solid``); its ratio to the intact tooth's
+scales the plane intact curve, and the pair and mesh-cycle machinery of the
+plane study gives the c_rp ratio over the cracked tooth's engagement
+(``fem.engaged_solid``): the rows' ``c_rp_engaged_*`` keys.  For comparison the
+slice method (the face width cut into independent slices in parallel, each
+with the plane c_rp ratio at its local depth ``a(z)``; Z. Chen, Y. Shao,
+Engineering Failure Analysis 18 (2011) 2149-2164) carries the plane cases of
+the same depths over to the part-width crack (keys ``c_rp_slice_*``).  Slices
+that do not hold each other up are softer than the solid tooth, so the slice
+ratio overstates the crack's effect on c_rp.
 
 Per half-length the lumped and detection stages and the report are those of the
 plane study (``hubvib.studies.crack_study``), in a folder of their own.
@@ -24,7 +29,9 @@ from pathlib import Path
 
 import numpy as np
 
+from hubvib.build.stages import gear_body, material, ring_gear
 from hubvib.design.presets import raba118
+from hubvib.fem.engaged_solid import solid_engaged_mesh
 from hubvib.detection.numbers import percent
 from hubvib.fem.estimate import USABLE_QUALITY
 from hubvib.foundation.errors import SceneError
@@ -35,7 +42,8 @@ from hubvib.runtime.engines import Execution
 from hubvib.runtime.progress import stage, working
 from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe,
                                         provenance, write_crack_study)
-from hubvib.studies.crack_sweep import (CrackSweep, PlaneCase, SolidCase, case_label,
+from hubvib.meshing.levels import scaled_options
+from hubvib.studies.crack_sweep import (ACCURACY, CrackSweep, PlaneCase, SolidCase, case_label,
                                         run_fe_cases)
 from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
 from hubvib.studies.study import Scene, Study
@@ -74,11 +82,39 @@ def slice_ratio(depth: float, half_length: float, face_width: float, plane_depth
     return float(1 - 2 * half_length / face_width * (1 - inside))
 
 
-def solid_rows(sweep, solid: list[dict], plane: list[dict]) -> list[dict]:
+def solid_c_rp(sweep, solid: list[dict]) -> list[dict]:
+    """The 3D c_rp ratios of the solid cases (``sweep.cases`` order, the intact first) [-]:
+    ``c_rp_engaged_ratio`` and ``c_rp_engaged_min_ratio`` on the fine level, the error the
+    fine level's ratio against the coarse level's (``fem.engaged_solid``)."""
+    design = sweep.reducer
+    ring, planet, steel = ring_gear(design), gear_body(design, "planet"), material(design)
+    options = scaled_options(ACCURACY[sweep.accuracy])
+    intact = solid[0]
+    out = []
+    for row in solid:
+        if row is intact:
+            out.append(dict(c_rp_engaged_ratio=1.0, c_rp_engaged_min_ratio=1.0,
+                            c_rp_engaged_ratio_error=0.0))
+            continue
+        level = {}
+        for key in ("tooth_compliance_m_N", "tooth_compliance_coarse_m_N"):
+            level[key] = solid_engaged_mesh(planet, ring, row["tooth_radii_m"], row[key],
+                                            intact[key], options, steel, sweep.tooth)
+        fine, coarse = level["tooth_compliance_m_N"], level["tooth_compliance_coarse_m_N"]
+        out.append(dict(c_rp_engaged_ratio=fine.mean_ratio, c_rp_engaged_min_ratio=fine.min_ratio,
+                        c_rp_engaged_ratio_error=abs(fine.mean_ratio - coarse.mean_ratio)))
+    return out
+
+
+def solid_rows(sweep, solid: list[dict], plane: list[dict], three_d: list[dict] | None = None
+               ) -> list[dict]:
     """The solid cases (``sweep.cases`` order) with the c_rp keys of the plane study's rows
-    (slice method) and the change of c_ru and c_r against the intact ring [-]: its error
-    (fine against coarse level) and how far it moves with the poorly shaped cells at half
-    stiffness."""
+    and the change of c_ru and c_r against the intact ring [-]: its error (fine against
+    coarse level) and how far it moves with the poorly shaped cells at half stiffness.
+
+    ``c_rp_slice_ratio``, ``c_rp_slice_min_ratio`` and ``c_rp_slice_ratio_error`` are the
+    slice method's; ``c_rp_engaged_*`` are ``three_d``'s (``solid_c_rp``), or the slice
+    method's when ``three_d`` is None."""
     width = sweep.reducer.face_width
     depths = [row["depth_m"] for row in plane]
     column = {key: [row[key] for row in plane] for key in
@@ -90,12 +126,16 @@ def solid_rows(sweep, solid: list[dict], plane: list[dict]) -> list[dict]:
              ("c_rp_engaged_intact_N_m", "c_rp_engaged_intact_min_N_m",
               "c_rp_engaged_intact_window_N_m")}
     rows = []
-    for row in solid:
+    for i, row in enumerate(solid):
         depth, half = row["depth_m"], row["half_length_m"]
         ratio = slice_ratio(depth, half, width, depths, column["c_rp_engaged_ratio"])
         minimum = slice_ratio(depth, half, width, depths, column["c_rp_engaged_min_ratio"])
         error = 1 - slice_ratio(depth, half, width, depths,
                                 1 - np.asarray(column["c_rp_engaged_ratio_error"]))
+        sliced = dict(c_rp_slice_ratio=ratio, c_rp_slice_min_ratio=minimum,
+                      c_rp_slice_ratio_error=error)
+        used = (dict(c_rp_engaged_ratio=ratio, c_rp_engaged_min_ratio=minimum,
+                     c_rp_engaged_ratio_error=error) if three_d is None else three_d[i])
         changes = {}
         for name in ("c_ru", "c_r"):
             fine = row[f"{name}_N_m"] - intact[f"{name}_N_m"]
@@ -104,8 +144,7 @@ def solid_rows(sweep, solid: list[dict], plane: list[dict]) -> list[dict]:
             changes[f"{name}_change"] = fine / intact[f"{name}_N_m"]
             changes[f"{name}_change_error"] = abs(fine - coarse) / intact[f"{name}_N_m"]
             changes[f"{name}_change_poor_cells"] = (halved - fine) / intact[f"{name}_N_m"]
-        rows.append(dict(row, c_rp_engaged_ratio=ratio, c_rp_engaged_min_ratio=minimum,
-                         c_rp_engaged_ratio_error=error, **tooth, **changes))
+        rows.append(dict(row, **used, **sliced, **tooth, **changes))
     return rows
 
 
@@ -141,8 +180,11 @@ class CrackGrowthResult:
                 "c_r_change_poor_cells_percent": 100 * r["c_r_change_poor_cells"],
                 "plane_through_c_ru_change_percent":
                     100 * (through.c_ru / intact.c_ru - 1),
-                "c_rp_slice_ratio": r["c_rp_engaged_ratio"],
-                "c_rp_slice_ratio_error": r["c_rp_engaged_ratio_error"],
+                "c_rp_3d_ratio": r["c_rp_engaged_ratio"],
+                "c_rp_3d_ratio_error": r["c_rp_engaged_ratio_error"],
+                "c_rp_3d_min_ratio": r["c_rp_engaged_min_ratio"],
+                "c_rp_slice_ratio": r["c_rp_slice_ratio"],
+                "c_rp_slice_ratio_error": r["c_rp_slice_ratio_error"],
                 "plane_through_c_rp_ratio": through.c_rp_engaged_ratio,
                 "min_sicn": e.min_quality, "poor_cells": e.poor_cells,
                 "dofs": e.dofs, "fe_seconds": solid.seconds_total})
@@ -158,7 +200,7 @@ def run_crack_growth(scene: Scene, progress: bool = True, detection: bool = True
     plane, computed_plane = run_fe_cases(replace(sweep, model="plane", half_lengths=()),
                                          progress, execution)
     solid, computed_solid = run_fe_cases(sweep, progress, execution)
-    rows = solid_rows(sweep, solid, plane)
+    rows = solid_rows(sweep, solid, plane, solid_c_rp(sweep, solid))
     studies = {}
     for half in sweep.half_lengths:
         fe = [rows[0]] + [r for r in rows[1:] if r["half_length_m"] == half]
@@ -264,9 +306,11 @@ def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str])
               "change's uncertainty. The plane column is the crack through the whole face "
               "width at the same depth (plane stress), the limit of a long crack.", "",
               "| depth [mm] | half-length [mm] | c_ru [N/m] | change [%] | ± | ½ poor | plane, "
-              "through [%] | c_r change [%] | ± | ½ poor | c_rp ratio (slices) | plane c_rp "
+              "through [%] | c_r change [%] | ± | ½ poor | c_rp ratio (3D, used) | ± | "
+              "c_rp ratio (slices) | plane c_rp "
               "ratio | min SICN | cells < 0.1 | DOFs | time [s] |",
-              "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+              "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+              "---:|---:|"]
     for r in grid:
         lines.append(
             f"| {r['depth_mm']:.3g} | {r['half_length_mm']:.3g} | {r['c_ru_N_m']:.5e} | "
@@ -274,6 +318,7 @@ def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str])
             f"{r['c_ru_change_poor_cells_percent']:+.3f} | "
             f"{r['plane_through_c_ru_change_percent']:+.3f} | {r['c_r_change_percent']:+.3f} | "
             f"{r['c_r_change_error_percent']:.3f} | {r['c_r_change_poor_cells_percent']:+.3f} | "
+            f"{r['c_rp_3d_ratio']:.4f} | {r['c_rp_3d_ratio_error']:.4f} | "
             f"{r['c_rp_slice_ratio']:.4f} | "
             f"{r['plane_through_c_rp_ratio']:.4f} | {r['min_sicn']:.3g} | "
             f"{r['poor_cells']} | {r['dofs']} | {r['fe_seconds']:.0f} |")
@@ -286,12 +331,22 @@ def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str])
         "parts as in the plane study (issue 25; the root-land readings in "
         "`c_ru_root_land_N_m`, `c_r_root_land_N_m`); error estimate: the default solid level against the one before it "
         "(`hubvib.meshing.levels.SOLID_LEVELS`).",
-        "- c_rp of the cracked tooth: the slice method (Chen & Shao 2011): the face width in "
+        "- c_rp of the cracked tooth (used by the lumped and detection stages): from the "
+        "solid ring, with the factorisations of c_ru. The tooth is loaded by 1 N along the "
+        "line of action spread uniformly across the face width (a spur pair's contact line) "
+        "at the plane tooth curve's flank radii; each strip z = const is read as the plane "
+        "model reads its section (rigid motion of the section through the load point, the "
+        "root lands' rigid motion subtracted), and the deflection is the load-weighted mean "
+        "over the width. The cracked/intact ratio at each radius scales the plane intact "
+        "ring-tooth curve, which enters the plane study's pair and mesh-cycle model (planet "
+        "tooth and Hertz in series, load shared over the path of contact): the 3D column "
+        "is the mean over the cracked tooth's engagement; ± is the fine level's ratio "
+        "against the coarse level's.",
+        "- For comparison, the slice method (Chen & Shao 2011): the face width in "
         f"{SLICES} independent slices in parallel, each with the plane c_rp ratio at its local "
-        "depth, linear between the plane cases of the sweep's depths (the interpolation adds "
-        "an error the ± does not hold). Independent slices are softer than the solid tooth, "
-        "so the slices overstate the crack's effect on c_rp; the plane column is the crack "
-        "through the width.",
+        "depth, linear between the plane cases of the sweep's depths. Independent slices "
+        "are softer than the solid tooth, so the slices overstate the crack's effect on "
+        "c_rp; the plane column is the crack through the width (plane stress).",
         "- The crack is not moved: the mean over carrier positions includes the positions "
         "where a planet loads the cracked tooth.",
         f"- Mesh quality: the worst cell of the sweep has min SICN {worst['min_sicn']:.3g} "
@@ -331,15 +386,16 @@ def _lines(scene: Scene, result: CrackGrowthResult, folder: Path) -> list[str]:
     out = [f"scene {scene.name!r}: semi-elliptic ring root cracks, {len(grid) - 1} solid cases "
            f"({result.computed} FE cases computed, the others cached)",
            f"{'depth [mm]':>10} {'half-length [mm]':>16} {'c_ru change [%]':>16} {'+-':>7} "
-           f"{'1/2 poor':>8} {'plane through [%]':>17} {'c_rp ratio':>10}"]
+           f"{'1/2 poor':>8} {'plane through [%]':>17} {'c_rp 3D':>8} {'slices':>7}"]
     for r in grid[1:]:
         out.append(f"{r['depth_mm']:>10.3g} {r['half_length_mm']:>16.3g} "
                    f"{r['c_ru_change_percent']:>+16.3f} {r['c_ru_change_error_percent']:>7.3f} "
                    f"{r['c_ru_change_poor_cells_percent']:>+8.3f} "
                    f"{r['plane_through_c_ru_change_percent']:>+17.3f} "
-                   f"{r['c_rp_slice_ratio']:>10.4f}")
+                   f"{r['c_rp_3d_ratio']:>8.4f} {r['c_rp_slice_ratio']:>7.4f}")
     out.append("+-: fine minus coarse level; 1/2 poor: the change with the cells of min SICN "
-               "< 0.1 at half stiffness (take the larger)")
+               "< 0.1 at half stiffness (take the larger); c_rp 3D: the solid tooth's ratio "
+               "over the engagement (used), slices: the slice method's (compared)")
     out.append(f"\nreport: {folder / 'report.md'} (in a browser: {folder / 'report.html'})")
     return out
 

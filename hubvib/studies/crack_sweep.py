@@ -7,9 +7,11 @@ loads tooth 0, so the crack is moved there (the tooth's compliance relative
 to its root lands does not depend on where the supports are).
 
 ``model = "solid"``: one case per depth and half-length, a semi-elliptic root
-crack centred on the face width in the solid ring (``c_ru``, ``c_r``); its
-``c_rp`` ratio comes from the plane cases of the same depths by the slice method
-(``hubvib.studies.crack_growth``).
+crack centred on the face width in the solid ring (``c_ru``, ``c_r``, and the
+cracked tooth's compliance under a line load across the face at the flank radii
+of the plane tooth model, ``fem.tooth_solid``, from the same factorisations); its
+``c_rp`` ratio follows in ``hubvib.studies.crack_growth`` (against the intact
+case), which compares it with the slice method's from the plane cases.
 
 Every case is cached (``hubvib.runtime.fe_cache``: keyed on the design, the crack, the
 mesh level and the FE stage's source; checked before it is used), written
@@ -26,6 +28,9 @@ from dataclasses import asdict, dataclass
 
 from hubvib.build.stages import gear_body, material, ring_gear
 from hubvib.fem.estimate import CrackCaseEstimate, RingEstimate, estimate_crack_case
+from hubvib.fem.mesh_cycle import GearPair
+from hubvib.fem.tooth_solid import SAMPLES, SolidToothLoad
+from hubvib.fem.tooth_stiffness import chebyshev_radii, contact_radii
 from hubvib.meshing.cache import root_folder
 from hubvib.meshing.crack import Crack, CrackFront
 from hubvib.meshing.crack_path import PathCrack, path_ring_mesh
@@ -152,7 +157,8 @@ def case_inputs(sweep: CrackSweep, case) -> dict:
         depth, half_length = case
         return {"design": sweep.reducer.fingerprint(), "crack": asdict(crack_of(sweep, depth)),
                 "front": asdict(front_of(half_length)) if depth > 0 else None,
-                "levels": SOLID_LEVELS[-2:], "quantities": "solid c_ru c_r pitch poor-half"}
+                "levels": SOLID_LEVELS[-2:], "tooth_samples": SAMPLES,
+                "quantities": "solid c_ru c_r pitch poor-half tooth-line-load"}
     return {"design": sweep.reducer.fingerprint(), "crack": asdict(crack_of(sweep, case)),
             "scale": ACCURACY[sweep.accuracy], "quantities": "c_ru c_r c_rp_engaged"}
 
@@ -178,7 +184,8 @@ def fe_case(sweep: CrackSweep, case) -> dict:
                                front=front_of(half_length) if depth > 0 else None,
                                material=material(design), n_planets=design.n_planets,
                                carrier_teeth=default_carrier_teeth(ring, design.n_planets),
-                               poor_cells_halved=True, definition="rim")
+                               poor_cells_halved=True, definition="rim",
+                               tooth=SolidToothLoad(sweep.tooth, tooth_radii(design)))
         return SolidCase(result, float(depth), float(half_length),
                          time.perf_counter() - started).to_dict()
     depth = case
@@ -188,6 +195,14 @@ def fe_case(sweep: CrackSweep, case) -> dict:
                                  mesher=path_ring_mesh if isinstance(crack, PathCrack) else None,
                                  material=material(design), n_planets=design.n_planets)
     return PlaneCase(result, float(depth), time.perf_counter() - started).to_dict()
+
+
+def tooth_radii(design) -> tuple:
+    """The flank radii [m] of the ring's tooth curve: the plane tooth model's Chebyshev
+    radii over the ring-planet contact (``fem.tooth_stiffness``)."""
+    ring = ring_gear(design)
+    span = contact_radii(ring, [GearPair(gear_body(design, "planet"), ring)])
+    return tuple(float(r) for r in chebyshev_radii(*span))
 
 
 def cache_folder():
@@ -226,6 +241,12 @@ def _check_solid_case(case):
         e = solid.estimate
         if not e.c_ru_min <= e.c_ru <= e.c_ru_max:
             raise CacheEntryError("c_ru outside its own min..max over carrier positions")
+        for key in ("tooth_compliance", "tooth_compliance_coarse"):
+            values = getattr(e, key)
+            if len(values) != len(e.tooth_radii) or not len(values) or not all(
+                    0 < v < float("inf") for v in values):
+                raise CacheEntryError(f"{key} = {list(values)!r}: allowed one finite value > 0 "
+                                      f"per flank radius ({len(e.tooth_radii)})")
     return check
 
 
