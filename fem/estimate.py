@@ -269,7 +269,7 @@ class CrackCaseEstimate:
         [N/m] (the lumped c_rp of a design-derived scene).
     c_rp_engaged_intact_window : float
         The intact mean over the cracked tooth's contact only [N/m], the ratio's
-        denominator (``EngagedMesh.intact_window_mean``; 4.75 % above the whole-cycle mean
+        denominator (``EngagedMesh.intact_window_mean``; 4.8 % above the whole-cycle mean
         on the Raba stage): the crack's extra compliance is
         ``(1/ratio - 1) / c_rp_engaged_intact_window`` [m/N] (the series method).
     dofs : int

@@ -85,3 +85,37 @@ def test_command_table_is_the_cli():
     assert listed, "the README has a command table"
     assert listed <= available, f"README lists commands hubvib lacks: {listed - available}"
     assert available <= listed, f"commands missing from the README table: {available - listed}"
+
+
+def test_crack_answer_paragraph_quotes_the_committed_default_scene_run():
+    """The README's "Can a frequency measurement see the crack?" figures are those of
+    ``docs/data/raba118_crack/results.json`` (``hubvib run raba118_crack``), to the digits
+    quoted: the 10 s identification scatter of the watched modes, mode 13's frequency and
+    its record shifts (series), the first depth with family POD >= 0.9 per record length,
+    and the ratio method's detectable depths."""
+    import json
+
+    run = json.loads((ROOT / "docs/data/raba118_crack/results.json").read_text())
+    detection, depths = run["detection"], run["crack"]["depths"]
+    sigma = [detection["sigma_hz"][m - 1] for m in detection["watched_modes"]]
+    mode13 = run["modes"][12]
+    at_3mm = next(r for r in run["c_rp_methods"] if r["mode"] == 13 and r["depth_mm"] == 3.0)
+
+    def first_depth_mm(pod):
+        seen = [1e3 * d for d, p in zip(depths, pod) if p >= 0.9]
+        return round(seen[0]) if seen else None
+
+    first = {s: first_depth_mm(detection["family_pod"][s]) for s in ("10", "60", "600")}
+    ratio = run["c_rp_other_method_family_pod"]["family_detectable_depth_m"]
+    expected = [f"scatters by {min(sigma):.2f}-{max(sigma):.2f} Hz",
+                f"mode 13 ({mode13['frequency_intact_hz']:.1f} Hz) moves "
+                f"{at_3mm['record_shift_series_hz']:.2f} Hz at 3 mm and "
+                f"{mode13['record_shift_at_deepest_hz']:.2f} Hz through the rim",
+                f"with 600 s records from {first['600']} mm",
+                f"would give {round(1e3 * ratio['10'])} mm at 10 s and "
+                f"{round(1e3 * ratio['60'])} mm at 60 s"]
+    assert first["10"] is None and first["60"] is None, \
+        "README: no crack of the sweep detectable with 10 or 60 s records"
+    text = " ".join(README.split())
+    for phrase in expected:
+        assert phrase in text, f"README against docs/data/raba118_crack: {phrase!r}"

@@ -17,7 +17,9 @@ from hubvib.meshing.crack import Crack
 
 ring = raba118.ring_gear()
 depths = [0.0, 0.004, 0.008]                     # [m]
-results = [estimate_ring(ring, Crack(0, d) if d > 0 else None, scale=2.0) for d in depths]
+# the rim parts of the work-conjugate split, the ring body the lumped model uses [N/m]
+results = [estimate_ring(ring, Crack(0, d) if d > 0 else None, scale=2.0, definition="rim")
+           for d in depths]
 intact = results[0]
 for depth, r in zip(depths, results):
     print(f"depth {1e3 * depth:4.1f} mm: c_ru {r.c_ru:.5g} ± {r.c_ru_error:.2g} N/m "
