@@ -1,5 +1,5 @@
-"""Run a block of code with OpenBLAS limited to a number of threads (the FE solvers and
-the batched lumped solves both need it; stdlib only).
+"""Run a block of code with OpenBLAS (and MKL, where PARDISO loaded it) limited to a number
+of threads (the FE solvers and the batched lumped solves both need it; stdlib only).
 
 SuperLU's triangular solves with many right-hand sides call small BLAS
 kernels; with two OpenBLAS threads on a busy 2-core machine they spin-wait
@@ -21,8 +21,9 @@ _SUFFIXES = ("", "64_")
 
 @contextmanager
 def blas_threads(count: int):
-    """OpenBLAS limited to ``count`` threads inside the block, restored after; nothing
-    happens where no OpenBLAS is found (another BLAS, or not Linux)."""
+    """Every loaded OpenBLAS and MKL limited to ``count`` threads inside the block, restored
+    after; a library loaded inside the block is not limited (load it first); nothing happens
+    where none is found (another BLAS, or not Linux)."""
     handles = _handles()
     previous = [get() for get, _ in handles]
     try:
@@ -35,7 +36,7 @@ def blas_threads(count: int):
 
 
 def blas_thread_counts() -> list[int]:
-    """Current thread count of every loaded OpenBLAS (empty when none is found)."""
+    """Current thread count of every loaded OpenBLAS and MKL (empty when none is found)."""
     return [get() for get, _ in _handles()]
 
 
