@@ -26,7 +26,8 @@ from hubvib.runtime.fe_cache import CacheEntryError, CacheFolderError, entry_key
 from hubvib.meshing.crack import Crack
 
 DEPTHS = (0.0, 0.002, 0.004)
-#: synthetic intact stiffnesses [N/m], of the order of the FE values (c_ru ~1.7e10, README)
+#: synthetic intact stiffnesses [N/m], of the order of the FE values (c_ru 1.1e10 rim part,
+#: 1.7e10 root land: docs/data/raba118_crack)
 C_RU0, C_R0 = 1.66e10, 3.1e10
 
 

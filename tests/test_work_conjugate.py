@@ -129,7 +129,7 @@ def test_c_r_rim_is_the_work_on_the_land_rigid_motions(raba_coarse):
 
 @pytest.mark.slow
 def test_root_land_reading_is_unchanged():
-    """The root-land c_ru (what the lumped model uses) equals today's committed convergence
+    """The root-land c_ru (a secondary output since issue 25) equals the committed convergence
     table at scale 4 (docs/data/convergence/convergence_c_ru.csv) to 1e-9."""
     from hubvib.validation.convergence import _ring_level
 
