@@ -152,3 +152,23 @@ def test_mode_renders_in_a_worker_equal_this_process(tmp_path, monkeypatch):
     assert [p.name for p in there] == [p.name for p in here] and len(here) >= 10
     for a, b in zip(there, here):
         assert a.read_bytes() == b.read_bytes(), f"{a.name}: worker and here differ"
+
+
+def test_a_render_whose_worker_died_is_one_engine_error():
+    """A render future that raises (its worker killed: BrokenProcessPool) becomes one
+    ``EngineError`` line naming the render, as a failed FE case does; the CLI prints it
+    without a traceback."""
+    from concurrent.futures import Future
+    from concurrent.futures.process import BrokenProcessPool
+
+    from hubvib.runtime.engines import EngineError
+    from hubvib.studies.crack_study import _rendered
+
+    done = Future()
+    done.set_result(["a.png"])
+    assert _rendered(done, "FE ring") == ["a.png"]
+    broken = Future()
+    broken.set_exception(BrokenProcessPool("a child process terminated abruptly"))
+    with pytest.raises(EngineError, match="the FE ring render failed on a pool worker: "
+                                          "BrokenProcessPool"):
+        _rendered(broken, "FE ring")

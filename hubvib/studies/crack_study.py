@@ -35,7 +35,7 @@ from hubvib.render.captions import figure_lines
 from hubvib.render.html import write_html_reports
 from hubvib.render.fe import render_fe, ring_fields
 from hubvib.render.modes import render_modes
-from hubvib.runtime.engines import Execution, submit
+from hubvib.runtime.engines import EngineError, Execution, submit
 from hubvib.runtime.fe_cache import fe_version
 from hubvib.runtime.process_pool import worker_pool
 from hubvib.runtime.progress import stage, working
@@ -274,11 +274,12 @@ def write_crack_study(result: CrackStudyResult, folder: Path,
     renders, fe_renders = [], []
     if scene.renders:
         with timed("render"):
-            renders = (begun["modes"].result() if "modes" in begun else
+            renders = (_rendered(begun["modes"], "mode shapes") if "modes" in begun else
                        _render_modes(scene, result.spectra[0], folder / "renders"))
             # the FE render is of the plane ring; a solid study's crack is part-width
-            fe_renders = ([] if scene.crack.model != "plane" else begun["fe"].result()
-                          if "fe" in begun else _render_fe(scene, folder / "renders"))
+            fe_renders = ([] if scene.crack.model != "plane"
+                          else _rendered(begun["fe"], "FE ring") if "fe" in begun
+                          else _render_fe(scene, folder / "renders"))
     files += plots + renders + fe_renders
 
     def pictures(paths):
@@ -417,6 +418,16 @@ def render_fe_ring(sweep: CrackSweep, vtm: bool, folder: Path) -> list[Path]:
         return render_fe(ring_fields(sweep.reducer, crack, options), target, vtu=vtm)
 
     return cached_render("fe-ring", inputs, folder, render)
+
+
+def _rendered(future, what: str) -> list[Path]:
+    """The files of a render run on a pool worker; a worker that died or failed there is
+    one line naming the render, as a failed FE case is (``EngineError``)."""
+    try:
+        return future.result()
+    except Exception as exc:  # noqa: BLE001 - the worker's error, reported as the case's
+        raise EngineError(f"the {what} render failed on a pool worker: "
+                          f"{type(exc).__name__}: {exc}") from None
 
 
 def begin_renders(scene: Scene, folder: Path, pool, begun: dict, spectrum=None) -> None:
