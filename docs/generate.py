@@ -322,6 +322,35 @@ def benchmark_solid_mesh() -> str:
                            "nodes", "time [s]"], body, "lrrrr") + _benchmark_note()
 
 
+SMALL_3D = "raba118_crack_3d_small"
+
+
+def crack_growth_3d_small() -> str:
+    """The committed run of the 3D crack-growth scene cut to three solid cases (the slow
+    scene test's): the ring body's c_ru and c_r change, and the cracked tooth's c_rp ratio
+    in 3D (used) against the slice method and the plane crack through the width
+    (``stiffness_3d.csv`` of the run)."""
+    with open(DATA / SMALL_3D / "stiffness_3d.csv", newline="") as handle:
+        grid = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(handle)]
+    rows = []
+    for r in grid[1:]:
+        rows.append([f"{r['depth_mm']:g}", f"{r['half_length_mm']:g}",
+                     f"{r['c_ru_change_percent']:+.3f} ± {r['c_ru_change_error_percent']:.3f} "
+                     f"({r['c_ru_change_poor_cells_percent']:+.2f})",
+                     f"{r['plane_through_c_ru_change_percent']:+.3f}",
+                     f"{r['c_r_change_percent']:+.3f} ± {r['c_r_change_error_percent']:.3f}",
+                     f"{r['c_rp_3d_ratio']:.4f} ± {r['c_rp_3d_ratio_error']:.4f}",
+                     f"{r['c_rp_slice_ratio']:.4f}", f"{r['plane_through_c_rp_ratio']:.4f}",
+                     f"{r['dofs']:,.0f}"])
+    return markdown_table(
+        ["depth [mm]", "half-length [mm]", "c_ru change [%] ± (½ poor)",
+         "plane through: c_ru change [%]", "c_r change [%] ±", "c_rp ratio, 3D (used) ±",
+         "c_rp ratio, slices", "c_rp ratio, plane through", "DOFs"], rows, "rrrrrrrrr") + (
+        f"\n\nIntact solid ring: c_ru {_g(grid[0]['c_ru_N_m'])} ± "
+        f"{_g(grid[0]['c_ru_error_N_m'], 2)} N/m, c_r {_g(grid[0]['c_r_N_m'])} ± "
+        f"{_g(grid[0]['c_r_error_N_m'], 2)} N/m (rim parts)." + provenance(f"{SMALL_3D}/"))
+
+
 def benchmark_crack_growth_3d() -> str:
     """The run time of the 3D crack-growth scene in the committed benchmark run."""
     seconds = _benchmark().get("crack_growth_3d_seconds")

@@ -21,6 +21,7 @@ ENTRIES=(
   convergence_work
   raba118_crack
   raba118_crack_path
+  raba118_crack_3d_small
   raba118_signal
   raba118_signal_planet_error
   raba118_signal_noise0.5
