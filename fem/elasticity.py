@@ -11,7 +11,6 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.sparse import coo_matrix
 
 from hubvib.meshing.fe_mesh import FEMesh
 from hubvib.meshing.to_skfem import to_skfem
@@ -19,7 +18,7 @@ from hubvib.meshing.to_skfem import to_skfem
 from .basis import vector_basis
 from .facets import facet_basis
 from .fast_assembly import BlockMatrix, elasticity_block_matrix
-from .locate import reference_coordinates
+from .locate import interpolation_matrix
 from .material import Material, MaterialError
 from .solvers import SingularSystemError, factorise, factorise_free_blocks, pick
 
@@ -103,13 +102,7 @@ class PlaneModel:
             cells = self._element_finder(*points)
         except ValueError:
             raise ValueError("a probe point lies outside the mesh") from None
-        local = reference_coordinates(basis.mesh, points, cells)[:, :, None]
-        values = np.array([basis.elem.gbasis(basis.mapping, local, k, tind=cells)[0]
-                           for k in range(basis.Nbfun)]).flatten()
-        n = points.shape[1]
-        rows = np.tile(np.arange(2 * n), basis.Nbfun)
-        cols = basis.element_dofs[:, np.tile(cells, 2)].flatten()
-        return coo_matrix((values, (rows, cols)), shape=(2 * n, basis.N)).tocsr()
+        return interpolation_matrix(basis, points, cells)
 
     @functools.cached_property
     def _element_finder(self):

@@ -10,6 +10,7 @@ coordinates; it raises only when a point is not in its element.
 from __future__ import annotations
 
 import numpy as np
+from scipy.sparse import coo_matrix, csr_matrix
 
 ITERATIONS = 30
 #: a residual this far (relative to the element size) after Newton: not in the element
@@ -43,3 +44,16 @@ def reference_coordinates(mesh, points: np.ndarray, cells: np.ndarray) -> np.nda
         raise ValueError(f"point {points[:, worst].tolist()} m is not inside element "
                          f"{int(cells[worst])} (residual {distance[worst]:.1e} m)")
     return X
+
+
+def interpolation_matrix(basis, points: np.ndarray, cells: np.ndarray) -> csr_matrix:
+    """The sparse matrix that maps the DOFs of the vector ``basis`` to its displacement
+    components at ``points`` (dim x n [m], each inside its element of ``cells``), rows
+    component by component (all x, then all y, ...)."""
+    dim, n = points.shape
+    local = reference_coordinates(basis.mesh, points, cells)[:, :, None]
+    values = np.array([basis.elem.gbasis(basis.mapping, local, k, tind=cells)[0]
+                       for k in range(basis.Nbfun)]).flatten()
+    rows = np.tile(np.arange(dim * n), basis.Nbfun)
+    cols = basis.element_dofs[:, np.tile(cells, dim)].flatten()
+    return coo_matrix((values, (rows, cols)), shape=(dim * n, basis.N)).tocsr()

@@ -22,11 +22,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.sparse as sp
 
 from hubvib.meshing.ring_gear import RingGear
 
-from .locate import reference_coordinates
+from .locate import interpolation_matrix
 from .tooth_beam import load_point
 from .tooth_fe import _rigid_fit, _root_land_points, _rotation
 
@@ -90,13 +89,7 @@ def solid_probes(model, points: np.ndarray, finder=None):
         cells = finder(*points)
     except ValueError:
         raise ValueError("a probe point of the solid tooth lies outside the mesh") from None
-    local = reference_coordinates(basis.mesh, points, cells)[:, :, None]
-    values = np.array([basis.elem.gbasis(basis.mapping, local, k, tind=cells)[0]
-                       for k in range(basis.Nbfun)]).flatten()
-    n = points.shape[1]
-    rows = np.tile(np.arange(3 * n), basis.Nbfun)
-    cols = basis.element_dofs[:, np.tile(cells, 3)].flatten()
-    return sp.coo_matrix((values, (rows, cols)), shape=(3 * n, basis.N)).tocsr()
+    return interpolation_matrix(basis, points, cells)
 
 
 def element_finder(model):
