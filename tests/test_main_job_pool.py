@@ -111,8 +111,10 @@ def test_timed_parts_are_written_on_request(tmp_path, monkeypatch):
 @pytest.mark.slow
 def test_fe_cases_in_the_shared_pool_equal_one_process(cache):
     """Two FE cases (Raba ring, fast accuracy) in a shared pool of 2 workers and in this
-    process give the same values to the last digit (one BLAS thread each: same
-    arithmetic); only the wall times differ."""
+    process give the same values to round-off (one BLAS thread each: the same arithmetic;
+    MKL's PARDISO without conditional numerical reproducibility may still differ in the
+    last bits with memory alignment: a CI run saw 2.6e-12 relative in an error estimate,
+    a difference of two ratios); only the wall times differ."""
     pytest.importorskip("gmsh")
     from hubvib.studies.crack_sweep import cache_folder, run_fe_cases
 
@@ -128,8 +130,14 @@ def test_fe_cases_in_the_shared_pool_equal_one_process(cache):
     def numbers(row):
         return {k: v for k, v in row.items() if not k.startswith("seconds")}
 
-    assert [numbers(r) for r in pooled] == [numbers(r) for r in here], \
-        "pool and serial FE cases must agree exactly (same single-threaded arithmetic)"
+    for a, b in zip(pooled, here, strict=True):
+        a, b = numbers(a), numbers(b)
+        assert a.keys() == b.keys()
+        for key in a:
+            expected = (pytest.approx(b[key], rel=1e-9, abs=1e-12)
+                        if isinstance(b[key], float) else b[key])
+            assert a[key] == expected, \
+                f"{key}: pool and serial FE cases agree to round-off (1e-9 relative)"
 
 
 @pytest.mark.slow
