@@ -50,7 +50,7 @@ class PardisoError(ArithmeticError):
 
 
 @functools.cache
-def _library():
+def mkl_library():
     """MKL's ``pardiso`` entry point: ``libmkl_rt`` beside the interpreter (or the base
     interpreter of a virtual environment) where pip puts it, else wherever pypardiso's
     loader finds it (a recursive search, ~1 s)."""
@@ -94,7 +94,7 @@ class Pardiso:
     """
 
     def __init__(self, indptr, indices, data, block: int = 1, single: bool = False):
-        self._pardiso = _library()
+        self._pardiso = mkl_library()
         self.rows = len(indptr) - 1
         self.n = self.rows * block
         self.dtype = np.float32 if single else np.float64

@@ -46,7 +46,7 @@ class FEToothCompliance:
     seconds: dict
 
 
-def _rigid_fit(points: np.ndarray, displacement: np.ndarray) -> np.ndarray:
+def rigid_fit(points: np.ndarray, displacement: np.ndarray) -> np.ndarray:
     """(u_x, u_y, theta) of the rigid motion closest to ``displacement`` at ``points``."""
     n = len(points)
     A = np.zeros((2 * n, 3))
@@ -57,7 +57,7 @@ def _rigid_fit(points: np.ndarray, displacement: np.ndarray) -> np.ndarray:
     return np.linalg.lstsq(A, np.concatenate([displacement[:n], displacement[n:]]), rcond=None)[0]
 
 
-def _root_land_points(body: RingGear) -> np.ndarray:
+def root_land_points(body: RingGear) -> np.ndarray:
     prof = body.profile
     r = prof.root_radius + INSIDE
     psi = np.linspace(prof.root_land_angle, prof.space_angle, LAND_POINTS + 2)[1:-1]
@@ -91,7 +91,7 @@ class ToothProbe:
     land_points: np.ndarray | None
 
 
-def _rotation(angle: float) -> np.ndarray:
+def tooth_rotation(angle: float) -> np.ndarray:
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, -s], [s, c]])
 
@@ -109,7 +109,7 @@ def tooth_probe(body: ToothedBody, model, radii, tooth: int = 0) -> ToothProbe:
     if isinstance(tooth, bool) or not isinstance(tooth, (int, np.integer)) \
             or not 0 <= tooth < body.teeth:
         raise ValueError(f"tooth = {tooth!r}, allowed integers 0..{body.teeth - 1}")
-    rot = _rotation(body.tooth_angle(int(tooth)))
+    rot = tooth_rotation(body.tooth_angle(int(tooth)))
     points, forces, probes = [], [], []
     for r in radii:
         p, d = load_point(body, r)
@@ -123,7 +123,7 @@ def tooth_probe(body: ToothedBody, model, radii, tooth: int = 0) -> ToothProbe:
     at_loads = model.probes(np.array(points) @ rot.T)  # rows: u_x at each point, then u_y
     loads = at_loads[:n].multiply(forces[:, :1]) + at_loads[n:].multiply(forces[:, 1:])
     section = model.probes(np.vstack([q for _, _, q in probes]) @ rot.T)
-    land = _root_land_points(body) if isinstance(body, RingGear) else None
+    land = root_land_points(body) if isinstance(body, RingGear) else None
     land_probe = model.probes(land @ rot.T) if land is not None else None
     return ToothProbe(loads.T.toarray(), radii, rot, section, land_probe, probes, land)
 
@@ -147,7 +147,7 @@ def tooth_compliance(probe: ToothProbe, u: np.ndarray) -> np.ndarray:
         lever = p - points[0]
         moved = np.array([ux[0] - theta * lever[1], uy[0] + theta * lever[0]])
         if probe.land is not None:
-            sx, sy, st = _rigid_fit(probe.land_points,
+            sx, sy, st = rigid_fit(probe.land_points,
                                     np.concatenate(_local(probe.land, probe.rotation,
                                                           u[:, column])))
             moved -= np.array([sx - st * p[1], sy + st * p[0]])

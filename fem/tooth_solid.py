@@ -27,7 +27,7 @@ from hubvib.meshing.ring_gear import RingGear
 
 from .locate import interpolation_matrix
 from .tooth_beam import load_point
-from .tooth_fe import _rigid_fit, _root_land_points, _rotation
+from .tooth_fe import rigid_fit, root_land_points, tooth_rotation
 
 #: point forces (and readings) across the face width: strips of 40/64 = 0.6 mm on the Raba
 #: ring, finer than the solid mesh's tooth elements (2-5 mm), so the forces act as a line
@@ -119,7 +119,7 @@ def solid_tooth_probe(ring: RingGear, model, load: SolidToothLoad) -> SolidTooth
         raise ValueError(f"tooth = {load.tooth!r}, allowed integers 0..{ring.teeth - 1}")
     width = ring.gear.face_width
     z = (np.arange(load.samples) + 0.5) / load.samples * width
-    rot = _rotation(ring.tooth_angle(int(load.tooth)))
+    rot = tooth_rotation(ring.tooth_angle(int(load.tooth)))
     finder = element_finder(model)
     columns, points, section = [], [], []
     for r in radii:
@@ -130,7 +130,7 @@ def solid_tooth_probe(ring: RingGear, model, load: SolidToothLoad) -> SolidTooth
         force = rot @ d / n  # 1 N in all along the line
         columns.append((at[:n].T * force[0] + at[n:2 * n].T * force[1]) @ np.ones(n))
         section.append(_at_strips(points[-1][2], rot, z))
-    lands = _root_land_points(ring)
+    lands = root_land_points(ring)
     lands = lands * (1 + (INSIDE - 2e-5) / np.hypot(*lands.T))[:, None]
     return SolidToothProbe(load, np.column_stack(columns), z, rot,
                            solid_probes(model, np.vstack(section), finder),
@@ -162,7 +162,7 @@ def solid_tooth_compliance(probe: SolidToothProbe, u: np.ndarray) -> SolidToothC
         lever = p - points[0]
         moved = np.column_stack([sx[:, 0] - theta * lever[1], sy[:, 0] + theta * lever[0]])
         for j in range(strips):
-            tx, ty, tt = _rigid_fit(probe.land_points, np.concatenate([lx[j], ly[j]]))
+            tx, ty, tt = rigid_fit(probe.land_points, np.concatenate([lx[j], ly[j]]))
             moved[j] -= np.array([tx - tt * p[1], ty + tt * p[0]])
         profile[column] = moved @ d
     return SolidToothCompliance(np.asarray(probe.load.radii, dtype=float),

@@ -188,10 +188,10 @@ def _load_mkl() -> None:
     there, and that case's last digits differed from a pool worker's."""
     if importlib.util.find_spec("pypardiso") is None:
         return
-    from hubvib.fem.pardiso import _library
+    from hubvib.fem.pardiso import mkl_library
 
     try:
-        _library()
+        mkl_library()
     except Exception:  # noqa: BLE001 - no usable MKL: the case reports it if it needs it
         pass
 
