@@ -56,24 +56,27 @@ class PardisoError(ArithmeticError):
 
 
 @functools.cache
-def mkl_library():
-    """MKL's ``pardiso`` entry point: ``libmkl_rt`` beside the interpreter (or the base
-    interpreter of a virtual environment) where pip puts it, else wherever pypardiso's
-    loader finds it (a recursive search, ~1 s)."""
-    library = None
+def mkl_runtime() -> ctypes.CDLL:
+    """``libmkl_rt`` beside the interpreter (or the base interpreter of a virtual
+    environment) where pip puts it, else wherever pypardiso's loader finds it (a recursive
+    search, ~1 s)."""
     # a virtual environment's prefix holds no libraries: look beside the base interpreter too
     found = [p for prefix in dict.fromkeys((sys.prefix, sys.base_prefix))
              for p in sorted(glob.glob(f"{prefix}/lib/libmkl_rt.so*"), key=len)]
     for path in found:
         try:
-            library = ctypes.CDLL(path)
-            break
+            return ctypes.CDLL(path)
         except OSError:
             continue
-    if library is None:
-        from pypardiso.pardiso_wrapper import PyPardisoSolver
+    from pypardiso.pardiso_wrapper import PyPardisoSolver
 
-        library = PyPardisoSolver().libmkl
+    return PyPardisoSolver().libmkl
+
+
+@functools.cache
+def mkl_library():
+    """MKL's ``pardiso`` entry point (``mkl_runtime``)."""
+    library = mkl_runtime()
     function = library.pardiso
     i32 = ctypes.POINTER(ctypes.c_int32)
     function.argtypes = [ctypes.POINTER(ctypes.c_int64), i32, i32, i32, i32, i32,

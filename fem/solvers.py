@@ -35,6 +35,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from hubvib.fem.mkl_sparse import SymmetricBlockProduct
 from hubvib.fem.ordering import tet10_order
 from hubvib.fem.pardiso import Pardiso, PardisoError
 from hubvib.foundation.blas import blas_threads
@@ -53,8 +54,6 @@ REFINE_STEPS = 8
 #: phase 11.8 s), 2.45 GB in chunks of 12 (13.6 s); the sweep goes at once (speed), more
 #: columns than this in chunks
 SOLVE_COLUMNS = 24
-#: block rows per transposed slice in the symmetric matvec
-TRANSPOSE_ROWS = 20_000
 
 
 class SingularSystemError(ValueError):
@@ -248,9 +247,11 @@ class _PardisoFactor(Factor):
         self._pardiso.free()
 
 
-def _symmetric_block_matvec(indptr, indices, values) -> "_SymmetricMatvec":
-    """``x -> K x`` for the symmetric K whose upper block triangle is given (block CSR)."""
-    return _SymmetricMatvec(indptr, indices, values)
+def _symmetric_block_matvec(indptr, indices, values) -> SymmetricBlockProduct:
+    """``x -> K x`` for the symmetric K whose upper block triangle is given (block CSR):
+    MKL's symmetric block product, sharing the arrays (no copy of the matrix: a CSR copy
+    was the peak of the solid ring's solve, 0.28 GB over the factorisation)."""
+    return SymmetricBlockProduct(indptr, indices, values)
 
 
 class _FreeMatvec:
@@ -266,37 +267,6 @@ class _FreeMatvec:
         whole = np.zeros((len(self._free),) + x.shape[1:])
         whole[self._free] = x
         return self._matvec(whole)[self._free]
-
-
-class _SymmetricMatvec:
-    """``K x`` from K's upper block triangle, sharing its arrays (no copy of the matrix:
-    a CSR copy was the peak of the solid ring's solve, 0.28 GB over the factorisation).
-    The upper triangle multiplies as block CSR; the lower one is its transpose, taken
-    ``TRANSPOSE_ROWS`` block rows at a time so only that slice is ever copied."""
-
-    def __init__(self, indptr, indices, values):
-        self.rows = len(indptr) - 1
-        self.block = values.shape[1]
-        self._arrays = (indptr, indices, values)
-        self.n = self.rows * self.block
-        self.upper = sp.bsr_matrix((values, indices, indptr), shape=(self.n, self.n))
-        self.diagonal = values[indptr[:-1]]  # sorted rows start with their diagonal block
-
-    def __call__(self, x):
-        x = np.asarray(x)
-        indptr, indices, values = self._arrays
-        b = self.block
-        by_node = x.reshape(self.rows, b, -1)
-        y = self.upper @ x
-        y -= np.einsum("rij,rjk->rik", self.diagonal, by_node).reshape(x.shape)
-        for first in range(0, self.rows, TRANSPOSE_ROWS):
-            last = min(first + TRANSPOSE_ROWS, self.rows)
-            start, stop = indptr[first], indptr[last]
-            rows = sp.bsr_matrix((values[start:stop], indices[start:stop],
-                                  indptr[first:last + 1] - start),
-                                 shape=(b * (last - first), self.n))
-            y += rows.T @ x[b * first:b * last]
-        return y
 
 
 class _AMG(Factor):
