@@ -150,14 +150,11 @@ class BlockMatrix:
     """A symmetric matrix stored as the ``dim x dim`` node blocks of its upper block
     triangle (diagonal blocks whole) on a ``BlockPattern``.
 
-    ``values`` (blocks, dim, dim) [N/m]; DOF ``dim * node + component``.  ``elements``
-    (elements, n), when known: the nodes of each element (a fill-reducing order for
-    PARDISO is found from them, ``fem/ordering.py``).
+    ``values`` (blocks, dim, dim) [N/m]; DOF ``dim * node + component``.
     """
 
     pattern: BlockPattern
     values: np.ndarray
-    elements: np.ndarray | None = None
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -195,21 +192,20 @@ class BlockMatrix:
                 new[indices[mask]].astype(np.int32), values)
 
     def scaled(self, factor: float) -> "BlockMatrix":
-        return BlockMatrix(self.pattern, factor * self.values, self.elements)
+        return BlockMatrix(self.pattern, factor * self.values)
 
 
 def elasticity_block_matrix(basis, lam: float, mu: float, cell_scale=None) -> BlockMatrix:
     """K [N/m] of a scikit-fem ``ElementVector`` basis for Lame constants ``lam``, ``mu`` [Pa],
     in node blocks; ``cell_scale`` (one factor per cell) scales each cell's stiffness."""
     dim = basis.mesh.dim()
-    nodes = element_nodes(basis)
-    pattern = block_pattern(nodes, basis.N // dim, dim)
+    pattern = block_pattern(element_nodes(basis), basis.N // dim, dim)
     X, W = basis.quadrature
     grads, dx = scalar_gradients(basis.mesh, basis.elem.elem, X, W)
     if cell_scale is not None:
         dx = dx * np.asarray(cell_scale, dtype=float)[:, None]
     values = elasticity_blocks(pattern, grads, dx, lam, mu)
-    return BlockMatrix(pattern.assembled(), values, nodes)
+    return BlockMatrix(pattern.assembled(), values)
 
 
 def elasticity_matrix(basis, lam: float, mu: float):

@@ -12,12 +12,7 @@ Here, measured on the default solid ring (5.6e5 DOFs, 2 cores, same run):
 - the factorisation may be single precision (``iparm[27]``, float32 values):
   4.7 s against 8.0 s; ``solvers`` then refines the solution in double precision
   against the double matrix, to the residual of a double factorisation;
-- one factorisation serves any number of right-hand sides; indices are 0-based;
-- a fill-reducing ordering may be given (``order``, ``iparm[4] = 1``): on curved P2
-  tetrahedra ``fem/ordering.py`` orders the corner-vertex graph (6 times smaller)
-  with this same METIS (``metis_order``) and places each mid-edge node beside its
-  corners.  Solid ring, same run: analysis 0.9 + 0.3 s against 2.5-3.7 s, and 2 %
-  fewer factorisation flops (8.31e9 against 8.48e9 as PARDISO counts them).
+- one factorisation serves any number of right-hand sides; indices are 0-based.
 
 The matrix is the upper triangle (upper block triangle, diagonal blocks whole)
 with sorted column indices (PARDISO's ``mtype = 2``).
@@ -33,8 +28,7 @@ import numpy as np
 
 SPD = 2
 #: MKL iparm entries (0-based)
-_USER, _ORDERING, _USER_ORDER, _PIVOT, _PARALLEL, _PRECISION, _ZERO_BASED, _BLOCK = \
-    0, 1, 4, 9, 23, 27, 34, 36
+_USER, _ORDERING, _PIVOT, _PARALLEL, _PRECISION, _ZERO_BASED, _BLOCK = 0, 1, 9, 23, 27, 34, 36
 _PEAK_ANALYSIS, _PEAK_FACTOR, _FACTOR_MEMORY = 14, 15, 16
 
 #: PARDISO's error codes (MKL reference)
@@ -75,7 +69,7 @@ def mkl_runtime() -> ctypes.CDLL:
 
 @functools.cache
 def mkl_library():
-    """MKL's ``pardiso`` entry point (``mkl_runtime``)."""
+    """MKL's ``pardiso`` entry point (in ``mkl_runtime``)."""
     library = mkl_runtime()
     function = library.pardiso
     i32 = ctypes.POINTER(ctypes.c_int32)
@@ -100,14 +94,10 @@ class Pardiso:
     single : bool
         Factorise in single precision (``data`` rounded to float32); ``solve`` is then
         single precision too and its result needs refining (``solvers``).
-    order : ndarray, optional
-        Fill-reducing elimination order of the (block) rows: ``order[i]`` is the row
-        eliminated i-th.  Default: PARDISO's METIS nested dissection.
     """
 
-    def __init__(self, indptr, indices, data, block: int = 1, single: bool = False,
-                 order=None):
-        mkl_library()  # load (and check) MKL before anything else
+    def __init__(self, indptr, indices, data, block: int = 1, single: bool = False):
+        self._pardiso = mkl_library()
         self.rows = len(indptr) - 1
         self.n = self.rows * block
         self.dtype = np.float32 if single else np.float64
@@ -120,12 +110,6 @@ class Pardiso:
         self.iparm[_PRECISION] = 1 if single else 0
         self.iparm[_ZERO_BASED] = 1
         self.iparm[_BLOCK] = block if block > 1 else 0
-        self._perm = np.zeros(self.rows, dtype=np.int32)
-        if order is not None:
-            if len(order) != self.rows:
-                raise ValueError(f"PARDISO: an order of {len(order)} rows for {self.rows} rows")
-            self.iparm[_USER_ORDER] = 1
-            self._perm[:] = order
         self._indptr = np.ascontiguousarray(indptr, dtype=np.int32)
         self._indices = np.ascontiguousarray(indices, dtype=np.int32)
         self._data = np.ascontiguousarray(data, dtype=self.dtype)
@@ -163,46 +147,18 @@ class Pardiso:
             pass
 
     def _call(self, phase: int, f=None, u=None) -> None:
-        _call(self._pt, self.iparm, phase, self._indptr, self._indices, self._data,
-              self._perm, f, u)
-
-
-def metis_order(indptr, indices) -> np.ndarray:
-    """PARDISO's METIS nested-dissection order of a graph given as the upper triangle
-    (with the diagonal, sorted columns) of its CSR adjacency: ``order[i]`` is the vertex
-    eliminated i-th (``iparm[4] = 2``: analysis only, nothing factorised)."""
-    indptr = np.ascontiguousarray(indptr, dtype=np.int32)
-    indices = np.ascontiguousarray(indices, dtype=np.int32)
-    rows = len(indptr) - 1
-    # values only for PARDISO's input checks: diagonally dominant
-    diagonal = np.zeros(len(indices), dtype=bool)
-    diagonal[indptr[:-1]] = True
-    data = np.where(diagonal, float(rows), -1.0)
-    iparm = np.zeros(64, dtype=np.int32)
-    iparm[[_USER, _ORDERING, _USER_ORDER, _PIVOT, _ZERO_BASED]] = [1, 2, 2, 8, 1]
-    pt = np.zeros(64, dtype=np.int64)
-    order = np.zeros(rows, dtype=np.int32)
-    try:
-        _call(pt, iparm, 11, indptr, indices, data, order)
-    finally:
-        _call(pt, iparm, -1, indptr, indices, data, order)
-    return order.astype(np.int64)
-
-
-def _call(pt, iparm, phase: int, indptr, indices, data, perm, f=None, u=None) -> None:
-    """One PARDISO phase on the (block) CSR arrays, ``perm`` the order array (in or out)."""
-    i32 = ctypes.c_int32
-    error = i32(0)
-    columns = 1 if f is None else f.shape[1]
-    dummy = np.zeros(1, dtype=data.dtype)
-    mkl_library()(
-        pt.ctypes.data_as(ctypes.POINTER(ctypes.c_int64)), ctypes.byref(i32(1)),
-        ctypes.byref(i32(1)), ctypes.byref(i32(SPD)), ctypes.byref(i32(phase)),
-        ctypes.byref(i32(len(indptr) - 1)), data.ctypes.data,
-        indptr.ctypes.data_as(ctypes.POINTER(i32)), indices.ctypes.data_as(ctypes.POINTER(i32)),
-        perm.ctypes.data_as(ctypes.POINTER(i32)), ctypes.byref(i32(columns)),
-        iparm.ctypes.data_as(ctypes.POINTER(i32)), ctypes.byref(i32(0)),
-        (dummy if f is None else f).ctypes.data, (dummy if u is None else u).ctypes.data,
-        ctypes.byref(error))
-    if error.value != 0:
-        raise PardisoError(error.value, phase)
+        i32 = ctypes.c_int32
+        error = i32(0)
+        columns = 1 if f is None else f.shape[1]
+        dummy = np.zeros(1, dtype=self.dtype)
+        self._pardiso(
+            self._pt.ctypes.data_as(ctypes.POINTER(ctypes.c_int64)), ctypes.byref(i32(1)),
+            ctypes.byref(i32(1)), ctypes.byref(i32(SPD)), ctypes.byref(i32(phase)),
+            ctypes.byref(i32(self.rows)), self._data.ctypes.data,
+            self._indptr.ctypes.data_as(ctypes.POINTER(i32)),
+            self._indices.ctypes.data_as(ctypes.POINTER(i32)),
+            None, ctypes.byref(i32(columns)), self.iparm.ctypes.data_as(ctypes.POINTER(i32)),
+            ctypes.byref(i32(0)), (dummy if f is None else f).ctypes.data,
+            (dummy if u is None else u).ctypes.data, ctypes.byref(error))
+        if error.value != 0:
+            raise PardisoError(error.value, phase)

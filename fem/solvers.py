@@ -36,7 +36,6 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from hubvib.fem.mkl_sparse import SymmetricBlockProduct
-from hubvib.fem.ordering import tet10_order
 from hubvib.fem.pardiso import Pardiso, PardisoError
 from hubvib.foundation.blas import blas_threads
 
@@ -126,13 +125,7 @@ def factorise_free_blocks(blocks, keep: np.ndarray, single: bool = True) -> Fact
     (single: float32, half the bytes); the refinement multiplies by ``blocks`` itself,
     the free unknowns set in a whole vector with zeros at the other nodes.  On the solid
     ring (5.6e5 DOFs) this saves the 0.17 GB double copy during the factorisation's peak.
-    P2 tetrahedra (``blocks.elements`` with 10 nodes) are ordered on their corner graph
-    (``fem/ordering.py``), anything else by PARDISO's METIS on the node graph.
     """
-    elements = blocks.elements
-    order = (tet10_order(elements, np.asarray(keep, dtype=bool))
-             if elements is not None and elements.shape[1] == 10 else None)
-
     def matrix(dtype):
         return blocks.upper(keep, dtype)
 
@@ -141,7 +134,7 @@ def factorise_free_blocks(blocks, keep: np.ndarray, single: bool = True) -> Fact
         return _FreeMatvec(_symmetric_block_matvec(p.indptr, p.indices, blocks.values),
                            np.repeat(np.asarray(keep, dtype=bool), p.dim))
 
-    return _PardisoFactor(matrix, blocks.pattern.dim, single, matvec, order)
+    return _PardisoFactor(matrix, blocks.pattern.dim, single, matvec)
 
 
 def _csc_of_symmetric(K):
@@ -178,10 +171,9 @@ class _SuperLU(Factor):
 class _PardisoFactor(Factor):
     method = "pardiso"
 
-    def __init__(self, matrix, block: int = 1, single: bool = False, matvec=None, order=None):
+    def __init__(self, matrix, block: int = 1, single: bool = False, matvec=None):
         self._matrix = matrix  # dtype -> the upper (block) triangle (indptr, indices, values)
         self._block = block
-        self._order = order  # fill-reducing order of the block rows (None: PARDISO's)
         self._single = single
         self._make_matvec = matvec  # built when first needed: after the factorisation's peak
         self._matvec = None
@@ -190,7 +182,7 @@ class _PardisoFactor(Factor):
     def _factorise(self, single: bool):
         try:
             factor = Pardiso(*self._matrix(np.float32 if single else np.float64),
-                             self._block, single=single, order=self._order)
+                             self._block, single=single)
         except PardisoError as error:
             if single:  # too ill-conditioned for float32: try again in double
                 return self._factorise(False)

@@ -337,3 +337,54 @@ def test_rim_split_works_on_the_solid_model(coarse_solid_ring):
     assert solid.c_ru_rim > solid.c_ru and solid.c_r_rim > solid.c_r, "rim stiffer than whole"
     assert 1.0 < solid.c_ru_rim / plane.c_ru_rim < 1 / (1 - 0.3 ** 2), "c_ru_rim, 3D vs 2D"
     assert 1.0 < solid.c_r_rim / plane.c_r_rim < 1 / (1 - 0.3 ** 2), "c_r_rim, 3D vs 2D"
+
+
+@pytest.mark.parametrize("mesh", [skfem.MeshTet1().refined(2), skfem.MeshTri1().refined(3)])
+@pytest.mark.parametrize("sort", [True, False])
+def test_int64_entity_numbering_is_scikit_fems(mesh, sort):
+    """``meshing/skfem_meshes.build_entities`` (one int64 key per vertex tuple) gives
+    scikit-fem's own edges and facets and element maps, bit for bit (independent:
+    ``np.unique`` over columns)."""
+    from hubvib.meshing.skfem_meshes import build_entities
+
+    for entities in (mesh.elem.refdom.facets, mesh.elem.refdom.edges):
+        if entities is None:
+            continue
+        ours = build_entities(mesh.t, entities, sort)
+        theirs = skfem.Mesh.build_entities(mesh.t, entities, sort)
+        assert np.array_equal(ours[0], theirs[0]) and np.array_equal(ours[1], theirs[1])
+
+
+@pytest.mark.slow
+def test_to_skfem_boundary_facets_are_the_named_facets(coarse_solid_ring):
+    """Every named boundary facet of the gmsh mesh maps to the scikit-fem facet with the
+    same three vertices (searched by int64 keys); a facet that is no mesh facet is
+    refused by name."""
+    from dataclasses import replace
+
+    from hubvib.meshing.to_skfem import to_skfem
+
+    fe, vertex_of = to_skfem(coarse_solid_ring)
+    for name, elements in coarse_solid_ring.boundaries.items():
+        expected = np.sort(vertex_of[elements[:, :3]], axis=1)
+        assert np.array_equal(np.sort(fe.facets[:, fe.boundaries[name]].T, axis=1), expected)
+    cells = coarse_solid_ring.cells
+    wrong = cells[:1, [0, 1, 2, 4, 5, 6]].copy()
+    wrong[0, 2] = cells[:, :4][~np.isin(cells[:, :4], cells[0, :4])][0]  # a non-facet
+    broken = replace(coarse_solid_ring, boundaries={"odd": wrong})
+    with pytest.raises(ValueError, match="boundary group 'odd' has facets that are not"):
+        to_skfem(broken)
+
+
+@needs_pardiso
+def test_mkl_symmetric_block_product_is_the_csr_product(box):
+    """MKL's symmetric product on the upper block triangle equals scipy's product with the
+    whole CSR matrix (1e-14 relative), for one column and several."""
+    from hubvib.fem.mkl_sparse import SymmetricBlockProduct
+
+    p = box.blocks.pattern
+    product = SymmetricBlockProduct(p.indptr, p.indices, box.blocks.values)
+    x = np.random.default_rng(3).standard_normal((box.ndofs, 3))
+    for v in (x[:, 0], x):
+        expected = box.K @ v
+        assert np.abs(product(v) - expected).max() <= 1e-14 * np.abs(expected).max()
