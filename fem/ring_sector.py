@@ -24,6 +24,7 @@ factorisation of the pitch interior (1/z of the ring) and one of the boundary sy
 """
 from __future__ import annotations
 
+import ctypes
 import math
 import time
 from dataclasses import dataclass
@@ -31,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
+from hubvib.foundation.blas import blas_threads
 from hubvib.meshing.fe_mesh import FEMesh
 from hubvib.meshing.gear import rotation
 from hubvib.meshing.ring_gear import RingGear
@@ -55,7 +57,10 @@ class SectorWork:
     dofs : int
         DOFs of the whole ring with this pitch mesh (z pitches, cut nodes shared).
     sector_dofs, boundary_dofs : int
-        DOFs of the pitch model and of the condensed ring system.
+        DOFs of the pitch model and of the condensed ring system (the free cut DOFs).
+    patterns : int
+        Distinct patterns of held outer facets over the pitches (one dense condensation
+        of the held arc each).
     seconds : dict
         assembly, condense, solve wall times [s].
     """
@@ -65,6 +70,7 @@ class SectorWork:
     dofs: int
     sector_dofs: int
     boundary_dofs: int
+    patterns: int
     seconds: dict
 
     @property
@@ -86,6 +92,81 @@ def _boundary_node_dofs(model, groups) -> dict:
             if len(row) == 3:
                 dofs[int(row[2])] = tuple(basis.facet_dofs[:, facet])
     return dofs
+
+
+def _solved_condensation(K, G, boundary, interior, method):
+    """S, G', C (module docstring) by solving K_ii X = [K_ib, G_i] (one column per
+    boundary DOF)."""
+    K_bi = K[boundary][:, interior].tocsr()  # sparse: only the DOFs next to the boundary
+    is_b = np.ones(K.shape[0], dtype=bool)
+    is_b[interior] = False
+    factor = factorise(submatrix(K, ~is_b), method)
+    try:
+        X = factor.solve(np.column_stack([K_bi.T.toarray(), G[interior]]))
+    finally:
+        factor.free()
+    nb2 = len(boundary)
+    S = K[boundary][:, boundary].toarray() - K_bi @ X[:, :nb2]
+    return S, G[boundary] - K_bi @ X[:, nb2:], G[interior].T @ X[:, nb2:]
+
+
+def _pardiso_condensation(K, G, boundary):
+    """S, G', C (module docstring) as PARDISO's Schur complement (``iparm[35] = 1``: the
+    factorisation stops before the boundary block and returns its Schur complement,
+    dense) of K bordered by two virtual DOFs that carry the loads:
+
+        [[K, -G], [-G^T, 0]]  ->  [[S, -G'], [-G'^T, -C]]  on (boundary, virtual),
+
+    so one factorisation gives all three, with no right-hand side per boundary DOF."""
+    from .pardiso import PardisoError, mkl_library
+
+    n = K.shape[0]
+    order = np.argsort(boundary)
+    bordered = sp.bmat([[K, sp.csr_matrix(-G)], [sp.csr_matrix(-G.T), None]], format="csr")
+    upper = sp.triu(bordered, format="coo")
+    # PARDISO wants every diagonal entry stored: the virtual DOFs' zeros explicitly
+    upper = sp.csr_matrix((np.r_[upper.data, 0.0, 0.0],
+                           (np.r_[upper.row, n, n + 1], np.r_[upper.col, n, n + 1])),
+                          shape=bordered.shape)
+    upper.sort_indices()
+    rows = len(boundary) + 2
+    indptr = np.ascontiguousarray(upper.indptr, dtype=np.int32)
+    indices = np.ascontiguousarray(upper.indices, dtype=np.int32)
+    data = np.ascontiguousarray(upper.data, dtype=np.float64)
+    if len(indices) != upper.nnz or not (indptr[1:] > indptr[:-1]).all():
+        raise ValueError("PARDISO Schur complement: a row of the bordered matrix is empty")
+    schur = np.zeros(n + 2, dtype=np.int32)
+    schur[boundary] = 1
+    schur[n:] = 1
+    pt = np.zeros(64, dtype=np.int64)
+    iparm = np.zeros(64, dtype=np.int32)
+    iparm[0], iparm[1], iparm[9], iparm[34], iparm[35] = 1, 2, 8, 1, 1
+    out = np.zeros(rows * rows)
+    pardiso = mkl_library()
+    i32 = ctypes.c_int32
+    pointer = ctypes.POINTER(i32)
+
+    def call(phase):
+        error = i32(0)
+        pardiso(pt.ctypes.data_as(ctypes.POINTER(ctypes.c_int64)), ctypes.byref(i32(1)),
+                ctypes.byref(i32(1)), ctypes.byref(i32(2)), ctypes.byref(i32(phase)),
+                ctypes.byref(i32(n + 2)), data.ctypes.data, indptr.ctypes.data_as(pointer),
+                indices.ctypes.data_as(pointer), schur.ctypes.data_as(pointer),
+                ctypes.byref(i32(1)), iparm.ctypes.data_as(pointer), ctypes.byref(i32(0)),
+                np.zeros(1).ctypes.data, out.ctypes.data, ctypes.byref(error))
+        if error.value != 0:
+            raise PardisoError(error.value, phase)
+
+    try:
+        call(12)  # analysis and factorisation up to the Schur block
+    finally:
+        call(-1)
+    full = out.reshape(rows, rows)  # rows and columns in index order: boundary, virtual
+    position = np.empty(len(boundary), dtype=np.int64)
+    position[order] = np.arange(len(boundary))
+    S = full[np.ix_(position, position)]
+    S = (S + S.T) / 2
+    return S, -full[position, -2:], -full[-2:, -2:]
 
 
 def sector_ring_work(ring: RingGear, sector: FEMesh, material: Material = Material(),
@@ -121,50 +202,56 @@ def sector_ring_work(ring: RingGear, sector: FEMesh, material: Material = Materi
     is_b[b.ravel()] = True
     interior = np.flatnonzero(~is_b)
     K = model.K.tocsr()
-    K_ib = K[interior][:, b.ravel()].toarray()
-    factor = factorise(submatrix(K, ~is_b), pick(solver, len(interior), 2))
-    try:
-        X = factor.solve(np.column_stack([K_ib, G[interior]]))
-    finally:
-        factor.free()
-    nb2 = b.size
-    S = K[b.ravel()][:, b.ravel()].toarray() - K_ib.T @ X[:, :nb2]
-    Gc = G[b.ravel()] - K_ib.T @ X[:, nb2:]  # (nb2, 2)
-    C = G[interior].T @ X[:, nb2:]  # (2, 2) [m/N]
+    method = pick(solver, len(interior), 2)
+    if method == "pardiso":
+        S, Gc, C = _pardiso_condensation(K, G, b.ravel())
+    else:
+        S, Gc, C = _solved_condensation(K, G, b.ravel(), interior, method)
     t2 = time.perf_counter()
 
-    # ring boundary system: pitch k's node j -> global node; cut_plus -> next pitch's minus
+    # each pitch's held arc: its outer nodes inside a support arc are held, the others
+    # condensed too (one dense Schur complement per pattern of held facets), so the ring
+    # system has the cut nodes only; pitch k's -pi/z cut is cut k, its +pi/z cut cut k+1
     m, o = len(minus), len(outer)
-    per = m + o
-    nb = len(nodes)
-    slot = np.arange(nb)
-    slot[m + o:] = np.arange(m) + per  # shifted by one pitch below
     angles = np.array([ring.tooth_angle(k) for k in range(z)])
     R = np.stack([rotation(a) for a in angles])  # (z, 2, 2)
-    glob = (np.arange(z)[:, None] * per + slot[None, :]) % (z * per)  # (z, nb)
-    # rotated 2x2 blocks R_k S_ab R_k^T, assembled in COO
-    blocks = S.reshape(nb, 2, nb, 2)
-    rotated = np.einsum("kpi,aibj,kqj->kapbq", R, blocks, R, optimize=True)
-    rows = (2 * glob[:, :, None, None, None] + np.arange(2)[None, None, :, None, None])
-    cols = (2 * glob[:, None, None, :, None] + np.arange(2)[None, None, None, None, :])
-    rows, cols = np.broadcast_arrays(rows, cols)
-    n = 2 * z * per
-    A = sp.coo_matrix((rotated.ravel(), (rows.ravel(), cols.ravel())), shape=(n, n)).tocsr()
-    A = (A + A.T) * 0.5
-
-    # held nodes: every node of an outer facet inside a support arc
     outer_facets = sector.boundaries["outer"]
     middle = (sector.points[outer_facets[:, 2]] if outer_facets.shape[1] == 3
               else sector.points[outer_facets[:, :2]].mean(axis=1))
-    position = {node: i for i, node in enumerate(nodes)}
-    facet_slots = np.vectorize(position.get)(outer_facets)
+    position = {int(node): i for i, node in enumerate(nodes)}
+    facet_slots = np.array([[position[int(v)] for v in row] for row in outer_facets])
+    cut_slots = np.concatenate([np.arange(m), m + o + np.arange(m)])
+    cut_dofs = (2 * cut_slots[:, None] + np.arange(2)).ravel()
+    n = 2 * z * m
+    glob = np.concatenate([np.arange(m)[None, :] + m * np.arange(z)[:, None],
+                           (np.arange(m)[None, :] + m * (np.arange(z)[:, None] + 1)) % (z * m)],
+                          axis=1)  # (z, 2m): global cut node of each cut slot
     held = np.zeros(n, dtype=bool)
+    patterns: dict = {}
     for k in range(z):
         inside = in_support(ring, np.arctan2(middle[:, 1], middle[:, 0]) + angles[k])
-        fixed_nodes = glob[k, np.unique(facet_slots[inside])]
-        held[2 * fixed_nodes] = held[2 * fixed_nodes + 1] = True
+        held_slots = np.unique(facet_slots[inside])
+        patterns.setdefault(tuple(held_slots), []).append(k)
+        held_cut = np.isin(cut_slots, held_slots)
+        held[2 * glob[k, held_cut]] = held[2 * glob[k, held_cut] + 1] = True
     if not held.any():
         raise SingularSystemError("no outer node of the ring lies in a support arc")
+    S_cut = np.empty((z, 4 * m, 4 * m))
+    G_cut = np.empty((z, 4 * m, 2))
+    C_cut = np.empty((z, 2, 2))
+    outer_slots = np.arange(m, m + o)
+    with blas_threads(1):  # small dense kernels: more threads only wait (foundation.blas)
+        for held_slots, members in patterns.items():
+            free_outer = np.setdiff1d(outer_slots, held_slots)
+            f = (2 * free_outer[:, None] + np.arange(2)).ravel()
+            solved = np.linalg.solve(S[np.ix_(f, f)],
+                                     np.column_stack([S[f][:, cut_dofs], Gc[f]]))
+            coupling = S[cut_dofs][:, f]
+            S_cut[members] = S[np.ix_(cut_dofs, cut_dofs)] - coupling @ solved[:, :4 * m]
+            G_cut[members] = Gc[cut_dofs] - coupling @ solved[:, 4 * m:]
+            C_cut[members] = C + Gc[f].T @ solved[:, 4 * m:]
+    blocks = np.einsum("kpi,kaibj,kqj->kapbq", R, S_cut.reshape(z, 2 * m, 2, 2 * m, 2), R,
+                       optimize=True).reshape(z, 4 * m, 4 * m)  # ring frame
 
     # load cases: carrier positions (1 N along the line of action per loaded tooth), then
     # 1/z N along x and along y on every tooth; a_k in pitch k's own frame
@@ -178,18 +265,15 @@ def sector_ring_work(ring: RingGear, sector: FEMesh, material: Material = Materi
             a[k, :, column] += direction
     a[:, :, -2] = np.einsum("kji,j->ki", R, np.array([1.0, 0.0])) / z
     a[:, :, -1] = np.einsum("kji,j->ki", R, np.array([0.0, 1.0])) / z
-    local = np.einsum("nc,kcl->knl", Gc, a).reshape(z, nb, 2, cases)  # pitch frame
+    local = np.einsum("knc,kcl->knl", G_cut, a).reshape(z, 2 * m, 2, cases)  # pitch frame
     turned = np.einsum("kpi,knil->knpl", R, local)
-    F = np.zeros((n, cases))
-    np.add.at(F, (2 * glob[:, :, None] + np.arange(2)[None, None, :]).ravel(),
-              turned.reshape(-1, cases))
-    free = np.flatnonzero(~held)
-    system = factorise(A[free][:, free].tocsr(), pick(solver, len(free), 2))
-    try:
-        U = system.solve(F[free])
-    finally:
-        system.free()
-    work = np.einsum("ic,ic->c", F[free], U) + np.einsum("kic,ij,kjc->c", a, C, a)
+    F = np.zeros((z + 1, 2 * m, cases))  # load on each cut, cut z is cut 0
+    F[:z] += turned[:, :m].reshape(z, 2 * m, cases)
+    F[1:] += turned[:, m:].reshape(z, 2 * m, cases)
+    F[0] += F[z]
+    with blas_threads(1):
+        U = cyclic_block_solve(blocks, held.reshape(z, 2 * m), F[:z])
+    work = np.einsum("jic,jic->c", F[:z], U) + np.einsum("kic,kij,kjc->c", a, C_cut, a)
     t3 = time.perf_counter()
     if np.any(work <= 0):
         raise ValueError(f"the work of the ring loads is not positive ({work.min():.3e} N m)")
@@ -197,5 +281,59 @@ def sector_ring_work(ring: RingGear, sector: FEMesh, material: Material = Materi
     c_ru = torque ** 2 / work[:len(loaded)] / rb ** 2
     c_r = float(np.mean(1.0 / work[-2:]))
     dofs = 2 * z * (len(sector.points) - m)
-    return SectorWork(c_ru, c_r, dofs, model.ndofs, len(free),
+    return SectorWork(c_ru, c_r, dofs, model.ndofs, int((~held).sum()), len(patterns),
                       {"assembly": t1 - t0, "condense": t2 - t1, "solve": t3 - t2})
+
+
+def cyclic_block_solve(blocks: np.ndarray, held: np.ndarray, loads: np.ndarray) -> np.ndarray:
+    """Solve the ring's cut system: z cuts of d DOFs each, pitch k coupling cut k (its first
+    d rows of ``blocks[k]``, (z, 2d, 2d)) with cut k+1 (mod z) (its last d rows); ``held``
+    (z, d) DOFs are zero; ``loads`` (z, d, cases).  Block Cholesky along the chain of
+    cuts 1..z-1 with cut 0 as the border that closes the ring: O(z d^3), no fill beyond
+    one border block per cut.  Returns the displacements (z, d, cases), zero where held."""
+    from scipy.linalg import cho_factor, cho_solve
+
+    z, d2 = blocks.shape[:2]
+    d = d2 // 2
+    free = [np.flatnonzero(~held[j]) for j in range(z)]
+
+    def diagonal(j):
+        D = blocks[j][:d, :d] + blocks[j - 1][d:, d:]
+        return D[np.ix_(free[j], free[j])]
+
+    def coupling(j):  # rows: cut j, columns: cut j+1
+        return blocks[j][:d, d:][np.ix_(free[j], free[(j + 1) % z])]
+
+    D0 = diagonal(0)
+    r0 = loads[0][free[0]].copy()
+    factors, borders, couplings, rhs = [None] * z, [None] * z, [None] * z, [None] * z
+    D = diagonal(1)
+    B = coupling(0).T  # rows: cut 1, columns: cut 0
+    r = loads[1][free[1]].copy()
+    for j in range(1, z):
+        if j == z - 1:
+            B = B + coupling(z - 1)
+        factor = cho_factor(D, lower=True, check_finite=False)
+        factors[j], borders[j], rhs[j] = factor, B, r
+        solved_B = cho_solve(factor, B, check_finite=False)
+        solved_r = cho_solve(factor, r, check_finite=False)
+        D0 = D0 - B.T @ solved_B
+        r0 = r0 - B.T @ solved_r
+        if j < z - 1:
+            E = coupling(j)
+            couplings[j] = E
+            solved_E = cho_solve(factor, E, check_finite=False)
+            D = diagonal(j + 1) - E.T @ solved_E
+            B = -solved_E.T @ B
+            r = loads[j + 1][free[j + 1]] - solved_E.T @ rhs[j]
+    out = np.zeros((z, d, loads.shape[-1]))
+    x0 = cho_solve(cho_factor(D0, lower=True, check_finite=False), r0, check_finite=False)
+    out[0][free[0]] = x0
+    after = None
+    for j in range(z - 1, 0, -1):
+        right = rhs[j] - borders[j] @ x0
+        if j < z - 1:
+            right = right - couplings[j] @ after
+        after = cho_solve(factors[j], right, check_finite=False)
+        out[j][free[j]] = after
+    return out

@@ -1,0 +1,83 @@
+"""The ring's work-conjugate c_ru from one tooth pitch (issue 25, items 2-3): the pitch mesh,
+its exact condensation, the cyclic solve, and the convergence of the pitch family."""
+import csv
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("gmsh")
+
+from hubvib.build import raba118  # noqa: E402
+from hubvib.fem.ring_sector import cyclic_block_solve, sector_ring_work  # noqa: E402
+from hubvib.fem.ring_stiffness import ring_stiffness  # noqa: E402
+from hubvib.meshing.ring_sector import ring_from_sector, sector_mesh  # noqa: E402
+from hubvib.validation.convergence import (SECTOR_BASE, observed_orders,  # noqa: E402
+                                           reference_value, richardson)
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def test_cyclic_block_solve_matches_a_dense_solve():
+    """The block Cholesky around the ring of cuts against numpy's dense solve of the same
+    assembled system (held DOFs removed), to 1e-10."""
+    rng = np.random.default_rng(3)
+    z, d, cases = 7, 4, 3
+    blocks = np.empty((z, 2 * d, 2 * d))
+    for k in range(z):
+        a = rng.normal(size=(2 * d, 2 * d))
+        blocks[k] = a @ a.T + 2 * d * np.eye(2 * d)
+    held = np.zeros((z, d), dtype=bool)
+    held[2, :2] = held[5, 3] = True
+    loads = rng.normal(size=(z, d, cases))
+    dense = np.zeros((z * d, z * d))
+    for k in range(z):
+        index = np.r_[k * d:(k + 1) * d, ((k + 1) % z) * d + np.arange(d)]
+        dense[np.ix_(index, index)] += blocks[k]
+    free = np.flatnonzero(~held.ravel())
+    expected = np.zeros((z * d, cases))
+    expected[free] = np.linalg.solve(dense[np.ix_(free, free)], loads.reshape(z * d, -1)[free])
+    got = cyclic_block_solve(blocks, held, loads)
+    np.testing.assert_allclose(got.reshape(z * d, -1), expected, rtol=0, atol=1e-10 * np.abs(
+        expected).max(), err_msg="cyclic block solve against numpy's dense solve, 1e-10")
+
+
+@pytest.fixture(scope="module")
+def pitch():
+    ring = raba118.ring_gear()
+    return ring, sector_mesh(ring, SECTOR_BASE)
+
+
+def test_pitch_copies_hold_the_supports_exactly(pitch):
+    """The z rotated copies carry nodes at every support end: the held outer facets span
+    count x width of arc (Supports), to 1e-12 rad; the cut nodes pair up (periodic)."""
+    ring, sector = pitch
+    whole = ring_from_sector(sector, ring)
+    ends = whole.points[whole.boundaries["supports"][:, :2]]
+    angles = np.arctan2(ends[..., 1], ends[..., 0])
+    span = np.abs((angles[:, 1] - angles[:, 0] + math.pi) % (2 * math.pi) - math.pi).sum()
+    expected = ring.supports.count * ring.supports.width
+    assert abs(span - expected) < 1e-12, (
+        f"held arc {span!r} rad, Supports gives {expected!r} rad (1e-12)")
+    used = np.unique(whole.cells)
+    assert len(used) == len(whole.points), "every node of the copied ring is used"
+
+
+def test_pitch_model_equals_the_whole_ring_meshed_from_it(pitch):
+    """Static condensation is exact: the pitch model's c_ru at every carrier position and
+    its c_r equal fem.ring_stiffness's work-conjugate values on the whole ring assembled
+    from the same pitch mesh (an independent assembly and solve), to 1e-9."""
+    ring, sector = pitch
+    ours = sector_ring_work(ring, sector)
+    whole = ring_stiffness(ring, ring_from_sector(sector, ring))
+    assert ours.dofs == whole.dofs, "the DOF count of the copies"
+    np.testing.assert_allclose(ours.c_ru_positions, whole.work.c_ru_positions, rtol=1e-9,
+                               err_msg="pitch model vs whole ring, c_ru_work (1e-9)")
+    assert abs(ours.c_r / whole.work.c_r - 1) < 1e-9, "pitch model vs whole ring, c_r (1e-9)"
+
+
+def _whole_ring_reference() -> float:
+    path = ROOT / "docs" / "data" / "convergence_work" / "convergence_c_ru_work.csv"
+    with path.open(newline="") as handle:
+        return float(next(csv.DictReader(handle))["reference"])
