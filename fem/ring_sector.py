@@ -79,19 +79,21 @@ class SectorWork:
         return float(np.mean(self.c_ru_positions))
 
 
-def _boundary_node_dofs(model, groups) -> dict:
-    """Mesh node -> its (x, y) DOFs, for every node of the facets of ``groups`` (vertices
-    and, on curved meshes, mid-edge nodes: the DOFs of the facet they sit on)."""
+def _boundary_node_dofs(model, groups, nodes) -> np.ndarray:
+    """(len(nodes), 2): the x and y DOFs of mesh ``nodes``, each a node of a facet of
+    ``groups`` (a vertex or, on curved meshes, a mid-edge node: the DOFs of its facet)."""
     basis, fe = model.basis, model.basis.mesh
-    dofs = {}
+    dofs = np.full((len(model.mesh.points), 2), -1, dtype=np.int64)
     for name in groups:
         facets = model.mesh.boundaries[name]
-        for row, facet in zip(facets, fe.boundaries[name]):
-            for node in row[:2]:
-                dofs[int(node)] = tuple(basis.nodal_dofs[:, model.vertex_of[node]])
-            if len(row) == 3:
-                dofs[int(row[2])] = tuple(basis.facet_dofs[:, facet])
-    return dofs
+        ends = facets[:, :2].ravel()
+        dofs[ends] = basis.nodal_dofs[:, model.vertex_of[ends]].T
+        if facets.shape[1] == 3:
+            dofs[facets[:, 2]] = basis.facet_dofs[:, fe.boundaries[name]].T
+    out = dofs[nodes]
+    if (out < 0).any():
+        raise ValueError("a boundary node of the pitch mesh carries no DOF")
+    return out
 
 
 def _solved_condensation(K, G, boundary, interior, method):
@@ -196,8 +198,7 @@ def sector_ring_work(ring: RingGear, sector: FEMesh, material: Material = Materi
     minus, plus = cut_pairs(sector, ring)
     outer = np.setdiff1d(np.unique(sector.boundaries["outer"]), np.concatenate([minus, plus]))
     nodes = np.concatenate([minus, outer, plus])
-    where = _boundary_node_dofs(model, ("cut_minus", "cut_plus", "outer"))
-    b = np.array([where[int(node)] for node in nodes], dtype=np.int64)  # (nb, 2)
+    b = _boundary_node_dofs(model, ("cut_minus", "cut_plus", "outer"), nodes)  # (nb, 2)
     is_b = np.zeros(model.ndofs, dtype=bool)
     is_b[b.ravel()] = True
     interior = np.flatnonzero(~is_b)
@@ -211,47 +212,48 @@ def sector_ring_work(ring: RingGear, sector: FEMesh, material: Material = Materi
 
     # each pitch's held arc: its outer nodes inside a support arc are held, the others
     # condensed too (one dense Schur complement per pattern of held facets), so the ring
-    # system has the cut nodes only; pitch k's -pi/z cut is cut k, its +pi/z cut cut k+1
+    # system has the cut nodes only.  Pitch k's -pi/z cut is cut k, its +pi/z cut cut k+1;
+    # cut j's DOFs are x, y in pitch j's frame, so pitch k's +pi/z cut enters turned by
+    # one pitch (u in frame k = Q u in frame k+1, Q the rotation by 2 pi / z), the same
+    # turn for every pitch: one rotated block per pattern, none per pitch
     m, o = len(minus), len(outer)
     angles = np.array([ring.tooth_angle(k) for k in range(z)])
-    R = np.stack([rotation(a) for a in angles])  # (z, 2, 2)
     outer_facets = sector.boundaries["outer"]
     middle = (sector.points[outer_facets[:, 2]] if outer_facets.shape[1] == 3
               else sector.points[outer_facets[:, :2]].mean(axis=1))
-    position = {int(node): i for i, node in enumerate(nodes)}
-    facet_slots = np.array([[position[int(v)] for v in row] for row in outer_facets])
+    slot_of = np.full(len(sector.points), -1, dtype=np.int64)
+    slot_of[nodes] = np.arange(len(nodes))
+    facet_slots = slot_of[outer_facets]
     cut_slots = np.concatenate([np.arange(m), m + o + np.arange(m)])
     cut_dofs = (2 * cut_slots[:, None] + np.arange(2)).ravel()
-    n = 2 * z * m
-    glob = np.concatenate([np.arange(m)[None, :] + m * np.arange(z)[:, None],
-                           (np.arange(m)[None, :] + m * (np.arange(z)[:, None] + 1)) % (z * m)],
-                          axis=1)  # (z, 2m): global cut node of each cut slot
-    held = np.zeros(n, dtype=bool)
+    held = np.zeros((z + 1, m), dtype=bool)  # per cut node; cut z is cut 0
+    pattern_of = np.empty(z, dtype=np.int64)
     patterns: dict = {}
     for k in range(z):
         inside = in_support(ring, np.arctan2(middle[:, 1], middle[:, 0]) + angles[k])
         held_slots = np.unique(facet_slots[inside])
-        patterns.setdefault(tuple(held_slots), []).append(k)
-        held_cut = np.isin(cut_slots, held_slots)
-        held[2 * glob[k, held_cut]] = held[2 * glob[k, held_cut] + 1] = True
+        pattern_of[k] = patterns.setdefault(tuple(held_slots), len(patterns))
+        held[k] |= np.isin(np.arange(m), held_slots)
+        held[k + 1] |= np.isin(m + o + np.arange(m), held_slots)
+    held[0] |= held[z]
     if not held.any():
         raise SingularSystemError("no outer node of the ring lies in a support arc")
-    S_cut = np.empty((z, 4 * m, 4 * m))
-    G_cut = np.empty((z, 4 * m, 2))
-    C_cut = np.empty((z, 2, 2))
+    turn = np.eye(4 * m)
+    turn[2 * m:, 2 * m:] = np.kron(np.eye(m), rotation(2 * math.pi / z))
+    S_cut = np.empty((len(patterns), 4 * m, 4 * m))
+    G_cut = np.empty((len(patterns), 4 * m, 2))
+    C_cut = np.empty((len(patterns), 2, 2))
     outer_slots = np.arange(m, m + o)
     with blas_threads(1):  # small dense kernels: more threads only wait (foundation.blas)
-        for held_slots, members in patterns.items():
+        for held_slots, p in patterns.items():
             free_outer = np.setdiff1d(outer_slots, held_slots)
             f = (2 * free_outer[:, None] + np.arange(2)).ravel()
             solved = np.linalg.solve(S[np.ix_(f, f)],
                                      np.column_stack([S[f][:, cut_dofs], Gc[f]]))
             coupling = S[cut_dofs][:, f]
-            S_cut[members] = S[np.ix_(cut_dofs, cut_dofs)] - coupling @ solved[:, :4 * m]
-            G_cut[members] = Gc[cut_dofs] - coupling @ solved[:, 4 * m:]
-            C_cut[members] = C + Gc[f].T @ solved[:, 4 * m:]
-    blocks = np.einsum("kpi,kaibj,kqj->kapbq", R, S_cut.reshape(z, 2 * m, 2, 2 * m, 2), R,
-                       optimize=True).reshape(z, 4 * m, 4 * m)  # ring frame
+            S_cut[p] = turn.T @ (S[np.ix_(cut_dofs, cut_dofs)] - coupling @ solved[:, :4 * m]) @ turn
+            G_cut[p] = turn.T @ (Gc[cut_dofs] - coupling @ solved[:, 4 * m:])
+            C_cut[p] = C + Gc[f].T @ solved[:, 4 * m:]
 
     # load cases: carrier positions (1 N along the line of action per loaded tooth), then
     # 1/z N along x and along y on every tooth; a_k in pitch k's own frame
@@ -263,17 +265,17 @@ def sector_ring_work(ring: RingGear, sector: FEMesh, material: Material = Materi
     for column, teeth in enumerate(loaded):
         for k in teeth:
             a[k, :, column] += direction
-    a[:, :, -2] = np.einsum("kji,j->ki", R, np.array([1.0, 0.0])) / z
-    a[:, :, -1] = np.einsum("kji,j->ki", R, np.array([0.0, 1.0])) / z
-    local = np.einsum("knc,kcl->knl", G_cut, a).reshape(z, 2 * m, 2, cases)  # pitch frame
-    turned = np.einsum("kpi,knil->knpl", R, local)
+    a[:, :, -2] = np.column_stack([np.cos(angles), -np.sin(angles)]) / z  # R_k^T e_x
+    a[:, :, -1] = np.column_stack([np.sin(angles), np.cos(angles)]) / z  # R_k^T e_y
+    local = np.einsum("knc,kcl->knl", G_cut[pattern_of], a)  # (z, 4m, cases), cut frames
     F = np.zeros((z + 1, 2 * m, cases))  # load on each cut, cut z is cut 0
-    F[:z] += turned[:, :m].reshape(z, 2 * m, cases)
-    F[1:] += turned[:, m:].reshape(z, 2 * m, cases)
+    F[:z] += local[:, :2 * m]
+    F[1:] += local[:, 2 * m:]
     F[0] += F[z]
     with blas_threads(1):
-        U = cyclic_block_solve(blocks, held.reshape(z, 2 * m), F[:z])
-    work = np.einsum("jic,jic->c", F[:z], U) + np.einsum("kic,kij,kjc->c", a, C_cut, a)
+        U = cyclic_block_solve(S_cut[pattern_of], np.repeat(held[:z], 2, axis=1), F[:z])
+    work = np.einsum("jic,jic->c", F[:z], U) + np.einsum("kic,kij,kjc->c", a,
+                                                          C_cut[pattern_of], a)
     t3 = time.perf_counter()
     if np.any(work <= 0):
         raise ValueError(f"the work of the ring loads is not positive ({work.min():.3e} N m)")
@@ -281,7 +283,8 @@ def sector_ring_work(ring: RingGear, sector: FEMesh, material: Material = Materi
     c_ru = torque ** 2 / work[:len(loaded)] / rb ** 2
     c_r = float(np.mean(1.0 / work[-2:]))
     dofs = 2 * z * (len(sector.points) - m)
-    return SectorWork(c_ru, c_r, dofs, model.ndofs, int((~held).sum()), len(patterns),
+    return SectorWork(c_ru, c_r, dofs, model.ndofs, 2 * int((~held[:z]).sum()),
+                      len(patterns),
                       {"assembly": t1 - t0, "condense": t2 - t1, "solve": t3 - t2})
 
 
