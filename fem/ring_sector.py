@@ -31,6 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
+from scipy.linalg import cho_factor, cho_solve
 
 from hubvib.foundation.blas import blas_threads
 from hubvib.meshing.fe_mesh import FEMesh
@@ -77,6 +78,11 @@ class SectorWork:
     def c_ru(self) -> float:
         """Mean over the carrier positions [N/m]."""
         return float(np.mean(self.c_ru_positions))
+
+
+#: MKL threads of the Schur factorisation (pitch models are small: on a busy 2-core
+#: machine a second thread mostly waits)
+THREADS = 1
 
 
 def _boundary_node_dofs(model, groups, nodes) -> np.ndarray:
@@ -160,7 +166,8 @@ def _pardiso_condensation(K, G, boundary):
             raise PardisoError(error.value, phase)
 
     try:
-        call(12)  # analysis and factorisation up to the Schur block
+        with blas_threads(THREADS):
+            call(12)  # analysis and factorisation up to the Schur block
     finally:
         call(-1)
     full = out.reshape(rows, rows)  # rows and columns in index order: boundary, virtual
@@ -248,8 +255,8 @@ def sector_ring_work(ring: RingGear, sector: FEMesh, material: Material = Materi
         for held_slots, p in patterns.items():
             free_outer = np.setdiff1d(outer_slots, held_slots)
             f = (2 * free_outer[:, None] + np.arange(2)).ravel()
-            solved = np.linalg.solve(S[np.ix_(f, f)],
-                                     np.column_stack([S[f][:, cut_dofs], Gc[f]]))
+            solved = cho_solve(cho_factor(S[np.ix_(f, f)], check_finite=False),
+                               np.column_stack([S[f][:, cut_dofs], Gc[f]]), check_finite=False)
             coupling = S[cut_dofs][:, f]
             S_cut[p] = turn.T @ (S[np.ix_(cut_dofs, cut_dofs)] - coupling @ solved[:, :4 * m]) @ turn
             G_cut[p] = turn.T @ (Gc[cut_dofs] - coupling @ solved[:, 4 * m:])
@@ -294,8 +301,6 @@ def cyclic_block_solve(blocks: np.ndarray, held: np.ndarray, loads: np.ndarray) 
     (z, d) DOFs are zero; ``loads`` (z, d, cases).  Block Cholesky along the chain of
     cuts 1..z-1 with cut 0 as the border that closes the ring: O(z d^3), no fill beyond
     one border block per cut.  Returns the displacements (z, d, cases), zero where held."""
-    from scipy.linalg import cho_factor, cho_solve
-
     z, d2 = blocks.shape[:2]
     d = d2 // 2
     free = [np.flatnonzero(~held[j]) for j in range(z)]
