@@ -34,9 +34,12 @@ from .session import MeshingError, gmsh_model
 def support_end_phases(ring: RingGear) -> np.ndarray:
     """Angles in [0, 2 pi / z) [rad] of every support end, modulo the tooth pitch."""
     pitch = 2 * math.pi / ring.teeth
-    ends = [a for arc in ring.supports.arcs() for a in arc]
-    phases = sorted({round((a + math.pi / ring.teeth) % pitch, 12) % pitch for a in ends})
-    return np.array(phases) - math.pi / ring.teeth  # in [-pi/z, pi/z)
+    ends = np.array([a for arc in ring.supports.arcs() for a in arc])
+    phases = (ends + math.pi / ring.teeth) % pitch
+    phases[np.abs(phases - pitch) < 1e-9 * pitch] = 0.0  # on a cut: the -pi/z one
+    phases = np.sort(phases)
+    keep = np.r_[True, np.diff(phases) > 1e-9 * pitch]
+    return phases[keep] - math.pi / ring.teeth  # in [-pi/z, pi/z)
 
 
 def sector_mesh(ring: RingGear, options: MeshOptions = MeshOptions(),
@@ -132,7 +135,8 @@ class _SectorBuilder:
         ends = support_end_phases(ring)
         on_cut = abs(ends[0] + math.pi / z) < 1e-12
         self.end_points = [p for p, a in zip(outer_points, angles)
-                           if np.min(np.abs(ends - a)) < 1e-12 or (on_cut and abs(a) > 0.99 * math.pi / z)]
+                           if np.min(np.abs(ends - a)) < 1e-12
+                           or (on_cut and abs(a) > 0.99 * math.pi / z)]
         outer = [self.arc(a, b) for a, b in zip(outer_points[:-1], outer_points[1:])]
         cut_plus = geo.addLine(space_plus, outer_points[0])
         cut_minus = geo.addLine(space_minus, outer_points[-1])

@@ -137,3 +137,24 @@ def test_pitch_family_converges_at_a_stable_order_and_its_route_is_within_1e4():
     whole = _whole_ring_reference()
     assert abs(whole / reference - 1) <= 2e-4, (
         f"whole-ring nested reference {whole:.6e} vs pitch reference {reference:.6e} (2e-4)")
+
+
+@pytest.mark.parametrize("supports", [
+    dict(count=4, width=2 * math.pi / 64 * 3, first_angle=0.0),
+    dict(count=5, width=0.3, first_angle=0.1)],
+    ids=["support ends on the cuts", "5 supports, ends anywhere"])
+def test_pitch_model_equals_the_whole_ring_for_other_supports(supports):
+    """Supports whose ends fall on the pitch cuts (the corner nodes held from both sides)
+    and an odd support count: still the whole ring assembled from the same pitch mesh
+    (fem.ring_stiffness), 1e-9."""
+    from dataclasses import replace as dc_replace
+
+    from hubvib.meshing.ring_gear import Supports
+
+    ring = dc_replace(raba118.ring_gear(), supports=Supports(**supports))
+    sector = sector_mesh(ring, dc_replace(NESTED_BASE, size=32e-3, tooth_size=6e-3))
+    ours = sector_ring_work(ring, sector, carrier_teeth=[0, 5])
+    whole = ring_stiffness(ring, ring_from_sector(sector, ring), carrier_teeth=[0, 5])
+    np.testing.assert_allclose(ours.c_ru_positions, whole.work.c_ru_positions, rtol=1e-9,
+                               err_msg="pitch model vs whole ring, c_ru_work (1e-9)")
+    assert abs(ours.c_r / whole.work.c_r - 1) < 1e-9, "pitch model vs whole ring, c_r (1e-9)"

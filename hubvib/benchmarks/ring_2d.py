@@ -92,8 +92,8 @@ def work_route(scales=NESTED_SCALES, progress=None, sector_scales=None) -> dict:
     old = _routes(whole, "nested", scales, reference) if chosen_family["verified"] else []
     new = _routes(pitch, "pitch", sector_scales, reference) if chosen_family["verified"] else []
     early = (sum(r["seconds_total"] for r in whole["levels"][:3]),
-             abs(richardson(whole["values"][:3], 2.0)[0] / reference - 1)) if len(
-        whole["values"]) >= 3 else (None, None)
+             abs(richardson(whole["values"][:3], 2.0)[0] / reference - 1)) if (
+        chosen_family["verified"] and len(whole["values"]) > 3) else (None, None)
 
     def best(routes):
         good = [r for r in routes if r[2] <= TARGET_ERROR]
