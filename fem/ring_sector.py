@@ -15,9 +15,10 @@ tooth k (in the pitch's own frame) the work of the loads is
     f^T u = F^T S^-1 F + sum_k a_k^T C a_k,   F = sum_k R_k G' a_k,
 
 exactly what the whole ring meshed with the same pitch mesh gives
-(``meshing.ring_sector.ring_from_sector`` with ``fem.ring_stiffness``).  One sparse
-factorisation of the pitch interior (1/z of the ring) and one of the boundary system
-(a few hundred DOFs per pitch) replace the factorisation of the whole ring.
+(``meshing.ring_sector.ring_from_sector`` with ``fem.ring_stiffness``).  In practice the
+condensation is PARDISO's Schur complement (one factorisation of the pitch, 1/z of the
+ring), the held arc is condensed densely once per pattern of held facets, and the ring of
+cuts is solved by block Cholesky around the ring (``cyclic_block_solve``).
 
 ``c_ru_work = T^2 / (f^T u) / r_b^2`` (``fem.ring_work``) at each carrier position, and
 ``c_r_work = F^2 / (f^T u)`` for 1 N along x and along y spread over all teeth.
@@ -37,7 +38,7 @@ from hubvib.foundation.blas import blas_threads
 from hubvib.meshing.fe_mesh import FEMesh
 from hubvib.meshing.gear import rotation
 from hubvib.meshing.ring_gear import RingGear
-from hubvib.meshing.ring_sector import in_support
+from hubvib.meshing.ring_sector import cut_pairs, in_support
 
 from .elasticity import plane_model, submatrix
 from .material import Material
@@ -63,7 +64,8 @@ class SectorWork:
         Distinct patterns of held outer facets over the pitches (one dense condensation
         of the held arc each).
     seconds : dict
-        assembly, condense, solve wall times [s].
+        condense (model, loads and condensation of the pitch) and solve (the held arcs
+        and the ring of cuts) wall times [s].
     """
 
     c_ru_positions: np.ndarray
@@ -178,66 +180,74 @@ def _pardiso_condensation(K, G, boundary):
     return S, -full[position, -2:], -full[-2:, -2:]
 
 
-def sector_ring_work(ring: RingGear, sector: FEMesh, material: Material = Material(),
-                     n_planets: int = 3, carrier_teeth=None, solver: str = "auto"
-                     ) -> SectorWork:
-    """c_ru_work at each carrier position (default: every tooth over one planet pitch)
-    and c_r_work [N/m] of the intact ring whose tooth pitch is ``sector``
-    (``meshing.ring_sector.sector_mesh``), plane stress over the face width."""
-    from hubvib.meshing.ring_sector import cut_pairs
+@dataclass(frozen=True, eq=False)
+class PitchCondensation:
+    """One pitch's stiffness condensed onto its boundary nodes (module docstring).
 
-    if isinstance(n_planets, bool) or not isinstance(n_planets, int) or not 1 <= n_planets <= 12:
-        raise ValueError(f"n_planets = {n_planets!r}, allowed integers 1..12")
-    needed = {"tooth0_load", "tooth0_root", "cut_minus", "cut_plus", "outer"}
-    if missing := sorted(needed - set(sector.boundaries)):
-        raise ValueError(f"the pitch mesh lacks the groups {', '.join(missing)} "
-                         "(meshing.ring_sector.sector_mesh makes them)")
-    if carrier_teeth is None:
-        carrier_teeth = default_carrier_teeth(ring, n_planets)
-    z = ring.teeth
-    t0 = time.perf_counter()
+    Attributes
+    ----------
+    S : ndarray (2 nb, 2 nb)
+        Schur complement on the boundary nodes' x, y DOFs [N/m], node order ``minus``,
+        ``outer``, ``plus``.
+    G : ndarray (2 nb, 2)
+        Condensed loads of 1 N along x and along y on the load patch [N/N].
+    C : ndarray (2, 2)
+        Interior compliance of those loads, ``G_i^T K_ii^-1 G_i`` [m/N].
+    minus, outer, plus : ndarray
+        Mesh nodes of the -pi/z cut, of the held arc without the cut ends, and of the
+        +pi/z cut paired with ``minus``.
+    dofs : int
+        DOFs of the pitch model.
+    """
+
+    S: np.ndarray
+    G: np.ndarray
+    C: np.ndarray
+    minus: np.ndarray
+    outer: np.ndarray
+    plus: np.ndarray
+    dofs: int
+
+
+def condense_pitch(ring: RingGear, sector: FEMesh, material: Material = Material(),
+                   solver: str = "auto") -> PitchCondensation:
+    """Plane-stress model of the pitch over the face width, condensed exactly onto its cuts
+    and held arc (PARDISO's Schur complement, else one solve per boundary DOF)."""
     model = plane_model(sector, material, ring.gear.face_width, "stress")
-    patch = tooth_forces(model, [0])
-    G = patch.loads(np.eye(2)[None, :, :])  # (ndofs, 2): 1 N along x, along y
-    t1 = time.perf_counter()
-
-    # boundary nodes: -pi/z cut, held arc (without the cut ends), +pi/z cut (paired)
+    G = tooth_forces(model, [0]).loads(np.eye(2)[None, :, :])  # 1 N along x, along y
     minus, plus = cut_pairs(sector, ring)
     outer = np.setdiff1d(np.unique(sector.boundaries["outer"]), np.concatenate([minus, plus]))
     nodes = np.concatenate([minus, outer, plus])
-    b = _boundary_node_dofs(model, ("cut_minus", "cut_plus", "outer"), nodes)  # (nb, 2)
+    b = _boundary_node_dofs(model, ("cut_minus", "cut_plus", "outer"), nodes).ravel()
     is_b = np.zeros(model.ndofs, dtype=bool)
-    is_b[b.ravel()] = True
+    is_b[b] = True
     interior = np.flatnonzero(~is_b)
     K = model.K.tocsr()
     method = pick(solver, len(interior), 2)
     if method == "pardiso":
-        S, Gc, C = _pardiso_condensation(K, G, b.ravel())
+        S, Gc, C = _pardiso_condensation(K, G, b)
     else:
-        S, Gc, C = _solved_condensation(K, G, b.ravel(), interior, method)
-    t2 = time.perf_counter()
+        S, Gc, C = _solved_condensation(K, G, b, interior, method)
+    return PitchCondensation(S, Gc, C, minus, outer, plus, model.ndofs)
 
-    # each pitch's held arc: its outer nodes inside a support arc are held, the others
-    # condensed too (one dense Schur complement per pattern of held facets), so the ring
-    # system has the cut nodes only.  Pitch k's -pi/z cut is cut k, its +pi/z cut cut k+1;
-    # cut j's DOFs are x, y in pitch j's frame, so pitch k's +pi/z cut enters turned by
-    # one pitch (u in frame k = Q u in frame k+1, Q the rotation by 2 pi / z), the same
-    # turn for every pitch: one rotated block per pattern, none per pitch
-    m, o = len(minus), len(outer)
-    angles = np.array([ring.tooth_angle(k) for k in range(z)])
-    outer_facets = sector.boundaries["outer"]
-    middle = (sector.points[outer_facets[:, 2]] if outer_facets.shape[1] == 3
-              else sector.points[outer_facets[:, :2]].mean(axis=1))
+
+def _held_patterns(ring: RingGear, sector: FEMesh, pitch: PitchCondensation):
+    """Which outer nodes each pitch holds (those of its outer facets inside a support
+    arc): the distinct patterns (held boundary slots), each pitch's pattern and, per cut
+    node, whether it is held (cut z is cut 0)."""
+    z, m, o = ring.teeth, len(pitch.minus), len(pitch.outer)
+    nodes = np.concatenate([pitch.minus, pitch.outer, pitch.plus])
+    facets = sector.boundaries["outer"]
+    middle = (sector.points[facets[:, 2]] if facets.shape[1] == 3
+              else sector.points[facets[:, :2]].mean(axis=1))
     slot_of = np.full(len(sector.points), -1, dtype=np.int64)
     slot_of[nodes] = np.arange(len(nodes))
-    facet_slots = slot_of[outer_facets]
-    cut_slots = np.concatenate([np.arange(m), m + o + np.arange(m)])
-    cut_dofs = (2 * cut_slots[:, None] + np.arange(2)).ravel()
-    held = np.zeros((z + 1, m), dtype=bool)  # per cut node; cut z is cut 0
+    facet_slots = slot_of[facets]
+    held = np.zeros((z + 1, m), dtype=bool)
     pattern_of = np.empty(z, dtype=np.int64)
     patterns: dict = {}
     for k in range(z):
-        inside = in_support(ring, np.arctan2(middle[:, 1], middle[:, 0]) + angles[k])
+        inside = in_support(ring, np.arctan2(middle[:, 1], middle[:, 0]) + ring.tooth_angle(k))
         held_slots = np.unique(facet_slots[inside])
         pattern_of[k] = patterns.setdefault(tuple(held_slots), len(patterns))
         held[k] |= np.isin(np.arange(m), held_slots)
@@ -245,54 +255,92 @@ def sector_ring_work(ring: RingGear, sector: FEMesh, material: Material = Materi
     held[0] |= held[z]
     if not held.any():
         raise SingularSystemError("no outer node of the ring lies in a support arc")
+    return list(patterns), pattern_of, held[:z]
+
+
+def _cut_blocks(pitch: PitchCondensation, patterns: list, z: int):
+    """Per pattern, the pitch condensed further onto its two cuts (free held-arc nodes
+    condensed densely, held ones dropped): stiffness (4m, 4m), loads (4m, 2) and interior
+    compliance (2, 2).  Cut j's DOFs are x, y in pitch j's frame, so the +pi/z cut enters
+    turned by one pitch (u in frame k = Q u in frame k+1, Q the rotation by 2 pi / z):
+    the same turn for every pitch, so no block is rotated per pitch."""
+    m, o = len(pitch.minus), len(pitch.outer)
+    S, Gc, C = pitch.S, pitch.G, pitch.C
+    cut_slots = np.concatenate([np.arange(m), m + o + np.arange(m)])
+    cut = (2 * cut_slots[:, None] + np.arange(2)).ravel()
     turn = np.eye(4 * m)
     turn[2 * m:, 2 * m:] = np.kron(np.eye(m), rotation(2 * math.pi / z))
     S_cut = np.empty((len(patterns), 4 * m, 4 * m))
     G_cut = np.empty((len(patterns), 4 * m, 2))
     C_cut = np.empty((len(patterns), 2, 2))
-    outer_slots = np.arange(m, m + o)
     with blas_threads(1):  # small dense kernels: more threads only wait (foundation.blas)
-        for held_slots, p in patterns.items():
-            free_outer = np.setdiff1d(outer_slots, held_slots)
-            f = (2 * free_outer[:, None] + np.arange(2)).ravel()
+        for p, held_slots in enumerate(patterns):
+            free = np.setdiff1d(np.arange(m, m + o), held_slots)
+            f = (2 * free[:, None] + np.arange(2)).ravel()
             solved = cho_solve(cho_factor(S[np.ix_(f, f)], check_finite=False),
-                               np.column_stack([S[f][:, cut_dofs], Gc[f]]), check_finite=False)
-            coupling = S[cut_dofs][:, f]
-            S_cut[p] = turn.T @ (S[np.ix_(cut_dofs, cut_dofs)] - coupling @ solved[:, :4 * m]) @ turn
-            G_cut[p] = turn.T @ (Gc[cut_dofs] - coupling @ solved[:, 4 * m:])
+                               np.column_stack([S[f][:, cut], Gc[f]]), check_finite=False)
+            coupling = S[cut][:, f]
+            S_cut[p] = turn.T @ (S[np.ix_(cut, cut)] - coupling @ solved[:, :4 * m]) @ turn
+            G_cut[p] = turn.T @ (Gc[cut] - coupling @ solved[:, 4 * m:])
             C_cut[p] = C + Gc[f].T @ solved[:, 4 * m:]
+    return S_cut, G_cut, C_cut
 
-    # load cases: carrier positions (1 N along the line of action per loaded tooth), then
-    # 1/z N along x and along y on every tooth; a_k in pitch k's own frame
-    rb = ring.gear.base_diameter / 2
-    direction = ring.load_point(0)[1]
-    loaded = [planet_teeth(ring, int(s), n_planets) for s in carrier_teeth]
-    cases = len(loaded) + 2
-    a = np.zeros((z, 2, cases))
+
+def _tooth_forces(ring: RingGear, loaded: list) -> np.ndarray:
+    """(z, 2, cases): force [N] on each tooth in its pitch's frame: 1 N along the line of
+    action on each loaded tooth per carrier position, then 1/z N along x and along y
+    (ring frame) on every tooth."""
+    z = ring.teeth
+    angles = np.array([ring.tooth_angle(k) for k in range(z)])
+    a = np.zeros((z, 2, len(loaded) + 2))
     for column, teeth in enumerate(loaded):
         for k in teeth:
-            a[k, :, column] += direction
+            a[k, :, column] += ring.load_point(0)[1]
     a[:, :, -2] = np.column_stack([np.cos(angles), -np.sin(angles)]) / z  # R_k^T e_x
     a[:, :, -1] = np.column_stack([np.sin(angles), np.cos(angles)]) / z  # R_k^T e_y
+    return a
+
+
+def sector_ring_work(ring: RingGear, sector: FEMesh, material: Material = Material(),
+                     n_planets: int = 3, carrier_teeth=None, solver: str = "auto"
+                     ) -> SectorWork:
+    """c_ru_work at each carrier position (default: every tooth over one planet pitch)
+    and c_r_work [N/m] of the intact ring whose tooth pitch is ``sector``
+    (``meshing.ring_sector.sector_mesh``), plane stress over the face width."""
+    if isinstance(n_planets, bool) or not isinstance(n_planets, int) or not 1 <= n_planets <= 12:
+        raise ValueError(f"n_planets = {n_planets!r}, allowed integers 1..12")
+    needed = {"tooth0_load", "cut_minus", "cut_plus", "outer"}
+    if missing := sorted(needed - set(sector.boundaries)):
+        raise ValueError(f"the pitch mesh lacks the groups {', '.join(missing)} "
+                         "(meshing.ring_sector.sector_mesh makes them)")
+    if carrier_teeth is None:
+        carrier_teeth = default_carrier_teeth(ring, n_planets)
+    z = ring.teeth
+    t0 = time.perf_counter()
+    pitch = condense_pitch(ring, sector, material, solver)
+    t1 = time.perf_counter()
+    patterns, pattern_of, held = _held_patterns(ring, sector, pitch)
+    S_cut, G_cut, C_cut = _cut_blocks(pitch, patterns, z)
+    loaded = [planet_teeth(ring, int(s), n_planets) for s in carrier_teeth]
+    a = _tooth_forces(ring, loaded)
+    m = len(pitch.minus)
     local = np.einsum("knc,kcl->knl", G_cut[pattern_of], a)  # (z, 4m, cases), cut frames
-    F = np.zeros((z + 1, 2 * m, cases))  # load on each cut, cut z is cut 0
+    F = np.zeros((z + 1, 2 * m, a.shape[-1]))  # load on each cut, cut z is cut 0
     F[:z] += local[:, :2 * m]
     F[1:] += local[:, 2 * m:]
     F[0] += F[z]
     with blas_threads(1):
-        U = cyclic_block_solve(S_cut[pattern_of], np.repeat(held[:z], 2, axis=1), F[:z])
-    work = np.einsum("jic,jic->c", F[:z], U) + np.einsum("kic,kij,kjc->c", a,
-                                                          C_cut[pattern_of], a)
-    t3 = time.perf_counter()
+        U = cyclic_block_solve(S_cut[pattern_of], np.repeat(held, 2, axis=1), F[:z])
+    work = (np.einsum("jic,jic->c", F[:z], U)
+            + np.einsum("kic,kij,kjc->c", a, C_cut[pattern_of], a))
+    t2 = time.perf_counter()
     if np.any(work <= 0):
         raise ValueError(f"the work of the ring loads is not positive ({work.min():.3e} N m)")
+    rb = ring.gear.base_diameter / 2
     torque = np.array([len(t) * rb for t in loaded])
-    c_ru = torque ** 2 / work[:len(loaded)] / rb ** 2
-    c_r = float(np.mean(1.0 / work[-2:]))
-    dofs = 2 * z * (len(sector.points) - m)
-    return SectorWork(c_ru, c_r, dofs, model.ndofs, 2 * int((~held[:z]).sum()),
-                      len(patterns),
-                      {"assembly": t1 - t0, "condense": t2 - t1, "solve": t3 - t2})
+    return SectorWork(torque ** 2 / work[:len(loaded)] / rb ** 2, float(np.mean(1.0 / work[-2:])),
+                      2 * z * (len(sector.points) - m), pitch.dofs, 2 * int((~held).sum()),
+                      len(patterns), {"condense": t1 - t0, "solve": t2 - t1})
 
 
 def cyclic_block_solve(blocks: np.ndarray, held: np.ndarray, loads: np.ndarray) -> np.ndarray:
