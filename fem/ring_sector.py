@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.linalg import cho_factor, cho_solve
+from scipy.linalg import cho_factor, cho_solve, solve_triangular
 
 from hubvib.foundation.blas import blas_threads
 from hubvib.meshing.fe_mesh import FEMesh
@@ -347,49 +347,48 @@ def cyclic_block_solve(blocks: np.ndarray, held: np.ndarray, loads: np.ndarray) 
     """Solve the ring's cut system: z cuts of d DOFs each, pitch k coupling cut k (its first
     d rows of ``blocks[k]``, (z, 2d, 2d)) with cut k+1 (mod z) (its last d rows); ``held``
     (z, d) DOFs are zero; ``loads`` (z, d, cases).  Block Cholesky along the chain of
-    cuts 1..z-1 with cut 0 as the border that closes the ring: O(z d^3), no fill beyond
-    one border block per cut.  Returns the displacements (z, d, cases), zero where held."""
+    cuts 1..z-1 with cut 0 as the border that closes the ring: per cut one Cholesky factor
+    L and one triangular solve W = L^-1 [border, load, coupling to the next cut], then
+    symmetric updates, O(z d^3).  Returns the displacements (z, d, cases), zero where
+    held."""
     z, d2 = blocks.shape[:2]
     d = d2 // 2
     free = [np.flatnonzero(~held[j]) for j in range(z)]
 
     def diagonal(j):
-        D = blocks[j][:d, :d] + blocks[j - 1][d:, d:]
-        return D[np.ix_(free[j], free[j])]
+        return (blocks[j][:d, :d] + blocks[j - 1][d:, d:])[np.ix_(free[j], free[j])]
 
     def coupling(j):  # rows: cut j, columns: cut j+1
         return blocks[j][:d, d:][np.ix_(free[j], free[(j + 1) % z])]
 
     D0 = diagonal(0)
     r0 = loads[0][free[0]].copy()
-    factors, borders, couplings, rhs = [None] * z, [None] * z, [None] * z, [None] * z
-    D = diagonal(1)
-    B = coupling(0).T  # rows: cut 1, columns: cut 0
-    r = loads[1][free[1]].copy()
+    D, B, r = diagonal(1), coupling(0).T, loads[1][free[1]].copy()  # B: cut 1 x cut 0
+    steps = [None] * z
     for j in range(1, z):
         if j == z - 1:
             B = B + coupling(z - 1)
-        factor = cho_factor(D, lower=True, check_finite=False)
-        factors[j], borders[j], rhs[j] = factor, B, r
-        solved_B = cho_solve(factor, B, check_finite=False)
-        solved_r = cho_solve(factor, r, check_finite=False)
-        D0 = D0 - B.T @ solved_B
-        r0 = r0 - B.T @ solved_r
+        E = coupling(j) if j < z - 1 else np.zeros((len(free[j]), 0))
+        L = cho_factor(D, lower=True, check_finite=False)[0]  # upper triangle unused
+        W = solve_triangular(L, np.column_stack([B, r, E]), lower=True, check_finite=False)
+        nb, nr = B.shape[1], r.shape[1]
+        W_B, W_r, W_E = W[:, :nb], W[:, nb:nb + nr], W[:, nb + nr:]
+        steps[j] = (L, W_B, W_r, W_E)
+        D0 = D0 - W_B.T @ W_B
+        r0 = r0 - W_B.T @ W_r
         if j < z - 1:
-            E = coupling(j)
-            couplings[j] = E
-            solved_E = cho_solve(factor, E, check_finite=False)
-            D = diagonal(j + 1) - E.T @ solved_E
-            B = -solved_E.T @ B
-            r = loads[j + 1][free[j + 1]] - solved_E.T @ rhs[j]
+            D = diagonal(j + 1) - W_E.T @ W_E
+            B = -(W_E.T @ W_B)
+            r = loads[j + 1][free[j + 1]] - W_E.T @ W_r
     out = np.zeros((z, d, loads.shape[-1]))
     x0 = cho_solve(cho_factor(D0, lower=True, check_finite=False), r0, check_finite=False)
     out[0][free[0]] = x0
     after = None
     for j in range(z - 1, 0, -1):
-        right = rhs[j] - borders[j] @ x0
+        L, W_B, W_r, W_E = steps[j]
+        right = W_r - W_B @ x0
         if j < z - 1:
-            right = right - couplings[j] @ after
-        after = cho_solve(factors[j], right, check_finite=False)
+            right = right - W_E @ after
+        after = solve_triangular(L, right, lower=True, trans="T", check_finite=False)
         out[j][free[j]] = after
     return out
