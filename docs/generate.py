@@ -494,7 +494,7 @@ def convergence_work() -> str:
     from hubvib.validation.convergence import study_note
 
     parts = []
-    for quantity in ("c_ru_work", "c_r_work", "c_ru_rim"):
+    for quantity in ("c_ru_work", "c_r_work", "c_ru_rim", "c_ru_sector", "c_r_sector"):
         path = DATA / "convergence_work" / f"convergence_{quantity}.csv"
         with path.open(newline="") as handle:
             orders = [r.get("observed_order", "") for r in csv.DictReader(handle)]

@@ -16,7 +16,9 @@ def add_parser(sub) -> None:
     p.add_argument("quantity", choices=QUANTITIES,
                    help="c_ru, c_r, c_sp, c_rp of the Raba reducer (root-land readings), "
                         "the work-conjugate c_ru_work, c_r_work and the rim part c_ru_rim "
-                        "(nested levels), or an exact benchmark")
+                        "(nested levels), the same c_ru, c_r from one tooth pitch "
+                        "(c_ru_sector, c_r_sector: nested pitch levels), or an exact "
+                        "benchmark")
     p.add_argument("--out", type=Path, required=True, metavar="DIR")
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
