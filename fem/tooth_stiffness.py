@@ -168,9 +168,25 @@ class EngagedMesh:
         return float(self.cracked.stiffness.min() / self.intact.stiffness.min())
 
 
+#: where the intact curves come from beside this process's memory (``set_intact_store``)
+_INTACT_STORE = None
+
+
+def set_intact_store(store) -> None:
+    """Let ``store(compute, body, span, material, options, tooth)`` give the intact curves
+    (None: compute them here): it returns the ``ToothCurve`` that ``compute()`` returns,
+    e.g. computed once by one of several worker processes and shared on disk."""
+    global _INTACT_STORE
+    _INTACT_STORE = store
+
+
 @functools.lru_cache(maxsize=8)
 def _intact_curve(body, span, material, options, tooth: int = 0) -> ToothCurve:
-    return fe_curve(body, span, material, options, tooth=tooth)
+    def compute() -> ToothCurve:
+        return fe_curve(body, span, material, options, tooth=tooth)
+
+    store = _INTACT_STORE
+    return compute() if store is None else store(compute, body, span, material, options, tooth)
 
 
 def intact_curve(body: ToothedBody, span, material: Material, options, tooth: int = 0

@@ -36,3 +36,17 @@ def test_series_base_of_every_apply():
     assert ratio.apply == "series" and ratio.c_ru[0] == pytest.approx(1e6, rel=1e-12)
     given = synthetic_model("series", c_ru_mount=3e9, c_r_mount=4e9)
     assert series_base(given) is given
+
+
+def test_the_map_on_threads_gives_the_same_digits(dmap):
+    # the mounting values run on two threads at one BLAS thread: each is the same seeded
+    # POD as on one thread, so every number must agree exactly, not only to round-off
+    threaded = detectability_map(synthetic_model("series", c_rp_drop=0.0), OPTIONS, TIMING,
+                                 workers=2)
+    for swept in ("c_ru_mount", "c_r_mount"):
+        np.testing.assert_array_equal(threaded.depth[swept], dmap.depth[swept],
+                                      err_msg=f"{swept}: threaded map vs one thread")
+        np.testing.assert_array_equal(threaded.frequency_hz[swept], dmap.frequency_hz[swept],
+                                      err_msg=f"{swept}: threaded map vs one thread")
+        assert (threaded.carried_by[swept] == dmap.carried_by[swept]).all(), swept
+    assert threaded.kind == dmap.kind

@@ -113,3 +113,36 @@ def test_cramer_rao_bound_matches_a_finite_difference_fisher_matrix(power):
     G = np.array(grads) / D(theta)
     expected = math.sqrt(np.linalg.inv(G @ G.T)[0, 0])
     assert fisher_sigma_hz(f0, zeta, T, snr, kappa, power) == pytest.approx(expected, rel=1e-6)
+
+
+@pytest.mark.parametrize("power", [0, 4])
+@pytest.mark.parametrize("snr", [50.0, math.inf])
+def test_cramer_rao_bound_in_place_has_the_digits_of_the_plain_formulas(power, snr):
+    # the bound is evaluated in place (bands of ~1e6 ordinates); the plain expressions of
+    # its Fisher information (Yuen, Katafygiotis & Beck 2002), written out here, must give
+    # the same float to the last digit (the same operations in the same order)
+    from hubvib.identification.law import _fisher_sigma_hz
+
+    f0, zeta, T, kappa = 1234.5, 0.02, 60.0, 6.0
+    df = 1.0 / T
+    f = np.arange(math.ceil(f0 * (1 - kappa * zeta) / df),
+                  math.floor(f0 * (1 + kappa * zeta) / df) + 1) * df
+    S, Se = 1.0, (0.0 if math.isinf(snr) else 1.0 / (4 * zeta * zeta * snr))
+    b = f / f0
+    g = (1 - b * b) ** 2 + (2 * zeta * b) ** 2
+    dg_db = -4 * b * (1 - b * b) + 8 * zeta * zeta * b
+    if power == 0:
+        h2 = 1 / g
+        d_f0 = S * (dg_db * b / g ** 2) / f0
+        d_zeta = S * (-(8 * zeta * b * b) / g ** 2)
+    else:
+        bp = b ** power
+        h2 = bp / g
+        d_f0 = S * (bp * dg_db * b / g ** 2 - power * h2) / f0
+        d_zeta = S * bp * (-(8 * zeta * b * b) / g ** 2)
+    D = S * h2 + Se
+    grads = [d_f0, d_zeta, h2] + ([np.ones_like(f)] if Se > 0 else [])
+    G = np.array(grads) / D
+    expected = float(math.sqrt(np.linalg.inv(G @ G.T)[0, 0]))
+    got = _fisher_sigma_hz.__wrapped__(f0, zeta, T, snr, kappa, power)
+    assert got == expected, f"in-place {got!r} vs plain formulas {expected!r} (exact)"

@@ -15,10 +15,12 @@ one line per mounting value off a terminal, with the time left
 from __future__ import annotations
 
 import math
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
 
+from hubvib.foundation.blas import blas_threads
 from hubvib.runtime.progress import progress
 
 from .budget import estimate
@@ -97,31 +99,46 @@ def series_base(model):
 
 
 def detectability_map(model, options, timing, workers: int = 1) -> DetectabilityMap:
-    """Sweep both mountings over ``options.mount_min .. mount_max`` (CrackModel ``model``)."""
+    """Sweep both mountings over ``options.mount_min .. mount_max`` (CrackModel ``model``).
+
+    The mounting values are independent POD runs (each seeded by its index), run on
+    ``workers`` threads at one BLAS thread (numpy releases the GIL in the bands and the
+    eigen-solves); the numbers do not depend on ``workers``."""
     base = series_base(model)
     mounts = np.geomspace(options.mount_min, options.mount_max, options.mount_points)
     fixed = {"c_ru_mount": base.c_r_mount, "c_r_mount": base.c_ru_mount}
-    depth, carried, frequency = {}, {}, {}
-    kind = None
     solves = len(SWEPT) * mounts.size * estimate(base.params, len(base.depths),
                                                   options.map_samples, False).solves
     bar = (progress(len(SWEPT) * mounts.size, "detectability map", "mounting")
            if solves > PROGRESS_SOLVES else None)
-    for swept in SWEPT:
-        d_rows, c_rows, f_rows = [], [], []
-        for m, mount in enumerate(mounts):
-            mounted = (base.with_mounts(mount, base.c_r_mount) if swept == "c_ru_mount"
-                       else base.with_mounts(base.c_ru_mount, mount))
-            result = pod_study(mounted, options, timing, samples=options.map_samples,
-                               model_baseline=False, seed=options.seed + m, workers=workers)
-            kind = result.kind
-            d_rows.append(result.detectable_depth())
-            c_rows.append(result.nominal.carried_by[-1])
-            f_rows.append(result.nominal.frequency_hz[0])
-            if bar is not None:
-                bar.update(note=f"{swept} = {mount:.3g} N/m")
-        depth[swept], carried[swept] = np.array(d_rows), np.array(c_rows)
-        frequency[swept] = np.array(f_rows)
+    points = [(swept, m, float(mount)) for swept in SWEPT for m, mount in enumerate(mounts)]
+
+    def point(item):
+        swept, m, mount = item
+        mounted = (base.with_mounts(mount, base.c_r_mount) if swept == "c_ru_mount"
+                   else base.with_mounts(base.c_ru_mount, mount))
+        result = pod_study(mounted, options, timing, samples=options.map_samples,
+                           model_baseline=False, seed=options.seed + m, workers=1)
+        if bar is not None:
+            bar.update(note=f"{swept} = {mount:.3g} N/m")
+        return (result.kind, result.detectable_depth(), result.nominal.carried_by[-1],
+                result.nominal.frequency_hz[0])
+
+    threads = max(1, min(int(workers), len(points)))
+    # one BLAS thread for the whole map (set once here: the threads must not set and
+    # restore the process-wide count under each other); the same digits as more threads
+    with blas_threads(1):
+        if threads == 1:
+            results = [point(item) for item in points]
+        else:
+            with ThreadPoolExecutor(threads) as pool:
+                results = list(pool.map(point, points))
     if bar is not None:
         bar.close()
-    return DetectabilityMap(mounts, fixed, depth, carried, frequency, kind)
+    depth, carried, frequency = {}, {}, {}
+    for swept in SWEPT:
+        rows = [r for (name, _, _), r in zip(points, results) if name == swept]
+        depth[swept] = np.array([r[1] for r in rows])
+        carried[swept] = np.array([r[2] for r in rows])
+        frequency[swept] = np.array([r[3] for r in rows])
+    return DetectabilityMap(mounts, fixed, depth, carried, frequency, results[-1][0])

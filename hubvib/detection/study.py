@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import sys
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -14,6 +15,7 @@ import hubvib.foundation
 import hubvib.identification
 import hubvib.lumped
 import hubvib.meshing
+from hubvib.foundation.blas import blas_threads
 from hubvib.runtime.result_cache import cached_figure, cached_result
 
 from .carrier import CarrierStudy, MeshTiming, carrier_study
@@ -54,10 +56,23 @@ class DetectionStudy:
 def detection_study(model, options: DetectionOptions, timing: MeshTiming,
                     workers: int = 1) -> DetectionStudy:
     """POD at the model's mounting, the map against the mounting, spectra against the
-    carrier position (``model``: a CrackModel)."""
-    return DetectionStudy(options, timing, pod_study(model, options, timing, workers=workers),
-                          detectability_map(model, options, timing, workers=workers),
-                          carrier_study(model, timing, options.record_length))
+    carrier position (``model``: a CrackModel).
+
+    With ``workers`` > 1 the scene's POD runs on a thread beside the map's threads, all
+    at one BLAS thread (numpy releases the GIL in the eigen-solves and the bands; the
+    process-wide BLAS count is set once here, not by each thread); the numbers are the
+    same as on one thread."""
+    with blas_threads(1):
+        if workers <= 1:
+            pod = pod_study(model, options, timing, workers=workers)
+            return DetectionStudy(options, timing, pod,
+                                  detectability_map(model, options, timing, workers=workers),
+                                  carrier_study(model, timing, options.record_length))
+        with ThreadPoolExecutor(1) as beside:
+            pod = beside.submit(pod_study, model, options, timing, workers=workers)
+            dmap = detectability_map(model, options, timing, workers=workers)
+            carrier = carrier_study(model, timing, options.record_length)
+            return DetectionStudy(options, timing, pod.result(), dmap, carrier)
 
 
 def _folders() -> tuple[str, ...]:

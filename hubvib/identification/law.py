@@ -91,22 +91,45 @@ def _fisher_sigma_hz(f0: float, zeta: float, T: float, snr: float, kappa: float,
     f = f[f > 0]
     S = 1.0
     Se = 0.0 if math.isinf(snr) else S / (4 * zeta * zeta * snr)
+    # the formulas of the Fisher information below, evaluated in place into the rows of G
+    # (a band holds up to ~1e6 ordinates): each value the same floating-point operations
+    # in the same order as the plain expressions in the comments, so the same digits
     b = f / f0
-    g = (1 - b * b) ** 2 + (2 * zeta * b) ** 2
-    dg_db = -4 * b * (1 - b * b) + 8 * zeta * zeta * b
+    bb = b * b
+    one_minus = np.subtract(1, bb)                      # 1 - b*b
+    g = one_minus ** 2                                  # g = (1-b*b)**2 + (2*zeta*b)**2
+    two_zeta_b = 2 * zeta * b
+    two_zeta_b **= 2
+    g += two_zeta_b
+    dg_db = -4 * b                                      # -4*b*(1-b*b) + 8*zeta*zeta*b
+    dg_db *= one_minus
+    dg_db += 8 * zeta * zeta * b
+    g2 = g ** 2
+    G = np.empty((4 if Se > 0 else 3, f.size))
+    d_f0, d_zeta, h2 = G[0], G[1], G[2]                 # d/d S: h2
+    np.multiply(dg_db, b, out=d_f0)
+    d_f0 /= g2
+    np.multiply(8 * zeta * b, b, out=d_zeta)           # -(8*zeta*b*b) / g**2
+    np.negative(d_zeta, out=d_zeta)
+    d_zeta /= g2
     if power == 0:
-        h2 = 1 / g
-        d_f0 = S * (dg_db * b / g ** 2) / f0           # d/d f0 (db/df0 = -b/f0)
-        d_zeta = S * (-(8 * zeta * b * b) / g ** 2)       # d/d zeta
+        np.divide(1, g, out=h2)                         # h2 = 1/g
+        d_f0 *= S                                       # S * (dg_db*b/g**2) / f0
+        d_f0 /= f0
+        d_zeta *= S                                     # S * (-(8*zeta*b*b)/g**2)
     else:
         bp = b ** power
-        h2 = bp / g
-        d_f0 = S * (bp * dg_db * b / g ** 2 - power * h2) / f0
-        d_zeta = S * bp * (-(8 * zeta * b * b) / g ** 2)
+        np.divide(bp, g, out=h2)                        # h2 = bp/g
+        np.multiply(bp, dg_db, out=d_f0)                # S*(bp*dg_db*b/g**2 - power*h2)/f0
+        d_f0 *= b
+        d_f0 /= g2
+        d_f0 -= power * h2
+        d_f0 *= S
+        d_f0 /= f0
+        np.multiply(S * bp, d_zeta, out=d_zeta)         # S*bp*(-(8*zeta*b*b)/g**2)
     D = S * h2 + Se
-    grads = [d_f0, d_zeta, h2]                             # d/d S: h2
+    G[:3] /= D
     if Se > 0:
-        grads.append(np.ones_like(f))                   # d/d Se
-    G = np.array(grads) / D
+        np.divide(1.0, D, out=G[3])                     # d/d Se: 1
     info = G @ G.T
     return float(math.sqrt(np.linalg.inv(info)[0, 0]))

@@ -30,7 +30,7 @@ from hubvib.build.stages import gear_body, material, ring_gear
 from hubvib.fem.estimate import CrackCaseEstimate, RingEstimate, estimate_crack_case
 from hubvib.fem.mesh_cycle import GearPair
 from hubvib.fem.tooth_solid import SAMPLES, SolidToothLoad
-from hubvib.fem.tooth_stiffness import chebyshev_radii, contact_radii
+from hubvib.fem.tooth_stiffness import chebyshev_radii, contact_radii, set_intact_store
 from hubvib.meshing.cache import root_folder
 from hubvib.meshing.crack import Crack, CrackFront
 from hubvib.meshing.crack_path import PathCrack, path_ring_mesh
@@ -39,6 +39,7 @@ from hubvib.runtime.engines import Execution, check_reachable, run_cases
 from hubvib.runtime.fe_cache import (CacheEntryError, case_lock, entry_key, finite_positive,
                                      read_entry, write_entry)
 from hubvib.runtime.progress import progress as hubvib_progress
+from hubvib.runtime.tooth_curves import shared_intact_curve
 from hubvib.studies.predicted_path import predicted_crack
 
 APPLY = ("series", "ratio", "direct")
@@ -386,7 +387,11 @@ class _Case:
             raise RuntimeError(f"this worker's FE stage is version {fe_cache.fe_version()}, "
                                f"the client's "
                                f"{self.fe_version}: install the same hubvib on every worker")
-        return fe_case(self.sweep, case)
+        set_intact_store(shared_intact_curve)  # the intact tooth curves: once per stage
+        try:
+            return fe_case(self.sweep, case)
+        finally:
+            set_intact_store(None)
 
 
 class _locks:

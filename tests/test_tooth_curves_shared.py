@@ -1,0 +1,62 @@
+"""The intact tooth curves of an FE stage, computed once and shared on disk by its workers."""
+import numpy as np
+import pytest
+
+from hubvib.build.stages import gear_body, material, ring_gear
+from hubvib.design import preset_design
+from hubvib.fem.tooth_stiffness import ToothCurve
+from hubvib.meshing.levels import scaled_options
+from hubvib.runtime.tooth_curves import shared_intact_curve
+
+
+@pytest.fixture
+def parts(tmp_path, monkeypatch):
+    monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path))
+    design = preset_design("raba118")
+    return (ring_gear(design), gear_body(design, "planet"), material(design),
+            scaled_options(1.0))
+
+
+def test_a_curve_computed_once_reads_back_with_every_digit(parts):
+    ring, planet, steel, options = parts
+    # digits that a decimal round trip with fewer than 17 significant figures would lose
+    curve = ToothCurve(np.array([0.101, 0.1023456789012345]),
+                       np.array([1.2345678901234567e-9, 3.3333333333333335e-9]), 1234)
+    calls = []
+
+    def compute():
+        calls.append(1)
+        return curve
+
+    first = shared_intact_curve(compute, ring, (0.1, 0.11), steel, options, 0)
+    assert first is curve and len(calls) == 1
+
+    def never():
+        raise AssertionError("the stored curve must be read, not computed again")
+
+    again = shared_intact_curve(never, ring, (0.1, 0.11), steel, options, 0)
+    np.testing.assert_array_equal(again.radii, curve.radii, err_msg="radii: exact round trip")
+    np.testing.assert_array_equal(again.compliance, curve.compliance,
+                                  err_msg="compliance: exact round trip")
+    assert again.dofs == 1234
+    # another body, tooth or mesh level is another curve
+    for args in ((planet, (0.1, 0.11), steel, options, 0), (ring, (0.1, 0.11), steel, options, 5),
+                 (ring, (0.1, 0.11), steel, scaled_options(2.0), 0)):
+        shared_intact_curve(compute, *args)
+    assert len(calls) == 4, "each different input computed once"
+
+
+def test_a_damaged_entry_is_computed_again(parts, tmp_path):
+    ring, _, steel, options = parts
+    curve = ToothCurve(np.array([0.1, 0.2]), np.array([1e-9, 2e-9]), 10)
+    shared_intact_curve(lambda: curve, ring, (0.1, 0.2), steel, options, 0)
+    [entry] = (tmp_path / "stiffness" / "tooth-curves").glob("*.json")
+    entry.write_text(entry.read_text().replace("1e-09", "5e-09"))
+    calls = []
+
+    def compute():
+        calls.append(1)
+        return curve
+
+    out = shared_intact_curve(compute, ring, (0.1, 0.2), steel, options, 0)
+    assert calls == [1] and out is curve, "a checksum mismatch recomputes the curve"
