@@ -56,6 +56,41 @@ def test_probes_reproduce_a_quadratic_field_exactly():
         "P2 interpolation of a quadratic field is exact (tolerance 1e-12)"
 
 
+def test_element_finder_finds_the_cell_of_every_point():
+    """The per-point finder (``element_finder``) against an independent check: every point
+    drawn inside a known cell of a P2 tetrahedral mesh is given that cell (interior points:
+    the cell is unique), the same cells as scikit-fem's own ``MeshTet1.element_finder``
+    (the finder it replaced), also for points on shared faces and corners where any cell
+    holding the point is right (barycentric coordinates >= -3 eps, as scikit-fem tests);
+    a point outside the mesh raises ValueError."""
+    import skfem
+
+    mesh = skfem.MeshTet2.from_mesh(skfem.MeshTet.init_tensor(*(np.linspace(0, 1, 7),) * 3))
+    model = _Model(skfem.Basis(mesh, skfem.ElementVector(skfem.ElementTetP2())))
+    corners = mesh.p[:, mesh.t[:4]]
+    rng = np.random.default_rng(3)
+    cells = rng.integers(0, mesh.t.shape[1], 500)
+    weights = rng.dirichlet(np.ones(4), len(cells))
+    points = np.einsum("dkn,nk->dn", corners[:, :, cells], weights)
+    finder = element_finder(model)
+    assert np.array_equal(finder(*points), cells), \
+        "interior points: their own cell (exact, the cell is unique)"
+    reference = skfem.MeshTet1(mesh.p, mesh.t[:4]).element_finder()
+    assert np.array_equal(finder(*points), reference(*points)), \
+        "same cells as scikit-fem's finder on interior points (exact)"
+    # on faces, edges and nodes: any cell that holds the point
+    shared = np.vstack([mesh.p.T[rng.integers(0, mesh.p.shape[1], 30)],
+                        corners[:, :3, :30].mean(axis=1).T])
+    found = finder(*shared.T)
+    local = np.linalg.solve((corners[:, 1:, found] - corners[:, :1, found]).transpose(2, 0, 1),
+                            (shared - corners[:, 0, found].T)[:, :, None])[:, :, 0]
+    eps = np.finfo(float).eps
+    assert np.all(local >= -eps) and np.all(1 - local.sum(axis=1) >= -3 * eps), \
+        "points on shared faces, edges and nodes lie in the cell found (barycentric >= -3 eps)"
+    with pytest.raises(ValueError, match="outside of the mesh"):
+        finder(np.array([0.5, 1.5]), np.array([0.5, 0.5]), np.array([0.5, 0.5]))
+
+
 def test_bad_loads_are_refused():
     ring = ring_gear(preset_design("raba118"))
     with pytest.raises(ValueError, match="samples = 1, allowed integers >= 2"):
