@@ -26,3 +26,24 @@ def pytest_cmdline_main(config):
     if getattr(config.option, "dist", "no") == "no":
         config.option.dist = "load"
     return None
+
+
+@pytest.fixture(scope="session")
+def shared_cache_folder(tmp_path_factory):
+    """One FE cache folder for the whole test run, shared by its xdist workers (below the
+    run's base temporary folder), for tests that need the same expensive cached entries
+    (the Raba predicted crack path: some 23 FE solutions; the signal scenes' FE cases).
+    Sound because an entry is keyed on its inputs and the FE stage's source, written
+    atomically and checked on reading (``hubvib.runtime.fe_cache``); tests of the cache
+    itself keep their own."""
+    base = tmp_path_factory.getbasetemp()
+    folder = (base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base) / "shared-cache"
+    folder.mkdir(exist_ok=True)
+    return folder
+
+
+@pytest.fixture
+def shared_cache(shared_cache_folder, monkeypatch):
+    """``$HUBVIB_CACHE`` set to ``shared_cache_folder`` for one test."""
+    monkeypatch.setenv("HUBVIB_CACHE", str(shared_cache_folder))
+    return shared_cache_folder

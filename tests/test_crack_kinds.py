@@ -125,9 +125,10 @@ def test_path_key_values():
 
 
 @pytest.mark.slow
-def test_predicted_path_key():
+def test_predicted_path_key(shared_cache):
     """``path = "predicted"``: parsing checks every depth against the grown LEFM path (on a
-    cold cache the growth's 23 FE solutions, minutes: slow)."""
+    cold cache the growth's 23 FE solutions, minutes: slow; the run's shared cache holds the
+    same path when test_every_scene_runs[raba118_crack_path] grew it first, or the reverse)."""
     predicted = _scene("depths = [0.0, 0.003]\npath = \"predicted\"\nangle_deg = 0.0").crack
     assert predicted.path == "predicted" and predicted.angle == 0.0
 

@@ -182,8 +182,9 @@ def test_signal_command_plots(tmp_path, capsys, fake_fe):
 
 
 @pytest.mark.slow
-def test_shipped_signal_scene_has_a_monotone_indicator(tmp_path, capsys):
-    """The default Raba signal scene with the FE stage (cached after the first run)."""
+def test_shipped_signal_scene_has_a_monotone_indicator(tmp_path, capsys, shared_cache):
+    """The default Raba signal scene with the FE stage (its FE cases in the run's shared
+    cache, which test_scenes.test_every_scene_runs[raba118_signal] fills too)."""
     pytest.importorskip("skfem")
     out = tmp_path / "out"
     assert main(["signal", "raba118_signal", "--out", str(out), "--json"]) == 0

@@ -67,6 +67,16 @@ renders = false
 """
 
 
+@pytest.fixture(scope="module", autouse=True)
+def _shared_fe_cases(shared_cache_folder):
+    """The loop's plane FE cases at 0, 6 and 12 mm (fast accuracy, root crack of tooth 0)
+    are the shipped signal scene's, which test_scenes and test_signal_cli run: the run's
+    shared FE cache (conftest ``shared_cache_folder``) computes them once."""
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setenv("HUBVIB_CACHE", str(shared_cache_folder))
+        yield
+
+
 @pytest.fixture(scope="module")
 def scene_file(tmp_path_factory):
     path = tmp_path_factory.mktemp("loop") / "loop.toml"
