@@ -237,6 +237,7 @@ class _PardisoFactor(Factor):
 
     def free(self):
         self._pardiso.free()
+        self._matvec = self._make_matvec = None  # releases MKL's sparse handle too
 
 
 def _symmetric_block_matvec(indptr, indices, values) -> SymmetricBlockProduct:

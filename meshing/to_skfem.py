@@ -32,6 +32,10 @@ def to_skfem(mesh: FEMesh):
         cells = mesh.cells if mesh.dim == 2 else mesh.cells[:, GMSH_TO_VTK_TETRA10]
         fe = curved(np.ascontiguousarray(mesh.points.T), np.ascontiguousarray(cells.T))
     # a facet is its sorted vertices as one int64 (digits in base ``len(vertices)``)
+    if len(vertices) ** mesh.dim >= 2 ** 63:
+        raise ValueError(f"mesh: {len(vertices)} vertices are too many for int64 facet keys "
+                         f"(allowed: fewer than {int(2 ** (63 / mesh.dim))})")
+
     def keys(facets):
         key = np.zeros(len(facets), dtype=np.int64)
         for column in np.sort(facets, axis=1).T:

@@ -12,6 +12,7 @@ ROWS = (
     ("c_ru_2d_rel_error", "2D c_ru error against the reference", "", None),
     ("c_ru_2d_1e4_seconds", "2D work-conjugate c_ru to a verified 1e-4", "s",
      "c_ru_2d_1e4_previous_seconds"),
+    ("c_ru_2d_1e4_previous_rel_error", "  the baseline (whole-ring route) lands at", "", None),
     ("crack_case_seconds", "crack case FE (c_ru, c_r, engaged c_rp; 2 levels)", "s",
      "crack_case_previous_seconds"),
     ("crack_case_max_rel_difference", "crack case: shared against separate solves", "", None),

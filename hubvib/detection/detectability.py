@@ -119,20 +119,25 @@ def detectability_map(model, options, timing, workers: int = 1) -> Detectability
                    else base.with_mounts(base.c_ru_mount, mount))
         result = pod_study(mounted, options, timing, samples=options.map_samples,
                            model_baseline=False, seed=options.seed + m, workers=1)
-        if bar is not None:
-            bar.update(note=f"{swept} = {mount:.3g} N/m")
         return (result.kind, result.detectable_depth(), result.nominal.carried_by[-1],
                 result.nominal.frequency_hz[0])
+
+    def done(results):
+        # the bar is advanced here, in the calling thread (its count is not thread-safe)
+        for (swept, _, mount), result in zip(points, results):
+            if bar is not None:
+                bar.update(note=f"{swept} = {mount:.3g} N/m")
+            yield result
 
     threads = max(1, min(int(workers), len(points)))
     # one BLAS thread for the whole map (set once here: the threads must not set and
     # restore the process-wide count under each other); the same digits as more threads
     with blas_threads(1):
         if threads == 1:
-            results = [point(item) for item in points]
+            results = list(done(map(point, points)))
         else:
             with ThreadPoolExecutor(threads) as pool:
-                results = list(pool.map(point, points))
+                results = list(done(pool.map(point, points)))
     if bar is not None:
         bar.close()
     depth, carried, frequency = {}, {}, {}

@@ -37,6 +37,8 @@ def _check(result: dict) -> None:
     if not (isinstance(radii, list) and isinstance(compliance, list)
             and len(radii) == len(compliance) > 0):
         raise CacheEntryError("radii_m and compliance_m_N must be lists of one length")
+    if not isinstance(result.get("dofs"), int) or result["dofs"] <= 0:
+        raise CacheEntryError("dofs must be a positive integer")
     finite_positive({f"r{i}": v for i, v in enumerate(radii + compliance)},
                     [f"r{i}" for i in range(2 * len(radii))])
 
