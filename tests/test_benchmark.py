@@ -89,10 +89,15 @@ def test_benchmark_command_prints_ratios_and_standard_json(monkeypatch, capsys):
     table whose ratio column is baseline / ours."""
     import hubvib.benchmarks as benchmark
 
-    monkeypatch.setattr(benchmark, "run_benchmark", lambda quick, progress: dict(FIGURES))
+    calls = []
+    monkeypatch.setattr(benchmark, "run_benchmark", lambda quick, progress, scene_3d:
+                        calls.append((quick, scene_3d)) or dict(FIGURES))
     assert main(["benchmark", "--quick", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["calculix_speedup"] is None and data["c_ru_2d_seconds"] == 1.5
+    assert main(["benchmark", "--no-3d-scene", "--json"]) == 0
+    capsys.readouterr()
+    assert calls == [(True, True), (False, False)]
     assert main(["benchmark", "--quick"]) == 0
     out = capsys.readouterr().out
     row = next(line for line in out.splitlines() if line.startswith("2D c_ru, mesh + FE"))

@@ -45,11 +45,12 @@ from hubvib.signal.benchmark import benchmark_signal
 from hubvib.validation import calculix as ccx
 
 
-def run_benchmark(quick: bool = False, progress=None) -> dict:
+def run_benchmark(quick: bool = False, progress=None, scene_3d: bool = True) -> dict:
     """Every figure of ``hubvib benchmark`` (SI: seconds, GB, N/m; ratios are baseline time
     over ours).  ``quick`` skips the 3D race and the memory probes, takes the 2D reference
     from the default level (``QUICK_REFERENCE_SCALES``), runs the crack case at scale 2
-    and the signal stage over two revolutions."""
+    and the signal stage over two revolutions; ``scene_3d=False`` skips the 3D
+    crack-growth scene (``crack_growth_3d_seconds`` is then null and said skipped)."""
     say = progress or (lambda line: None)
     started = time.perf_counter()
     out = {"quick": quick}
@@ -71,7 +72,8 @@ def run_benchmark(quick: bool = False, progress=None) -> dict:
         out.update(memory_figures(say))
         out["solid_mesh"] = solid_mesh_table()
         say("3D meshing table: done")
-        out.update(crack_growth_3d(say))
+        out.update(crack_growth_3d(say) if scene_3d else {
+            "crack_growth_3d_seconds": None, "crack_growth_3d_skipped": "skipped (--no-3d-scene)"})
     out["lumped"] = benchmark_batch(lumped_preset("raba118"))
     out["lumped_points_per_second"] = out["lumped"]["points_per_second"]
     say(f"lumped: {out['lumped_points_per_second']:.0f} points/s")

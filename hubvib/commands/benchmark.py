@@ -1,4 +1,4 @@
-"""``hubvib benchmark [--json] [--quick]``: FE speed and memory, each timing a ratio against
+"""``hubvib benchmark [--json] [--quick] [--no-3d-scene]``: FE speed and memory, each timing a ratio against
 its baseline measured in the same run (``hubvib.benchmarks``)."""
 from __future__ import annotations
 
@@ -37,6 +37,8 @@ def add_parser(sub) -> None:
     p.add_argument("--quick", action="store_true",
                    help="skip the 3D race, the memory probes, the main job and the tests "
                    "(a smoke test, ~1 min)")
+    p.add_argument("--no-3d-scene", dest="scene_3d", action="store_false",
+                   help="skip the 3D crack-growth scene (13 solid cases: 20-40 min on 2 cores)")
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
 
@@ -44,7 +46,7 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     import hubvib.benchmarks as benchmarks
 
-    figures = benchmarks.run_benchmark(quick=args.quick,
+    figures = benchmarks.run_benchmark(quick=args.quick, scene_3d=args.scene_3d,
                             progress=lambda line: print(line, file=sys.stderr, flush=True))
     if args.json:
         print(json_text(figures))
@@ -62,7 +64,7 @@ def run(args) -> int:
         print("main job, empty cache, per stage [s]: " + ", ".join(
             f"{key} {value:.3g}" for key, value in figures["main_job_stage_seconds"].items()))
     for key in ("solid_skipped", "calculix_skipped", "lumped_skipped", "signal_skipped",
-                "main_job_skipped", "tests_skipped"):
+                "main_job_skipped", "tests_skipped", "crack_growth_3d_skipped"):
         if key in figures:
             print(f"{key.removesuffix('_skipped').replace('_', ' ')}: {figures[key]}")
     print("ratio = baseline / ours (time or memory), measured in this run; seconds are wall "
