@@ -241,6 +241,7 @@ def benchmark_fe() -> str:
     b = _Figures(_benchmark())
     lumped = b.get("lumped") or {}
     single = lumped.get("single_seconds_per_point")
+    previous_1e4, now_1e4 = b.get("c_ru_2d_1e4_previous_seconds"), b.get("c_ru_2d_1e4_seconds")
     rows = [
         [f"2D c_ru, mesh + FE ({b.fig('c_ru_2d_dofs', fmt='{:,}')} DOFs, error "
          f"{b.fig('c_ru_2d_rel_error', fmt='{:.1e}')} against the "
@@ -248,6 +249,12 @@ def benchmark_fe() -> str:
          b.fig("c_ru_2d_previous_seconds", fmt="{:.2f} s"), b.fig("c_ru_2d_seconds", fmt="{:.2f} s"),
          b.fig("c_ru_2d_speedup")],
         ["the same, FE only", "", "", b.fig("c_ru_2d_fe_speedup")],
+        [f"2D work-conjugate c_ru to a verified 1e-4: {b.get('c_ru_2d_1e4_route') or NOT_MEASURED} "
+         f"(before: the whole ring's first three levels, "
+         f"{b.fig('c_ru_2d_1e4_previous_rel_error', fmt='{:.1e}')} from the reference)",
+         b.fig("c_ru_2d_1e4_previous_seconds", fmt="{:.2f} s"),
+         b.fig("c_ru_2d_1e4_seconds", fmt="{:.2f} s"),
+         f"{previous_1e4 / now_1e4:.3g}" if previous_1e4 and now_1e4 else ""],
         [f"crack case: c_ru, c_r, engaged c_rp, 2 levels (scale "
          f"{b.fig('crack_case_scale', fmt='{:g}')})",
          b.fig("crack_case_previous_seconds", fmt="{:.2f} s"),

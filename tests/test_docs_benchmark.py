@@ -71,3 +71,17 @@ def test_no_page_types_a_benchmark_timing_by_hand():
     assert "<!-- gen: benchmark_crack_growth_3d -->" in growth
     assert not re.search(r"\| \d+k tetrahedra \| [\d.–-]+ s \|", fe)
     assert "15 minutes" not in growth and "9 minutes" not in growth
+
+
+def test_the_1e4_route_row_shows_both_routes_and_their_ratio(generate, monkeypatch):
+    figures = copy.deepcopy(_committed())
+    figures.update(c_ru_2d_1e4_seconds=0.5, c_ru_2d_1e4_previous_seconds=4.0,
+                   c_ru_2d_1e4_previous_rel_error=2.3e-4,
+                   c_ru_2d_1e4_route="Richardson of the first three pitch levels")
+    _with(generate, monkeypatch, figures)
+    row = next(line for line in generate.benchmark_fe().splitlines()
+               if line.startswith("| 2D work-conjugate c_ru to a verified 1e-4"))
+    assert "pitch levels" in row and "2.3e-04 from the reference" in row, row
+    assert row.split("|")[2:5] == [" 4.00 s ", " 0.50 s ", " 8 "], row  # 4.0 / 0.5
+    figures.pop("c_ru_2d_1e4_seconds")
+    assert generate.NOT_MEASURED in generate.benchmark_fe()
