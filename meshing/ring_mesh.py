@@ -149,6 +149,26 @@ def _describe(body: ToothedBody) -> dict:
                 supports=asdict(body.supports), load_radius=body.load_radius)
 
 
+def size_threshold(gmsh, opt: MeshOptions, size: float, *, points=(), curves=(),
+                   sampling: int = 20) -> int:
+    """A gmsh Threshold field: ``size`` [m] at the given points/curves, growing by
+    ``opt.grading`` to ``opt.size``; returns the field's tag."""
+    field = gmsh.model.mesh.field
+    distance = field.add("Distance")
+    if points:
+        field.setNumbers(distance, "PointsList", list(points))
+    if curves:
+        field.setNumbers(distance, "CurvesList", list(curves))
+        field.setNumber(distance, "Sampling", sampling)
+    threshold = field.add("Threshold")
+    field.setNumber(threshold, "InField", distance)
+    field.setNumber(threshold, "SizeMin", size)
+    field.setNumber(threshold, "SizeMax", opt.size)
+    field.setNumber(threshold, "DistMin", 0.0)
+    field.setNumber(threshold, "DistMax", max((opt.size - size) / opt.grading, 1e-12))
+    return threshold
+
+
 class RingBuilder:
     def __init__(self, gmsh, ring, crack, crack_path, options):
         self.gmsh, self.ring, self.crack, self.path, self.opt = gmsh, ring, crack, crack_path, options
@@ -317,21 +337,8 @@ class RingBuilder:
 
     # mesh --------------------------------------------------------------
     def threshold(self, size, *, points=(), curves=(), sampling=20):
-        field = self.gmsh.model.mesh.field
-        distance = field.add("Distance")
-        if points:
-            field.setNumbers(distance, "PointsList", list(points))
-        if curves:
-            field.setNumbers(distance, "CurvesList", list(curves))
-            field.setNumber(distance, "Sampling", sampling)
-        threshold = field.add("Threshold")
-        field.setNumber(threshold, "InField", distance)
-        field.setNumber(threshold, "SizeMin", size)
-        field.setNumber(threshold, "SizeMax", self.opt.size)
-        field.setNumber(threshold, "DistMin", 0.0)
-        field.setNumber(threshold, "DistMax", max((self.opt.size - size) / self.opt.grading,
-                                                  1e-12))
-        return threshold
+        return size_threshold(self.gmsh, self.opt, size, points=points, curves=curves,
+                              sampling=sampling)
 
     def mesh(self):
         gmsh, opt = self.gmsh, self.opt

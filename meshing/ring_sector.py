@@ -26,7 +26,7 @@ from .fe_mesh import FEMesh
 from .extract import extract_plane
 from .gear import GearGeometryError, rotation
 from .ring_gear import RingGear
-from .ring_mesh import MeshOptions, check_load_patch, with_info
+from .ring_mesh import MeshOptions, check_load_patch, size_threshold, with_info
 from .ring_outline import FILLET_POINTS, INVOLUTE_POINTS
 from .session import MeshingError, gmsh_model
 
@@ -152,21 +152,8 @@ class _SectorBuilder:
         model.addPhysicalGroup(2, [self.surface], name="ring")
 
     def threshold(self, size, *, points=(), curves=(), sampling=20):
-        field = self.gmsh.model.mesh.field
-        distance = field.add("Distance")
-        if points:
-            field.setNumbers(distance, "PointsList", list(points))
-        if curves:
-            field.setNumbers(distance, "CurvesList", list(curves))
-            field.setNumber(distance, "Sampling", sampling)
-        threshold = field.add("Threshold")
-        field.setNumber(threshold, "InField", distance)
-        field.setNumber(threshold, "SizeMin", size)
-        field.setNumber(threshold, "SizeMax", self.opt.size)
-        field.setNumber(threshold, "DistMin", 0.0)
-        field.setNumber(threshold, "DistMax", max((self.opt.size - size) / self.opt.grading,
-                                                  1e-12))
-        return threshold
+        return size_threshold(self.gmsh, self.opt, size, points=points, curves=curves,
+                              sampling=sampling)
 
     def mesh(self, refinements: int):
         gmsh, opt = self.gmsh, self.opt
