@@ -34,23 +34,31 @@ class CrackLevel:
 
     ``engaged`` is None for an intact ring.  ``seconds``: assembly, loads, solve, measure
     and engaged (the mesh cycles, with the intact curves when first needed) [s].
+    ``intact_tooth``: an intact ring's tooth curve when asked for (``ring_and_tooth``).
     """
 
     ring: RingStiffness
     cracked_tooth: ToothCurve | None
     engaged: EngagedMesh | None
     seconds: dict
+    intact_tooth: ToothCurve | None = None
 
 
 def ring_and_tooth(ring, planet, crack, mesh, material: Material = Material(),
-                   n_planets: int = 3, solver: str = "auto"
+                   n_planets: int = 3, solver: str = "auto", intact_tooth: int | None = None
                    ) -> tuple[RingStiffness, ToothCurve | None]:
     """c_ru at every carrier position over one planet pitch, c_r (root-land readings and the
     work-conjugate values with their rim parts, ``RingStiffness.work``) and (when ``crack`` has a
     depth) the cracked ring tooth's compliance at the Chebyshev radii of its contact span
-    with ``planet``, all from one factorisation of the model of ``mesh``."""
+    with ``planet``, all from one factorisation of the model of ``mesh``.
+
+    ``intact_tooth`` (an intact ring only): the compliance of that tooth instead, by a
+    solve of its own on the same factorisation: the floats ``tooth_fe.fe_tooth_compliance``
+    gives on ``mesh`` (the same model, factorisation and load columns)."""
     check_ring_input(ring, mesh, n_planets)
     cracked = crack is not None and crack.depth > 0
+    if cracked and intact_tooth is not None:
+        raise ValueError("intact_tooth: an intact ring only (crack given)")
     t0 = time.perf_counter()
     model = ring_model(ring, mesh, material)
     t1 = time.perf_counter()
@@ -65,6 +73,10 @@ def ring_and_tooth(ring, planet, crack, mesh, material: Material = Material(),
     system = supported(model, ["supports"], solver=solver)
     try:
         solution = system.solve(np.hstack(columns))
+        if intact_tooth is not None:
+            radii = chebyshev_radii(*contact_radii(ring, [GearPair(planet, ring)]))
+            probe = tooth_probe(ring, model, radii, intact_tooth)
+            own = system.solve(probe.loads)
     finally:
         system.release()
     t3 = time.perf_counter()
@@ -76,6 +88,8 @@ def ring_and_tooth(ring, planet, crack, mesh, material: Material = Material(),
     if cracked:
         curve = ToothCurve(probe.radii, tooth_compliance(probe, solution.u[:, ring_columns:]),
                            model.ndofs)
+    elif intact_tooth is not None:
+        curve = ToothCurve(probe.radii, tooth_compliance(probe, own.u), model.ndofs)
     t4 = time.perf_counter()
     result = RingStiffness(float(c_ru.mean()), c_ru, loads.carrier_teeth, c_r, model.ndofs,
                            {"assembly": t1 - t0, "loads": t2 - t1, "solve": t3 - t2,
@@ -84,11 +98,18 @@ def ring_and_tooth(ring, planet, crack, mesh, material: Material = Material(),
 
 
 def crack_level(ring, planet, crack, mesh, options, material: Material = Material(),
-                n_planets: int = 3, solver: str = "auto") -> CrackLevel:
+                n_planets: int = 3, solver: str = "auto",
+                intact_tooth: int | None = None) -> CrackLevel:
     """``ring_and_tooth`` on ``mesh`` (meshed with ``options``) and, with a crack, the
     cracked tooth's engagement against the same tooth intact (its intact curves meshed
-    with ``options`` too, and kept between calls)."""
-    result, curve = ring_and_tooth(ring, planet, crack, mesh, material, n_planets, solver)
+    with ``options`` too, and kept between calls); ``intact_tooth`` as in
+    ``ring_and_tooth`` (``CrackLevel.intact_tooth``)."""
+    result, curve = ring_and_tooth(ring, planet, crack, mesh, material, n_planets, solver,
+                                   intact_tooth)
+    if intact_tooth is not None:
+        return CrackLevel(result, None, None,
+                          {k: v for k, v in result.seconds.items() if k != "solver"}
+                          | {"engaged": 0.0}, curve)
     started = time.perf_counter()
     engaged = (None if curve is None
                else engaged_mesh(planet, ring, curve, options, material, crack.tooth))

@@ -13,7 +13,9 @@ import numpy as np
 from hubvib.fem.crack_level import crack_level
 from hubvib.fem.material import Material
 from hubvib.fem.ring_stiffness import ring_stiffness
-from hubvib.fem.tooth_stiffness import engaged_mesh, reducer_mesh_stiffness
+from hubvib.fem.mesh_cycle import GearPair
+from hubvib.fem.tooth_stiffness import (contact_radii, engaged_mesh, offer_intact_curve,
+                                         reducer_mesh_stiffness)
 from hubvib.meshing.crack import CrackFront
 from hubvib.meshing.levels import SOLID_LEVELS, scaled_options, solid_options
 from hubvib.meshing.ring_mesh import ring_mesh
@@ -336,23 +338,30 @@ def estimate_crack_case(ring, planet, crack, scale: float = 1.0, mesher=None, ma
     the planet's gear body; ``mesher(ring, crack, options)`` replaces ``ring_mesh``;
     ``material`` (default steel) and ``n_planets`` (equally spaced) are the design's.
     """
-    mesher = mesher or ring_mesh
     material = material or Material()
+    tooth = 0 if crack is None else crack.tooth
+    # an intact ring on ring_mesh is the mesh and model of the intact tooth curves: its
+    # tooth is measured on this factorisation and offered to them (no mesh of their own)
+    intact = (crack is None or crack.depth == 0) and mesher in (None, ring_mesh)
+    mesher = mesher or ring_mesh
+    span = contact_radii(ring, [GearPair(planet, ring)])
     results = {}
     for name, level in (("coarse", 2 * scale), ("fine", scale)):
         options = scaled_options(level)
         started = time.perf_counter()
         mesh = mesher(ring, crack, options)
         meshed = time.perf_counter()
-        result = crack_level(ring, planet, crack, mesh, options, material, n_planets)
+        result = crack_level(ring, planet, crack, mesh, options, material, n_planets,
+                             intact_tooth=tooth if intact else None)
+        if intact:
+            offer_intact_curve(ring, span, material, options, tooth, result.intact_tooth)
         results[name] = (result, meshed - started, time.perf_counter() - meshed)
     fine, coarse = results["fine"][0], results["coarse"][0]
     ratios = dict(c_rp_engaged_ratio=1.0, c_rp_engaged_ratio_error=0.0,
                   c_rp_engaged_min_ratio=1.0)
     engaged = fine.engaged
     if engaged is None:  # intact: the same tooth's engagement on the fine level's options
-        engaged = engaged_mesh(planet, ring, None, scaled_options(scale), material,
-                               0 if crack is None else crack.tooth)
+        engaged = engaged_mesh(planet, ring, None, scaled_options(scale), material, tooth)
     intact = engaged_intact(engaged)
     if fine.engaged is not None:
         ratios = dict(c_rp_engaged_ratio=fine.engaged.mean_ratio,

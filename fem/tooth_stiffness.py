@@ -180,13 +180,30 @@ def set_intact_store(store) -> None:
     _INTACT_STORE = store
 
 
+#: intact curves this process measured on a model it solved anyway (``offer_intact_curve``)
+_OFFERED: dict = {}
+
+
 @functools.lru_cache(maxsize=8)
 def _intact_curve(body, span, material, options, tooth: int = 0) -> ToothCurve:
     def compute() -> ToothCurve:
-        return fe_curve(body, span, material, options, tooth=tooth)
+        offered = _OFFERED.get((body, span, material, options, tooth))
+        return offered or fe_curve(body, span, material, options, tooth=tooth)
 
     store = _INTACT_STORE
     return compute() if store is None else store(compute, body, span, material, options, tooth)
+
+
+def offer_intact_curve(body: ToothedBody, span, material: Material, options, tooth: int,
+                       curve: ToothCurve) -> None:
+    """Give ``intact_curve`` the curve ``fe_curve(body, span, material, options,
+    tooth=tooth)`` would compute, measured elsewhere on the same model (e.g. the intact
+    crack case's mesh, ``crack_level.ring_and_tooth``): kept here and handed to the
+    store (``set_intact_store``) for the other processes, so that no one computes it."""
+    key = (body, tuple(float(r) for r in span), material, options, tooth)
+    _OFFERED[key] = curve
+    if _INTACT_STORE is not None:
+        _INTACT_STORE(lambda: curve, *key)
 
 
 def intact_curve(body: ToothedBody, span, material: Material, options, tooth: int = 0

@@ -60,3 +60,47 @@ def test_a_damaged_entry_is_computed_again(parts, tmp_path):
 
     out = shared_intact_curve(compute, ring, (0.1, 0.2), steel, options, 0)
     assert calls == [1] and out is curve, "a checksum mismatch recomputes the curve"
+
+
+def test_the_intact_case_measures_the_intact_ring_curve_to_the_last_digit(parts):
+    """The intact crack case's own factorisation gives the ring's intact tooth curve
+    (``crack_level(..., intact_tooth=...)``): the same floats as ``fe_curve`` on a mesh of
+    its own (exact: same mesh, model, factorisation and load columns), so the FE stage
+    offers it to the other cases instead of meshing the intact ring once more."""
+    from hubvib.fem.crack_level import crack_level
+    from hubvib.fem.mesh_cycle import GearPair
+    from hubvib.fem.tooth_stiffness import contact_radii, fe_curve
+    from hubvib.meshing.ring_mesh import ring_mesh
+
+    ring, planet, steel, _ = parts
+    options = scaled_options(4.0)  # coarse: the identity does not depend on the size
+    span = contact_radii(ring, [GearPair(planet, ring)])
+    level = crack_level(ring, planet, None, ring_mesh(ring, None, options), options, steel,
+                        intact_tooth=0)
+    alone = fe_curve(ring, span, steel, options, tooth=0)
+    np.testing.assert_array_equal(level.intact_tooth.radii, alone.radii)
+    np.testing.assert_array_equal(level.intact_tooth.compliance, alone.compliance,
+                                  err_msg="intact case's factorisation vs fe_curve: exact")
+    assert level.intact_tooth.dofs == alone.dofs
+
+
+def test_an_offered_curve_is_stored_and_never_computed(parts):
+    """``offer_intact_curve`` hands the curve to the FE stage's store: the next process
+    reads it instead of computing it."""
+    from hubvib.fem import tooth_stiffness
+
+    ring, _, steel, options = parts
+    curve = ToothCurve(np.array([0.101, 0.102]), np.array([1e-9, 2e-9]), 99)
+    tooth_stiffness.set_intact_store(shared_intact_curve)
+    try:
+        tooth_stiffness.offer_intact_curve(ring, (0.1, 0.11), steel, options, 3, curve)
+    finally:
+        tooth_stiffness.set_intact_store(None)
+        tooth_stiffness._OFFERED.clear()
+
+    def never():
+        raise AssertionError("an offered curve must be read from the store")
+
+    again = shared_intact_curve(never, ring, (0.1, 0.11), steel, options, 3)
+    np.testing.assert_array_equal(again.compliance, curve.compliance)
+    assert again.dofs == 99
