@@ -106,13 +106,11 @@ def crack_level(ring, planet, crack, mesh, options, material: Material = Materia
     ``ring_and_tooth`` (``CrackLevel.intact_tooth``)."""
     result, curve = ring_and_tooth(ring, planet, crack, mesh, material, n_planets, solver,
                                    intact_tooth)
-    if intact_tooth is not None:
-        return CrackLevel(result, None, None,
-                          {k: v for k, v in result.seconds.items() if k != "solver"}
-                          | {"engaged": 0.0}, curve)
+    seconds = {k: v for k, v in result.seconds.items() if k != "solver"}
+    if intact_tooth is not None:  # an intact ring: the curve is its intact tooth's
+        return CrackLevel(result, None, None, seconds | {"engaged": 0.0}, curve)
     started = time.perf_counter()
     engaged = (None if curve is None
                else engaged_mesh(planet, ring, curve, options, material, crack.tooth))
-    seconds = {k: v for k, v in result.seconds.items() if k != "solver"}
     return CrackLevel(result, curve, engaged,
                       seconds | {"engaged": time.perf_counter() - started})
