@@ -3,6 +3,8 @@ the detectability map and the other c_rp method's POD run there, seeded as in on
 so every number is the same exactly (not only to round-off), and the result cache holds
 the same entry whichever way it was computed."""
 import pickle
+import re
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -86,3 +88,40 @@ def test_a_cached_study_submits_nothing(cache):
     cached_detection_study(model, OPTIONS, TIMING)
     begin_detection_study(model, OPTIONS, TIMING, Counting()).result()
     assert Counting.submitted == 0
+
+
+@pytest.mark.slow
+def test_the_crack_study_with_its_detection_in_the_pool_writes_the_same_files(
+        cache, pool, tmp_path, monkeypatch):
+    """``crack_study_from_fe`` with the pool (the main job's route: POD runs in the pool,
+    the frequency plot drawn meanwhile by ``while_detecting``) against the same study in
+    this process: every table, the JSON and the report byte for byte (date aside), and the
+    callback saw the spectra before the detection study was there."""
+    from test_crack_study import _synthetic_scene
+    from test_detection_helpers import synthetic_fe_rows
+
+    from hubvib.studies.crack_study import (crack_study_from_fe, spectrum_plots,
+                                            write_crack_study)
+
+    scene = replace(_synthetic_scene("series"), plots=True)
+    rows = synthetic_fe_rows(scene.crack.depths)
+    here = crack_study_from_fe(scene, rows, timing=TIMING)
+    write_crack_study(here, tmp_path / "here")
+    monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path / "second-cache"))  # all computed again
+    seen, begun = [], {}
+
+    def while_detecting(partial):
+        seen.append(partial.detection)
+        begun["spectrum_plots"] = spectrum_plots(scene, partial, tmp_path / "pooled")
+
+    pooled = crack_study_from_fe(scene, rows, timing=TIMING, pool=pool,
+                                 while_detecting=while_detecting)
+    write_crack_study(pooled, tmp_path / "pooled", begun)
+    assert seen == [None], "while_detecting runs before the detection study is assembled"
+    written = sorted(p.name for p in (tmp_path / "here").iterdir())
+    assert written == sorted(p.name for p in (tmp_path / "pooled").iterdir())
+    for name in written:
+        a, b = ((tmp_path / side / name).read_bytes() for side in ("here", "pooled"))
+        if name in ("report.md", "results.json"):  # the run's date is in them
+            a, b = (re.sub(rb"\d{4}-\d\d-\d\d \d\d:\d\d UTC", b"DATE", x) for x in (a, b))
+        assert a == b, f"{name}: pool route vs one process"
