@@ -13,9 +13,8 @@ import time
 from hubvib.runtime.stage_seconds import ENV
 
 #: the parts of the fresh run in ``main_job_stage_seconds`` (wall seconds in the main
-#: process; the detection stage's POD runs and the renders run in the pool's workers,
-#: ``detection`` holds the frequency plot drawn meanwhile, and ``render`` is the time the
-#: run spends on the renders itself, waiting included)
+#: process; the FE ring's render runs in a worker beside lumped/detection/plots, and
+#: ``render`` is the time the run spends on the renders itself, waiting included)
 STAGES = ("fe", "lumped", "detection", "plots", "render", "write", "other")
 
 

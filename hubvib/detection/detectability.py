@@ -104,14 +104,23 @@ def detectability_map(model, options, timing, workers: int = 1) -> Detectability
     The mounting values are independent POD runs (each seeded by its index), run on
     ``workers`` threads at one BLAS thread (numpy releases the GIL in the bands and the
     eigen-solves); the numbers do not depend on ``workers``."""
-    base, points = series_base(model), map_points(model, options)
-    solves = len(points) * estimate(base.params, len(base.depths), options.map_samples,
-                                    False).solves
-    bar = (progress(len(points), "detectability map", "mounting")
+    base = series_base(model)
+    mounts = np.geomspace(options.mount_min, options.mount_max, options.mount_points)
+    fixed = {"c_ru_mount": base.c_r_mount, "c_r_mount": base.c_ru_mount}
+    solves = len(SWEPT) * mounts.size * estimate(base.params, len(base.depths),
+                                                  options.map_samples, False).solves
+    bar = (progress(len(SWEPT) * mounts.size, "detectability map", "mounting")
            if solves > PROGRESS_SOLVES else None)
+    points = [(swept, m, float(mount)) for swept in SWEPT for m, mount in enumerate(mounts)]
 
     def point(item):
-        return map_point(base, options, timing, item)
+        swept, m, mount = item
+        mounted = (base.with_mounts(mount, base.c_r_mount) if swept == "c_ru_mount"
+                   else base.with_mounts(base.c_ru_mount, mount))
+        result = pod_study(mounted, options, timing, samples=options.map_samples,
+                           model_baseline=False, seed=options.seed + m, workers=1)
+        return (result.kind, result.detectable_depth(), result.nominal.carried_by[-1],
+                result.nominal.frequency_hz[0])
 
     def done(results):
         # the bar is advanced here, in the calling thread (its count is not thread-safe)
@@ -131,34 +140,6 @@ def detectability_map(model, options, timing, workers: int = 1) -> Detectability
                 results = list(done(pool.map(point, points)))
     if bar is not None:
         bar.close()
-    return assemble_map(model, options, points, results)
-
-
-def map_points(model, options) -> list[tuple]:
-    """The map's POD runs: ``(swept, index, mounting [N/m])``, both sweeps."""
-    mounts = np.geomspace(options.mount_min, options.mount_max, options.mount_points)
-    return [(swept, m, float(mount)) for swept in SWEPT for m, mount in enumerate(mounts)]
-
-
-def map_point(base, options, timing, item) -> tuple:
-    """One POD run of the map (``base``: ``series_base`` of the model; ``item``: one of
-    ``map_points``): kind, detectable depth [m], carrying stiffness and intact
-    frequencies [Hz] per mode.  Seeded by the mounting's index, so the numbers do not
-    depend on where it runs."""
-    swept, m, mount = item
-    mounted = (base.with_mounts(mount, base.c_r_mount) if swept == "c_ru_mount"
-               else base.with_mounts(base.c_ru_mount, mount))
-    result = pod_study(mounted, options, timing, samples=options.map_samples,
-                       model_baseline=False, seed=options.seed + m, workers=1)
-    return (result.kind, result.detectable_depth(), result.nominal.carried_by[-1],
-            result.nominal.frequency_hz[0])
-
-
-def assemble_map(model, options, points: list, results: list) -> DetectabilityMap:
-    """The map from ``map_point`` of each of ``points`` (``map_points``, that order)."""
-    base = series_base(model)
-    mounts = np.geomspace(options.mount_min, options.mount_max, options.mount_points)
-    fixed = {"c_ru_mount": base.c_r_mount, "c_r_mount": base.c_ru_mount}
     depth, carried, frequency = {}, {}, {}
     for swept in SWEPT:
         rows = [r for (name, _, _), r in zip(points, results) if name == swept]

@@ -82,29 +82,17 @@ def compare_methods(model, timing, record_length: float, options=None,
     of the same model under the other c_rp method, for records of ``record_length`` [s]
     with ``timing`` (``carrier.MeshTiming``); with ``options`` (DetectionOptions) also
     the other method's POD."""
-    variant = other_method(model)
-    other_pod = (None if options is None
-                 else pod_study(variant, options, timing, workers=workers))
-    return method_comparison(model, timing, record_length, other_pod)
-
-
-def other_method(model):
-    """``model`` (CrackModel) under the other c_rp method."""
-    return model.with_c_rp_method(C_RP_RATIO if model.c_rp_method == C_RP_SERIES
-                                  else C_RP_SERIES)
-
-
-def method_comparison(model, timing, record_length: float, other_pod) -> MethodComparison:
-    """``compare_methods`` given the other method's POD (``other_pod``, None: not run)."""
-    variant = other_method(model)
+    other = C_RP_RATIO if model.c_rp_method == C_RP_SERIES else C_RP_SERIES
+    variant = model.with_c_rp_method(other)
     fraction, long = timing.engaged_fraction, timing.long_record(record_length)
 
     def observed(m):
         return observed_frequencies(m, nominal(m), fraction, long)[0]
 
-    return MethodComparison(np.array(model.depths), model.c_rp_method,
-                            variant.c_rp_method, observed(model), observed(variant),
-                            np.asarray(model.c_rp_factor()),
+    other_pod = (None if options is None
+                 else pod_study(variant, options, timing, workers=workers))
+    return MethodComparison(np.array(model.depths), model.c_rp_method, other, observed(model),
+                            observed(variant), np.asarray(model.c_rp_factor()),
                             np.asarray(variant.c_rp_factor()), other_pod)
 
 

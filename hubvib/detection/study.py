@@ -16,14 +16,11 @@ import hubvib.identification
 import hubvib.lumped
 import hubvib.meshing
 from hubvib.foundation.blas import blas_threads
-from hubvib.runtime.engines import submit
-from hubvib.runtime.later import Later
-from hubvib.runtime.result_cache import begin_cached, cached_figure, cached_result
+from hubvib.runtime.result_cache import cached_figure, cached_result
 
 from .carrier import CarrierStudy, MeshTiming, carrier_study
-from .mesh_stiffness import MethodComparison, compare_methods, method_comparison, other_method
-from .detectability import (DetectabilityMap, assemble_map, detectability_map, map_point,
-                            map_points, series_base)
+from .mesh_stiffness import MethodComparison, compare_methods
+from .detectability import DetectabilityMap, detectability_map
 from .options import DetectionOptions
 from .pod import PodResult, pod_study
 
@@ -103,40 +100,6 @@ def cached_compare_methods(model, timing: MeshTiming, record_length: float, opti
                          _folders(), lambda: compare_methods(model, timing, record_length,
                                                               options, workers=workers),
                          MethodComparison)
-
-
-def begin_detection_study(model, options: DetectionOptions, timing: MeshTiming, pool,
-                          workers: int = 1):
-    """:func:`cached_detection_study` with its POD runs (the scene's and each point of the
-    map) queued on ``pool`` (a ``worker_pool``) now: returns what gives the study by
-    ``result()`` (the carrier study is computed there, in this process).  Each run is
-    seeded as on threads, so the numbers and the cache entry are the same."""
-    def begin():
-        base = series_base(model)
-        points = map_points(model, options)
-        pod = submit(pool, pod_study, model, options, timing)
-        mapped = [submit(pool, map_point, base, options, timing, item) for item in points]
-        return Later(lambda: DetectionStudy(
-            options, timing, pod.result(),
-            assemble_map(model, options, points, [f.result() for f in mapped]),
-            carrier_study(model, timing, options.record_length)))
-
-    return begin_cached("detection", (model, options, timing, workers), _folders(), begin,
-                        DetectionStudy)
-
-
-def begin_compare_methods(model, timing: MeshTiming, record_length: float, options, pool,
-                          workers: int = 1):
-    """:func:`cached_compare_methods` with the other method's POD (if ``options``) queued
-    on ``pool`` now: returns what gives the comparison by ``result()``."""
-    def begin():
-        pod = (None if options is None
-               else submit(pool, pod_study, other_method(model), options, timing))
-        return Later(lambda: method_comparison(model, timing, record_length,
-                                                  None if pod is None else pod.result()))
-
-    return begin_cached("c_rp_methods", (model, timing, record_length, options, workers),
-                        _folders(), begin, MethodComparison)
 
 
 def cached_plot(path: Path, build, *args) -> Path:

@@ -27,7 +27,6 @@ from pathlib import Path
 
 from hubvib.foundation.output import atomic_path
 from hubvib.meshing.cache import root_folder
-from hubvib.runtime.later import Later
 
 FORMAT = b"hubvib-result-cache 1\n"
 _DIGEST = 64  # hex characters of a SHA-256
@@ -62,28 +61,14 @@ def entry_path(kind: str, inputs, folders: tuple[str, ...]) -> Path:
 def cached_result(kind: str, inputs, folders: tuple[str, ...], compute, expected: type):
     """``compute()`` once per ``inputs`` and source in ``folders``; later calls load the
     entry (checked: checksum, then type ``expected``)."""
-    return begin_cached(kind, inputs, folders, lambda: Later(compute), expected).result()
-
-
-def begin_cached(kind: str, inputs, folders: tuple[str, ...], begin, expected: type):
-    """``cached_result`` of a computation that runs elsewhere meanwhile: ``begin()`` starts
-    it (e.g. queues it on a process pool) and returns what gives its value by
-    ``result()``; it is called only when no entry holds the value.  Returns an object
-    whose ``result()`` is the value (loaded, or computed and then stored)."""
     try:
         path = entry_path(kind, inputs, folders)
     except (pickle.PicklingError, TypeError, AttributeError, OSError):
-        return begin()  # inputs that cannot be keyed: nothing is cached
+        return compute()  # inputs that cannot be keyed: nothing is cached
     result = _load(path, expected)
     if result is not None:
-        return Later(lambda: result)
-    pending = begin()
-    return Later(lambda: _stored(pending.result(), path))
-
-
-def _stored(value, path: Path):
-    """``value`` written at ``path``, as read back from there."""
-    payload = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+        return result
+    payload = pickle.dumps(compute(), protocol=pickle.HIGHEST_PROTOCOL)
     try:
         with atomic_path(path) as tmp:
             tmp.write_bytes(FORMAT + hashlib.sha256(payload).hexdigest().encode() + payload)

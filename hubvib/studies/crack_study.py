@@ -37,7 +37,6 @@ from hubvib.render.fe import render_fe, ring_fields
 from hubvib.render.modes import render_modes
 from hubvib.runtime.engines import EngineError, Execution, submit
 from hubvib.runtime.fe_cache import fe_version
-from hubvib.runtime.later import Later
 from hubvib.runtime.process_pool import worker_pool
 from hubvib.runtime.progress import stage, working
 from hubvib.runtime.stage_seconds import timed
@@ -162,11 +161,11 @@ class CrackStudyResult:
 
 def run_crack_study(scene: Scene, progress: bool = True, detection: bool = True,
                     workers: int = 2, pool=None, after_fe=None,
-                    on_spectra=None, while_detecting=None) -> CrackStudyResult:
+                    on_spectra=None) -> CrackStudyResult:
     """FE cases (cached; in ``pool``, a ``worker_pool``, when given), lumped spectra per
-    depth, and the detection study (its POD runs in ``pool`` too); ``after_fe()`` is
-    called when the FE cases are queued in the pool (if they are) and again when they are
-    done, ``on_spectra`` and ``while_detecting`` as in ``crack_study_from_fe``."""
+    depth, and the detection study; ``after_fe()`` is called when the FE cases are queued
+    in the pool (if they are) and again when they are done, ``on_spectra`` as in
+    ``crack_study_from_fe``."""
     with timed("fe"):
         fe, computed = run_fe_cases(scene.crack, progress,
                                     scene.tables.get("execution", Execution()), pool,
@@ -174,22 +173,17 @@ def run_crack_study(scene: Scene, progress: bool = True, detection: bool = True,
     if after_fe is not None:
         after_fe()
     return crack_study_from_fe(scene, fe, computed, detection=detection, workers=workers,
-                               on_spectra=on_spectra, pool=pool,
-                               while_detecting=while_detecting)
+                               on_spectra=on_spectra)
 
 
 def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
                         detection: bool = True, timing=None,
-                        workers: int = 1, on_spectra=None, pool=None,
-                        while_detecting=None) -> CrackStudyResult:
+                        workers: int = 1, on_spectra=None) -> CrackStudyResult:
     """The lumped and detection stages from FE rows (``crack_sweep.fe_case`` keys).
 
     ``timing`` (a ``detection.carrier.MeshTiming``) defaults to the scene's design at
     the ``[detection]`` carrier speed; ``on_spectra(spectra)`` is called with the lumped
-    spectra before the detection stage.  With ``pool`` (a ``worker_pool``) the detection
-    stage's POD runs are queued there (the same numbers as on threads), then
-    ``on_spectra`` is called, then ``while_detecting(result)`` with the result so far
-    (``detection`` and ``c_rp_comparison`` not set yet) while they run.
+    spectra before the detection stage.
     """
     with timed("lumped"):
         model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
@@ -205,54 +199,38 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
             step, _ = match(spectra[k - 1], spectra[k])
             order = step[order]
             omega[k] = spectra[k].omega[order]
-    result = CrackStudyResult(scene, fe, c_ru, c_r, c_rp_factor, spectra, omega, computed,
-                              model=model)
+    if on_spectra is not None:
+        on_spectra(spectra)
     with timed("detection"):
-        pending = _detection(scene, model, detection, timing, workers, pool)
-        if on_spectra is not None:
-            on_spectra(spectra)
-        if while_detecting is not None:
-            while_detecting(result)
-        result.detection, result.c_rp_comparison = (p and p.result() for p in pending)
-    return result
+        study, comparison = _detection(scene, model, detection, timing, workers)
+    return CrackStudyResult(scene, fe, c_ru, c_r, c_rp_factor, spectra, omega, computed,
+                            model=model, detection=study, c_rp_comparison=comparison)
 
 
-def _detection(scene: Scene, model: CrackModel, detection: bool, timing, workers: int,
-               pool=None) -> tuple:
+def _detection(scene: Scene, model: CrackModel, detection: bool, timing, workers: int):
     """The detection study (if ``detection``) and the comparison of the c_rp methods (where
-    they differ), each from its result cache: each None or what gives it by ``result()``
-    (with ``pool``, its POD runs queued there now; without, computed when asked for)."""
+    they differ), each from its result cache."""
     study = comparison = None
     if detection or model.c_rp_differs:
         from hubvib.detection.carrier import mesh_timing
         from hubvib.detection.options import detection_options
-        from hubvib.detection.study import (begin_compare_methods, begin_detection_study,
-                                            cached_compare_methods, cached_detection_study)
+        from hubvib.detection.study import cached_compare_methods, cached_detection_study
 
         options = detection_options(scene)
         timing = timing or mesh_timing(scene.crack.reducer, options.carrier_speed)
-        compare_options = options if detection else None
-        if pool is not None:
-            if detection:
-                study = begin_detection_study(model, options, timing, pool, workers)
-            if model.c_rp_differs:
-                comparison = begin_compare_methods(model, timing, options.record_length,
-                                                   compare_options, pool, workers)
-            return study, comparison
         if detection:
-            study = Later(lambda: cached_detection_study(model, options, timing,
-                                                          workers=workers))
+            study = cached_detection_study(model, options, timing, workers=workers)
         if model.c_rp_differs:
-            comparison = Later(lambda: cached_compare_methods(
-                model, timing, options.record_length, compare_options, workers=workers))
+            comparison = cached_compare_methods(model, timing, options.record_length,
+                                                options if detection else None,
+                                                workers=workers)
     return study, comparison
 
 
 def write_crack_study(result: CrackStudyResult, folder: Path,
                       begun: dict | None = None) -> CrackStudyResult:
     """Tables (CSV, JSON), plots, renders and ``report.md`` in ``folder``; ``begun``: the
-    renders begun in workers (``"modes"``, ``"fe"``: each with ``result()``, the files)
-    and the plots drawn already (``"spectrum_plots"``: ``spectrum_plots``' files)."""
+    renders begun in workers (``"modes"``, ``"fe"``: each with ``result()``, the files)."""
     begun = begun or {}
     folder = Path(folder)
     scene = result.scene
@@ -292,9 +270,7 @@ def write_crack_study(result: CrackStudyResult, folder: Path,
     plots = []
     if scene.plots:
         with timed("plots"):
-            plots = (list(begun["spectrum_plots"]) if "spectrum_plots" in begun
-                     else spectrum_plots(scene, result, folder))
-            plots += _detection_plots(scene, result, study, folder)
+            plots = _plots(scene, result, study, folder)
     renders, fe_renders = [], []
     if scene.renders:
         with timed("render"):
@@ -315,36 +291,26 @@ def write_crack_study(result: CrackStudyResult, folder: Path,
     return result
 
 
-def spectrum_plots(scene: Scene, result: CrackStudyResult, folder: Path) -> list[Path]:
-    """The study's PNG figures that need the spectra only (not the detection study), each
-    from the result cache when drawn before."""
-    from hubvib.detection import plots as figures
-    from hubvib.detection.study import cached_plot
-
-    return [cached_plot(folder / "frequency_vs_depth.png", figures.relative_shift_figure,
-                        scene.name, result.depths, result.omega, result.kind)]
-
-
-def _detection_plots(scene: Scene, result: CrackStudyResult, study,
-                     folder: Path) -> list[Path]:
-    """The detection study's PNG figures (none without it), each from the result cache when
-    drawn before."""
-    if study is None:
-        return []
+def _plots(scene: Scene, result: CrackStudyResult, study, folder: Path) -> list[Path]:
+    """The study's PNG figures (each from the result cache when drawn before)."""
     from hubvib.detection import plots as figures
     from hubvib.detection.study import cached_plot
 
     name = scene.name
-    deepest = float(result.depths[-1])
-    return [
-        cached_plot(folder / "shift_vs_depth.png", figures.shift_threshold_figure,
-                    name, study.pod),
-        cached_plot(folder / "detectability_map.png", figures.map_figure, name,
-                    study.map, deepest, float(result.depths[1])),
-        cached_plot(folder / "pod.png", figures.pod_figure, name, study.pod,
-                    _pod_modes(study)),
-        cached_plot(folder / "carrier_position.png", figures.carrier_figure, name,
-                    study.carrier, result.kind)]
+    plots = [cached_plot(folder / "frequency_vs_depth.png", figures.relative_shift_figure,
+                         name, result.depths, result.omega, result.kind)]
+    if study is not None:
+        deepest = float(result.depths[-1])
+        plots += [
+            cached_plot(folder / "shift_vs_depth.png", figures.shift_threshold_figure,
+                        name, study.pod),
+            cached_plot(folder / "detectability_map.png", figures.map_figure, name,
+                        study.map, deepest, float(result.depths[1])),
+            cached_plot(folder / "pod.png", figures.pod_figure, name, study.pod,
+                        _pod_modes(study)),
+            cached_plot(folder / "carrier_position.png", figures.carrier_figure, name,
+                        study.carrier, result.kind)]
+    return plots
 
 
 def _other_family_pod(comparison) -> dict | None:
@@ -641,14 +607,10 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
         def on_spectra(spectra):
             begin_renders(scene, staged, pool, begun, spectra[0])
 
-        def while_detecting(partial):
-            if scene.plots and pool is not None:  # the detection stage runs in the pool
-                begun["spectrum_plots"] = spectrum_plots(scene, partial, staged)
-
         started = time.perf_counter()
         with working("FE stage and lumped spectra"):
             result = run_crack_study(scene, pool=pool, after_fe=after_fe,
-                                     on_spectra=on_spectra, while_detecting=while_detecting)
+                                     on_spectra=on_spectra)
         stage(f"FE stage ({result.computed} of {len(result.fe)} cases computed) and lumped "
               "spectra", started)
         started = time.perf_counter()
