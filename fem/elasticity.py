@@ -222,7 +222,7 @@ def supported(model, fixed_groups: list[str], fixed_dofs=(), solver: str = "auto
     ``fixed_dofs`` (DOF indices, e.g. from ``PlaneModel.node_dofs``).
 
     ``solver``: one of ``fem.solvers.SOLVERS``; ``"auto"`` picks by size and dimension.
-    PARDISO works on the node blocks when the supports hold whole nodes.  Raises
+    PARDISO works on the node blocks when the supports hold whole nodes (in 3D always).  Raises
     SingularSystemError when nothing is fixed, when the supports leave a rigid-body
     motion, or when the solver finds the reduced matrix singular.
     """
@@ -248,10 +248,11 @@ def supported(model, fixed_groups: list[str], fixed_dofs=(), solver: str = "auto
     blocks = getattr(model, "blocks", None)
     dim = fe.dim()
     whole_nodes = keep.reshape(-1, dim).all(axis=1) == keep.reshape(-1, dim).any(axis=1)
-    if method == "pardiso" and blocks is not None and whole_nodes.all():
+    # 3D: a node with some components held (a symmetry plane's u_z) stays a block too
+    if method == "pardiso" and blocks is not None and (whole_nodes.all() or dim == 3):
         # single precision pays off where the factorisation dominates (3D), not in 2D,
         # where the refinement of many load columns costs more than it saves
-        factor = factorise_free_blocks(blocks, keep.reshape(-1, dim)[:, 0], single=dim == 3)
+        factor = factorise_free_blocks(blocks, keep.reshape(-1, dim), single=dim == 3)
     else:
         near_null = rigid[free] if method == "amg" else None
         factor = factorise(submatrix(model.K, keep), method, near_null)
