@@ -47,12 +47,12 @@ PIVOT_RATIO = 1e-13    # a pivot this small relative to the largest: singular
 #: below what a double-precision factorisation leaves on the solid ring (~1e-13..1e-12)
 REFINE_TOLERANCE = 1e-12
 REFINE_STEPS = 8
-#: load columns per refined single-precision solve: the refinement's temporaries and
-#: PARDISO's solve workspace grow with the columns solved at once.  Solid ring (5.6e5
-#: DOFs), the 24 columns of the carrier sweep, same run: peak 2.56 GB at once (solve
-#: phase 11.8 s), 2.45 GB in chunks of 12 (13.6 s); the sweep goes at once (speed), more
-#: columns than this in chunks
-SOLVE_COLUMNS = 24
+#: unknowns times load columns per refined single-precision solve: the refinement's
+#: temporaries and PARDISO's solve workspace grow with the columns solved at once.  Solid
+#: ring (5.6e5 DOFs), the 24 columns of the carrier sweep, same run: peak 2.56 GB at once
+#: (solve phase 11.8 s), 2.45 GB in chunks of 12 (13.6 s); that many entries go at once
+#: (speed: each refinement step is one PARDISO solve of all of them), more in chunks
+SOLVE_ENTRIES = 24 * 560_000
 
 
 class SingularSystemError(ValueError):
@@ -270,11 +270,12 @@ class _PardisoFactor(Factor):
             return self._pardiso.solve(columns)
         if self._matvec is None:
             self._matvec = self._make_matvec()
-        if columns.shape[1] <= SOLVE_COLUMNS:
+        chunk = max(1, SOLVE_ENTRIES // len(columns))
+        if columns.shape[1] <= chunk:
             return self._refined(columns)
         u = np.empty_like(columns)
-        for first in range(0, columns.shape[1], SOLVE_COLUMNS):
-            part = slice(first, first + SOLVE_COLUMNS)
+        for first in range(0, columns.shape[1], chunk):
+            part = slice(first, first + chunk)
             u[:, part] = self._refined(columns[:, part]) if self._single \
                 else self._pardiso.solve(columns[:, part])
         return u
