@@ -20,7 +20,8 @@ from .facets import facet_basis
 from .fast_assembly import BlockMatrix, elasticity_block_matrix
 from .locate import interpolation_matrix
 from .material import Material, MaterialError
-from .solvers import SingularSystemError, factorise, factorise_free_blocks, pick
+from .solvers import (DOUBLE_COLUMNS, SingularSystemError, factorise, factorise_free_blocks,
+                      pick)
 
 __all__ = ["PlaneModel", "plane_model", "Solution", "solve", "supported", "SupportedSystem",
            "rigid_body_modes", "SingularSystemError"]
@@ -216,10 +217,14 @@ class SupportedSystem:
         self.factor.free()
 
 
-def supported(model, fixed_groups: list[str], fixed_dofs=(), solver: str = "auto"
-              ) -> SupportedSystem:
+def supported(model, fixed_groups: list[str], fixed_dofs=(), solver: str = "auto",
+              columns: int = 1) -> SupportedSystem:
     """Factorise K with zero displacement on ``fixed_groups`` (every component) and at
     ``fixed_dofs`` (DOF indices, e.g. from ``PlaneModel.node_dofs``).
+
+    ``columns``: how many load columns are to be solved; 3D PARDISO factorises in single
+    precision and refines each solve, from ``fem.solvers.DOUBLE_COLUMNS`` columns on in
+    double precision (the cheaper of the two there).
 
     ``solver``: one of ``fem.solvers.SOLVERS``; ``"auto"`` picks by size and dimension.
     PARDISO works on the node blocks when the supports hold whole nodes (in 3D always).  Raises
@@ -252,7 +257,8 @@ def supported(model, fixed_groups: list[str], fixed_dofs=(), solver: str = "auto
     if method == "pardiso" and blocks is not None and (whole_nodes.all() or dim == 3):
         # single precision pays off where the factorisation dominates (3D), not in 2D,
         # where the refinement of many load columns costs more than it saves
-        factor = factorise_free_blocks(blocks, keep.reshape(-1, dim), single=dim == 3)
+        factor = factorise_free_blocks(blocks, keep.reshape(-1, dim),
+                                       single=dim == 3 and columns < DOUBLE_COLUMNS)
     else:
         near_null = rigid[free] if method == "amg" else None
         factor = factorise(submatrix(model.K, keep), method, near_null)
@@ -281,7 +287,8 @@ def solve(model, loads: np.ndarray, fixed_groups: list[str], fixed_dofs=(),
     nothing is fixed or the solver finds the reduced matrix singular.  To solve
     more load sets later with the same factorisation, use ``supported``.
     """
-    system = supported(model, fixed_groups, fixed_dofs, solver)
+    system = supported(model, fixed_groups, fixed_dofs, solver,
+                       columns=1 if np.ndim(loads) == 1 else np.shape(loads)[1])
     try:
         solution = system.solve(loads)
     finally:

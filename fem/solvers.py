@@ -15,7 +15,8 @@ fast as SuperLU on the plane ring (6.8e4 DOFs, 24 load columns: 0.29 s against
 A factorisation (``factorise``) serves any number of load columns, now or
 later.  PARDISO takes a model's node blocks as they are (``factorise_blocks``),
 factorised in single precision and refined in double to 1e-12 (``fem/pardiso.py``;
-on the solid ring about twice as fast as pypardiso's CSR path, same run: README).  SuperLU runs
+on the solid ring about twice as fast as pypardiso's CSR path, same run: README), or, for
+``DOUBLE_COLUMNS`` load columns and more, in double precision.  SuperLU runs
 with one BLAS thread (``fem/threads.py``).  Every solver refuses a singular
 (unsupported) system with ``SingularSystemError``.
 
@@ -53,6 +54,14 @@ REFINE_STEPS = 8
 #: (solve phase 11.8 s), 2.45 GB in chunks of 12 (13.6 s); that many entries go at once
 #: (speed: each refinement step is one PARDISO solve of all of them), more in chunks
 SOLVE_ENTRIES = 24 * 560_000
+#: from this many load columns on, a 3D system is factorised in double precision (no
+#: refinement): each refined column costs about four single-precision solves and three
+#: products with K.  Half-width solid ring (3.5e5 DOFs, 33 columns, one BLAS thread,
+#: process CPU time, same run): single 4.3 s factorisation + 7.5 s refined solve, double
+#: 6.4 s + 2.0 s, agreeing to 7e-13; 24 columns: single 4.3 + 5.2 s, double 6.2 + 1.3 s.
+#: Break-even ~13 columns there, ~18 estimated on the whole-width ring (5.6e5 DOFs;
+#: factorisation ~n^2, solve ~n^1.3)
+DOUBLE_COLUMNS = 24
 
 
 class SingularSystemError(ValueError):
