@@ -127,8 +127,9 @@ class _SolidBuilder(RingBuilder):
         out = self.geo.extrude([(2, self.surface)], 0, 0, width)
         self.volume = out[1][1]
         if self.crack is not None and self.part_width:
-            self.part_width_crack()
-        self.geo.synchronize()
+            self.part_width_crack()  # synchronised at its end
+        else:  # each synchronisation of the whole ring costs ~0.5 s
+            self.geo.synchronize()
         swept = {c: [] for c in section_curves}
         faces = {}
         for _, surface in model.getEntities(2):

@@ -110,39 +110,45 @@ def test_half_model_gives_the_mirrored_whole_mesh_to_round_off(cracked, coarse_m
 
 
 #: half model against an independently meshed whole ring on the coarsest solid level:
-#: the relative differences allowed, about twice the largest measured (intact and the
-#: 6 x 8 mm crack: c_ru 6e-4, c_r 1.9e-3, c_ru_rim 3.7e-3, c_r_rim 2.0e-3), all below the
-#: default levels' own error estimates (c_ru 1.4 %, c_r 1.3 %: docs/data/
-#: raba118_crack_3d_small, c_ru_error_N_m / c_ru_N_m)
-DISCRETISATION = {"c_ru": 2e-3, "c_r": 5e-3, "c_ru_rim": 1e-2, "c_r_rim": 5e-3}
-#: the same for the tooth's line-load compliance and its cracked / intact ratio (what the
-#: 3D c_rp takes from the tooth) at each radius: on this level the tooth is one or two
-#: 5 mm elements thick, and the two meshes differ by up to 4.3 % (compliance) and 4.2 %
-#: (ratio), measured; twice that.  The sharp check of the tooth's half of the strips is
-#: the mirrored test above.
+#: the relative differences allowed at each carrier position, about twice the largest
+#: measured (intact and the 6 x 8 mm crack: c_ru 2.4e-3, c_r 1.9e-3, c_ru_rim 6.9e-3,
+#: c_r_rim 2.0e-3), below the default levels' own error estimates (c_ru 1.4 %, c_r 1.3 %:
+#: docs/data/raba118_crack_3d_small, c_ru_error_N_m / c_ru_N_m)
+DISCRETISATION = {"c_ru": 5e-3, "c_r": 5e-3, "c_ru_rim": 1.5e-2, "c_r_rim": 5e-3}
+#: the crack's change of the mean over the carrier positions (what the sweep reports),
+#: half against whole mesh: measured at most 7e-4 (c_r, c_r_rim), the level errors common
+#: to the cracked and the intact ring cancelling
+CHANGE_DISCRETISATION = 2e-3
+#: the tooth's line-load compliance and its cracked / intact ratio (what the 3D c_rp takes
+#: from the tooth) at each radius: on this level the tooth is one or two 5 mm elements
+#: thick, and the two meshes differ by up to 4.3 % (compliance) and 7.2 % (ratio),
+#: measured; about twice that.  The sharp check of the tooth's half of the strips is the
+#: mirrored test above.
 TOOTH_DISCRETISATION = 8e-2
+TOOTH_RATIO_DISCRETISATION = 1.5e-1
 
 
 def test_half_model_agrees_with_a_whole_mesh(coarse_meshes, ring, tooth):
     """Half model against the whole ring meshed on its own (different cells, the same
-    sizes): c_ru, c_r and their rim parts within ``DISCRETISATION``, the crack's change of
-    each within the same bound, the tooth compliance and its ratio within
-    ``TOOTH_DISCRETISATION``."""
+    sizes): c_ru, c_r and their rim parts at each carrier position within
+    ``DISCRETISATION``, the crack's change of their means within
+    ``CHANGE_DISCRETISATION``, the tooth compliance within ``TOOTH_DISCRETISATION`` and
+    its cracked / intact ratio within ``TOOTH_RATIO_DISCRETISATION``."""
     solved = {key: _solve(ring, mesh, tooth) for key, mesh in coarse_meshes.items()}
     for cracked in (False, True):
         half, whole = solved[cracked, True], solved[cracked, False]
         for key, bound in dict(DISCRETISATION, tooth_compliance=TOOTH_DISCRETISATION).items():
             assert np.allclose(half[key], whole[key], rtol=bound, atol=0), \
                 f"{key} (cracked={cracked}): half against whole mesh within {bound:g}"
-    for key, bound in DISCRETISATION.items():
-        change = {h: np.asarray(solved[True, h][key]) / solved[False, h][key] - 1
+    for key in DISCRETISATION:
+        change = {h: np.mean(solved[True, h][key]) / np.mean(solved[False, h][key]) - 1
                   for h in (True, False)}
-        assert np.all(np.abs(change[True] - change[False]) <= bound), \
-            f"{key}: the crack's change, half against whole mesh within {bound:g}"
+        assert abs(change[True] - change[False]) <= CHANGE_DISCRETISATION, \
+            f"{key}: the crack's change, half against whole mesh within {CHANGE_DISCRETISATION:g}"
     ratio = {h: solved[True, h]["tooth_compliance"] / solved[False, h]["tooth_compliance"]
              for h in (True, False)}
-    assert np.allclose(ratio[True], ratio[False], rtol=TOOTH_DISCRETISATION, atol=0), \
-        f"tooth compliance ratio: half against whole mesh within {TOOTH_DISCRETISATION:g}"
+    assert np.allclose(ratio[True], ratio[False], rtol=TOOTH_RATIO_DISCRETISATION, atol=0), \
+        f"tooth compliance ratio: half against whole mesh within {TOOTH_RATIO_DISCRETISATION:g}"
 
 
 def test_half_mesh_has_the_mid_plane_and_half_the_crack(coarse_meshes):
