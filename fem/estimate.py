@@ -89,7 +89,7 @@ class RingEstimate:
     c_r, c_r_error : float
         Radial (support) stiffness and its error [N/m].
     dofs : int
-        Degrees of freedom of the fine level.
+        Degrees of freedom of the fine level (a half-width model: the half's).
     solver : str
         Sparse solver used.
     seconds_mesh, seconds_fe, seconds_total : float
