@@ -352,7 +352,8 @@ def crack_growth_3d_small() -> str:
     return markdown_table(
         ["depth [mm]", "half-length [mm]", "c_ru change [%] ± (½ poor)",
          "plane through: c_ru change [%]", "c_r change [%] ±", "c_rp ratio, 3D (used) ±",
-         "c_rp ratio, slices", "c_rp ratio, plane through", "DOFs"], rows, "rrrrrrrrr") + (
+         "c_rp ratio, slices", "c_rp ratio, plane through", "DOFs (half width)"], rows,
+        "rrrrrrrrr") + (
         f"\n\nIntact solid ring: c_ru {_g(grid[0]['c_ru_N_m'])} ± "
         f"{_g(grid[0]['c_ru_error_N_m'], 2)} N/m, c_r {_g(grid[0]['c_r_N_m'])} ± "
         f"{_g(grid[0]['c_r_error_N_m'], 2)} N/m (rim parts)." + provenance(f"{SMALL_3D}/"))

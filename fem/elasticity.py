@@ -20,7 +20,8 @@ from .facets import facet_basis
 from .fast_assembly import BlockMatrix, elasticity_block_matrix
 from .locate import interpolation_matrix
 from .material import Material, MaterialError
-from .solvers import SingularSystemError, factorise, factorise_free_blocks, pick
+from .solvers import (DOUBLE_COLUMNS, SingularSystemError, factorise, factorise_free_blocks,
+                      pick)
 
 __all__ = ["PlaneModel", "plane_model", "Solution", "solve", "supported", "SupportedSystem",
            "rigid_body_modes", "SingularSystemError"]
@@ -216,13 +217,17 @@ class SupportedSystem:
         self.factor.free()
 
 
-def supported(model, fixed_groups: list[str], fixed_dofs=(), solver: str = "auto"
-              ) -> SupportedSystem:
+def supported(model, fixed_groups: list[str], fixed_dofs=(), solver: str = "auto",
+              columns: int = 1) -> SupportedSystem:
     """Factorise K with zero displacement on ``fixed_groups`` (every component) and at
     ``fixed_dofs`` (DOF indices, e.g. from ``PlaneModel.node_dofs``).
 
+    ``columns``: how many load columns are to be solved; 3D PARDISO factorises in single
+    precision and refines each solve, from ``fem.solvers.DOUBLE_COLUMNS`` columns on in
+    double precision (the cheaper of the two there).
+
     ``solver``: one of ``fem.solvers.SOLVERS``; ``"auto"`` picks by size and dimension.
-    PARDISO works on the node blocks when the supports hold whole nodes.  Raises
+    PARDISO works on the node blocks when the supports hold whole nodes (in 3D always).  Raises
     SingularSystemError when nothing is fixed, when the supports leave a rigid-body
     motion, or when the solver finds the reduced matrix singular.
     """
@@ -248,10 +253,12 @@ def supported(model, fixed_groups: list[str], fixed_dofs=(), solver: str = "auto
     blocks = getattr(model, "blocks", None)
     dim = fe.dim()
     whole_nodes = keep.reshape(-1, dim).all(axis=1) == keep.reshape(-1, dim).any(axis=1)
-    if method == "pardiso" and blocks is not None and whole_nodes.all():
+    # 3D: a node with some components held (a symmetry plane's u_z) stays a block too
+    if method == "pardiso" and blocks is not None and (whole_nodes.all() or dim == 3):
         # single precision pays off where the factorisation dominates (3D), not in 2D,
         # where the refinement of many load columns costs more than it saves
-        factor = factorise_free_blocks(blocks, keep.reshape(-1, dim)[:, 0], single=dim == 3)
+        factor = factorise_free_blocks(blocks, keep.reshape(-1, dim),
+                                       single=dim == 3 and columns < DOUBLE_COLUMNS)
     else:
         near_null = rigid[free] if method == "amg" else None
         factor = factorise(submatrix(model.K, keep), method, near_null)
@@ -280,7 +287,8 @@ def solve(model, loads: np.ndarray, fixed_groups: list[str], fixed_dofs=(),
     nothing is fixed or the solver finds the reduced matrix singular.  To solve
     more load sets later with the same factorisation, use ``supported``.
     """
-    system = supported(model, fixed_groups, fixed_dofs, solver)
+    system = supported(model, fixed_groups, fixed_dofs, solver,
+                       columns=1 if np.ndim(loads) == 1 else np.shape(loads)[1])
     try:
         solution = system.solve(loads)
     finally:

@@ -15,7 +15,8 @@ fast as SuperLU on the plane ring (6.8e4 DOFs, 24 load columns: 0.29 s against
 A factorisation (``factorise``) serves any number of load columns, now or
 later.  PARDISO takes a model's node blocks as they are (``factorise_blocks``),
 factorised in single precision and refined in double to 1e-12 (``fem/pardiso.py``;
-on the solid ring about twice as fast as pypardiso's CSR path, same run: README).  SuperLU runs
+on the solid ring about twice as fast as pypardiso's CSR path, same run: README), or, for
+``DOUBLE_COLUMNS`` load columns and more, in double precision.  SuperLU runs
 with one BLAS thread (``fem/threads.py``).  Every solver refuses a singular
 (unsupported) system with ``SingularSystemError``.
 
@@ -47,12 +48,20 @@ PIVOT_RATIO = 1e-13    # a pivot this small relative to the largest: singular
 #: below what a double-precision factorisation leaves on the solid ring (~1e-13..1e-12)
 REFINE_TOLERANCE = 1e-12
 REFINE_STEPS = 8
-#: load columns per refined single-precision solve: the refinement's temporaries and
-#: PARDISO's solve workspace grow with the columns solved at once.  Solid ring (5.6e5
-#: DOFs), the 24 columns of the carrier sweep, same run: peak 2.56 GB at once (solve
-#: phase 11.8 s), 2.45 GB in chunks of 12 (13.6 s); the sweep goes at once (speed), more
-#: columns than this in chunks
-SOLVE_COLUMNS = 24
+#: unknowns times load columns per refined single-precision solve: the refinement's
+#: temporaries and PARDISO's solve workspace grow with the columns solved at once.  Solid
+#: ring (5.6e5 DOFs), the 24 columns of the carrier sweep, same run: peak 2.56 GB at once
+#: (solve phase 11.8 s), 2.45 GB in chunks of 12 (13.6 s); that many entries go at once
+#: (speed: each refinement step is one PARDISO solve of all of them), more in chunks
+SOLVE_ENTRIES = 24 * 560_000
+#: from this many load columns on, a 3D system is factorised in double precision (no
+#: refinement): each refined column costs about four single-precision solves and three
+#: products with K.  Half-width solid ring (3.5e5 DOFs, 33 columns, one BLAS thread,
+#: process CPU time, same run): single 4.3 s factorisation + 7.5 s refined solve, double
+#: 6.4 s + 2.0 s, agreeing to 7e-13; 24 columns: single 4.3 + 5.2 s, double 6.2 + 1.3 s.
+#: Break-even ~13 columns there, ~18 estimated on the whole-width ring (5.6e5 DOFs;
+#: factorisation ~n^2, solve ~n^1.3)
+DOUBLE_COLUMNS = 24
 
 
 class SingularSystemError(ValueError):
@@ -117,24 +126,90 @@ def factorise_blocks(indptr, indices, values, single: bool = True) -> Factor:
 
 
 def factorise_free_blocks(blocks, keep: np.ndarray, single: bool = True) -> Factor:
-    """PARDISO on the rows and columns of the nodes where ``keep`` is true of a symmetric
-    ``BlockMatrix`` ``blocks`` (``fem.fast_assembly``): ``factorise_blocks`` of
-    ``blocks.upper(keep)``, without a second double-precision copy of the matrix.
+    """PARDISO on the free unknowns of a symmetric ``BlockMatrix`` ``blocks``
+    (``fem.fast_assembly``): ``factorise_blocks`` of the kept nodes' upper block triangle,
+    without a second double-precision copy of the matrix.
 
-    PARDISO gets the free upper block triangle in the factorisation's precision only
+    ``keep`` (nodes,) is true at the nodes whose every component is free; (nodes, dim)
+    marks each free component, and a node with some components held stays a block:
+    those rows and columns are zero, the diagonal entry kept (``_hold_components``), so
+    the held unknowns decouple and come out exactly zero (a symmetry plane's u_z = 0).
+    The factor then solves for the free unknowns only, in ``keep``'s order.
+
+    PARDISO gets the upper block triangle in the factorisation's precision only
     (single: float32, half the bytes); the refinement multiplies by ``blocks`` itself,
-    the free unknowns set in a whole vector with zeros at the other nodes.  On the solid
+    the unknowns set in a whole vector with zeros at the other nodes.  On the solid
     ring (5.6e5 DOFs) this saves the 0.17 GB double copy during the factorisation's peak.
     """
+    dim = blocks.pattern.dim
+    keep = np.asarray(keep, dtype=bool)
+    free = keep.reshape(-1, dim) if keep.ndim == 2 else np.repeat(keep[:, None], dim, axis=1)
+    nodes = free.any(axis=1)
+    held = ~free[nodes]  # (kept nodes, dim)
+
     def matrix(dtype):
-        return blocks.upper(keep, dtype)
+        upper = blocks.upper(nodes, dtype)
+        return upper if not held.any() else _hold_components(*upper, held)
 
     def matvec():
         p = blocks.pattern
-        return _FreeMatvec(_symmetric_block_matvec(p.indptr, p.indices, blocks.values),
-                           np.repeat(np.asarray(keep, dtype=bool), p.dim))
+        whole = _FreeMatvec(_symmetric_block_matvec(p.indptr, p.indices, blocks.values),
+                            np.repeat(nodes, dim))
+        if not held.any():
+            return whole
+        diagonal = blocks.values[p.indptr[:-1]][nodes].diagonal(axis1=1, axis2=2)
+        return _HeldMatvec(whole, held.ravel(), diagonal[held])
 
-    return _PardisoFactor(matrix, blocks.pattern.dim, single, matvec)
+    factor = _PardisoFactor(matrix, dim, single, matvec)
+    return factor if not held.any() else _FreeOfHeld(factor, np.flatnonzero(~held.ravel()),
+                                                     held.size)
+
+
+def _hold_components(indptr, indices, values, held: np.ndarray):
+    """The block-CSR upper triangle ``(indptr, indices, values)`` with the rows and columns
+    of the ``held`` components (nodes, dim) zero and their diagonal entries kept: a held
+    unknown's equation is ``K_ii u_i = f_i``, coupled to nothing (values changed in place)."""
+    rows = np.repeat(np.arange(len(indptr) - 1), np.diff(indptr))
+    diagonal = values[indptr[:-1]].diagonal(axis1=1, axis2=2).copy()
+    values *= ~held[rows][:, :, None]
+    values *= ~held[indices][:, None, :]
+    node, component = np.nonzero(held)
+    values[indptr[:-1][node], component, component] = diagonal[node, component]
+    return indptr, indices, values
+
+
+class _HeldMatvec:
+    """``x -> K' x`` for ``_hold_components``' matrix K' from the kept nodes' ``matvec``:
+    the held unknowns out of the product, ``K_ii x_i`` in their rows."""
+
+    def __init__(self, matvec, held: np.ndarray, diagonal: np.ndarray):
+        self._matvec, self._held, self._diagonal = matvec, held, diagonal
+
+    def __call__(self, x):
+        x = np.array(x, dtype=float)
+        on_held = x[self._held]
+        x[self._held] = 0.0
+        y = self._matvec(x)
+        y[self._held] = self._diagonal.reshape((-1,) + (1,) * (x.ndim - 1)) * on_held
+        return y
+
+
+class _FreeOfHeld(Factor):
+    """A factor over the kept nodes' ``size`` unknowns (held ones included, zero) solving
+    for the free unknowns only, at positions ``free`` of the kept nodes' unknowns."""
+
+    method = "pardiso"
+
+    def __init__(self, factor: Factor, free: np.ndarray, size: int):
+        self._factor, self._free, self._size = factor, free, size
+
+    def _solve(self, columns):
+        whole = np.zeros((self._size, columns.shape[1]))
+        whole[self._free] = columns
+        return self._factor.solve(whole)[self._free]
+
+    def free(self):
+        self._factor.free()
 
 
 def _csc_of_symmetric(K):
@@ -204,11 +279,12 @@ class _PardisoFactor(Factor):
             return self._pardiso.solve(columns)
         if self._matvec is None:
             self._matvec = self._make_matvec()
-        if columns.shape[1] <= SOLVE_COLUMNS:
+        chunk = max(1, SOLVE_ENTRIES // len(columns))
+        if columns.shape[1] <= chunk:
             return self._refined(columns)
         u = np.empty_like(columns)
-        for first in range(0, columns.shape[1], SOLVE_COLUMNS):
-            part = slice(first, first + SOLVE_COLUMNS)
+        for first in range(0, columns.shape[1], chunk):
+            part = slice(first, first + chunk)
             u[:, part] = self._refined(columns[:, part]) if self._single \
                 else self._pardiso.solve(columns[:, part])
         return u

@@ -11,7 +11,10 @@ Every strip is read as the plane model reads its section, in its own plane z =
 const (section and root-land probes at the strip's z); the tooth's deflection
 is the load-weighted mean over the strips, the work-conjugate reading of a
 uniform line load.  It is a compliance [m/N] of the whole face width, as the
-plane model's over the face-width thickness, so the two compare directly.
+plane model's over the face-width thickness, so the two compare directly.  On a
+half-width model (``fem.solid``) the load and the readings are the half's strips: 1 N
+over them on the doubled stiffness is the whole width's 1 N, and the mean over them is
+the whole width's mean (mirror symmetry).
 
 The load columns join the ring's own (``fem.ring_stiffness.ring_stiffness``
 ``tooth=``): one factorisation per mesh serves c_ru, c_r and the tooth at every
@@ -156,7 +159,7 @@ def _at_strips(points_2d: np.ndarray, rotation: np.ndarray, z: np.ndarray) -> np
 
 def solid_tooth_probe(ring: RingGear, model, load: SolidToothLoad) -> SolidToothProbe:
     """Load columns and probes of ``load`` on the solid ring ``model`` (z from 0 to the
-    face width [m])."""
+    face width [m]; a half-width model: its half of the strips)."""
     radii = np.asarray(load.radii, dtype=float)
     low, high = sorted((ring.profile.form_radius, ring.profile.tip_radius))
     if radii.ndim != 1 or not len(radii) or np.any((radii <= low) | (radii >= high)):
@@ -167,6 +170,11 @@ def solid_tooth_probe(ring: RingGear, model, load: SolidToothLoad) -> SolidTooth
         raise ValueError(f"tooth = {load.tooth!r}, allowed integers 0..{ring.teeth - 1}")
     width = ring.gear.face_width
     z = (np.arange(load.samples) + 0.5) / load.samples * width
+    if model.mirror_z is not None:  # the half-width model: its half of the same strips
+        if load.samples % 2:
+            raise ValueError(f"samples = {load.samples}: a half-width model needs an even "
+                             "number of strips (its half of them)")
+        z = z[:load.samples // 2]
     rot = tooth_rotation(ring.tooth_angle(int(load.tooth)))
     finder = element_finder(model)
     columns, points, section = [], [], []

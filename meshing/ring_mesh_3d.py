@@ -11,6 +11,13 @@ Named groups (``FEMesh.boundaries``, triangles): every group of the plane mesh
 ``face_0`` (z = 0) and ``face_1`` (z = face width), and ``crack_a`` / ``crack_b``.
 Node sets: ``crack_front``, ``crack_mouth``.  z runs along the axis, from 0 to
 the face width [m].
+
+``half_width``: only z from 0 to half the face width, the mid-plane z = b/2 the group
+``mid_plane`` (no ``face_1``), and a crack centred on the width cut there (a quarter
+ellipse, or the through crack's half).  A body, supports and loads that are all
+mirror-symmetric about the mid-plane have the mirror-symmetric solution, so this half
+with u_z = 0 on ``mid_plane`` solves the whole (``fem.solid``, docs/crack_growth_3d.md).
+``FEMesh.info["mirror_z"]`` is then the mid-plane's z [m] (None for the whole width).
 """
 from __future__ import annotations
 
@@ -36,11 +43,12 @@ _EPS = 1e-6  # [m] bounding-box tolerance for finding entities (OCC pads boxes b
 
 
 def ring_mesh_3d(ring: RingGear, crack: Crack | None = None, front: CrackFront = CrackFront(),
-                 options: MeshOptions = SOLID_OPTIONS) -> FEMesh:
+                 options: MeshOptions = SOLID_OPTIONS, half_width: bool = False) -> FEMesh:
     """Mesh the ring as a solid (tetrahedra), intact or with a crack.
 
     A crack of zero depth (or ``None``) gives the intact mesh.  A part-width
-    crack may not cut through the rim and must be straight.
+    crack may not cut through the rim and must be straight.  ``half_width``: the half
+    z <= b/2 only (see the module's doc); a part-width crack must then be centred.
     """
     if crack is not None and crack.depth == 0:
         crack = None
@@ -48,18 +56,23 @@ def ring_mesh_3d(ring: RingGear, crack: Crack | None = None, front: CrackFront =
     width = ring.gear.face_width
     if crack is not None:
         front.check(crack, ring)
+        if half_width and front.kind.part_width and front.centre != 0.5:
+            raise ValueError(f"half_width: the crack front's centre is {front.centre!r}; a "
+                             "half-width mesh needs the crack centred on the width (0.5)")
     check_load_patch(ring, options)
     started = time.perf_counter()
     try:
         with gmsh_model("ring3d") as gmsh:
-            mesh = run_builder(_SolidBuilder(gmsh, ring, crack, path, options, front),
+            mesh = run_builder(_SolidBuilder(gmsh, ring, crack, path, options, front,
+                                             half_width),
                                f"the solid ring (options={options}, crack={crack}, "
-                               f"front={front})")
+                               f"front={front}, half_width={half_width})")
     finally:
         release_freed_heap()
+    height = width / 2 if half_width else width
     return with_info(mesh, started, ring, options, crack, path,
                      front=None if crack is None else asdict(front),
-                     exact_volume=ring.area() * width)
+                     exact_volume=ring.area() * height, mirror_z=height if half_width else None)
 
 
 def release_freed_heap() -> None:
@@ -82,8 +95,11 @@ def _malloc_trim():
 
 
 class _SolidBuilder(RingBuilder):
-    def __init__(self, gmsh, ring, crack, path, options, front):
+    def __init__(self, gmsh, ring, crack, path, options, front, half_width=False):
         super().__init__(gmsh, ring, crack, path, options)
+        self.half_width = half_width
+        # z of the top face [m]: the face width, or the mid-plane of a half-width mesh
+        self.height = ring.gear.face_width / (2 if half_width else 1)
         self.geo = gmsh.model.occ  # its extrusion is topological: 10x faster than geo's
         self.front = front
         self.part_width = crack is not None and front.kind.part_width
@@ -99,7 +115,7 @@ class _SolidBuilder(RingBuilder):
         return [t for _, t in self.gmsh.model.getEntitiesInBoundingBox(*box, dim=dim)]
 
     def geometry(self):
-        width = self.ring.gear.face_width
+        width = self.height
         self.section(crack_lines=self.crack is not None and not self.part_width)
         if self.crack is not None and not self.crack.kind.splits_fillet:
             self.crack_points["mouth"] = self.crack_points["outer_end"]
@@ -111,8 +127,9 @@ class _SolidBuilder(RingBuilder):
         out = self.geo.extrude([(2, self.surface)], 0, 0, width)
         self.volume = out[1][1]
         if self.crack is not None and self.part_width:
-            self.part_width_crack()
-        self.geo.synchronize()
+            self.part_width_crack()  # synchronised at its end
+        else:  # each synchronisation of the whole ring costs ~0.5 s
+            self.geo.synchronize()
         swept = {c: [] for c in section_curves}
         faces = {}
         for _, surface in model.getEntities(2):
@@ -131,7 +148,8 @@ class _SolidBuilder(RingBuilder):
         self.groups = {name: [s for c in curves for s in swept[c]]
                        for name, curves in self.groups.items()}
         self.surface, self.top = faces[0], faces[1]
-        self.groups["face_0"], self.groups["face_1"] = [self.surface], [self.top]
+        self.groups["face_0"] = [self.surface]
+        self.groups["mid_plane" if self.half_width else "face_1"] = [self.top]
         if self.crack is not None and not self.part_width:
             self.through_crack(width)
             self.geo.synchronize()
@@ -179,31 +197,42 @@ class _SolidBuilder(RingBuilder):
         """Semi-elliptic surface crack: mouth edge plus two quarter ellipses, imprinted by OCC.
 
         ``fragment`` splits the swept mouth edge at the crack's ends and embeds the
-        crack face in the volume (it may renumber the side surfaces).
+        crack face in the volume (it may renumber the side surfaces).  In a half-width
+        mesh the crack ends on the mid-plane: mouth edge, one quarter ellipse and the
+        crack's line on the mid-plane, which opens like the mouth.
         """
         geo, model = self.geo, self.gmsh.model
         z_low, z_high = self.front.span(self.ring.gear.face_width)
         z_c = 0.5 * (z_low + z_high)
         mouth, tip = self.path[0], self.path[-1]
         low = geo.addPoint(mouth[0], mouth[1], z_low, self.opt.tip_size)
-        high = geo.addPoint(mouth[0], mouth[1], z_high, self.opt.tip_size)
-        centre = geo.addPoint(mouth[0], mouth[1], z_c)
+        centre = geo.addPoint(mouth[0], mouth[1], z_c, self.opt.tip_size)
         deepest = geo.addPoint(tip[0], tip[1], z_c, self.opt.tip_size)
         major = low if self.front.half_length >= self.crack.depth else deepest
         first = geo.addEllipseArc(low, centre, major, deepest)
-        second = geo.addEllipseArc(deepest, centre, major, high)
-        mouth_line = geo.addLine(low, high)
-        face = geo.addPlaneSurface([geo.addCurveLoop([mouth_line, -second, -first])])
+        if self.half_width:
+            loop = [geo.addLine(low, centre), geo.addLine(centre, deepest), -first]
+        else:
+            high = geo.addPoint(mouth[0], mouth[1], z_high, self.opt.tip_size)
+            second = geo.addEllipseArc(deepest, centre, major, high)
+            loop = [geo.addLine(low, high), -second, -first]
+        face = geo.addPlaneSurface([geo.addCurveLoop(loop)])
         _, pieces = geo.fragment([(3, self.volume)], [(2, face)])
-        geo.remove([(0, centre)])
+        if not self.half_width:
+            geo.remove([(0, centre)])
         geo.synchronize()
         self.volume = pieces[0][0][1]
         self.crack_surfaces = [t for d, t in pieces[1] if d == 2]
-        self.open_curves = [self.vertical_line(mouth, z_low, z_high)]
-        self.front_curves = [abs(t) for _, t in model.getBoundary(
-            [(2, s) for s in self.crack_surfaces], oriented=False)
-            if abs(t) not in self.open_curves]
-        self.front_corners = [np.array([*mouth, z]) for z in (z_low, z_high)]
+        z_top = z_c if self.half_width else z_high
+        self.open_curves = [self.vertical_line(mouth, z_low, z_top)]
+        edges = {abs(t) for _, t in model.getBoundary([(2, s) for s in self.crack_surfaces],
+                                                      oriented=False)}
+        if self.half_width:  # the crack's line on the mid-plane: flat at z = z_c
+            self.open_curves += [c for c in edges
+                                 if np.ptp(model.getBoundingBox(1, c)[2::3]) < _EPS]
+        self.front_curves = sorted(edges - set(self.open_curves))
+        self.front_corners = [np.array([*mouth, z_low])] + (
+            [np.array([*tip, z_c])] if self.half_width else [np.array([*mouth, z_high])])
 
     # mesh --------------------------------------------------------------
     def mesh(self):

@@ -167,15 +167,18 @@ def test_pardiso_on_node_blocks_agrees_with_superlu(single, box):
 
 
 @needs_pardiso
-def test_single_precision_solve_in_column_chunks_agrees_with_superlu(box):
-    """More load columns than ``SOLVE_COLUMNS``: the refined single-precision solve runs
-    chunk by chunk (a ragged last chunk too) and gives every column what sparse LU gives,
-    to 1e-10 relative (the refinement's 1e-12 with margin)."""
-    from hubvib.fem.solvers import SOLVE_COLUMNS, factorise_blocks
+def test_single_precision_solve_in_column_chunks_agrees_with_superlu(monkeypatch, box):
+    """More unknowns x load columns than ``SOLVE_ENTRIES`` (here set to 5 columns' worth):
+    the refined single-precision solve runs chunk by chunk (a ragged last chunk too) and
+    gives every column what sparse LU gives, to 1e-10 relative (the refinement's 1e-12
+    with margin)."""
+    import hubvib.fem.solvers as solvers
+    from hubvib.fem.solvers import factorise_blocks
 
     keep = _free(box)
+    monkeypatch.setattr(solvers, "SOLVE_ENTRIES", 5 * int(keep.sum()))
     rng = np.random.default_rng(5)
-    loads = np.zeros((box.ndofs, 2 * SOLVE_COLUMNS + 3))
+    loads = np.zeros((box.ndofs, 2 * 5 + 3))
     loads[keep] = rng.standard_normal((keep.sum(), loads.shape[1])) * np.abs(box.f).max()
     reference = solve(box, loads, ["clamp"], solver="superlu").u[keep]
     factor = factorise_blocks(*box.blocks.upper(keep.reshape(-1, 3)[:, 0]), single=True)
@@ -388,3 +391,22 @@ def test_mkl_symmetric_block_product_is_the_csr_product(box):
     for v in (x[:, 0], x):
         expected = box.K @ v
         assert np.abs(product(v) - expected).max() <= 1e-14 * np.abs(expected).max()
+
+
+@needs_pardiso
+def test_pardiso_with_partly_held_nodes_agrees_with_superlu(box):
+    """u_z held at the nodes of one half of the box (a symmetry plane's condition, nodes
+    that keep u_x, u_y): PARDISO keeps those nodes as blocks (``_hold_components``) and
+    gives what sparse LU gives on the CSR matrix without the held rows, to 1e-10 relative
+    (the refinement's 1e-12 with margin), and exactly zero at the held DOFs."""
+    from hubvib.fem.elasticity import supported
+
+    z = box.basis.doflocs[2]
+    held = np.flatnonzero((z <= np.median(z)) & (np.arange(box.ndofs) % 3 == 2))
+    reference = solve(box, box.f, ["clamp"], fixed_dofs=held, solver="superlu").u
+    system = supported(box, ["clamp"], fixed_dofs=held, solver="pardiso")
+    u = system.solve(box.f).u
+    system.release()
+    assert np.all(u[held] == 0.0), "held DOFs: exactly zero"
+    assert np.abs(u - reference).max() <= 1e-10 * np.abs(reference).max(), \
+        "PARDISO with held components against SuperLU: 1e-10 relative"

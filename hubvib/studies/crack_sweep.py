@@ -158,8 +158,8 @@ def case_inputs(sweep: CrackSweep, case) -> dict:
         depth, half_length = case
         return {"design": sweep.reducer.fingerprint(), "crack": asdict(crack_of(sweep, depth)),
                 "front": asdict(front_of(half_length)) if depth > 0 else None,
-                "levels": SOLID_LEVELS[-2:], "tooth_samples": SAMPLES,
-                "quantities": "solid c_ru c_r pitch poor-half tooth-line-load"}
+                "levels": SOLID_LEVELS[-2:], "tooth_samples": SAMPLES, "half_width": True,
+                "quantities": "solid c_ru c_r pitch poor-half tooth-line-load half-width"}
     return {"design": sweep.reducer.fingerprint(), "crack": asdict(crack_of(sweep, case)),
             "scale": ACCURACY[sweep.accuracy], "quantities": "c_ru c_r c_rp_engaged"}
 
@@ -172,7 +172,9 @@ def fe_case(sweep: CrackSweep, case) -> dict:
     c_ru over every carrier position of one planet pitch and c_r (the work-conjugate rim
     parts, the root-land readings beside them) on the last two
     ``SOLID_LEVELS``, and on the fine one again with its poorly shaped cells at half
-    stiffness."""
+    stiffness; every solid case is mirror-symmetric about the face width's mid-plane
+    (crack centred, loads and supports uniform across the width), so half the width is
+    meshed and solved (``fem.solid``)."""
     started = time.perf_counter()
     design = sweep.reducer
     if isinstance(case, tuple):
@@ -186,7 +188,8 @@ def fe_case(sweep: CrackSweep, case) -> dict:
                                material=material(design), n_planets=design.n_planets,
                                carrier_teeth=default_carrier_teeth(ring, design.n_planets),
                                poor_cells_halved=True, definition="rim",
-                               tooth=SolidToothLoad(sweep.tooth, tooth_radii(design)))
+                               tooth=SolidToothLoad(sweep.tooth, tooth_radii(design)),
+                               half_width=True)
         return SolidCase(result, float(depth), float(half_length),
                          time.perf_counter() - started).to_dict()
     depth = case
