@@ -220,7 +220,9 @@ class SupportedSystem:
 def supported(model, fixed_groups: list[str], fixed_dofs=(), solver: str = "auto",
               columns: int = 1) -> SupportedSystem:
     """Factorise K with zero displacement on ``fixed_groups`` (every component) and at
-    ``fixed_dofs`` (DOF indices, e.g. from ``PlaneModel.node_dofs``).
+    ``fixed_dofs`` (DOF indices, e.g. from ``PlaneModel.node_dofs``).  A half-width solid
+    model (``fem.solid``, ``mirror_z`` set) also gets u_z = 0 on its mid-plane
+    (``mirror_dofs``), always.
 
     ``columns``: how many load columns are to be solved; 3D PARDISO factorises in single
     precision and refines each solve, from ``fem.solvers.DOUBLE_COLUMNS`` columns on in
@@ -238,8 +240,11 @@ def supported(model, fixed_groups: list[str], fixed_dofs=(), solver: str = "auto
             f"no support: fixed groups {fixed_groups} ({'missing: ' + ', '.join(missing) if missing else 'none given'}); "
             "an unsupported body has rigid-body modes and K is singular")
     started = time.perf_counter()
+    # a half-width solid stands for the mirrored whole only with u_z held on its mid-plane:
+    # held here, so that no caller can solve it softer by forgetting the condition
+    mirror = getattr(model, "mirror_dofs", np.zeros(0, dtype=np.int64))
     fixed = np.unique(np.concatenate([model.basis.get_dofs(g).flatten() for g in fixed_groups]
-                                     + [np.asarray(fixed_dofs, dtype=np.int64)]))
+                                     + [np.asarray(fixed_dofs, dtype=np.int64), mirror]))
     rigid = rigid_body_modes(model.basis)
     held = np.linalg.matrix_rank(rigid[fixed]) if len(fixed) else 0
     if held < rigid.shape[1]:

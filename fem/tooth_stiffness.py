@@ -188,7 +188,8 @@ _OFFERED: dict = {}
 def _intact_curve(body, span, material, options, tooth: int = 0) -> ToothCurve:
     def compute() -> ToothCurve:
         offered = _OFFERED.get((body, span, material, options, tooth))
-        return offered or fe_curve(body, span, material, options, tooth=tooth)
+        return offered if offered is not None else fe_curve(body, span, material, options,
+                                                            tooth=tooth)
 
     store = _INTACT_STORE
     return compute() if store is None else store(compute, body, span, material, options, tooth)

@@ -152,15 +152,20 @@ def test_half_model_agrees_with_a_whole_mesh(coarse_meshes, ring, tooth):
 
 
 def test_half_mesh_has_the_mid_plane_and_half_the_crack(coarse_meshes):
-    """The half mesh: group ``mid_plane`` at z = b/2 (no ``face_1``), ``mirror_z`` = b/2, and
+    """The half mesh: group ``mid_plane`` is every node at z = b/2 (no ``face_1``),
+    ``mirror_z`` = b/2, and
     the crack front's nodes half of the whole mesh's plus the one on the mid-plane (the
     meshes differ: within 20 %)."""
     b = raba118().face_width
     half, whole = coarse_meshes[True, True], coarse_meshes[True, False]
     assert half.info["mirror_z"] == b / 2 and whole.info["mirror_z"] is None
     assert "face_1" not in half.boundaries
-    z = half.points[np.unique(half.boundaries["mid_plane"]), 2]
-    assert np.allclose(z, b / 2, rtol=0, atol=1e-12), "mid_plane at z = b/2 to 1e-12 m"
+    on_group = np.unique(half.boundaries["mid_plane"])
+    assert np.allclose(half.points[on_group, 2], b / 2, rtol=0, atol=1e-12), \
+        "mid_plane at z = b/2 to 1e-12 m"
+    on_plane = np.flatnonzero(np.abs(half.points[:, 2] - b / 2) <= 1e-12)
+    assert np.array_equal(on_group, on_plane), \
+        "every node at z = b/2 (1e-12 m) is in mid_plane: none keeps u_z free there"
     assert half.points[:, 2].max() <= b / 2 + 1e-12
     front = len(half.points_of["crack_front"])
     assert abs(front - (len(whole.points_of["crack_front"]) + 1) / 2) <= 0.2 * front
