@@ -42,7 +42,62 @@ def blas_thread_counts() -> list[int]:
 
 def _handles() -> tuple:
     """(get, set) thread-count functions of every OpenBLAS and MKL loaded now: the maps
-    are read on each call, so a library loaded later (MKL with PARDISO) is found too."""
+    are read again whenever a library was loaded or unloaded since the last reading
+    (``_loads``), so a library loaded later (MKL with PARDISO) is found too.  (The
+    detection stage's ~1,300 batched solves each read them, 3 ms apiece.)"""
+    loads = _loads()
+    last_loads, last_handles = _LAST[0]
+    if loads is not None and loads == last_loads:
+        return last_handles
+    handles = _read_handles()
+    if loads is not None:
+        _LAST[0] = (loads, handles)
+    return handles
+
+
+#: the last reading, one tuple (threads replace it whole): ``_loads()`` then, its handles
+_LAST: list = [(None, ())]
+
+
+class _PhdrInfo(ctypes.Structure):
+    _fields_ = [("addr", ctypes.c_void_p), ("name", ctypes.c_char_p),
+                ("phdr", ctypes.c_void_p), ("phnum", ctypes.c_uint16),
+                ("adds", ctypes.c_ulonglong), ("subs", ctypes.c_ulonglong)]
+
+
+_PHDR_CALLBACK = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.POINTER(_PhdrInfo), ctypes.c_size_t,
+                                  ctypes.c_void_p)
+
+
+def _loads():
+    """(libraries loaded, unloaded) by this process so far (glibc's ``dl_iterate_phdr``
+    counters, read from its first entry), or None where they cannot be read."""
+    iterate = _dl_iterate_phdr()
+    if iterate is None:
+        return None
+    seen = []
+
+    def first(info, size, _):
+        if size >= ctypes.sizeof(_PhdrInfo):
+            seen.append((info.contents.adds, info.contents.subs))
+        return 1  # stop at the first entry
+
+    iterate(_PHDR_CALLBACK(first), None)
+    return seen[0] if seen else None
+
+
+@functools.cache
+def _dl_iterate_phdr():
+    try:
+        function = ctypes.CDLL(None).dl_iterate_phdr
+    except (OSError, AttributeError):
+        return None
+    function.argtypes = [_PHDR_CALLBACK, ctypes.c_void_p]
+    function.restype = ctypes.c_int
+    return function
+
+
+def _read_handles() -> tuple:
     try:
         with open("/proc/self/maps", encoding="utf-8") as maps:
             # the substring test on the raw line first: of ~1,000 mapped lines only those
