@@ -38,7 +38,7 @@ def add_parser(sub) -> None:
                    help="skip the 3D race, the memory probes, the main job and the tests "
                    "(a smoke test, ~1 min)")
     p.add_argument("--no-3d-scene", dest="scene_3d", action="store_false",
-                   help="skip the 3D crack-growth scene (13 solid cases: 20-40 min on 2 cores)")
+                   help="skip the 3D crack-growth scene (13 solid cases: ~8 min on 2 cores)")
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
 
