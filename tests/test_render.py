@@ -1,5 +1,7 @@
 """Off-screen renders of lumped and FE mode shapes and of the loaded FE ring: real images,
 distinct per mode, repeatable."""
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -19,13 +21,18 @@ def _image(path):
 
 
 def test_mode_renders_are_real_distinct_and_repeatable(tmp_path):
-    first = render_mode(PARAMS, SPECTRUM, 0, tmp_path / "a")[0]
-    again = render_mode(PARAMS, SPECTRUM, 0, tmp_path / "b")[0]
-    other = render_mode(PARAMS, SPECTRUM, 4, tmp_path / "a")[0]
+    from hubvib.render.modes import plotter_for
+
+    first = render_mode(PARAMS, SPECTRUM, 0, tmp_path / "a")[0]  # on a plotter of its own
+    with plotter_for() as plotter:  # one plotter for both, as render_modes draws them
+        other = render_mode(PARAMS, SPECTRUM, 4, tmp_path / "a", plotter=plotter)[0]
+        again = render_mode(PARAMS, SPECTRUM, 0, tmp_path / "b", plotter=plotter)[0]
     a, b, c = _image(first), _image(again), _image(other)
     assert a.shape[:2] == (900, 900)
     assert a.std() > 20  # not blank: bodies on a white background
-    np.testing.assert_array_equal(a, b)  # sign-fixed modes: the same picture twice
+    # sign-fixed modes: the same picture twice, and nothing of mode 5 (actors, camera)
+    # left on the plotter drawn again
+    np.testing.assert_array_equal(a, b)
     assert np.abs(a - c).mean() > 1.0  # a rotational and a translational mode differ
 
 
@@ -67,7 +74,12 @@ def test_fe_renders_are_real_distinct_and_repeatable(tmp_path, cracked_ring_fiel
     for image in (loaded, tip, mode1, mode2):
         assert image.shape[:2] == (900, 900) and image.std() > 20
     assert np.abs(mode1 - mode2).mean() > 1.0 and np.abs(loaded - mode1).mean() > 1.0
-    np.testing.assert_array_equal(_image(render_fe(fields, tmp_path / "b")[2]), mode1)
+    # the same picture again, drawn on a plotter that had no crack-tip close-up before it
+    # (one plotter draws them all: the close-up's camera and colour bar must not stay)
+    untipped = render_fe(dataclasses.replace(fields, crack_tip=None), tmp_path / "b")
+    assert [f.name for f in untipped] == ["fe_ring_loaded.png", "fe_ring_mode_01.png",
+                                          "fe_ring_mode_02.png"]
+    np.testing.assert_array_equal(_image(untipped[1]), mode1)
     # issue 26 item 13: the close-up's title sits on a light box (it was black on dark
     # navy: 0 % light pixels there) and a labelled length bar sits at the lower left
     light, dark = tip[..., :3].min(axis=2) > 200, tip[..., :3].max(axis=2) < 60

@@ -20,7 +20,7 @@ from hubvib.fem.modal import lowest_modes
 from hubvib.fem.ring_stiffness import mesh_force_load, planet_teeth
 from hubvib.fem.stress import von_mises
 from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
-from hubvib.render.modes import offscreen_plotter, write_atomically
+from hubvib.render.modes import clear_picture, plotter_for, save_picture, write_atomically
 
 MODES = 4
 MAGNIFIED = 0.03  # largest drawn displacement as a fraction of the ring's outer radius
@@ -129,10 +129,11 @@ def _scale_bar(plotter, centre) -> None:
                              always_visible=True)
 
 
-def _picture(path: Path, draw, centre=None) -> Path:
-    """Draw, look along -z (at ``centre`` with a ``TIP_VIEW`` window if given), save."""
+def _picture(plotter, path: Path, draw, centre=None) -> Path:
+    """Draw on ``plotter``, look along -z (at ``centre`` with a ``TIP_VIEW`` window if
+    given), save."""
     def write(tmp):
-        plotter = offscreen_plotter()
+        clear_picture(plotter)
         draw(plotter)
         plotter.view_xy()
         plotter.enable_parallel_projection()
@@ -140,8 +141,7 @@ def _picture(path: Path, draw, centre=None) -> Path:
             plotter.camera.focal_point = (*centre, 0.0)
             plotter.camera.position = (*centre, 1.0)
             plotter.camera.parallel_scale = TIP_VIEW
-        plotter.screenshot(str(tmp))
-        plotter.close()
+        save_picture(plotter, tmp)
 
     return write_atomically(path, write)
 
@@ -164,32 +164,35 @@ def render_fe(fields: RingFields, folder: Path, vtu: bool = False) -> list[Path]
         plotter.add_mesh(loaded, **colour)
         _label(plotter, title + "\ngrey: undeformed outline")
 
-    files = [_picture(folder / "fe_ring_loaded.png", whole)]
-    if fields.crack_tip is not None:
-        distance = np.hypot(*(fields.points - fields.crack_tip).T)
-        centre = fields.crack_tip + scale * fields.displacement[np.argmin(distance)]
-        near = mpa[distance < TIP_VIEW]
+    with plotter_for() as plotter:  # one plotter for every picture
+        files = [_picture(plotter, folder / "fe_ring_loaded.png", whole)]
+        if fields.crack_tip is not None:
+            distance = np.hypot(*(fields.points - fields.crack_tip).T)
+            centre = fields.crack_tip + scale * fields.displacement[np.argmin(distance)]
+            near = mpa[distance < TIP_VIEW]
 
-        def tip(plotter):
-            plotter.add_mesh(loaded, show_edges=True, edge_color="#333333",
-                             **dict(colour, clim=(0.0, float(np.percentile(near, 99)))))
-            _label(plotter, f"{fields.label}: crack tip, deformation x{scale:.0f}")
-            _scale_bar(plotter, centre)
+            def tip(plotter):
+                plotter.add_mesh(loaded, show_edges=True, edge_color="#333333",
+                                 **dict(colour, clim=(0.0, float(np.percentile(near, 99)))))
+                _label(plotter, f"{fields.label}: crack tip, deformation x{scale:.0f}")
+                _scale_bar(plotter, centre)
 
-        files.append(_picture(folder / "fe_crack_tip.png", tip, centre))
-    for k, (shape, hz) in enumerate(zip(fields.mode_shapes, fields.mode_hz)):
-        size = np.hypot(*shape.T)
-        grid = _grid(fields, shape, _scale(fields, shape), {"displacement (normalised)": size / size.max()})
+            files.append(_picture(plotter, folder / "fe_crack_tip.png", tip, centre))
+        for k, (shape, hz) in enumerate(zip(fields.mode_shapes, fields.mode_hz)):
+            size = np.hypot(*shape.T)
+            grid = _grid(fields, shape, _scale(fields, shape),
+                         {"displacement (normalised)": size / size.max()})
 
-        def mode(plotter, grid=grid, k=k, hz=hz):
-            plotter.add_mesh(outline, color="#bbbbbb", line_width=1)
-            plotter.add_mesh(grid, scalars="displacement (normalised)", cmap="viridis",
-                             scalar_bar_args=_BAR | {"title": "displacement / largest"})
-            _label(plotter, f"{fields.label}\nFE mode {k + 1} on clamped supports: "
-                   f"{hz:.1f} Hz\ncolour: displacement / largest; grey: undeformed "
-                   f"outline; largest displacement drawn as {100 * MAGNIFIED:g} % of the outer radius")
+            def mode(plotter, grid=grid, k=k, hz=hz):
+                plotter.add_mesh(outline, color="#bbbbbb", line_width=1)
+                plotter.add_mesh(grid, scalars="displacement (normalised)", cmap="viridis",
+                                 scalar_bar_args=_BAR | {"title": "displacement / largest"})
+                _label(plotter, f"{fields.label}\nFE mode {k + 1} on clamped supports: "
+                       f"{hz:.1f} Hz\ncolour: displacement / largest; grey: undeformed "
+                       f"outline; largest displacement drawn as {100 * MAGNIFIED:g} % of the "
+                       "outer radius")
 
-        files.append(_picture(folder / f"fe_ring_mode_{k + 1:02d}.png", mode))
+            files.append(_picture(plotter, folder / f"fe_ring_mode_{k + 1:02d}.png", mode))
     if vtu:
         data = {"displacement [m]": np.column_stack([fields.displacement,
                                                       np.zeros(len(fields.points))]),
