@@ -128,3 +128,37 @@ def test_carrier_study_steps_in_and_out_of_the_engagement():
     assert study.modulation_index[0].max() == 0.0
     fraction = MeshTiming(64, 1.5, 4, 1.0).engaged_fraction
     assert fraction == pytest.approx(4 * 1.5 / 64)
+
+
+def test_one_batch_of_variants_gives_each_variant_s_own_frequencies():
+    # nominal_shifts solves its seven variants in one batch; each point is one LAPACK call,
+    # so the frequencies equal those of the variants solved on their own, to the last bit
+    from dataclasses import replace
+
+    from hubvib.detection.uncertainty import nominal, observed_frequencies, observed_frequencies_of
+
+    model = synthetic_model("series")
+    variants = [model, replace(model, c_ru_body=(model.c_ru_body[0],) * len(model.depths)),
+                replace(model, c_rp_ratio=(1.0,) * len(model.depths))]
+    fraction, long = TIMING.engaged_fraction, TIMING.long_record(10.0)
+    joined = observed_frequencies_of([(v, nominal(v)) for v in variants], fraction, long)
+    for v, together in zip(variants, joined):
+        assert np.array_equal(together, observed_frequencies(v, nominal(v), fraction, long))
+    with pytest.raises(ValueError, match="share their params"):
+        observed_frequencies_of([(model, nominal(model)),
+                                 (replace(model, params=model.params.replace(c_rp=1e9)),
+                                  nominal(model))], fraction, long)
+
+
+def test_map_pod_without_family_curves_has_the_same_per_mode_numbers():
+    # the detectability map skips the family curves, the drift model and the reference
+    # modes; what it keeps (per-mode POD, nominal shifts, thresholds) must not change
+    model = synthetic_model("series")
+    options = DetectionOptions(samples=200)
+    full = pod_study(model, options, TIMING, model_baseline=False)
+    lean = pod_study(model, options, TIMING, model_baseline=False, family_curves=False)
+    assert full.family_pod and not lean.family_pod and lean.drift is None
+    for name in ("pod", "threshold_hz", "sigma_hz", "shift_mean_hz", "watched"):
+        assert np.array_equal(getattr(full, name), getattr(lean, name)), name
+    assert np.array_equal(full.nominal.frequency_hz, lean.nominal.frequency_hz)
+    assert np.array_equal(full.detectable_depth(), lean.detectable_depth(), equal_nan=True)

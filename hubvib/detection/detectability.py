@@ -118,7 +118,8 @@ def detectability_map(model, options, timing, workers: int = 1) -> Detectability
         mounted = (base.with_mounts(mount, base.c_r_mount) if swept == "c_ru_mount"
                    else base.with_mounts(base.c_ru_mount, mount))
         result = pod_study(mounted, options, timing, samples=options.map_samples,
-                           model_baseline=False, seed=options.seed + m, workers=1)
+                           model_baseline=False, seed=options.seed + m, workers=1,
+                           family_curves=False)
         return (result.kind, result.detectable_depth(), result.nominal.carried_by[-1],
                 result.nominal.frequency_hz[0])
 

@@ -115,10 +115,34 @@ def observed_frequencies(model, samples: Samples, fraction: float, long_record: 
     ``depth_index`` (one index per sample) only depth 0 and that depth are solved:
     shape (samples, 2, modes).
     """
-    ks = (list(range(len(model.depths))) if depth_index is None
-          else [0, np.asarray(depth_index)])
-    stacked = [changes(model, samples, k, engaged) for engaged in (True, False) for k in ks]
+    return observed_frequencies_of([(model, samples)], fraction, long_record, workers,
+                                   depth_index)[0]
+
+
+def observed_frequencies_of(pairs, fraction: float, long_record: bool, workers: int = 1,
+                            depth_index=None) -> list[np.ndarray]:
+    """:func:`observed_frequencies` of several ``(model, samples)`` pairs whose models share
+    their ``params`` (variants of one CrackModel) and whose samples scatter the same
+    fields, solved in one batch: the same numbers (each point is one LAPACK call,
+    :mod:`hubvib.lumped.batch`) at one batch's overhead (nominal_shifts: 7 variants)."""
+    params = pairs[0][0].params
+    for model, _ in pairs:
+        if model.params != params:
+            raise ValueError(f"observed_frequencies_of: the models must share their params; "
+                             f"{model.params} differs from {params}")
+    stacked, shapes = [], []
+    for model, samples in pairs:
+        ks = (list(range(len(model.depths))) if depth_index is None
+              else [0, np.asarray(depth_index)])
+        stacked += [changes(model, samples, k, engaged) for engaged in (True, False)
+                    for k in ks]
+        shapes.append((len(ks), samples.n))
     joined = {name: np.concatenate([c[name] for c in stacked]) for name in stacked[0]}
-    omega = batch_frequencies(model.params, joined, workers=workers).omega
-    omega = omega.reshape(2, len(ks), samples.n, -1).transpose(0, 2, 1, 3)
-    return observed_omega(omega[0], omega[1], fraction, long_record) / (2 * math.pi)
+    omega = batch_frequencies(params, joined, workers=workers).omega
+    out, start = [], 0
+    for depths, n in shapes:
+        part = omega[start:start + 2 * depths * n]
+        start += part.shape[0]
+        part = part.reshape(2, depths, n, -1).transpose(0, 2, 1, 3)
+        out.append(observed_omega(part[0], part[1], fraction, long_record) / (2 * math.pi))
+    return out
