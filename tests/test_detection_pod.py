@@ -162,3 +162,20 @@ def test_map_pod_without_family_curves_has_the_same_per_mode_numbers():
         assert np.array_equal(getattr(full, name), getattr(lean, name)), name
     assert np.array_equal(full.nominal.frequency_hz, lean.nominal.frequency_hz)
     assert np.array_equal(full.detectable_depth(), lean.detectable_depth(), equal_nan=True)
+
+
+def test_other_method_pod_is_the_full_pod_s_family_curve():
+    # compare_methods runs the other c_rp method's POD without the model baseline and
+    # the drift curves (nothing reads them); its family POD is the full run's, bit for bit
+    from hubvib.detection.mesh_stiffness import compare_methods
+
+    model = synthetic_model("series")
+    options = DetectionOptions(samples=200)
+    comparison = compare_methods(model, TIMING, options.record_length, options)
+    full = pod_study(model.with_c_rp_method(comparison.other), options, TIMING)
+    other = comparison.other_pod
+    assert other.pod_model is None and not other.family_pod_drift
+    assert sorted(other.family_pod) == sorted(full.family_pod)
+    for T, values in full.family_pod.items():
+        assert np.array_equal(other.family_pod[T], values), f"{T} s records"
+    assert np.array_equal(other.pod, full.pod)

@@ -20,7 +20,7 @@ from hubvib.fem.mesh_cycle import GearPair
 
 from .model import C_RP_RATIO, C_RP_SERIES
 from .pod import pod_study
-from .uncertainty import nominal, observed_frequencies
+from .uncertainty import nominal, observed_frequencies_of
 
 
 def iso_c_rp(design) -> float:
@@ -48,7 +48,9 @@ class MethodComparison:
     factor, other_factor : ndarray, shape (depths,)
         Factor on planet 1's lumped c_rp with the cracked tooth in mesh [-].
     other_pod : PodResult or None
-        The Monte Carlo POD under the other method (``pod.pod_study``; None when not run).
+        The Monte Carlo POD under the other method (``pod.pod_study``; None when not run),
+        against the reducer's own baseline only: no model baseline, no drift curves (what
+        the report and ``results.json`` give of it is the family POD).
     """
 
     depths: np.ndarray
@@ -86,13 +88,14 @@ def compare_methods(model, timing, record_length: float, options=None,
     variant = model.with_c_rp_method(other)
     fraction, long = timing.engaged_fraction, timing.long_record(record_length)
 
-    def observed(m):
-        return observed_frequencies(m, nominal(m), fraction, long)[0]
-
+    # the same draws as the model's own POD (the model baseline's calibration draws come
+    # after them, so leaving it out changes no number)
     other_pod = (None if options is None
-                 else pod_study(variant, options, timing, workers=workers))
-    return MethodComparison(np.array(model.depths), model.c_rp_method, other, observed(model),
-                            observed(variant), np.asarray(model.c_rp_factor()),
+                 else pod_study(variant, options, timing, workers=workers,
+                                model_baseline=False))
+    pair = observed_frequencies_of([(m, nominal(m)) for m in (model, variant)], fraction, long)
+    return MethodComparison(np.array(model.depths), model.c_rp_method, other, pair[0][0],
+                            pair[1][0], np.asarray(model.c_rp_factor()),
                             np.asarray(variant.c_rp_factor()), other_pod)
 
 

@@ -134,8 +134,11 @@ def observed_frequencies_of(pairs, fraction: float, long_record: bool, workers: 
     for model, samples in pairs:
         ks = (list(range(len(model.depths))) if depth_index is None
               else [0, np.asarray(depth_index)])
-        stacked += [changes(model, samples, k, engaged) for engaged in (True, False)
-                    for k in ks]
+        # every depth at once, in the order (depth, sample): the same elementwise
+        # arithmetic as one call per depth, without its Python overhead
+        every = np.concatenate([np.broadcast_to(k, samples.n) for k in ks])
+        tiled = _tiled(samples, len(ks))
+        stacked += [changes(model, tiled, every, engaged) for engaged in (True, False)]
         shapes.append((len(ks), samples.n))
     joined = {name: np.concatenate([c[name] for c in stacked]) for name in stacked[0]}
     omega = batch_frequencies(params, joined, workers=workers).omega
@@ -146,3 +149,13 @@ def observed_frequencies_of(pairs, fraction: float, long_record: bool, workers: 
         part = part.reshape(2, depths, n, -1).transpose(0, 2, 1, 3)
         out.append(observed_omega(part[0], part[1], fraction, long_record) / (2 * math.pi))
     return out
+
+
+def _tiled(samples: Samples, times: int) -> Samples:
+    """``samples`` repeated ``times`` times, one after the other."""
+    def tile(values):
+        return np.tile(values, times)
+
+    return Samples({name: tile(v) for name, v in samples.fields.items()},
+                   tile(samples.support_ru), tile(samples.support_r), tile(samples.z_ru),
+                   tile(samples.z_r), tile(samples.z_rp))
