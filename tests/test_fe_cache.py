@@ -414,3 +414,12 @@ def test_typed_case_round_trips_and_names_what_is_missing():
     with pytest.raises(CacheEntryError, match="lacks solver"):
         crack_sweep.check_case(0.004)({k: v for k, v in row.items() if k != "solver"})
     assert SCHEMA_VERSION >= 1
+
+
+def test_the_test_run_keeps_out_of_the_users_cache(shared_cache_folder):
+    """conftest's ``run_cache``: with no test-level override every stage caches below the
+    run's own folder, not in ``~/.cache/hubvib`` (a run that found entries there from an
+    earlier one would not start as cold as CI's)."""
+    from hubvib.meshing.cache import root_folder
+
+    assert root_folder() == shared_cache_folder

@@ -39,9 +39,11 @@ def _mac(a: np.ndarray, b: np.ndarray) -> np.ndarray:
             / (np.sum(a * a, axis=0) * np.sum(b * b, axis=0)))
 
 
-@pytest.mark.parametrize("case, groups, first", [("clamped", ["supports"], 0),
-                                                  ("free-free", None, 3)],
-                         ids=["clamped sigma 0", "free-free sigma -1e4"])
+@pytest.mark.parametrize("case, groups, first", [
+    ("clamped", ["supports"], 0),
+    # the free body's shift (-1e4) takes the same PARDISO path as the clamped one (~2 s)
+    pytest.param("free-free", None, 3, marks=pytest.mark.slow)],
+    ids=["clamped sigma 0", "free-free sigma -1e4"])
 def test_pardiso_modes_equal_superlu_modes(ring_model, case, groups, first):
     superlu = lowest_modes(ring_model, 6, groups, solver="superlu")
     pardiso = lowest_modes(ring_model, 6, groups, solver="pardiso")
@@ -64,6 +66,7 @@ def test_pardiso_modes_equal_superlu_modes(ring_model, case, groups, first):
         f"PARDISO: Rayleigh quotient = eigenvalue to 1e-12 (got {pardiso.rayleigh_error:.1e})"
 
 
+@pytest.mark.slow  # ~2 s; the default run's renders take the "auto" path (tests/test_render.py)
 def test_auto_solver_is_pardiso_and_repeatable(ring_model):
     """``solver="auto"`` picks PARDISO where pypardiso is installed
     (``fem.solvers.pick``): the same modes as naming it, twice alike."""
