@@ -33,16 +33,20 @@ from .pardiso import mkl_library
 from .solvers import factorise, pick
 
 RAYLEIGH_TOLERANCE = 1e-8
+#: the factorisations ``lowest_modes`` can take (AMG gives no shift-invert operator)
+MODAL_SOLVERS = ("auto", "pardiso", "superlu")
 
 
 @dataclass(frozen=True)
 class Modes:
-    """Angular frequencies [rad/s] (ascending), mass-normalised shapes (ndofs, k)."""
+    """Angular frequencies [rad/s] (ascending), mass-normalised shapes (ndofs, k), and the
+    factorisation of the shift-invert operator (``"pardiso"`` or ``"superlu"``)."""
 
     omega: np.ndarray
     shapes: np.ndarray
     rayleigh_error: float
     seconds: float
+    solver: str = ""
 
     @property
     def hertz(self) -> np.ndarray:
@@ -64,12 +68,15 @@ def lowest_modes(model: PlaneModel, count: int = 6, fixed_groups: list[str] | No
                  sigma: float | None = None, solver: str = "auto") -> Modes:
     """The ``count`` lowest modes; ``fixed_groups`` are clamped (None: free-free).
 
-    ``solver``: one of ``fem.solvers.SOLVERS`` (``"auto"`` as ``fem.solvers.pick``) for the
-    factorisation of ``K - sigma M``: PARDISO where picked and that matrix is positive
-    definite (sigma < 0, or 0 with supports), else ARPACK's own SuperLU.
+    ``solver``: ``"auto"`` (as ``fem.solvers.pick``), ``"pardiso"`` or ``"superlu"``, for
+    the factorisation of ``K - sigma M``: PARDISO where picked, its library loads and that
+    matrix is positive definite (sigma < 0, or 0 with supports), else ARPACK's own SuperLU.
+    ``Modes.solver`` names the one used.
     """
     if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= 200:
         raise ValueError(f"count = {count!r}, allowed integers 1..200")
+    if solver not in MODAL_SOLVERS:
+        raise ValueError(f"solver = {solver!r}; allowed: {', '.join(MODAL_SOLVERS)}")
     started = time.perf_counter()
     K, M = model.K, mass_matrix(model)
     fe = model.basis.mesh
@@ -88,13 +95,22 @@ def lowest_modes(model: PlaneModel, count: int = 6, fixed_groups: list[str] | No
     # PARDISO's Cholesky needs K - sigma M positive definite: a negative shift, or supports
     use_pardiso = method == "pardiso" and (sigma < 0 or (sigma == 0 and bool(fixed_groups)))
     if use_pardiso:
-        mkl_library()  # loaded before blas_threads looks for it, so that MKL is limited too
+        try:  # loaded before blas_threads looks for it, so that MKL is limited too
+            mkl_library()
+        except (OSError, AttributeError):  # pypardiso found, its MKL not loadable
+            use_pardiso = False
     factor = None
     try:
-        # ARPACK's and the solves' small BLAS kernels only spin-wait on a second thread
+        # ARPACK's and the solves' small BLAS kernels only spin-wait on a second thread;
+        # the factorisation too was measured there on one (eigsh 3.3 s on the rendered ring)
         with blas_threads(1):
             if use_pardiso:
-                factor = factorise(Kf - sigma * Mf if sigma else Kf, "pardiso")
+                try:
+                    factor = factorise(Kf - sigma * Mf if sigma else Kf, "pardiso")
+                except SingularSystemError:
+                    raise SingularSystemError(
+                        f"K - sigma M is not positive definite (sigma = {sigma:g} rad^2/s^2): "
+                        f"check the supports {fixed_groups}, or K is indefinite") from None
                 inverse = spla.LinearOperator(Kf.shape, matvec=factor.solve, dtype=float)
             else:
                 inverse = None  # ARPACK factorises K - sigma M with SuperLU
@@ -123,4 +139,5 @@ def lowest_modes(model: PlaneModel, count: int = 6, fixed_groups: list[str] | No
     shapes = np.zeros((model.ndofs, count))
     shapes[free] = vectors
     omega = np.sqrt(np.clip(values, 0.0, None))
-    return Modes(omega, shapes, error, time.perf_counter() - started)
+    return Modes(omega, shapes, error, time.perf_counter() - started,
+                 "pardiso" if use_pardiso else "superlu")

@@ -116,8 +116,12 @@ class Pardiso:
         if len(self._data) != len(self._indices) or self._indptr[-1] != len(self._indices):
             raise ValueError(f"PARDISO: {len(self._indices)} column indices, {len(self._data)} "
                              f"values, indptr ends at {self._indptr[-1]}")
-        self._call(11)  # analysis: ordering and symbolic factorisation
-        self._call(22)  # numeric factorisation
+        try:
+            self._call(11)  # analysis: ordering and symbolic factorisation
+            self._call(22)  # numeric factorisation
+        except PardisoError:  # the caller never gets this object: release what phase 11 took
+            self.free()
+            raise
 
     def solve(self, f: np.ndarray) -> np.ndarray:
         """``K u = f`` for f (n,) or (n, k), in the factorisation's precision."""

@@ -44,10 +44,10 @@ def shared_cache_folder(tmp_path_factory):
 
 @pytest.fixture(scope="session", autouse=True)
 def run_cache(shared_cache_folder):
-    """Every test's default ``$HUBVIB_CACHE`` is the run's ``shared_cache_folder``, never the
-    user's ``~/.cache/hubvib``: a run neither leaves entries there nor finds them from an
-    earlier run, so every run starts as cold as CI's on a fresh machine; tests that need an
-    empty or broken cache set their own."""
+    """Every test's default ``$HUBVIB_CACHE`` is the run's ``shared_cache_folder``, whatever
+    the shell set, never the user's ``~/.cache/hubvib``: a run neither leaves entries there
+    nor finds them from an earlier run, so every run starts as cold as CI's on a fresh
+    machine; tests that need an empty or broken cache set their own."""
     previous = os.environ.get("HUBVIB_CACHE")
     os.environ["HUBVIB_CACHE"] = str(shared_cache_folder)
     yield shared_cache_folder
@@ -59,6 +59,7 @@ def run_cache(shared_cache_folder):
 
 @pytest.fixture
 def shared_cache(shared_cache_folder, monkeypatch):
-    """``$HUBVIB_CACHE`` set to ``shared_cache_folder`` for one test."""
+    """``$HUBVIB_CACHE`` set to ``shared_cache_folder`` for one test: what ``run_cache``
+    sets already, named by the tests that rely on entries other tests computed."""
     monkeypatch.setenv("HUBVIB_CACHE", str(shared_cache_folder))
     return shared_cache_folder

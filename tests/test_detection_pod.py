@@ -150,6 +150,41 @@ def test_one_batch_of_variants_gives_each_variant_s_own_frequencies():
                                   nominal(model))], fraction, long)
 
 
+@pytest.mark.parametrize("apply", ["series", "direct"])
+@pytest.mark.parametrize("per_sample_depth", [False, True], ids=["every depth", "depth_index"])
+def test_drawn_samples_at_every_depth_in_one_call_are_the_per_depth_solves(apply,
+                                                                           per_sample_depth):
+    # observed_frequencies tiles the samples over the depths and builds every depth's
+    # changes in one call: each (sample, depth) point must be the one a separate call per
+    # depth gives (the code before the tiling), to the last bit, on scattered samples
+    from hubvib.detection.uncertainty import changes, draw, observed_frequencies
+    from hubvib.lumped.batch import batch_frequencies
+
+    model = synthetic_model(apply)
+    samples = draw(model, DetectionOptions(), 40, np.random.default_rng(3))
+    fraction, long = TIMING.engaged_fraction, TIMING.long_record(10.0)
+    depth_index = (np.random.default_rng(4).integers(0, len(model.depths), samples.n)
+                   if per_sample_depth else None)
+    ks = [0, depth_index] if per_sample_depth else list(range(len(model.depths)))
+    omega = np.stack([np.stack([batch_frequencies(model.params,
+                                                  changes(model, samples, k, engaged)).omega
+                                for k in ks], axis=1) for engaged in (True, False)])
+    reference = observed_omega(omega[0], omega[1], fraction, long) / (2 * math.pi)
+    together = observed_frequencies(model, samples, fraction, long, depth_index=depth_index)
+    assert together.shape == (samples.n, len(ks), reference.shape[-1])
+    assert np.array_equal(together, reference)
+
+
+def test_variants_must_scatter_the_same_fields():
+    from hubvib.detection.uncertainty import draw, nominal, observed_frequencies_of
+
+    model = synthetic_model("series")
+    drawn = draw(model, DetectionOptions(), 5, np.random.default_rng(0))
+    with pytest.raises(ValueError, match="the samples must scatter the same fields"):
+        observed_frequencies_of([(model, nominal(model)), (model, drawn)],
+                                TIMING.engaged_fraction, TIMING.long_record(10.0))
+
+
 def test_map_pod_without_family_curves_has_the_same_per_mode_numbers():
     # the detectability map skips the family curves, the drift model and the reference
     # modes; what it keeps (per-mode POD, nominal shifts, thresholds) must not change

@@ -224,6 +224,10 @@ class PodResult:
         reaches the required probability (``which``: ``""``, ``"drift"`` or
         ``"compensated"``); NaN when none does."""
         table = getattr(self, f"family_pod_{which}" if which else "family_pod")
+        if record_length not in table:
+            raise KeyError(f"no family POD for {record_length} s records"
+                           + (" (a run without family curves)" if not table else
+                              f"; it has {', '.join(f'{T:g} s' for T in table)}"))
         ok = table[record_length] >= self.detection_probability
         ok[0] = False
         return float(self.depths[int(ok.argmax())]) if ok.any() else math.nan

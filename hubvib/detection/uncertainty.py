@@ -125,11 +125,14 @@ def observed_frequencies_of(pairs, fraction: float, long_record: bool, workers: 
     their ``params`` (variants of one CrackModel) and whose samples scatter the same
     fields, solved in one batch: the same numbers (each point is one LAPACK call,
     :mod:`hubvib.lumped.batch`) at one batch's overhead (nominal_shifts: 7 variants)."""
-    params = pairs[0][0].params
-    for model, _ in pairs:
+    params, fields = pairs[0][0].params, sorted(pairs[0][1].fields)
+    for model, samples in pairs:
         if model.params != params:
             raise ValueError(f"observed_frequencies_of: the models must share their params; "
                              f"{model.params} differs from {params}")
+        if sorted(samples.fields) != fields:
+            raise ValueError(f"observed_frequencies_of: the samples must scatter the same "
+                             f"fields; {sorted(samples.fields)} differs from {fields}")
     stacked, shapes = [], []
     for model, samples in pairs:
         ks = (list(range(len(model.depths))) if depth_index is None

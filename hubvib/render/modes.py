@@ -225,13 +225,13 @@ def render_mode(params, spectrum, index: int, folder: Path, gif: bool = False,
     files.append(write_atomically(folder / f"{stem}.png", png))
     if gif:
         def animation(tmp):
-            plotter = offscreen_plotter()
-            plotter.open_gif(str(tmp), fps=12)
-            for phase in np.sin(np.linspace(0, 2 * math.pi, 24, endpoint=False)):
-                plotter.clear()
-                _draw(plotter, deformed_bodies(params, shape, float(phase)), reference, label)
-                plotter.write_frame()
-            plotter.close()
+            with plotter_for() as animated:
+                animated.open_gif(str(tmp), fps=12)
+                for phase in np.sin(np.linspace(0, 2 * math.pi, 24, endpoint=False)):
+                    animated.clear()
+                    _draw(animated, deformed_bodies(params, shape, float(phase)), reference,
+                          label)
+                    animated.write_frame()
 
         files.append(write_atomically(folder / f"{stem}.gif", animation))
     if vtm:
