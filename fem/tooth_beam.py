@@ -24,7 +24,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import simpson
 
 from hubvib.meshing.ring_gear import RingGear, ToothedBody
 
@@ -93,6 +92,8 @@ def beam_compliance(body: ToothedBody, radius: float, material: Material = Mater
     radius over the held radius (bore of a gear body; for a ring the outer
     radius over the root radius, an extrapolation of the fitted range).
     """
+    from scipy.integrate import simpson
+
     prof, gear = body.profile, body.gear
     b, E, G = gear.face_width, material.E, material.shear_modulus
     p, d = load_point(body, radius)

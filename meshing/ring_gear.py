@@ -10,7 +10,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.integrate import quad
 
 from .gear import GearGeometryError, rotation, SpurGear
 from .profile import ShaperCutter, ToothProfile
@@ -106,6 +105,8 @@ class ToothedBody:
         (``(r^2 - r_b^2)^{3/2} / (6 r_b)``), the fillet by adaptive quadrature
         (rtol 1e-13).  No mesh is involved.
         """
+        from scipy.integrate import quad
+
         prof, g = self.profile, self.gear
         r_a, r_f, rb = prof.tip_radius, prof.root_radius, g.base_diameter / 2
         psi_tip = float(g.half_tooth_angle(r_a))

@@ -119,3 +119,14 @@ def test_a_face_name_is_the_object_its_module_defines():
 
     assert hubvib.fem.solve is solve
     assert hubvib.fem.__dict__["solve"] is solve
+
+
+def test_the_run_command_leaves_out_the_signal_and_statistics_stacks():
+    """``hubvib run`` imports its command, the study kinds and the scene reader before it
+    knows the scene: none of them loads scipy.signal or scipy.stats (~0.5 CPU s of a cached
+    rerun's ~2); the signal study and the POD import them where they run (fresh process)."""
+    probe = ("import sys, hubvib.commands.run, hubvib.studies.kinds, hubvib.studies.scene; "
+             "print(sorted(m for m in ('scipy.signal', 'scipy.stats') if m in sys.modules))")
+    run = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                         check=True)
+    assert run.stdout.strip() == "[]", f"loaded before any scene runs: {run.stdout.strip()}"

@@ -39,7 +39,6 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.optimize import brentq
-from scipy.stats import norm
 
 from hubvib.identification.law import KAPPA
 from hubvib.lumped import natural_modes
@@ -62,6 +61,8 @@ def measured_threshold(sigma_hz, rate: float) -> np.ndarray:
     """Alarm threshold [Hz] of each mode on a shift against the reducer's own intact
     measurement: ``z(1 - rate) sqrt(2) sigma`` (``sigma_hz`` per mode [Hz], ``rate`` per
     mode [-])."""
+    from scipy.stats import norm
+
     return norm.ppf(1.0 - rate) * math.sqrt(2.0) * np.asarray(sigma_hz, dtype=float)
 
 
@@ -299,6 +300,8 @@ def pod_study(model, options, timing, samples: int | None = None, model_baseline
         empty or None).  The map's POD runs use none of them, and the Cramer-Rao bounds
         of the 60 and 600 s records at every mounting value were half its CPU time.
     """
+    from scipy.stats import norm
+
     n = samples or options.samples
     rng = np.random.default_rng(options.seed if seed is None else seed)
     fraction, long = timing.engaged_fraction, timing.long_record(options.record_length)
@@ -348,6 +351,8 @@ def pod_study(model, options, timing, samples: int | None = None, model_baseline
 
 def _quantile_threshold(offsets: np.ndarray, sigma: float, alpha: float) -> float:
     """t with mean(P(offset + e < -t)) = alpha, e normal with standard deviation sigma."""
+    from scipy.stats import norm
+
     def excess(t):
         return norm.cdf((-t - offsets) / sigma).mean() - alpha
 

@@ -25,7 +25,6 @@ import math
 import time
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from hubvib.signal.dynamics import excitation
 from hubvib.signal.mesh_curves import synthetic_curves
@@ -40,6 +39,8 @@ def benchmark_signal(design, params, revolutions: int = 10, sample_rate_hz: floa
                      rtol: float = 1e-6) -> dict:
     """Timings [s], their ratio and the errors of both integrators (see the module), for a
     design and its lumped parameters (the benchmark: Raba 118/76)."""
+    from scipy.integrate import solve_ivp  # the baseline only: not with the package
+
 
 
     curves = synthetic_curves(design, crack_factor=1.5, depth=0.01).to_preset(params.c_sp,

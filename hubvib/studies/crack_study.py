@@ -40,8 +40,6 @@ from hubvib.runtime.fe_cache import fe_version
 from hubvib.runtime.process_pool import worker_pool
 from hubvib.runtime.progress import stage, working
 from hubvib.runtime.stage_seconds import timed
-from hubvib.signal.report import write_signal_study
-from hubvib.signal.study import run_signal_study
 from hubvib.studies.crack_sweep import ACCURACY, CrackSweep, PlaneCase, crack_of, run_fe_cases
 from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
 from hubvib.studies.study import Scene, Study
@@ -615,6 +613,9 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
               "spectra", started)
         started = time.perf_counter()
         if "signal" in scene.tables:  # the vibration signature beside the frequency study
+            from hubvib.signal.report import write_signal_study
+            from hubvib.signal.study import run_signal_study
+
             with working("signals"):
                 study = run_signal_study(scene)
             stage(f"signals of {len(study.depths)} crack depth(s)", started)
