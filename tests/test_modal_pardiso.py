@@ -31,11 +31,12 @@ def ring_model():
     return plane_model(mesh, material(design), ring.gear.face_width)
 
 
-@pytest.mark.parametrize("case, groups, first", [
-    ("clamped", ["supports"], 0),
-    # the free body's shift (-1e4) takes the same PARDISO path as the clamped one (~2 s)
-    pytest.param("free-free", None, 3, marks=pytest.mark.slow)],
-    ids=["clamped sigma 0", "free-free sigma -1e4"])
+# ~5 s with the ring's mesh: the default run's renders take the PARDISO path
+# (tests/test_render.py: test_fe_ring_fields_physics)
+@pytest.mark.slow
+@pytest.mark.parametrize("case, groups, first", [("clamped", ["supports"], 0),
+                                                  ("free-free", None, 3)],
+                         ids=["clamped sigma 0", "free-free sigma -1e4"])
 def test_pardiso_modes_equal_superlu_modes(ring_model, case, groups, first):
     superlu = lowest_modes(ring_model, 6, groups, solver="superlu")
     pardiso = lowest_modes(ring_model, 6, groups, solver="pardiso")
@@ -68,6 +69,7 @@ def test_auto_solver_is_pardiso_and_repeatable(ring_model):
     np.testing.assert_array_equal(auto.shapes, named.shapes)
 
 
+@pytest.mark.slow  # the ring's mesh (~2 s)
 def test_unsupported_ring_at_shift_zero_is_refused_by_name(ring_model):
     """A group that holds nothing (sigma = 0): K is singular, and PARDISO's Cholesky says so
     in one line naming the shift and the supports (ARPACK's SuperLU returned zero
@@ -83,6 +85,7 @@ def test_unsupported_ring_at_shift_zero_is_refused_by_name(ring_model):
         del ring_model.basis.mesh.boundaries[empty]
 
 
-def test_amg_is_no_shift_invert_solver(ring_model):
+def test_amg_is_no_shift_invert_solver():
+    """AMG gives no shift-invert operator: refused before any model is read."""
     with pytest.raises(ValueError, match="solver = 'amg'; allowed: auto, pardiso, superlu"):
-        lowest_modes(ring_model, 2, ["supports"], solver="amg")
+        lowest_modes(None, 2, ["supports"], solver="amg")
