@@ -46,7 +46,7 @@ class Modes:
     shapes: np.ndarray
     rayleigh_error: float
     seconds: float
-    solver: str = ""
+    solver: str
 
     @property
     def hertz(self) -> np.ndarray:
