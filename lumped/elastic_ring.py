@@ -31,10 +31,6 @@ from .parameters import ParameterError, PlanetaryParameters
 
 RING_DOFS = (4, 5, 8)  # x_r, y_r, u_r of the 9 + 3N model
 RING_SPRINGS = ("c_r", "c_ru", "c_rp")
-#: relative gap below which two coupled frequencies count as one repeated frequency
-PAIR_RTOL = 1e-4
-#: share of a mode's kinetic energy in one harmonic index for it to be classed by it
-CLASS_SHARE = 0.95
 
 
 @dataclass(frozen=True, eq=False)
@@ -225,6 +221,7 @@ def coupled_modes(params: PlanetaryParameters, ring: RingOperators, carrier_toot
 
 
 def _top_left(M, n):
+    """The ring block of the coupled mass matrix."""
     return M[:n, :n]
 
 

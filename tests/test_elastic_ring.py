@@ -17,7 +17,7 @@ from hubvib.elastic.model import (elastic_ring, elastic_spectrum, full_operators
 from hubvib.elastic.options import ElasticOptions, ElasticOptionsError
 from hubvib.elastic.rest import rest_stiffness
 from hubvib.elastic.tracking import track_modes
-from hubvib.fem.ring_basis import ring_basis, ring_modes
+from hubvib.fem.ring_basis import ring_modes
 from hubvib.fem.ring_body import MountingError, ring_body
 from hubvib.lumped import natural_modes
 from hubvib.lumped.elastic_ring import coupled_modes
@@ -183,3 +183,46 @@ def test_closed_crack_is_the_intact_ring(raba, cracked_raba):
 def test_mounting_refused_by_name():
     with pytest.raises(MountingError, match="mounting"):
         ring_body(None, None, mounting="nailed")
+
+
+def _cli(argv):
+    import contextlib
+    import io
+    import json
+
+    from hubvib.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        code = main(argv)
+    text = out.getvalue()
+    return code, (json.loads(text) if "--json" in argv and text.strip() else text), err.getvalue()
+
+
+def test_modes_rigid_is_the_spectrum_command():
+    """``hubvib modes --ring rigid`` gives what ``hubvib spectrum`` gives, mode for mode."""
+    code, modes, _ = _cli(["modes", "--ring", "rigid", "--json"])
+    code2, spectrum, _ = _cli(["spectrum", "--json"])
+    assert code == code2 == 0
+    assert modes["modes"] == spectrum["modes"]
+
+
+def test_modes_annulus_reports_ring_theory():
+    code, data, _ = _cli(["modes", "--annulus", "0.1", "0.12", "0.02", "--count", "6", "--json"])
+    assert code == 0
+    n2 = [m for m in data["modes"] if m["nodal_diameter"] == 2]
+    assert len(n2) == 2
+    assert abs(n2[0]["frequency_hz"] / n2[0]["curved_beam_hz"] - 1) < 0.01
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["modes", "--annulus", "0.2", "0.1", "0.02"], "--annulus"),
+    (["modes", "--ring", "rigid", "--crack-depth", "0.006"], "--ring rigid"),
+    (["modes", "--closed"], "--closed"),
+    (["modes", "--crack-depth", "-1"], "--crack-depth"),
+    (["modes", "--band", "0"], "band_hz"),
+])
+def test_modes_bad_input_is_one_line_exit_2(argv, words):
+    code, _, err = _cli(argv)
+    assert code == 2
+    assert err.count("\n") == 1 and words in err, err

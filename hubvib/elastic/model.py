@@ -16,13 +16,12 @@ from hubvib.build.stages import lumped_parameters, material, ring_gear
 from hubvib.fem.elasticity import plane_model
 from hubvib.fem.ring_basis import RingBasis, ring_basis
 from hubvib.fem.ring_body import Foundation, RingBody, foundation_for, ring_body
-from hubvib.lumped.elastic_ring import (CoupledModes, RingOperators, coupled_matrices,
-                                        coupled_modes, engagement)
+from hubvib.lumped.elastic_ring import CoupledModes, RingOperators, coupled_modes, engagement
 from hubvib.lumped.parameters import PlanetaryParameters
 from hubvib.meshing.crack import Crack
 from hubvib.meshing.ring_mesh import ring_mesh
 
-from .content import ModeContent, mode_content, multiplicities
+from .content import mode_content, multiplicities
 from .options import ElasticOptions
 from .rest import rest_stiffness
 
@@ -169,7 +168,3 @@ def lumped_equivalent(er: ElasticRing, carrier_tooth: int) -> PlanetaryParameter
     return rigid_ring_parameters(er.params, er.body.rigid_mass(), er.body.rigid_stiffness(),
                                  er.body.base_radius, er.k_rest, eng)
 
-
-__all__ = ["ElasticRing", "ElasticSpectrum", "elastic_ring", "elastic_spectrum",
-           "full_operators", "lumped_equivalent", "out_of_contact_tooth", "coupled_matrices",
-           "ModeContent"]
