@@ -24,7 +24,8 @@ from .model import elastic_ring, elastic_spectrum
 from .options import ElasticOptions, modal_mesh
 from .tracking import track_modes
 
-DEPTHS = (6e-3, 12e-3)  # [m]
+#: root-crack depths as fractions of the path through the rim (Raba 118/76: 6.1, 12.2 mm)
+DEPTH_FRACTIONS = (0.25, 0.5)
 
 
 def bilinear(f_open: float, f_closed: float) -> float:
@@ -66,14 +67,23 @@ def ring_rigid_hz(er) -> float:
     return float(np.sqrt(max(w2.max(), 0.0)) / (2 * math.pi))
 
 
-def crack_changes(design, options: ElasticOptions, depths=DEPTHS) -> dict:
+def depths(design) -> tuple:
+    """The surveyed root-crack depths of ``design`` [m] (``DEPTH_FRACTIONS`` of the path
+    through the rim, rounded to 0.1 mm)."""
+    from hubvib.build.stages import ring_gear
+
+    through = Crack(depth=1e-4).through_depth(ring_gear(design))
+    return tuple(round(f * through, 4) for f in DEPTH_FRACTIONS)
+
+
+def crack_changes(design, options: ElasticOptions) -> dict:
     """Coupled modes intact and per depth (open and closed faces) with tracking."""
     intact_ring = elastic_ring(design, options=options)
     intact = elastic_spectrum(intact_ring)
     mass = float(intact_ring.body.rigid_mass()[0, 0])
     out = {"intact": [dict(r) for r in intact.rows()], "depths_mm": [], "dofs":
            intact_ring.body.ndofs}
-    for depth in depths:
+    for depth in depths(design):
         per = {}
         for closed in (False, True):
             spec = elastic_spectrum(elastic_ring(design, Crack(depth=depth), closed, options,
