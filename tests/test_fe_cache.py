@@ -276,6 +276,18 @@ def test_entry_of_another_source_is_not_trusted(fake, capsys, edit_source):
     assert "another version of the source" in notices(capsys.readouterr().err)[0]
 
 
+def test_a_worker_of_another_source_refuses_the_case(fake, edit_source):
+    """A worker (a Dask worker on another machine) whose source key is not the client's
+    computes nothing: its result would be stored under the client's key."""
+    sweep = make_sweep()
+    case = crack_sweep._Case(sweep, source_key(*crack_sweep.SOURCE))
+    assert case(0.002) == synthetic(0.002)
+    edit_source("hubvib.build.stages")
+    with pytest.raises(RuntimeError, match="install the same hubvib on every worker"):
+        case(0.002)
+    assert fake == [0.002]
+
+
 #: modules an FE case imports, in each stage it runs through (the ring, gear bodies and
 #: material are built by ``hubvib.build.stages``)
 IMPORTED = ["hubvib.build.stages", "hubvib.build", "hubvib.fem.ring_stiffness",
