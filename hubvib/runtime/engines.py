@@ -133,13 +133,16 @@ def check_reachable(execution: Execution) -> None:
     The whole handshake is bounded, not only the TCP connection: an address that
     accepts the connection but never answers (another service, a stopped process)
     hung ``Client()`` for ever: the scheduler is asked for its identity (dask.distributed's
-    ``identity`` message).
+    ``identity`` message).  Other addresses (an ``Execution`` built in Python with an
+    in-process cluster's ``inproc://`` address; scenes allow ``tcp://`` only) are left to
+    dask.
     """
-    if execution.engine != "dask" or execution.scheduler is None:
+    if execution.engine != "dask" or execution.scheduler is None or not \
+            execution.scheduler.startswith("tcp://"):
         return
     address = urlsplit(execution.scheduler)
     try:
-        with socket.create_connection((address.hostname, address.port),
+        with socket.create_connection((address.hostname, address.port or 8786),
                                       timeout=execution.timeout):
             pass
     except (OSError, ValueError) as exc:
