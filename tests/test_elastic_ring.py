@@ -226,3 +226,27 @@ def test_modes_bad_input_is_one_line_exit_2(argv, words):
     code, _, err = _cli(argv)
     assert code == 2
     assert err.count("\n") == 1 and words in err, err
+
+
+@pytest.mark.slow
+def test_coupled_mode_renders_and_vtu(tmp_path):
+    """hub4's coupled modes: one PNG per mode below the band and one VTU holding every
+    mode's ring displacement (read back: the largest nodal displacement of each mode equals
+    the rendered field's)."""
+    pytest.importorskip("pyvista")
+    import pyvista as pv
+
+    from hubvib.render.coupled import render_coupled_modes, ring_displacements
+
+    er = elastic_ring(preset_design("hub4"), options=ElasticOptions(rest="beam", band_hz=3e3))
+    spectrum = elastic_spectrum(er)
+    files = render_coupled_modes(er, spectrum, tmp_path)
+    pngs = [f for f in files if f.suffix == ".png"]
+    assert len(pngs) == spectrum.frequency_hz.size > 2
+    assert all(f.stat().st_size > 20_000 for f in pngs)
+    grid = pv.read(tmp_path / "coupled_modes.vtu")
+    u = ring_displacements(er, spectrum)
+    for j in range(spectrum.frequency_hz.size):
+        stored = grid.point_data[f"mode_{j + 1:02d}"]
+        assert np.abs(stored[:, :2]).max() == pytest.approx(np.abs(u[j]).max(), rel=1e-6)
+    np.testing.assert_allclose(grid.field_data["frequency_hz"], spectrum.frequency_hz)

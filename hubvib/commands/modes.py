@@ -41,6 +41,12 @@ def add_parser(sub) -> None:
     p.add_argument("--nu", type=float, default=0.3, help="annulus: Poisson's ratio")
     p.add_argument("--density", type=float, default=7850.0, help="annulus: [kg/m^3]")
     p.add_argument("--count", type=int, default=12, help="annulus: elastic modes to report")
+    p.add_argument("--out", metavar="DIR",
+                   help="elastic ring: write modes.json and, with --render, a PNG per "
+                   "coupled mode and coupled_modes.vtu (every mode's ring displacement, for "
+                   "ParaView) into DIR")
+    p.add_argument("--render", action="store_true",
+                   help="with --out: off-screen mode-shape pictures and the VTU")
     p.add_argument("--json", action="store_true", help="machine-readable output")
     p.set_defaults(handler=run)
 
@@ -48,7 +54,11 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     if args.annulus is not None:
         return _annulus(args)
+    if args.render and not args.out:
+        raise ValueError("--render: needs --out DIR")
     if args.ring == "rigid":
+        if args.out or args.render:
+            raise ValueError("--out, --render: the elastic ring only (drop --ring rigid)")
         if args.crack_depth or args.closed or args.carrier_tooth is not None:
             raise ValueError("--ring rigid: the 9 + 3N model has no crack or carrier position; "
                              "drop --crack-depth, --closed and --carrier-tooth")
@@ -114,6 +124,18 @@ def _elastic(args) -> int:
             "k_rest_N_m": er.k_rest, "band_hz": options.band_hz,
             "ring_modes_kept": int(er.basis.mode_hz.size), "cutoff_hz": options.cutoff_hz,
             "ring_dofs": er.body.ndofs}
+    written = []
+    if args.out:
+        from pathlib import Path
+
+        from hubvib.foundation.output import write_text
+
+        folder = Path(args.out)
+        written.append(write_text(folder / "modes.json", json_text(head | {"modes": rows})))
+        if args.render:
+            from hubvib.render.coupled import render_coupled_modes
+
+            written += render_coupled_modes(er, spec, folder)
     if args.json:
         print(json_text(head | {"modes": rows}))
         return 0
@@ -138,6 +160,10 @@ def _elastic(args) -> int:
         print(line)
     print("n: the ring's dominant nodal diameters; p: harmonic index under the planets' "
           "symmetry; ring: the ring's share of the kinetic energy")
+    if written:
+        pictures = sum(1 for w in written if w.suffix == ".png")
+        print(f"written: {written[0]}" + (f", {pictures} PNG files and coupled_modes.vtu in "
+                                          f"{written[0].parent}" if pictures else ""))
     return 0
 
 

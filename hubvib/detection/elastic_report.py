@@ -102,8 +102,8 @@ def elastic_section(elastic: ElasticDetection) -> list[str]:
     lines += ["", f"Records of {elastic.record_length:g} s; identification scatter of the "
               "watched modes " + ", ".join(
                   f"{elastic.sigma_hz[elastic.record_length][i]:.2f}" for i in watched)
-              + " Hz; '-': no mode of the cracked ring continues it (a crack through the rim "
-              "opens the ring). `elastic_ring.csv` has every coupled mode below the band's "
+              + " Hz; '-': no mode of the cracked ring continues it with a subspace match of 0.5 "
+              "or more (modes mix as the crack grows; a crack through the rim opens the ring). `elastic_ring.csv` has every coupled mode below the band's "
               "top, with the change when planet 1 is on the cracked tooth (`in_contact_hz`, "
               "against the intact ring at that carrier position).", ""]
     return lines

@@ -61,6 +61,13 @@ def track_modes(reference, other, ring_mass: float, rtol: float = PAIR_RTOL) -> 
     ref[cols] = rows
     match[cols] = score[rows, cols]
     f_ref, f = reference.frequency_hz, other.frequency_hz
+    # a repeated frequency's members are interchangeable: its lower continuation is named
+    # after its first member, the upper after the second
+    for group in _groups(f_ref, rtol):
+        members = np.flatnonzero(np.isin(ref, group))
+        if members.size >= 2:
+            ordered = members[np.argsort(f[members], kind="stable")]
+            ref[ordered] = np.sort(ref[members])  # the match is the group's: unchanged
     split = np.zeros(b.shape[1], dtype=bool)
     for group in _groups(f_ref, rtol):
         if group.size < 2:
