@@ -882,12 +882,14 @@ def scene_keys() -> str:
     """Every key of every scene table with its default and allowed range, generated from the
     schemas the scene parser checks (so the reference cannot drift from the parser)."""
     from hubvib.detection.options import SCHEMA as DETECTION
+    from hubvib.elastic.options import SCHEMA as ELASTIC
     from hubvib.runtime.engines import SCHEMA as EXECUTION
     from hubvib.signal.options import SCHEMA as SIGNAL
     from hubvib.studies.crack_table import SCHEMA as CRACK
     from hubvib.studies.scene import OUTPUT, REDUCER, STUDY
 
-    return _schema_tables((REDUCER, STUDY, OUTPUT, CRACK, DETECTION, SIGNAL, EXECUTION))
+    return _schema_tables((REDUCER, STUDY, OUTPUT, CRACK, DETECTION, SIGNAL, EXECUTION,
+                           ELASTIC))
 
 
 def design_keys() -> str:

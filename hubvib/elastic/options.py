@@ -5,6 +5,7 @@ import math
 from dataclasses import dataclass, field
 
 from hubvib.foundation.errors import InputError
+from hubvib.foundation.schema import Field, Schema
 from hubvib.meshing.ring_mesh import MeshOptions
 
 MOUNTINGS = ("foundation", "clamped", "free")
@@ -104,33 +105,31 @@ def study_mesh() -> MeshOptions:
     return MeshOptions(size=6e-3, tooth_size=2e-3, load_size=0.5e-3, tip_size=0.2e-3, grading=0.4)
 
 
-def _schema():
-    from hubvib.foundation.schema import Field, Schema
-
-    return Schema("elastic", (
-        Field("ring", "choice", choices=RING_MODELS, default="rigid",
-              doc="the ring model(s) of the crack study: rigid (9 + 3N), elastic (the FE ring "
-              "coupled), both", message="{label} = {value}; allowed: {allowed}"),
-        Field("mounting", "choice", choices=MOUNTINGS, default="foundation",
-              doc="the ring on its support arcs", message="{label} = {value}; allowed: {allowed}"),
-        Field("foundation_k_n_N_m2", "number", 0.0, 1e18, True, False, default=None,
-              unit="N/m^2", doc="normal foundation stiffness per unit arc length (absent: "
-              "sized to the design's c_r and c_ru)", attr="foundation_k_n"),
-        Field("foundation_k_t_N_m2", "number", 0.0, 1e18, False, False, default=None,
-              unit="N/m^2", doc="tangential ... (give both or neither)", attr="foundation_k_t"),
-        Field("band_hz", "number", 1.0, 1e6, False, False, default=10e3, unit="Hz",
-              doc="coupled modes up to this frequency"),
-        Field("sensor_angle_deg", "number", -360.0, 360.0, False, False, default=90.0,
-              unit="deg", doc="accelerometer on the ring's outer surface, from the cracked "
-              "tooth", attr="sensor_angle", scale=math.pi / 180),
-    ))
+#: the ``[elastic]`` keys
+SCHEMA = Schema("elastic", (
+    Field("ring", "choice", choices=RING_MODELS, default="rigid",
+          doc="the ring model(s) of the crack study: rigid (9 + 3N), elastic (the FE ring "
+          "coupled), both", message="{label} = {value}; allowed: {allowed}"),
+    Field("mounting", "choice", choices=MOUNTINGS, default="foundation",
+          doc="the ring on its support arcs", message="{label} = {value}; allowed: {allowed}"),
+    Field("foundation_k_n_N_m2", "number", 0.0, 1e18, True, False, default=None,
+          unit="N/m^2", doc="normal foundation stiffness per unit arc length (absent: "
+          "sized to the design's c_r and c_ru)", attr="foundation_k_n"),
+    Field("foundation_k_t_N_m2", "number", 0.0, 1e18, False, False, default=None,
+          unit="N/m^2", doc="tangential ... (give both or neither)", attr="foundation_k_t"),
+    Field("band_hz", "number", 1.0, 1e6, False, False, default=10e3, unit="Hz",
+          doc="coupled modes up to this frequency"),
+    Field("sensor_angle_deg", "number", -360.0, 360.0, False, False, default=90.0,
+          unit="deg", doc="accelerometer on the ring's outer surface, from the cracked "
+          "tooth", attr="sensor_angle", scale=math.pi / 180),
+))
 
 
 def parse_elastic_table(table: dict) -> ElasticScene:
     """Validate an ``[elastic]`` table; raise SceneError naming the key and range."""
     from hubvib.foundation.errors import SceneError
 
-    values = _schema().parse(table, defaults=True)
+    values = SCHEMA.parse(table, defaults=True)
     try:
         options = ElasticOptions(
             mesh=study_mesh(), cutoff_factor=2.0, mounting=values["mounting"],
