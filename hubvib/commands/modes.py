@@ -88,7 +88,7 @@ def _rigid(args) -> int:
 
 
 def _elastic(args) -> int:
-    from hubvib.elastic.model import elastic_ring, elastic_spectrum
+    from hubvib.elastic.model import elastic_ring, elastic_spectrum, lowest_ring_mode
     from hubvib.elastic.options import ElasticOptions
     from hubvib.elastic.tracking import track_modes
     from hubvib.meshing.crack import Crack
@@ -124,6 +124,9 @@ def _elastic(args) -> int:
             "k_rest_N_m": er.k_rest, "band_hz": options.band_hz,
             "ring_modes_kept": int(er.basis.mode_hz.size), "cutoff_hz": options.cutoff_hz,
             "ring_dofs": er.body.ndofs}
+    lowest = lowest_ring_mode(er)
+    head["lowest_ring_mode"] = None if lowest is None else {
+        "frequency_hz": lowest[0], "nodal_diameter": lowest[1]}
     written = []
     if args.out:
         from pathlib import Path
@@ -147,6 +150,9 @@ def _elastic(args) -> int:
           f"ring-planet spring without the ring body {er.k_rest:.4g} N/m; ring {er.body.ndofs} "
           f"DOFs reduced to {er.basis.size} ({er.basis.mode_hz.size} own modes up to "
           f"{options.cutoff_hz:.0f} Hz)")
+    if lowest is not None:
+        print(f"the mounted ring's lowest elastic mode of its own: {lowest[0]:.1f} Hz (n = "
+              f"{lowest[1]}); the rigid-ring model (hubvib spectrum) holds only well below it")
     extra = "  intact [Hz]  tracks" if tracked is not None else ""
     print(f"{'mode':>4} {'f [Hz]':>10}  {'class':<13} {'n':>2} {'p':>2} {'ring':>5} mult{extra}")
     for row in rows:

@@ -89,6 +89,7 @@ class ElasticDetection:
     foundation: tuple | None
     ring_dofs: int
     sensor_angle: float
+    lowest_ring_mode: tuple | None = None
 
     @property
     def bilinear_hz(self) -> np.ndarray:
@@ -237,4 +238,4 @@ def elastic_detection(design, depths, crack_of, scene: ElasticScene,
         tuple(x.harmonic_index for x in c), tuple(x.ring_share for x in c),
         open_hz, on_hz, split, sigma, visibility, watched, pod,
         options.detection_probability, options.record_length, intact.k_rest,
-        intact.foundation, intact.ring_dofs, scene.sensor_angle)
+        intact.foundation, intact.ring_dofs, scene.sensor_angle, intact.lowest_ring_mode)

@@ -82,6 +82,11 @@ def elastic_section(elastic: ElasticDetection) -> list[str]:
         f"{math.degrees(elastic.sensor_angle):g} deg from the cracked tooth sees (radial "
         "ring motion there at least 10 % of the largest), ranked by change against "
         "scatter. docs/elastic_ring.md has the model, its checks and the ring's modes.", ""]
+    if elastic.lowest_ring_mode is not None:
+        f, n = elastic.lowest_ring_mode
+        lines += [f"Validity band: the mounted ring's lowest elastic mode of its own is "
+                  f"{f:.1f} Hz (n = {n}); the rigid-ring model has no such mode and can hold "
+                  f"only well below it (here below about {f / 2:.0f} Hz).", ""]
     watched = list(elastic.watched)
     if not watched:
         return lines + ["The sensor sees none of the modes the crack moves.", ""]

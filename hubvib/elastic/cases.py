@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .model import elastic_ring, elastic_spectrum, out_of_contact_tooth
+from .model import elastic_ring, elastic_spectrum, lowest_ring_mode, out_of_contact_tooth
 from .options import ElasticScene
 
 
@@ -20,6 +20,7 @@ class ElasticCase:
     foundation: tuple | None
     ring_dofs: int
     ring_mass: float
+    lowest_ring_mode: tuple | None = None  # (Hz, nodal diameters) of the mounted ring alone
 
 
 def carrier_positions(design, tooth: int) -> tuple[int, int]:
@@ -43,7 +44,7 @@ def elastic_case(design, crack, scene: ElasticScene, k_rest: float) -> ElasticCa
         replace(elastic_spectrum(er, away), ring=None),
         replace(elastic_spectrum(er, on), ring=None), er.k_rest,
         None if er.foundation is None else (er.foundation.k_n, er.foundation.k_t),
-        er.body.ndofs, float(er.body.rigid_mass()[0, 0]))
+        er.body.ndofs, float(er.body.rigid_mass()[0, 0]), lowest_ring_mode(er))
 
 
 def cached_case(design, crack, scene: ElasticScene, k_rest: float) -> ElasticCase:

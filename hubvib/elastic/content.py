@@ -63,6 +63,20 @@ def diameter_content(probe_column: np.ndarray) -> np.ndarray:
     return power / total if total > 0 else power
 
 
+def is_elastic_ring_shape(probe_column: np.ndarray) -> bool:
+    """Whether a ring displacement on the mid-rim circle is an elastic ring mode: dominant
+    nodal diameters n >= 2, or n = 0 with radial motion (breathing; n = 0 tangential is a
+    rigid rotation, n = 1 a rigid translation)."""
+    content = diameter_content(probe_column)
+    n = int(np.argmax(content))
+    if n >= 2:
+        return True
+    if n == 1:
+        return False
+    half = probe_column.size // 2
+    return abs(np.mean(probe_column[:half])) > abs(np.mean(probe_column[half:]))
+
+
 def fold(n: int, planets: int) -> int:
     """Harmonic index p of nodal-diameter count n under N planets: n mod N folded to <= N/2."""
     p = n % planets

@@ -136,6 +136,19 @@ def elastic_ring(design, crack: Crack | None = None, closed: bool = False,
                        bool(closed and crack is not None), options, carrier_teeth, seconds)
 
 
+def lowest_ring_mode(er: ElasticRing) -> tuple[float, int] | None:
+    """The mounted ring's lowest elastic mode of its own (no planets): frequency [Hz] and
+    nodal diameters; None when none lies below the basis's cut-off."""
+    from .content import diameter_content, is_elastic_ring_shape
+
+    phi = er.basis.V[:, :er.basis.mode_hz.size]
+    probe = np.asarray(er.body.probe @ phi)
+    for j, f in enumerate(er.basis.mode_hz):
+        if is_elastic_ring_shape(probe[:, j]):
+            return float(f), int(np.argmax(diameter_content(probe[:, j])))
+    return None
+
+
 def full_operators(er: ElasticRing) -> RingOperators:
     """The same ring unreduced (sparse): for checks of the reduction."""
     b = er.body

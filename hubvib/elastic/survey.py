@@ -50,21 +50,12 @@ def ring_families(er) -> list[dict]:
 def validity(design, options: ElasticOptions) -> dict:
     """Lowest elastic ring mode on its mounting against the rigid-ring model's top mode;
     the rigid ring is taken to hold below half that mode."""
-    er = elastic_ring(design, options=options)
-    elastic = [m for m in ring_families(er) if m["nodal_diameter"] >= 2 or
-               (m["nodal_diameter"] == 0 and m["frequency_hz"] > 1.5 * ring_rigid_hz(er))]
+    from .model import lowest_ring_mode
+
+    lowest, n = lowest_ring_mode(elastic_ring(design, options=options))
     lumped_top = float(natural_modes(lumped_parameters(design)).frequency_hz.max())
-    lowest = min(m["frequency_hz"] for m in elastic)
-    return {"lowest_ring_mode_hz": lowest, "lowest_ring_mode_n": min(
-        elastic, key=lambda m: m["frequency_hz"])["nodal_diameter"],
-        "lumped_top_hz": lumped_top, "rigid_ring_holds_below_hz": 0.5 * lowest}
-
-
-def ring_rigid_hz(er) -> float:
-    """The ring's rigid motions on its mounting: highest of the three [Hz]."""
-    k, m = er.body.rigid_stiffness(), er.body.rigid_mass()
-    w2 = np.linalg.eigvals(np.linalg.solve(m, k)).real
-    return float(np.sqrt(max(w2.max(), 0.0)) / (2 * math.pi))
+    return {"lowest_ring_mode_hz": lowest, "lowest_ring_mode_n": n,
+            "lumped_top_hz": lumped_top, "rigid_ring_holds_below_hz": 0.5 * lowest}
 
 
 def depths(design) -> tuple:

@@ -304,6 +304,9 @@ def _elastic_json(elastic) -> dict:
             "foundation_N_m2": None if elastic.foundation is None else {
                 "normal": elastic.foundation[0], "tangential": elastic.foundation[1]},
             "sensor_angle_deg": math.degrees(elastic.sensor_angle),
+            "lowest_ring_mode": None if elastic.lowest_ring_mode is None else {
+                "frequency_hz": elastic.lowest_ring_mode[0],
+                "nodal_diameter": elastic.lowest_ring_mode[1]},
             "modes": elastic.rows()}
 
 
