@@ -33,7 +33,7 @@ from hubvib.fem.tooth_solid import SAMPLES, SolidToothLoad
 from hubvib.fem.tooth_stiffness import chebyshev_radii, contact_radii, set_intact_store
 from hubvib.meshing.cache import root_folder
 from hubvib.meshing.crack import Crack, CrackFront
-from hubvib.meshing.crack_path import PathCrack, path_ring_mesh
+from hubvib.meshing.crack_path import PathCrack  # noqa: F401  (the predicted-path cases)
 from hubvib.runtime import fe_cache
 from hubvib.runtime.engines import Execution, check_reachable, run_cases
 from hubvib.runtime.fe_cache import (CacheEntryError, case_lock, entry_key, finite_positive,
@@ -196,7 +196,6 @@ def fe_case(sweep: CrackSweep, case) -> dict:
     crack = crack_of(sweep, depth)
     result = estimate_crack_case(ring_gear(design), gear_body(design, "planet"), crack,
                                  ACCURACY[sweep.accuracy],
-                                 mesher=path_ring_mesh if isinstance(crack, PathCrack) else None,
                                  material=material(design), n_planets=design.n_planets)
     return PlaneCase(result, float(depth), time.perf_counter() - started).to_dict()
 
