@@ -103,3 +103,32 @@ def test_crack_case_equals_the_whole_ring_on_the_same_mesh(cracked):
         np.testing.assert_allclose(got, expected, rtol=1e-9,
                                    err_msg=f"{name}: pieces vs whole glued ring (1e-9)")
     assert ours.dofs == whole.dofs
+
+
+def test_published_figures_move_within_their_error_bars():
+    """The committed comparison (docs/data/fe_substructure.json, python -m
+    hubvib.studies.fe_agreement) holds every depth of the published default scene
+    (docs/data/raba118_crack) with its old value; the ring body's c_ru and c_r by
+    substructures lie within the old error bars (fine against coarse level), the engaged
+    c_rp ratio within the larger of its old and new error estimates."""
+    import json
+    from pathlib import Path
+
+    data = Path(__file__).resolve().parents[1] / "docs" / "data"
+    rows = json.loads((data / "fe_substructure.json").read_text())["rows"]
+    published = json.loads((data / "raba118_crack" / "results.json").read_text())["stiffness"]
+    keys = {"c_ru_N_m": "fe_c_ru_N_m", "c_r_N_m": "fe_c_r_N_m",
+            "c_rp_engaged_ratio": "fe_c_rp_engaged_ratio"}
+    assert len(rows) == 3 * len(published), "three quantities per published depth"
+    old = {(r["depth_mm"], q): r[k] for r in published for q, k in keys.items()}
+    for row in rows:
+        where = f"{row['quantity']} at {row['depth_mm']:.4g} mm"
+        assert row["old"] == old[(row["depth_mm"], row["quantity"])], f"{where}: old value"
+        change = abs(row["new"] - row["old"])
+        if row["quantity"] == "c_rp_engaged_ratio":
+            assert change <= max(row["old_error"], row["new_error"]), (
+                f"{where}: new - old {change:.3g} against the error estimates")
+        else:
+            assert change <= row["old_error"], (
+                f"{where}: new - old {change:.3g} against the old error bar "
+                f"{row['old_error']:.3g} (docs/data/raba118_crack)")
