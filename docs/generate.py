@@ -601,6 +601,22 @@ def ring_definitions() -> str:
     return "\n\n".join(parts)
 
 
+def fe_substructure() -> str:
+    """The plane crack cases by substructures against the figures the whole-ring path
+    published (the default scene): old, new, the old error bar and the distance in old
+    error bars, from the committed comparison."""
+    data = json.loads((DATA / "fe_substructure.json").read_text())
+    names = {"c_ru_N_m": "c_ru [N/m]", "c_r_N_m": "c_r [N/m]",
+             "c_rp_engaged_ratio": "c_rp ratio [-]"}
+    rows = [[f"{r['depth_mm']:.4g}", names[r["quantity"]], _g(r["old"], 7), _g(r["new"], 7),
+             _g(r["old_error"], 3), _g(r["new_error"], 3),
+             "-" if r["in_old_errors"] is None else f"{r['in_old_errors']:.2f}"]
+            for r in data["rows"]]
+    return markdown_table(["depth [mm]", "quantity", "old (whole ring)", "new (pieces)",
+                           "old error", "new error", "change in old errors"], rows,
+                          "rlrrrrr") + provenance("fe_substructure.json")
+
+
 # ---------------------------------------------------------------- signal route (issue 24)
 
 #: the committed ``hubvib signal`` runs of the detection page: the shipped scene and its

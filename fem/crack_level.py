@@ -17,12 +17,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hubvib.meshing.ring_pieces import RingPieces
+
 from .elasticity import supported
 from .material import Material
 from .mesh_cycle import GearPair
 from .ring_stiffness import (RingStiffness, check_ring_input, default_carrier_teeth,
                              ring_loads, ring_model, ring_response, root_lands)
 from .ring_work import ring_work
+from .substructure import substructured
 from .tooth_fe import tooth_compliance, tooth_probe
 from .tooth_stiffness import (EngagedMesh, ToothCurve, chebyshev_radii, contact_radii,
                               engaged_mesh)
@@ -54,7 +57,13 @@ def ring_and_tooth(ring, planet, crack, mesh, material: Material = Material(),
 
     ``intact_tooth`` (an intact ring only): the compliance of that tooth instead, by a
     solve of its own on the same factorisation: the floats ``tooth_fe.fe_tooth_compliance``
-    gives on ``mesh`` (the same model, factorisation and load columns)."""
+    gives on ``mesh`` (the same model, factorisation and load columns).
+
+    ``mesh`` may be a ``meshing.ring_pieces.RingPieces``: the model of its glued mesh is
+    then solved by substructures (``fem.substructure``), the same solution to round-off
+    with only the crack's block and the ring of cuts factorised."""
+    pieces = mesh if isinstance(mesh, RingPieces) else None
+    mesh = mesh.mesh if pieces is not None else mesh
     check_ring_input(ring, mesh, n_planets)
     cracked = crack is not None and crack.depth > 0
     if cracked and intact_tooth is not None:
@@ -70,7 +79,8 @@ def ring_and_tooth(ring, planet, crack, mesh, material: Material = Material(),
         probe = tooth_probe(ring, model, radii, crack.tooth)
         columns.append(probe.loads)
     t2 = time.perf_counter()
-    system = supported(model, ["supports"], solver=solver)
+    system = (supported(model, ["supports"], solver=solver) if pieces is None
+              else substructured(pieces, model, material, ring.gear.face_width, solver))
     try:
         solution = system.solve(np.hstack(columns))
         if intact_tooth is not None:

@@ -15,11 +15,12 @@ from hubvib.fem.material import Material
 from hubvib.fem.ring_stiffness import ring_stiffness
 from hubvib.fem.mesh_cycle import GearPair
 from hubvib.fem.tooth_stiffness import (contact_radii, engaged_mesh, offer_intact_curve,
-                                         reducer_mesh_stiffness)
-from hubvib.meshing.crack import CrackFront
+                                         provide_intact_curve, reducer_mesh_stiffness)
+from hubvib.meshing.crack import Crack, CrackFront
 from hubvib.meshing.levels import SOLID_LEVELS, scaled_options, solid_options
 from hubvib.meshing.ring_mesh import ring_mesh
 from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
+from hubvib.meshing.ring_pieces import ring_pieces
 
 
 #: field -> JSON / cache key with its unit
@@ -344,19 +345,25 @@ def estimate_crack_case(ring, planet, crack, scale: float = 1.0, mesher=None, ma
     and one factorisation serve all three (``fem.crack_level``).
 
     ``crack`` (None or depth 0: intact) is measured on the tooth it is in; ``planet`` is
-    the planet's gear body; ``mesher(ring, crack, options)`` replaces ``ring_mesh``;
+    the planet's gear body; ``mesher(ring, crack, options)`` replaces ``ring_mesh``
+    (``meshing.ring_pieces.ring_pieces``: the ring glued from pieces and solved by
+    substructures, ``fem.substructure``);
     ``material`` (default steel) and ``n_planets`` (equally spaced) are the design's.
     """
     material = material or Material()
     tooth = 0 if crack is None else crack.tooth
-    # an intact ring on ring_mesh is the mesh and model of the intact tooth curves: its
-    # tooth is measured on this factorisation and offered to them (no mesh of their own)
-    measures_intact_tooth = (crack is None or crack.depth == 0) and mesher in (None, ring_mesh)
+    uncracked = crack is None or crack.depth == 0
+    # an intact ring (whole, or glued from pieces) is the model of the intact tooth curves:
+    # its tooth is measured on the same solve and offered to them (no mesh of their own)
+    measures_intact_tooth = uncracked and mesher in (None, ring_mesh, ring_pieces)
     mesher = mesher or ring_mesh
     span = contact_radii(ring, [GearPair(planet, ring)])
     results = {}
     for name, level in (("coarse", 2 * scale), ("fine", scale)):
         options = scaled_options(level)
+        if not uncracked and mesher is ring_pieces:
+            provide_intact_curve(ring, span, material, options, tooth,
+                                 _intact_tooth(ring, planet, crack, options, material, n_planets))
         started = time.perf_counter()
         mesh = mesher(ring, crack, options)
         meshed = time.perf_counter()
@@ -390,6 +397,17 @@ def estimate_crack_case(ring, planet, crack, scale: float = 1.0, mesher=None, ma
         dofs=ring_fine.dofs, solver=ring_fine.seconds["solver"],
         seconds_mesh=results["fine"][1], seconds_fe=results["fine"][2],
         seconds_total=sum(r[1] + r[2] for r in results.values()))
+
+
+def _intact_tooth(ring, planet, crack, options, material, n_planets: int):
+    """The computation of the intact curve of ``crack``'s tooth on the intact ring's pieces
+    (the block of the crack's mouth, ``meshing.ring_pieces``), as the intact case gives it."""
+    def compute():
+        intact = Crack(crack.tooth, 0.0, getattr(crack, "angle", 0.0), crack.start)
+        level = crack_level(ring, planet, intact, ring_pieces(ring, intact, options), options,
+                            material, n_planets, intact_tooth=crack.tooth)
+        return level.intact_tooth
+    return compute
 
 
 @dataclass(frozen=True)

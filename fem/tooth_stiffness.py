@@ -207,6 +207,17 @@ def offer_intact_curve(body: ToothedBody, span, material: Material, options, too
         _INTACT_STORE(lambda: curve, *key)
 
 
+def provide_intact_curve(body: ToothedBody, span, material: Material, options, tooth: int,
+                         compute) -> None:
+    """Make ``compute()`` the source of ``intact_curve(body, span, material, options,
+    tooth)`` unless this process has that curve already: computed here (or read from the
+    store, ``set_intact_store``, when another process computed it) and kept."""
+    key = (body, tuple(float(r) for r in span), material, options, tooth)
+    if key in _OFFERED:
+        return
+    _OFFERED[key] = compute() if _INTACT_STORE is None else _INTACT_STORE(compute, *key)
+
+
 def intact_curve(body: ToothedBody, span, material: Material, options, tooth: int = 0
                  ) -> ToothCurve:
     """The intact FE curve of ``tooth`` over the contact radii ``span`` [m], kept between

@@ -229,9 +229,23 @@ class RingBuilder:
         space_points = [self.point(prof.root_radius * np.array(
             [math.cos((2 * k + 1) * math.pi / z), math.sin((2 * k + 1) * math.pi / z)]),
             opt.tooth_size) for k in range(z)]
+        self.teeth_curves(range(z), {k: space_points[k % z] for k in range(-1, z)},
+                          involute_pieces, fillet_pieces, load_piece, root_crack_tooth, t_crit)
+        toothed = self.geo.addCurveLoop(self.inner_curves)
+        held = self.geo.addCurveLoop(self.outer_boundary())
+        loops = [held, toothed] if ring.gear.internal else [toothed, held]
+        self.surface = self.geo.addPlaneSurface(loops)
+        if self.path is not None:
+            self.crack_geometry(lines=crack_lines)
+
+    def teeth_curves(self, teeth, space_points: dict, involute_pieces, fillet_pieces,
+                     load_piece: int, root_crack_tooth, t_crit) -> None:
+        """The toothed boundary of ``teeth`` (ascending), tooth k from the space centre
+        ``space_points[k - 1]`` to ``space_points[k]`` (gmsh point tags), with its groups."""
+        ring, opt = self.ring, self.opt
         patch_ends = {load_piece, load_piece + 1}  # pieces whose first point ends a patch
         mirror = np.array([1.0, -1.0])
-        for k in range(z):
+        for k in teeth:
             rot = rotation(ring.tooth_angle(k))
             fillets = fillet_pieces(t_crit if k == root_crack_tooth else None)
             pos_pieces = involute_pieces + fillets
@@ -262,12 +276,6 @@ class RingBuilder:
             self.groups[f"tooth{k}_load"] = [pos[load_piece]]
             self.groups[f"tooth{k}_root"] = [neg[0], pos[-1]]
             self.load_curves.append(pos[load_piece])
-        toothed = self.geo.addCurveLoop(self.inner_curves)
-        held = self.geo.addCurveLoop(self.outer_boundary())
-        loops = [held, toothed] if ring.gear.internal else [toothed, held]
-        self.surface = self.geo.addPlaneSurface(loops)
-        if self.path is not None:
-            self.crack_geometry(lines=crack_lines)
 
     def outer_boundary(self) -> list[int]:
         ring = self.ring

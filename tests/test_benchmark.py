@@ -90,14 +90,16 @@ def test_benchmark_command_prints_ratios_and_standard_json(monkeypatch, capsys):
     import hubvib.benchmarks as benchmark
 
     calls = []
-    monkeypatch.setattr(benchmark, "run_benchmark", lambda quick, progress, scene_3d:
-                        calls.append((quick, scene_3d)) or dict(FIGURES))
+    monkeypatch.setattr(benchmark, "run_benchmark", lambda quick, progress, scene_3d, ci:
+                        calls.append((quick, scene_3d, ci)) or dict(FIGURES))
     assert main(["benchmark", "--quick", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["calculix_speedup"] is None and data["c_ru_2d_seconds"] == 1.5
     assert main(["benchmark", "--no-3d-scene", "--json"]) == 0
     capsys.readouterr()
-    assert calls == [(True, True), (False, False)]
+    assert main(["benchmark", "--quick", "--ci", "--json"]) == 0
+    capsys.readouterr()
+    assert calls == [(True, True, False), (False, False, False), (True, True, True)]
     assert main(["benchmark", "--quick"]) == 0
     out = capsys.readouterr().out
     row = next(line for line in out.splitlines() if line.startswith("2D c_ru, mesh + FE"))
@@ -116,6 +118,12 @@ def test_quick_benchmark_runs():
     assert figures["c_ru_2d_previous_max_rel_difference"] < 1e-9
     assert figures["crack_case_max_rel_difference"] < 1e-9
     assert figures["c_ru_2d_rel_error"] < 1e-3
+    # substructures and the whole ring are two discretisations: they agree within the
+    # crack case's own error estimate (fine against coarse level)
+    assert figures["substructure_max_rel_difference"] <= figures[
+        "substructure_rel_error_estimate"], "substructured vs whole-ring c_ru, c_r"
+    assert figures["substructure_speedup_plane"] > 0
+    assert figures["substructure_speedup_solid"] is None and figures["ci_seconds"] is None
     json.dumps(figures, allow_nan=False)
 
 

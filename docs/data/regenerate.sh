@@ -20,6 +20,7 @@ ENTRIES=(
   convergence
   convergence_work
   elastic_ring.json
+  fe_substructure.json
   raba118_crack
   raba118_crack_path
   raba118_crack_3d_small

@@ -29,6 +29,7 @@ from __future__ import annotations
 import time
 
 from hubvib.benchmarks.crack_case import crack_case
+from hubvib.benchmarks.substructure import substructure_speedup
 from hubvib.benchmarks.crack_growth import crack_growth_3d
 from hubvib.benchmarks.main_job import main_job
 from hubvib.benchmarks.memory import memory_figures
@@ -45,18 +46,25 @@ from hubvib.signal.benchmark import benchmark_signal
 from hubvib.validation import calculix as ccx
 
 
-def run_benchmark(quick: bool = False, progress=None, scene_3d: bool = True) -> dict:
+def run_benchmark(quick: bool = False, progress=None, scene_3d: bool = True,
+                  ci: bool = False) -> dict:
     """Every figure of ``hubvib benchmark`` (SI: seconds, GB, N/m; ratios are baseline time
     over ours).  ``quick`` skips the 3D race and the memory probes, takes the 2D reference
     from the default level (``QUICK_REFERENCE_SCALES``), runs the crack case at scale 2
     and the signal stage over two revolutions; ``scene_3d=False`` skips the 3D
-    crack-growth scene (``crack_growth_3d_seconds`` is then null and said skipped)."""
+    crack-growth scene (``crack_growth_3d_seconds`` is then null and said skipped).
+    ``substructure_speedup_plane``: a plane crack case, whole ring over substructures
+    (``substructure_speedup_solid``: null, the solid ring is not substructured);
+    ``ci_seconds``: the wall time of ``.ci/run`` with ``ci``, else null."""
     say = progress or (lambda line: None)
     started = time.perf_counter()
     out = {"quick": quick}
     out.update(ring_2d(reference_scales=QUICK_REFERENCE_SCALES if quick else REFERENCE_SCALES,
                        progress=say, work_scales=QUICK_WORK_SCALES if quick else NESTED_SCALES))
     out.update(crack_case(scale=2.0 if quick else 1.0, progress=say))
+    out.update(substructure_speedup(scale=2.0 if quick else 1.0, progress=say))
+    out["substructure_speedup_solid"] = None
+    out["ci_seconds"] = ci_seconds(say) if ci else None
     skipped = "skipped (--quick)"
     if quick:
         out.update({key: None for key in (
@@ -90,6 +98,24 @@ def run_benchmark(quick: bool = False, progress=None, scene_3d: bool = True) -> 
         out.update(readme_test_command(say))
     out["seconds_total"] = time.perf_counter() - started
     return out
+
+
+def ci_seconds(progress) -> float:
+    """Wall time [s] of the repository's ``.ci/run`` (RuntimeError if it fails)."""
+    import subprocess
+    from pathlib import Path
+
+    script = Path(__file__).resolve().parents[2] / ".ci" / "run"
+    if not script.is_file():
+        raise RuntimeError(f"no CI script at {script}")
+    started = time.perf_counter()
+    result = subprocess.run([str(script)], cwd=script.parents[1], capture_output=True, text=True)
+    seconds = time.perf_counter() - started
+    if result.returncode != 0:
+        raise RuntimeError(f".ci/run failed (exit {result.returncode}): "
+                           f"{result.stderr.strip().splitlines()[-1:] or ''}")
+    progress(f".ci/run: {seconds:.0f} s")
+    return seconds
 
 
 __all__ = ["REFERENCE_SCALES", "run_benchmark"]

@@ -16,6 +16,10 @@ ROWS = (
     ("crack_case_seconds", "crack case FE (c_ru, c_r, engaged c_rp; 2 levels)", "s",
      "crack_case_previous_seconds"),
     ("crack_case_max_rel_difference", "crack case: shared against separate solves", "", None),
+    ("substructure_seconds_plane", "plane crack case by substructures (2 levels)", "s",
+     "substructure_previous_seconds_plane"),
+    ("substructure_max_rel_difference", "substructures against the whole ring (c_ru, c_r)", "",
+     None),
     ("solid_seconds", "3D c_ru: model + loads + solve", "s", "solid_previous_seconds"),
     ("calculix_seconds", "3D c_ru by CalculiX 2.20, same mesh and loads", "s", None),
     ("calculix_speedup", "CalculiX time / ours", "x", None),
@@ -43,6 +47,8 @@ def add_parser(sub) -> None:
                    "(a smoke test, ~1 min)")
     p.add_argument("--no-3d-scene", dest="scene_3d", action="store_false",
                    help="skip the 3D crack-growth scene (13 solid cases: ~8 min on 2 cores)")
+    p.add_argument("--ci", action="store_true",
+                   help="also time the repository's .ci/run (ci_seconds; else null)")
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
 
@@ -50,7 +56,7 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     import hubvib.benchmarks as benchmarks
 
-    figures = benchmarks.run_benchmark(quick=args.quick, scene_3d=args.scene_3d,
+    figures = benchmarks.run_benchmark(quick=args.quick, scene_3d=args.scene_3d, ci=args.ci,
                             progress=lambda line: print(line, file=sys.stderr, flush=True))
     if args.json:
         print(json_text(figures))

@@ -1,0 +1,218 @@
+"""The plane ring solved by substructures: each piece condensed onto its cuts, the ring of
+cuts solved, the pieces' interiors recovered (SI units).
+
+The ring mesh glued from pieces (``meshing.ring_pieces``) is solved piece by piece.
+Each piece's plane-stress stiffness (its held outer nodes fixed) is condensed exactly
+onto the DOFs of its two cuts,
+
+    S = K_bb - K_bi X,   X = K_ii^-1 K_ib,
+
+the z pieces' S, turned to their places, assemble the ring's cut system (sparse: each
+cut couples only with its two neighbours), loads inside a piece enter condensed
+(``f_b - K_bi K_ii^-1 f_i``), and the interiors follow from the cut displacements,
+``u_i = K_ii^-1 f_i - X u_b``.  On the same mesh this is the whole ring's solution to
+round-off (static condensation is exact).  The pieces that do not hold the crack (the
+plain pitch, held or free on its arc, and the pitches with a support end) are the same
+for every crack case of a ring and options: their condensations are kept between calls,
+so a crack case factorises the crack's block and the ring of cuts only.
+
+``substructured(pieces, model)`` returns a system with the interface of
+``fem.elasticity.SupportedSystem`` (``solve``, ``release``, ``method``) for the model of
+the glued mesh, so every load and measure of that model applies unchanged.
+"""
+from __future__ import annotations
+
+import functools
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from hubvib.foundation.blas import blas_threads
+from hubvib.meshing.gear import rotation
+
+from .elasticity import Solution, plane_model, submatrix
+from .material import Material
+from .solvers import factorise, pick
+
+
+def node_dof_table(model) -> np.ndarray:
+    """(nodes, 2): the x and y DOFs of every node of the model's mesh (vertices and, on
+    curved meshes, mid-edge nodes)."""
+    mesh, basis = model.mesh, model.basis
+    table = np.full((len(mesh.points), 2), -1, dtype=np.int64)
+    vertices = np.flatnonzero(model.vertex_of >= 0)
+    table[vertices] = basis.nodal_dofs[:, model.vertex_of[vertices]].T
+    if mesh.order == 2:
+        t2f = basis.mesh.t2f
+        for j in range(3):
+            table[mesh.cells[:, 3 + j]] = basis.facet_dofs[:, t2f[j]].T
+    if (table < 0).any():
+        raise ValueError("a node of the mesh carries no DOF")
+    return table
+
+
+@dataclass(eq=False)
+class Condensed:
+    """One piece's stiffness condensed onto its cut nodes (module docstring).
+
+    Attributes
+    ----------
+    boundary, interior : ndarray
+        The piece model's DOFs on its cuts (node by node, x then y) and inside (neither
+        cut nor held).
+    S : ndarray
+        Condensed stiffness on ``boundary`` [N/m].
+    X : ndarray
+        ``K_ii^-1 K_ib`` [-].
+    coupling : scipy.sparse matrix
+        ``K_bi`` [N/m].
+    factor : fem.solvers.Factor
+        The factorisation of ``K_ii``.
+    table : ndarray
+        The piece model's node DOF table (``node_dof_table``).
+    dofs : int
+        DOFs of the piece model.
+    """
+
+    boundary: np.ndarray
+    interior: np.ndarray
+    S: np.ndarray
+    X: np.ndarray
+    coupling: object
+    factor: object
+    table: np.ndarray
+    dofs: int
+
+    def release(self) -> None:
+        self.factor.free()
+
+
+def condense(mesh, cut_nodes, held_nodes, material: Material, thickness: float,
+             solver: str = "auto") -> Condensed:
+    """The plane-stress model of ``mesh`` with ``held_nodes`` fixed, condensed onto the
+    DOFs of ``cut_nodes``."""
+    model = plane_model(mesh, material, thickness, "stress")
+    table = node_dof_table(model)
+    boundary = table[np.asarray(cut_nodes)].ravel()
+    kind = np.zeros(model.ndofs, dtype=np.int8)  # 0 interior, 1 boundary, 2 held
+    kind[table[np.asarray(held_nodes, dtype=np.int64)].ravel()] = 2
+    kind[boundary] = 1
+    interior = np.flatnonzero(kind == 0)
+    K = model.K.tocsr()
+    factor = factorise(submatrix(K, kind == 0), pick(solver, len(interior), 2))
+    K_bi = K[boundary][:, interior]
+    X = factor.solve(K_bi.T.toarray())
+    S = K[boundary][:, boundary].toarray() - K_bi @ X
+    return Condensed(boundary, interior, (S + S.T) / 2, X, K_bi.tocsr(), factor, table,
+                     model.ndofs)
+
+
+@functools.lru_cache(maxsize=64)
+def _kept(mesh_key, mesh, cut_nodes: tuple, held_nodes: tuple, material: Material,
+          thickness: float, solver: str) -> Condensed:
+    return condense(mesh, np.array(cut_nodes, dtype=np.int64),
+                    np.array(held_nodes, dtype=np.int64), material, thickness, solver)
+
+
+def piece_condensation(piece, material: Material, thickness: float,
+                       solver: str = "auto") -> Condensed:
+    """The condensation of ``piece`` (``meshing.ring_pieces.Piece``); an intact piece's
+    is kept between calls (the same mesh object and held nodes give the same one)."""
+    cut, held = piece.cut_nodes, piece.held_nodes
+    if piece.kind == "block":
+        return condense(piece.mesh, cut, held, material, thickness, solver)
+    return _kept(id(piece.mesh), piece.mesh, tuple(cut.tolist()), tuple(held.tolist()),
+                 material, thickness, solver)
+
+
+def _turn(values: np.ndarray, angle: float) -> np.ndarray:
+    """(nodes, 2, ...) vectors turned by ``angle`` [rad]."""
+    return np.einsum("ij,nj...->ni...", rotation(angle), values)
+
+
+@dataclass(eq=False)
+class SubstructuredSystem:
+    """The glued ring's stiffness with its supports, solved by substructures.
+
+    ``solve(loads)`` gives what ``fem.elasticity.supported(model, ["supports"])``
+    would: the displacements [m] of the glued model under ``loads`` [N]."""
+
+    ndofs: int
+    parts: list  # (piece, Condensed, glued DOF table (nodes, 2))
+    interface: np.ndarray  # glued DOFs of the cut nodes, free ones only
+    factor: object  # of the cut system
+    positions: list  # per part: index into ``interface`` of its boundary DOFs (-1 held)
+    seconds: float
+
+    @property
+    def method(self) -> str:
+        return self.factor.method
+
+    def solve(self, loads: np.ndarray) -> Solution:
+        started = time.perf_counter()
+        f = np.asarray(loads, dtype=float)
+        columns = f.reshape(self.ndofs, -1)
+        m = columns.shape[1]
+        u = np.zeros_like(columns)
+        rhs = columns[self.interface].copy()
+        # interior loads of every part, solved together per condensation (one call each)
+        groups: dict = {}
+        for index, (piece, part, glued) in enumerate(self.parts):
+            local = np.zeros((part.dofs, m))
+            local[part.table.ravel()] = _turn(columns[glued], -piece.angle).reshape(-1, m)
+            groups.setdefault(id(part), (part, []))[1].append((index, local[part.interior]))
+        inner = [None] * len(self.parts)
+        for part, members in groups.values():
+            stacked = np.hstack([f_i for _, f_i in members])
+            used = np.flatnonzero(np.any(stacked != 0, axis=0))
+            solved = np.zeros_like(stacked)
+            if len(used):
+                with blas_threads(1):
+                    solved[:, used] = part.factor.solve(stacked[:, used])
+            for j, (index, _) in enumerate(members):
+                inner[index] = solved[:, j * m:(j + 1) * m]
+        for (piece, part, glued), where, y in zip(self.parts, self.positions, inner):
+            condensed = -(part.coupling @ y)  # (boundary, m), piece frame
+            turned = _turn(condensed.reshape(-1, 2, m), piece.angle).reshape(-1, m)
+            keep = where >= 0
+            np.add.at(rhs, where[keep], turned[keep])
+        u_cut = self.factor.solve(rhs)
+        u[self.interface] = u_cut
+        for (piece, part, glued), where, y in zip(self.parts, self.positions, inner):
+            u_b = np.zeros((len(where), m))
+            u_b[where >= 0] = u_cut[where[where >= 0]]
+            u_b = _turn(u_b.reshape(-1, 2, m), -piece.angle).reshape(-1, m)
+            local = np.zeros((part.dofs, m))
+            local[part.interior] = y - part.X @ u_b
+            local[part.boundary] = u_b
+            values = local[part.table].reshape(len(glued), 2, m)  # (nodes, 2, m)
+            u[glued.ravel()] = _turn(values, piece.angle).reshape(-1, m)
+        return Solution(u.reshape(f.shape), time.perf_counter() - started, self.method)
+
+    def release(self) -> None:
+        """Free the block's and the cut system's factorisations (the intact pieces' are
+        kept for the next case)."""
+        self.factor.free()
+        for piece, part, _ in self.parts:
+            if piece.kind == "block":
+                part.release()
+
+
+def substructured(pieces, model, material: Material, thickness: float,
+                  solver: str = "auto") -> SubstructuredSystem:
+    """The substructured system of ``pieces`` (``meshing.ring_pieces.RingPieces``) for
+    ``model``, the plane model of ``pieces.mesh``."""
+    from .substructure_cuts import cut_system
+
+    started = time.perf_counter()
+    table = node_dof_table(model)
+    parts = []
+    for piece in pieces.pieces:
+        part = piece_condensation(piece, material, thickness, solver)
+        parts.append((piece, part, table[piece.nodes]))
+    held = np.zeros(model.ndofs, dtype=bool)
+    held[model.basis.get_dofs("supports").flatten()] = True
+    interface, positions, factor = cut_system(parts, held, model.ndofs, solver)
+    return SubstructuredSystem(model.ndofs, parts, interface, factor, positions,
+                               time.perf_counter() - started)
