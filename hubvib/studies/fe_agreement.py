@@ -26,6 +26,7 @@ def agreement_rows(published: dict, design=None) -> list[dict]:
     from hubvib.design import preset_design
     from hubvib.fem.estimate import estimate_crack_case
     from hubvib.meshing.crack import Crack
+    from hubvib.meshing.ring_pieces import ring_pieces
 
     design = design or preset_design("raba118")
     crack = published["crack"]
@@ -36,7 +37,7 @@ def agreement_rows(published: dict, design=None) -> list[dict]:
         estimate = estimate_crack_case(
             ring_gear(design), gear_body(design, "planet"),
             Crack(crack["tooth"], depth, crack["angle"], crack["start"]), scale,
-            material=material(design), n_planets=design.n_planets)
+            mesher=ring_pieces, material=material(design), n_planets=design.n_planets)
         for name, (field, old_key, error_key) in QUANTITIES.items():
             old, bar = row[old_key], row[error_key]
             new = getattr(estimate, field)
