@@ -14,6 +14,7 @@ import math
 from dataclasses import asdict, dataclass
 
 from hubvib.foundation.errors import SceneError
+from hubvib.foundation.bounds import lower_bound
 from hubvib.foundation.schema import Field, Schema
 from hubvib.signal.mesh_phase import design_teeth
 
@@ -241,6 +242,6 @@ def check_sample_rate(options: SignalOptions, design) -> None:
     needed = 2 * options.mesh_harmonics * mesh
     if options.sample_rate_hz < needed:
         raise SceneError(
-            f"[signal] sample_rate_hz = {options.sample_rate_hz:g}; allowed: >= {needed:.6g} Hz "
+            f"[signal] sample_rate_hz = {options.sample_rate_hz:g}; allowed: >= {lower_bound(needed)} Hz "
             f"(twice mesh harmonic {options.mesh_harmonics} at {mesh:.6g} Hz mesh frequency, "
             f"else it aliases)")

@@ -6,6 +6,7 @@ import math
 from dataclasses import replace
 
 from hubvib.build.stages import ring_gear
+from hubvib.foundation.bounds import upper_bound
 from hubvib.foundation.errors import SceneError
 from hubvib.foundation.schema import Field, Schema
 from hubvib.meshing.crack import MIN_LIGAMENT, STARTS
@@ -208,7 +209,8 @@ def _checked_depths(sweep: CrackSweep, through: bool) -> CrackSweep:
         except GearGeometryError as exc:
             raise SceneError(f"[crack] depths[{i}]: {exc}") from None
         if sweep.model == "solid" and crack_of(sweep, depth).is_through(ring):
+            through = crack_of(sweep, 0.0).through_depth(ring)
             raise SceneError(f"[crack] depths[{i}] = {depth!r} m: a semi-elliptic crack must "
-                             f"stay inside the rim, allowed 0..{crack_of(sweep, 0.0).through_depth(ring):.6g} "
+                             f"stay inside the rim, allowed 0..{upper_bound(through, strict=True)} "
                              "m (exclusive)")
     return replace(sweep, depths=tuple(depths))
