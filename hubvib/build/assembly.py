@@ -197,16 +197,33 @@ def _mesh_message(label: str, exc: GearGeometryError) -> str:
 
 def summary(design: ReducerDesign) -> dict:
     """What follows from a design that assembles: distances, angles, contact ratios,
-    masses and the lumped fields the geometry gives (SI)."""
+    masses and the lumped fields the geometry gives (SI).
+
+    ``lumped``: each lumped field once, the value the lumped model uses with its method
+    (``design.lumped`` where the design's table gives it, then with the geometry's value
+    and method beside it); ``named_values``: every value by ``key (method)``, the names
+    ``hubvib stiffness`` gives its values too."""
 
     a_sp, a_rp = build.centre_distances(design)
     alpha_s, alpha_r = build.working_angles(design)
     sun, planet = build.gear_body(design, "sun"), build.gear_body(design, "planet")
     ring = build.ring_gear(design)
     derived = build.derived_lumped_fields(design)
+    methods = build.derived_field_methods(design)
     given = design.lumped_fields
     missing = [k for k in build.MOUNTING_FIELDS + ("c_p", "c_c")
                if k not in given and k not in derived]
+    lumped = {}
+    for key in list(derived) + [k for k in given if k not in derived]:
+        if key in given:
+            row = {"value": given[key], "method": build.DESIGN_TABLE}
+            if key in derived:
+                row.update(geometry_value=derived[key], geometry_method=methods[key])
+        else:
+            row = {"value": derived[key], "method": methods[key]}
+        lumped[key] = row
+    named = {build.labelled(k, methods[k]): v for k, v in derived.items()}
+    named.update({build.labelled(k, build.DESIGN_TABLE): v for k, v in given.items()})
     return {
         "name": design.name, "n_planets": design.n_planets,
         "planet_angles_deg": [math.degrees(a) for a in design.angles],
@@ -222,5 +239,7 @@ def summary(design: ReducerDesign) -> dict:
         "lumped_from_geometry": derived,
         "lumped_from_design_table": given,
         "lumped_missing": missing,
+        "lumped": lumped,
+        "named_values": named,
         "notes": list(design.notes),
     }

@@ -3,8 +3,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from hubvib.design import preset_names
 from hubvib.foundation.output import json_text
+
+from ._reducer import add_reducer_options, reducer_name
 
 #: most growth steps the command accepts
 MAX_STEPS = 200
@@ -13,10 +14,7 @@ MAX_STEPS = 200
 def add_parser(sub) -> None:
     p = sub.add_parser("crack-path", help="grow the ring's root crack by LEFM (K_I, K_II, "
                        "maximum tangential stress) until it severs the tooth or the rim")
-    p.add_argument("--preset", default="raba118", choices=preset_names(),
-                   help="a registered design preset (hubvib.design.PRESETS)")
-    p.add_argument("--design", metavar="FILE.toml",
-                   help="a reducer design file (replaces --preset)")
+    add_reducer_options(p)
     p.add_argument("--steps", type=int, default=40, metavar="N",
                    help=f"most growth steps (FE solutions), 1..{MAX_STEPS}; default 40")
     p.add_argument("--step", type=float, default=0.5e-3, metavar="DA",
@@ -43,7 +41,7 @@ def run(args) -> int:
         raise ValueError(f"--steps = {args.steps}, allowed 1..{MAX_STEPS}")
     if not 1e-5 <= args.step <= 1e-2:  # NaN fails too
         raise ValueError(f"--step = {args.step!r} m, allowed 1e-5..1e-2 m")
-    design = design_from_argument(args.design or args.preset)
+    design = design_from_argument(reducer_name(args))
     options = GrowthOptions(step=args.step, initial_depth=args.step, max_steps=args.steps)
     result = crack_path(design, options, args.out, args.tooth, args.load)
     info = result.to_dict()

@@ -183,7 +183,8 @@ SCHEMA = Schema("signal", (
     Field("rigid_path", "number", 0.0, 1e6, default=0.0, unit="-",
           doc="weight of the ring's rigid-body acceleration path"),
     Field("mesh_stiffness", "choice", choices=MESH_STIFFNESS, default="ratio",
-          doc="ratio: FE curve shape scaled to the preset's mean c_sp, c_rp; direct: FE values"),
+          doc="ratio: FE curve shape scaled to the lumped model's mean c_sp, c_rp; direct: FE "
+              "values"),
     Field("transmission_error_m", "number", 0.0, 1e-3, default=0.0, unit="m",
           doc="amplitude of a first-harmonic static TE per mesh"),
     Field("integrator", "choice", choices=INTEGRATORS, default="newmark",

@@ -146,7 +146,7 @@ def report(study: SignalStudy, pictures: list[str]) -> str:
         "Model: the lumped 9 + 3N DOF model with every sun-planet and ring-planet mesh "
         "stiffness varying in time along the FE mesh-cycle curves (intact; the cracked "
         "tooth's curve while a planet meshes it), each mesh placed in its cycle by the gear "
-        "geometry (Parker & Lin 2004 phasing), mean curves scaled to the preset's c_sp, "
+        "geometry (Parker & Lin 2004 phasing), mean curves scaled to the lumped model's c_sp, "
         f"c_rp (`mesh_stiffness = \"{o.mesh_stiffness}\"`); modal damping "
         f"{o.damping_ratio:g}; periodic steady state by the {o.integrator} scheme, "
         f"{study.steps_per_revolution} steps per revolution (h = {study.step:.4g} s). "

@@ -9,6 +9,7 @@ import math
 import time
 
 from hubvib.build import bearing_stiffness, gear_body, material, ring_gear
+from hubvib.build.stages import FE_MESH, FE_RING, ISO_MESH, ISO_SINGLE, labelled
 from hubvib.fem.estimate import RingEstimate, estimate_mesh, estimate_ring
 from hubvib.meshing.crack import Crack
 
@@ -63,6 +64,29 @@ def stiffness_table(design, crack_depth: float = 0.0, solver: str = "auto",
         rows.update(intact_mesh_rows if crack is None else mesh_rows)
         rows.update(bearings)
         out[name] = rows
+    return out
+
+
+#: the methods of the ring rows' values, by row suffix ("" plane, " 3D" solid)
+RING_METHODS = {"": FE_RING, " 3D": f"{FE_RING}, solid"}
+
+
+def named_values(rows: dict) -> dict[str, float]:
+    """Every value of one case of ``stiffness_table`` by ``key (method)`` [N/m]: the names
+    ``hubvib design check`` gives its values (``hubvib.build.stages.labelled``), so one
+    name holds one value wherever it is printed."""
+    out = {}
+    for key, row in rows.items():
+        name, _, solid = key.partition(" ")
+        if name in ("c_ru", "c_r"):
+            out[labelled(name, RING_METHODS[f" {solid}" if solid else ""])] = row["value_N_m"]
+        elif key in ("c_sp", "c_rp"):
+            out[labelled(key, FE_MESH)] = row["value_N_m"]
+            out[labelled(key, ISO_MESH)] = row["iso_c_gamma_N_m"]
+            out[labelled(key, ISO_SINGLE)] = row["iso_c_single_N_m"]
+        elif key in ("c_p", "c_c"):
+            out[labelled(key, row["method"])] = row["tangent_N_m"]
+            out[labelled(key, row["secant_method"])] = row["secant_N_m"]
     return out
 
 
