@@ -21,8 +21,8 @@ def design_file(tmp_path):
 
 
 @pytest.mark.parametrize("argv", [
-    ["spectrum"], ["shift", "--to", "c_ru", "1e5"], ["stiffness"], ["mesh", "ring", "--out", "OUT"],
-    ["crack-path", "--steps", "1", "--out", "OUT"]],
+    ["spectrum"], ["shift", "--to", "c_ru", "1e5"], ["stiffness"],
+    ["mesh", "ring", "--out", "OUT"], ["crack-path", "--steps", "1", "--out", "OUT"]],
     ids=["spectrum", "shift", "stiffness", "mesh", "crack-path"])
 def test_preset_with_design_is_refused_naming_both(argv, design_file, tmp_path, capsys):
     out = tmp_path / "out"

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from hubvib.foundation.output import json_text
+from hubvib.foundation.output import json_text, written_line
 
 from ._reducer import add_reducer_options, reducer_name
 
@@ -32,8 +32,9 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from hubvib.studies.crack_path import crack_path
     from hubvib.fem.crack_propagation import GrowthOptions
+    from hubvib.runtime.progress import progress
+    from hubvib.studies.crack_path import crack_path
 
     from .design import design_from_argument
 
@@ -43,7 +44,11 @@ def run(args) -> int:
         raise ValueError(f"--step = {args.step!r} m, allowed 1e-5..1e-2 m")
     design = design_from_argument(reducer_name(args))
     options = GrowthOptions(step=args.step, initial_depth=args.step, max_steps=args.steps)
-    result = crack_path(design, options, args.out, args.tooth, args.load)
+    with progress(args.steps, "crack growth", "step") as bar:
+        result = crack_path(design, options, args.out, args.tooth, args.load,
+                            on_step=lambda index, step: bar.update(
+                                1, f"depth {1e3 * step.depth:.3g} mm, K_I "
+                                   f"{step.k_i / 1e6:.3g} MPa m^0.5"))
     info = result.to_dict()
     if args.json:
         print(json_text(info))
@@ -69,5 +74,5 @@ def run(args) -> int:
     else:
         print(f"fracture: {info['fracture']} (not severed after {info['steps']} steps; its "
               f"direction leads to ({1e3 * x:.3f}, {1e3 * y:.3f}) mm)")
-    print(f"written: {', '.join(info['files'])}")
+    print(written_line(info["files"]))
     return 0

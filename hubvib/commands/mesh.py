@@ -2,9 +2,10 @@
 from __future__ import annotations
 
 import math
+import time
 from pathlib import Path
 
-from hubvib.foundation.output import json_text
+from hubvib.foundation.output import json_text, written_line
 from hubvib.meshing.crack import FRONT_SHAPES, STARTS
 from hubvib.studies.part_mesh import MAX_ELEMENTS, PartMesh, write_part_mesh
 
@@ -41,13 +42,19 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
+    from hubvib.runtime.progress import stage, working
+
     from .design import design_from_argument
 
     request = PartMesh(args.part, args.crack_depth, args.crack_tooth,
                        math.radians(args.crack_angle), args.crack_start, args.order, args.dim,
                        args.crack_front, args.crack_half_length, args.size, args.tip_size)
-    info, mesh = write_part_mesh(design_from_argument(reducer_name(args)), request,
-                                 args.out)
+    design = design_from_argument(reducer_name(args))
+    started = time.perf_counter()
+    what = f"{args.dim}D mesh of the {args.part}"
+    with working(what):
+        info, mesh = write_part_mesh(design, request, args.out)
+    stage(what, started)
     if args.json:
         print(json_text(info))
         return 0
@@ -62,5 +69,5 @@ def run(args) -> int:
               "(they would have been inverted)")
     print(f"element quality (gmsh minSICN): min {info['min_quality_sicn']:.3f}, "
           f"mean {info['mean_quality_sicn']:.3f}")
-    print(f"written: {', '.join(info['files'])}")
+    print(written_line(info["files"]))
     return 0

@@ -24,10 +24,13 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from hubvib.studies.stiffness import named_values, stiffness_table
+    from hubvib.runtime.progress import progress
+    from hubvib.studies.stiffness import named_values, stiffness_parts, stiffness_table
 
     design = design_from_argument(reducer_name(args))
-    out = stiffness_table(design, args.crack_depth, args.solver, args.solid)
+    with progress(stiffness_parts(args.crack_depth, args.solid), "FE stiffness", "part") as bar:
+        out = stiffness_table(design, args.crack_depth, args.solver, args.solid,
+                              on_part=lambda label: bar.update(1, label))
     if args.json:
         print(json_text({"cases": out,
                          "named_values": {name: named_values(rows) for name, rows in out.items()},

@@ -409,3 +409,26 @@ def _non_finite(data, where: str):
         if found[0] is not None:
             return found
     return None, None
+
+
+#: files of one folder and kind listed one by one on a ``written:`` line; more are counted
+LISTED_FILES = 3
+
+
+def written_line(files) -> str:
+    """``written: ...`` for ``files`` (paths) on one line: each file named, except where more
+    than ``LISTED_FILES`` share a folder and a suffix, which are counted with the first and
+    last name (``22 VTU files in out/ (crack_step_00.vtu .. crack_step_21.vtu)``), in the
+    order of their first file."""
+    groups: dict = {}
+    for file in map(Path, files):
+        groups.setdefault((file.parent, file.suffix.lower()), []).append(file)
+    parts = []
+    for (folder, suffix), members in groups.items():
+        if len(members) <= LISTED_FILES:
+            parts += [str(f) for f in members]
+            continue
+        kind = suffix.lstrip(".").upper() or "extensionless"
+        parts.append(f"{len(members)} {kind} files in {folder}{os.sep} ({members[0].name} .. "
+                     f"{members[-1].name})")
+    return f"written: {', '.join(parts)}"

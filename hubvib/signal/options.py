@@ -243,6 +243,7 @@ def check_sample_rate(options: SignalOptions, design) -> None:
     needed = 2 * options.mesh_harmonics * mesh
     if options.sample_rate_hz < needed:
         raise SceneError(
-            f"[signal] sample_rate_hz = {options.sample_rate_hz:g}; allowed: >= {lower_bound(needed)} Hz "
+            f"[signal] sample_rate_hz = {options.sample_rate_hz:g}; allowed: >= "
+            f"{lower_bound(needed)} Hz "
             f"(twice mesh harmonic {options.mesh_harmonics} at {mesh:.6g} Hz mesh frequency, "
             f"else it aliases)")

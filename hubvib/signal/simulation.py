@@ -115,7 +115,8 @@ def steps_per_revolution(omega_max: float, speed: float, ring_teeth: int,
                              f"{upper_bound(mesh_period / 2, 4)} s (half a mesh period)")
         if options.integrator == "central" and options.time_step_s >= limit:
             raise ValueError(
-                f"[signal] time_step_s = {options.time_step_s:g}; allowed: < {upper_bound(limit, 4, strict=True)} s "
+                f"[signal] time_step_s = {options.time_step_s:g}; allowed: < "
+                f"{upper_bound(limit, 4, strict=True)} s "
                 f"(the central difference scheme is unstable above 2 (sqrt(1 + zeta^2) - "
                 f"zeta) / omega_max, omega_max = {omega_max:.6g} rad/s)")
         step = options.time_step_s

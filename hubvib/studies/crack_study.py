@@ -492,8 +492,9 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
         f"- Ring support: {sections.mounting_sentence(model, sources)}",
         f"- The FE ring body alone gives c_ru = {intact['c_ru_N_m']:.4g} N/m and c_r = "
         f"{intact['c_r_N_m']:.4g} N/m against the reducer's c_ru {scene.params.c_ru:.4g} N/m "
-        f"({sources['c_ru']}) and c_r {scene.params.c_r:.4g} N/m ({sources['c_r']}). These are the work-conjugate rim parts: the work of "
-        "each loaded tooth's forces on the rigid motion of its root lands (fem/ring_work.py). "
+        f"({sources['c_ru']}) and c_r {scene.params.c_r:.4g} N/m ({sources['c_r']}). These "
+        "are the work-conjugate rim parts: the work of each loaded tooth's forces on the "
+        "rigid motion of its root lands (fem/ring_work.py). "
         "The lumped model puts the ring body in series with the tooth pair c_rp, whose ring "
         "tooth is measured relative to that same rigid motion, so each compliance is counted "
         "once. The whole work-conjugate c_ru would count the ring tooth twice, and the "

@@ -212,6 +212,7 @@ def _checked_depths(sweep: CrackSweep, through: bool) -> CrackSweep:
         if sweep.model == "solid" and crack_of(sweep, depth).is_through(ring):
             through = crack_of(sweep, 0.0).through_depth(ring)
             raise SceneError(f"[crack] depths[{i}] = {depth!r} m: a semi-elliptic crack must "
-                             f"stay inside the rim, allowed 0..{upper_bound(through, strict=True)} "
+                             "stay inside the rim, allowed "
+                             f"0..{upper_bound(through, strict=True)} "
                              "m (exclusive)")
     return replace(sweep, depths=tuple(depths))

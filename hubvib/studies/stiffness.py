@@ -24,11 +24,19 @@ def bearing_rows(design) -> dict:
     return rows
 
 
+def stiffness_parts(crack_depth: float = 0.0, solid: bool = False) -> int:
+    """How many FE parts ``stiffness_table`` computes (the mesh stiffness, then the ring per
+    case, plane and solid): its ``on_part`` calls."""
+    return 1 + (2 if crack_depth > 0 else 1) * (2 if solid else 1)
+
+
 def stiffness_table(design, crack_depth: float = 0.0, solver: str = "auto",
-                    solid: bool = False) -> dict[str, dict]:
+                    solid: bool = False, on_part=None) -> dict[str, dict]:
     """Case name ("intact", and "crack D m" when ``crack_depth`` [m] > 0, a root crack at
     tooth 0) -> quantity (c_ru, c_r, [c_ru 3D, c_r 3D,] c_sp, c_rp, c_p, c_c) -> its row
     (``value_N_m``, ``error_N_m``, ``seconds_total``, ...: the JSON of ``hubvib stiffness``).
+
+    ``on_part(label)`` is called after each FE part (``stiffness_parts`` of them: progress).
 
     Raises ``ValueError`` naming the design or ``--crack-depth`` for a design whose planets
     are not equally spaced (the FE ring model loads equally spaced planets only) or a depth
@@ -48,8 +56,10 @@ def stiffness_table(design, crack_depth: float = 0.0, solver: str = "auto",
         cases[f"crack {crack_depth:g} m"] = crack
     # c_sp, c_rp are intact means in both cases; the cracked run adds the cracked tooth's
     # engagement to c_rp, so one run serves both
+    done = on_part or (lambda label: None)
     estimates = estimate_mesh(gear_body(design, "sun"), gear_body(design, "planet"), ring,
                               list(cases.values())[-1], material=steel)
+    done("c_sp, c_rp")
     mesh_rows = {key: e.to_dict() for key, e in estimates.items()}
     intact_mesh_rows = {key: e.to_dict(engaged=False) for key, e in estimates.items()}
     bearings = bearing_rows(design)
@@ -58,9 +68,11 @@ def stiffness_table(design, crack_depth: float = 0.0, solver: str = "auto",
         ring_options = dict(solver=solver, material=steel, n_planets=design.n_planets,
                             definition="rim")
         rows = _ring_rows(estimate_ring(ring, crack, **ring_options), "")
+        done(f"c_ru, c_r {name}")
         if solid:
             rows.update(_ring_rows(estimate_ring(ring, crack, solid=True, **ring_options),
                                    " 3D"))
+            done(f"c_ru, c_r {name}, solid")
         rows.update(intact_mesh_rows if crack is None else mesh_rows)
         rows.update(bearings)
         out[name] = rows
