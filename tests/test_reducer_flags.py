@@ -93,3 +93,14 @@ def test_scene_keys_do_not_call_a_design_value_the_presets():
 
     docs = " ".join(str(field.doc) for field in SCHEMA.fields)
     assert "preset's c_ru" not in docs, docs
+
+
+def test_preset_that_contradicts_the_params_file_is_refused(tmp_path, capsys):
+    params = tmp_path / "p.toml"
+    params.write_text('preset = "hub4"\nc_ru = 2e6\n')
+    assert main(["spectrum", "--preset", "raba118", "--params", str(params)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--preset raba118" in err and str(params) in err, err
+    assert "'hub4'" in err, err
+    assert main(["spectrum", "--preset", "hub4", "--params", str(params), "--json"]) == 0
+    capsys.readouterr()

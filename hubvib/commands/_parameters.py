@@ -4,7 +4,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from hubvib.lumped import METHODS, field_names
-from hubvib.runtime.params_input import CONVENIENCE_KEYS, load_parameters, parse_set
+from hubvib.runtime.params_input import (CONVENIENCE_KEYS, load_parameters, parse_set,
+                                         read_toml_file)
 
 from ._reducer import DEFAULT_PRESET, add_reducer_options, reducer_name
 
@@ -32,6 +33,11 @@ def parameters(args):
     """The lumped parameters the options describe (``--design`` or ``--preset``)."""
     reducer_name(args)
     if args.design is None:
+        if args.preset is not None and args.params is not None:
+            named = read_toml_file(args.params).get("preset", args.preset)
+            if named != args.preset:
+                raise ValueError(f"--preset {args.preset} and --params {args.params} (preset = "
+                                 f"{named!r}) name different presets; give one of them")
         return load_parameters(args.preset or DEFAULT_PRESET, args.params, parse_set(args.set))
     from hubvib.build.consistency import check_consistent
     from hubvib.build.stages import lumped_parameters
@@ -54,8 +60,6 @@ def stiffness_methods(args) -> dict[str, str]:
     ``--params`` file that names its own preset takes that preset's design."""
     from hubvib.build.stages import DESIGN_TABLE, derived_field_methods
     from hubvib.design.fields import STIFFNESS_FIELDS
-    from hubvib.runtime.params_input import read_toml_file
-
     from .design import design_from_argument
 
     file_values = {} if args.params is None else read_toml_file(args.params)
