@@ -24,10 +24,12 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
+    from hubvib.runtime.cache_check import sweep_cache
     from hubvib.runtime.progress import progress
     from hubvib.studies.stiffness import named_values, stiffness_parts, stiffness_table
 
     design = design_from_argument(reducer_name(args))
+    sweep_cache()  # what a killed run left in the cache, before this one adds to it
     with progress(stiffness_parts(args.crack_depth, args.solid), "FE stiffness", "part") as bar:
         out = stiffness_table(design, args.crack_depth, args.solver, args.solid,
                               on_part=lambda label: bar.update(1, label))

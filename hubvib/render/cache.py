@@ -25,7 +25,6 @@ import numpy as np
 from hubvib.foundation.files import MAX_TABLE_BYTES, read_bytes, read_text
 from hubvib.foundation.output import atomic_folder
 from hubvib.meshing.cache import root_folder
-from hubvib.runtime.cache_check import sweep_cache
 from hubvib.runtime.fe_cache import canonical
 
 MANIFEST = "manifest.json"
@@ -65,7 +64,6 @@ def cached_render(kind: str, inputs: dict, folder: Path, render) -> list[Path]:
     """``render(target)`` (returns the files it wrote below ``target``) once per ``inputs``;
     the files land in ``folder`` either way and their paths there are returned."""
     folder = Path(folder)
-    sweep_cache()  # scratch a killed run left, before adding to the cache
     entry = _entry(kind, inputs)
     listed = _verified(entry, notice=True) or _render_into(entry, render)
     if listed is not None:

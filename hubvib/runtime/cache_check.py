@@ -7,7 +7,9 @@ work lost.
 ``sweep_cache`` removes, once per process, the hidden scratch a killed run left in the
 cache (``.fe-ring-*``, ``.modes-*``, ``.<entry>.json.*``: render folders and entries
 being written): those whose owner process has exited, and any older than a day
-(``hubvib.foundation.output.remove_stale_scratch``).
+(``hubvib.foundation.output.remove_stale_scratch``).  ``check_writable`` (``hubvib run``
+before its FE work) sweeps, and so do the other commands that add to the cache
+(``stiffness``, ``signal``).
 """
 from __future__ import annotations
 

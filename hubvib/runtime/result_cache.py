@@ -27,7 +27,6 @@ from pathlib import Path
 
 from hubvib.foundation.output import atomic_path
 from hubvib.meshing.cache import root_folder
-from hubvib.runtime.cache_check import sweep_cache
 
 FORMAT = b"hubvib-result-cache 1\n"
 _DIGEST = 64  # hex characters of a SHA-256
@@ -69,7 +68,6 @@ def cached_result(kind: str, inputs, folders: tuple[str, ...], compute, expected
     result = _load(path, expected)
     if result is not None:
         return result
-    sweep_cache()  # scratch a killed run left, before adding to the cache
     payload = pickle.dumps(compute(), protocol=pickle.HIGHEST_PROTOCOL)
     try:
         with atomic_path(path) as tmp:

@@ -18,7 +18,6 @@ import numpy as np
 
 from hubvib.fem.tooth_stiffness import ToothCurve
 from hubvib.meshing.cache import root_folder
-from hubvib.runtime.cache_check import sweep_cache
 from hubvib.runtime.fe_cache import (CacheEntryError, case_lock, entry_key, finite_positive,
                                      read_entry, write_entry)
 
@@ -49,7 +48,6 @@ def shared_intact_curve(compute, body, span, material, options, tooth: int) -> T
     when another process computed it (waiting while it does), else computed here and
     stored (``fem.tooth_stiffness.set_intact_store``)."""
     inputs = curve_inputs(body, span, material, options, tooth)
-    sweep_cache()  # scratch a killed run left, before adding to the cache
     path = root_folder() / "stiffness" / "tooth-curves" / f"{entry_key(inputs)}.json"
     with case_lock(path, wait=True):
         try:
