@@ -1061,6 +1061,99 @@ def crack_path_short_answer() -> str:
     return report_section("raba118_crack_path", "Short answer")
 
 
+# ---------------------------------------------------------------- elastic ring
+
+def _elastic() -> dict:
+    return json.loads((DATA / "elastic_ring.json").read_text())
+
+
+def _families(modes: list[dict]) -> dict[int, list[float]]:
+    out: dict[int, list[float]] = {}
+    for m in modes:
+        out.setdefault(m["nodal_diameter"], []).append(m["frequency_hz"])
+    return out
+
+
+def elastic_ring_families() -> str:
+    """The ring's own in-plane modes per nodal-diameter family: free, on the design's
+    foundation and clamped on the pads (no planets)."""
+    data = _elastic()
+    parts = []
+    for name, d in data["designs"].items():
+        rows = []
+        fam = {k: _families(d[f"families_{k}"]) for k in ("free", "mounted", "clamped")}
+        for n in sorted(set().union(*[set(f) for f in fam.values()])):
+            if n == 1:
+                continue
+            cells = [" / ".join(f"{f:.1f}" for f in fam[k].get(n, [])[:2]) or "-"
+                     for k in ("free", "mounted", "clamped")]
+            rows.append([str(n) + (" (breathing)" if n == 0 else ""), *cells])
+        f = d["foundation_N_m2"]
+        parts.append(f"**{name}** (foundation k_n = {f['normal']:.4g}, k_t = "
+                     f"{f['tangential']:.4g} N/m^2, sized to the design's c_r and c_ru)\n\n"
+                     + markdown_table(["nodal diameters n", "free [Hz]", "on the foundation [Hz]",
+                                       "clamped on the pads [Hz]"], rows, "lrrr"))
+    return "\n\n".join(parts) + "\n\nModes of one family below the band's cut-off, the two "\
+        "members of a pair where the mounting splits it; n = 0 at low frequency on the " \
+        "foundation is the ring's rigid motion on it, not breathing." + provenance(
+            "elastic_ring.json", data["measured"])
+
+
+def elastic_ring_changes() -> str:
+    """The coupled modes with a strong ring part (ring share >= 0.3) and their change by the
+    crack, faces open, closed and the bilinear estimate, on two mesh levels."""
+    data = _elastic()
+    parts = []
+    for name, d in data["designs"].items():
+        rows = []
+        intact = {r["mode"]: r for r in d["coarse"]["intact"]}
+        for depth_c, depth_f in zip(d["coarse"]["depths_mm"], d["fine"]["depths_mm"]):
+            fine = {r["mode"]: r for r in depth_f["modes"]}
+            for r in depth_c["modes"]:
+                info = intact[r["mode"]]
+                if info["ring_share"] < 0.3 or r["open_hz"] is None:
+                    continue
+                f = fine.get(r["mode"])
+                d_open = r["open_hz"] - r["intact_hz"]
+                d_open_f = (f["open_hz"] - f["intact_hz"]) if f and f["open_hz"] else None
+                error = "-" if d_open_f is None else f"{abs(d_open - d_open_f):.1f}"
+                rows.append([f"{depth_c['depth_mm']:g}", r["mode"], info["class"],
+                             info["nodal_diameter"], f"{r['intact_hz']:.1f}", f"{d_open:+.1f}",
+                             f"{r['closed_hz'] - r['intact_hz']:+.2f}",
+                             f"{r['bilinear_hz'] - r['intact_hz']:+.1f}", error,
+                             "split pair" if r["open_split_pair"] else ""])
+        parts.append(f"**{name}** ({d['coarse']['dofs']} ring DOFs; the finer level "
+                     f"{d['fine']['dofs']}; ring-planet spring without the ring "
+                     f"{d['k_rest_N_m']:.4g} N/m)\n\n" + markdown_table(
+                         ["depth [mm]", "mode", "class", "n", "intact [Hz]", "open [Hz]",
+                          "closed [Hz]", "bilinear [Hz]", "mesh error [Hz]", ""], rows,
+                         "rrlrrrrrrl"))
+    return "\n\n".join(parts) + (
+        "\n\nChanges from the intact coupled mode each cracked mode tracks (planet 1 on the "
+        "cracked tooth). Mesh error: the open change's difference between the two mesh "
+        "levels (element sizes / sqrt 2). The detection uses the open crack (an upper "
+        "bound of the change); a breathing crack gives about the bilinear value.") + \
+        provenance("elastic_ring.json", data["measured"])
+
+
+def elastic_ring_validity() -> str:
+    """The lowest elastic ring mode on the mounting and the band where the rigid-ring
+    model holds, per design."""
+    data = _elastic()
+    rows = []
+    for name, d in data["designs"].items():
+        v = d["validity"]
+        rows.append([name, f"{v['lowest_ring_mode_hz']:.1f}", v["lowest_ring_mode_n"],
+                     f"{v['lumped_top_hz']:.1f}", f"{v['rigid_ring_holds_below_hz']:.0f}"])
+    return markdown_table(["design", "lowest ring mode [Hz]", "n", "top 9+3N mode [Hz]",
+                           "rigid ring holds below [Hz]"], rows, "lrrrr") + (
+        "\n\nThe rigid-ring model has no mode of the ring's own: it can hold only below the "
+        "lowest elastic ring mode on the mounting, and only well below it (the band given is "
+        "half that frequency). Where the top 9+3N mode lies above it, the report's watched "
+        "modes share their band with ring modes the rigid model does not have.") + \
+        provenance("elastic_ring.json", data["measured"])
+
+
 # ---------------------------------------------------------------- entry points
 
 TABLES = {name: function for name, function in list(globals().items())

@@ -3,9 +3,9 @@
 Exit codes: 0 done; 1 a check failed (``validate``, ``stability``); 2 bad input, or
 output that cannot be written (one line ``hubvib: error: ...`` naming the flag,
 key or file); 130 interrupted (Ctrl-C: one line ``hubvib: interrupted``); 141
-standard output closed early (``hubvib spectrum | head -1``: quiet, like a
-program stopped by SIGPIPE); 143 terminated (SIGTERM: one line ``hubvib: terminated``).
-No traceback for any of these.
+standard output closed early (``hubvib spectrum | head -1``, ``--help`` too) or
+from the start (``>&-``): quiet, like a program stopped by SIGPIPE; 143 terminated
+(SIGTERM: one line ``hubvib: terminated``).  No traceback for any of these.
 
 Run as the program, SIGTERM unwinds like Ctrl-C (``Terminated``), so that every
 ``finally`` runs: the output stage folders and the temporary files and folders in the
@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import ctypes
+import errno
 import json
 import os
 import signal
@@ -95,11 +96,18 @@ def _main(argv: list[str] | None) -> int:
     try:
         from hubvib.meshing.session import MeshingError
 
-        args = _parse(sys.argv[1:] if argv is None else list(argv))
+        try:
+            args = _parse(sys.argv[1:] if argv is None else list(argv))
+        except SystemExit as stop:
+            # argparse exits: 0 after --help, printed on stdout (on stderr when there is
+            # none), 2 after a usage error, printed on stderr; a closed pipe shows here
+            if stop.code == 0 and sys.stdout is not None:
+                sys.stdout.flush()
+            raise
         as_json = bool(getattr(args, "json", False))
         try:
             code = args.handler(args)
-            sys.stdout.flush()  # a closed pipe shows here, not in the interpreter's exit
+            _flush_stdout()
             return code
         except (ValueError, MeshingError) as exc:  # ParameterError, SceneError, CacheError...
             return _error(exc, as_json)
@@ -122,6 +130,15 @@ def _main(argv: list[str] | None) -> int:
         return _error(f"{where}{exc.strerror or exc}", as_json)
 
 
+def _flush_stdout() -> None:
+    """Flush what the command printed: a closed pipe shows here (``BrokenPipeError``), not
+    in the interpreter's exit.  No standard output at all (started with it closed, ``>&-``:
+    Python's ``sys.stdout`` is None and every print was dropped) counts as one."""
+    if sys.stdout is None:
+        raise BrokenPipeError(errno.EPIPE, "standard output is closed")
+    sys.stdout.flush()
+
+
 def _error(message, as_json: bool = False) -> int:
     """One line ``hubvib: error: ...`` on stderr; with ``--json`` also
     ``{"error": ..., "exit_code": 2}`` on stdout (a script reading stdout sees why)."""
@@ -130,7 +147,7 @@ def _error(message, as_json: bool = False) -> int:
         try:
             print(json.dumps({"error": str(message), "exit_code": EXIT_ERROR}), flush=True)
         except (OSError, ValueError):
-            pass  # stdout itself is gone
+            _silence_stdout()  # stdout itself is gone: the interpreter's last flush would fail
     return EXIT_ERROR
 
 

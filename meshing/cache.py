@@ -1,15 +1,18 @@
-"""Meshes cached on disk by a hash of everything that defines them."""
+"""Meshes cached on disk by a hash of everything that defines them: the parameters and
+the source of the mesher (the module of ``build`` and every hubvib module it imports,
+:func:`hubvib.foundation.source_graph.source_key`)."""
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import os
 from dataclasses import asdict, is_dataclass
 from pathlib import Path
 
-from .fe_mesh import FEMesh
+from hubvib.foundation.source_graph import source_key
 
-VERSION = 4  # bump when the mesher changes what a given parameter set produces
+from .fe_mesh import FEMesh
 
 
 def root_folder() -> Path:
@@ -26,14 +29,16 @@ def key(*parts) -> str:
     """Stable hash of dataclasses and plain values."""
     def plain(value):
         return asdict(value) if is_dataclass(value) else value
-    text = json.dumps([VERSION, *[plain(p) for p in parts]], sort_keys=True, default=repr)
+    text = json.dumps([plain(p) for p in parts], sort_keys=True, default=repr)
     return hashlib.sha256(text.encode()).hexdigest()[:24]
 
 
 def cached(build, *parts, folder: Path | None = None) -> tuple[FEMesh, bool]:
-    """``build()`` once per parameter set; returns the mesh and whether it came from the cache."""
+    """``build()`` once per parameter set and source of ``build``'s module (and of every
+    hubvib module it imports); returns the mesh and whether it came from the cache."""
     folder = Path(folder) if folder is not None else default_folder()
-    path = folder / f"{key(*parts)}.npz"
+    mesher = build.func if isinstance(build, functools.partial) else build
+    path = folder / f"{key(source_key(mesher.__module__, __name__), *parts)}.npz"
     if path.exists():
         try:
             return FEMesh.load(path), True

@@ -63,3 +63,51 @@ def shared_cache(shared_cache_folder, monkeypatch):
     sets already, named by the tests that rely on entries other tests computed."""
     monkeypatch.setenv("HUBVIB_CACHE", str(shared_cache_folder))
     return shared_cache_folder
+
+
+@pytest.fixture
+def edit_source(tmp_path, monkeypatch):
+    """``edit(module)``: from now on the source keys of every cache
+    (``hubvib.foundation.source_graph``) read module ``module`` (dotted name) from a copy
+    with ``line`` appended, as after a developer's edit; the graph of the process is
+    restored after the test."""
+    from hubvib.foundation import source_graph
+
+    edited = {}
+
+    def locate(name):
+        return edited.get(name) or source_graph.find_module(name)
+
+    def edit(module: str, line: str = "# an edit\n") -> Path:
+        original = locate(module)
+        assert original is not None, f"no source file for {module}"
+        copy = tmp_path / "edited" / module / original.name
+        copy.parent.mkdir(parents=True, exist_ok=True)
+        copy.write_bytes(original.read_bytes() + line.encode())
+        edited[module] = copy
+        monkeypatch.setattr(source_graph, "PROCESS_GRAPH", source_graph.SourceGraph(locate))
+        return copy
+
+    return edit
+
+
+@pytest.fixture
+def installed_copy(tmp_path):
+    """A folder holding a copy of ``hubvib/`` laid out as the wheel installs it (every
+    package folder of ``pyproject.toml`` at its dotted place, its files copied), to be
+    imported from a fresh interpreter with the folder first on ``PYTHONPATH``."""
+    import shutil
+    import tomllib
+
+    root = Path(__file__).parents[1]
+    config = tomllib.loads((root / "pyproject.toml").read_text())["tool"]["setuptools"]
+    folders = config["package-dir"]
+    out = tmp_path / "installed"
+    for package in config["packages"]:
+        source = root / folders.get(package, package.replace(".", "/"))
+        target = out.joinpath(*package.split("."))
+        target.mkdir(parents=True, exist_ok=True)
+        for file in source.iterdir():
+            if file.is_file() and file.suffix in (".py", ".toml"):
+                shutil.copy2(file, target / file.name)
+    return out

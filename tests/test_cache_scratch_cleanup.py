@@ -23,7 +23,8 @@ RENDERING = textwrap.dedent("""
         return [target / "picture.png"]
 
     def handler(args):
-        cached_render("fe-ring", {"case": 1}, Path(sys.argv[1]), render)
+        cached_render("fe-ring", {"case": 1}, Path(sys.argv[1]), render,
+                      modules=("hubvib.render.cache",))
         return 0
 
     cli._parse = lambda argv: argparse.Namespace(handler=handler, json=False)

@@ -78,3 +78,31 @@ def test_curved_p2_beats_p1_at_equal_dofs():
     ratio = abs(p1 / reference - 1) / abs(p2 / reference - 1)
     assert ratio >= 4.0, f"P1 / P2 error at {dofs_p2} DOFs is {ratio:.2f}, expected >= 4"
     assert math.isfinite(ratio)
+
+
+def test_convergence_table_leaves_the_orders_without_a_triple_empty(tmp_path, capsys):
+    """The first two levels have no triple of levels ending at them, so no observed order:
+    the printed table and the CSV leave that cell empty (no ``nan``), --json holds null,
+    and every other cell is a number."""
+    pytest.importorskip("skfem")
+    import csv
+    import json
+
+    from hubvib.cli import main
+
+    assert main(["convergence", "annulus", "--out", str(tmp_path)]) == 0
+    printed = capsys.readouterr().out
+    assert "nan" not in printed.lower(), printed
+    table = tmp_path / "convergence_annulus.csv"
+    text = table.read_text()
+    assert "nan" not in text.lower(), text
+    assert printed.startswith(text), "the printed table is the CSV"
+    rows = list(csv.DictReader(table.open(newline="")))
+    assert [r["observed_order"] for r in rows[:2]] == ["", ""]
+    assert all(math.isfinite(float(r["observed_order"])) for r in rows[2:])
+    assert all(math.isfinite(float(v)) for r in rows for k, v in r.items()
+               if k != "observed_order")
+    assert main(["convergence", "annulus", "--out", str(tmp_path), "--json"]) == 0
+    levels = json.loads(capsys.readouterr().out)["levels"]
+    assert [level["observed_order"] for level in levels[:2]] == [None, None]
+    assert all(isinstance(level["observed_order"], float) for level in levels[2:])

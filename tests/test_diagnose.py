@@ -211,6 +211,34 @@ def test_cli_json_holds_depth_interval_and_verdict(cli, capsys, direct):
     assert "verdict: crack indicated: depth" in capsys.readouterr().out
 
 
+class _ClosedPipe:
+    """A standard output whose reader is gone: every write raises ``BrokenPipeError``."""
+
+    def write(self, text):
+        raise BrokenPipeError(32, "Broken pipe")
+
+    def flush(self):
+        pass
+
+    def fileno(self):
+        raise OSError("not a real file")
+
+
+@pytest.mark.parametrize("stdout", [_ClosedPipe(), None], ids=["closed pipe", "no stdout"])
+@pytest.mark.parametrize("flags", [(), ("--json",)], ids=["table", "json"])
+def test_cli_with_stdout_closed_exits_141_quietly(cli, capsys, monkeypatch, direct, stdout,
+                                                  flags):
+    """A diagnosis whose standard output is closed (``| head -0``, or ``>&-``: Python's
+    ``sys.stdout`` is None) ends as every command's does: exit 141, nothing on stderr."""
+    model, ref = direct
+    frequency, own = synthetic_measurements(model, OPTIONS, TIMING, np.array([0.02]), seed=5)
+    rows = "\n".join(f"{m + 1},{frequency[0, m]:.4f},{own[0, m]:.4f}" for m in (11, 15))
+    with monkeypatch.context() as patch:
+        patch.setattr("sys.stdout", stdout)
+        code = cli("mode,frequency_hz,baseline_hz\n" + rows + "\n", *flags)
+    assert (code, capsys.readouterr().err) == (141, "")
+
+
 @pytest.mark.parametrize("text, message", [
     ("freq\n100\n", r"measured.csv line 1: header \['freq'\]; it needs the column frequency_hz"),
     ("mode\n1\n", "it needs the column frequency_hz"),

@@ -54,6 +54,16 @@ BAD_TABLES = [
     ({"engine": "dask", "scheduler": "http://10.0.0.5:8786"}, "scheduler"),
     ({"engine": "dask", "scheduler": 8786}, "scheduler"),
     ({"engine": "dask", "scheduler": ""}, "scheduler"),
+    ({"engine": "dask", "scheduler": "inproc://nothing"}, "scheduler"),
+    ({"engine": "dask", "scheduler": "inproc://10.0.0.5/4242/1"}, "scheduler"),
+    ({"engine": "dask", "scheduler": "tls://10.0.0.5:8786"}, "scheduler"),
+    ({"engine": "dask", "scheduler": "tcp://10.0.0.5"}, "scheduler"),  # no port
+    ({"engine": "dask", "scheduler": "tcp://:8786"}, "scheduler"),  # no host
+    ({"engine": "dask", "scheduler": "tcp://"}, "scheduler"),
+    ({"engine": "dask", "scheduler": "tcp://10.0.0.5:0"}, "scheduler"),
+    ({"engine": "dask", "scheduler": "tcp://10.0.0.5:65536"}, "scheduler"),
+    ({"engine": "dask", "scheduler": "tcp://10.0.0.5:port"}, "scheduler"),
+    ({"engine": "dask", "scheduler": "tcp://10.0.0.5:8786/path"}, "scheduler"),
     ({"workers": 0}, "workers"),
     ({"workers": 65}, "workers"),
     ({"workers": True}, "workers"),
@@ -76,6 +86,45 @@ def test_bad_execution_table_names_the_key(table, key):
     with pytest.raises(SceneError, match=key) as info:
         parse_execution_table(table)
     assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("address", ["tcp://10.0.0.5:8786", "tcp://scheduler.example:1",
+                                     "tcp://[::1]:65535", "tcp://127.0.0.1:8786/"])
+def test_scheduler_accepts_tcp_host_and_port(address):
+    assert parse_execution_table({"engine": "dask", "scheduler": address}).scheduler == address
+
+
+def test_scheduler_refusal_names_the_key_the_value_and_the_allowed_forms():
+    with pytest.raises(SceneError) as info:
+        parse_execution_table({"engine": "dask", "scheduler": "inproc://nothing",
+                               "timeout_s": 2})
+    assert str(info.value) == (
+        "[execution] scheduler = 'inproc://nothing'; allowed with engine = \"dask\": a running "
+        "scheduler's \"tcp://HOST:PORT\", or no scheduler key for a LocalCluster on this "
+        "machine")
+
+
+def test_run_refuses_an_inproc_scheduler_before_writing(tmp_path, capsys, monkeypatch):
+    """A crack scene naming an ``inproc://`` scheduler: refused when the scene is read, in
+    one line naming the key (dask's own parsing of it raised an unpacking error naming
+    nothing), exit 2, no output folder and no cache entry."""
+    from hubvib.cli import main
+
+    scene = tmp_path / "scene.toml"
+    scene.write_text('[reducer]\npreset = "raba118"\n[crack]\ndepths = [0.0, 0.003]\n'
+                     '[execution]\nengine = "dask"\nscheduler = "inproc://nothing"\n'
+                     'timeout_s = 2\n')
+    cache = tmp_path / "cache"
+    monkeypatch.setenv("HUBVIB_CACHE", str(cache))
+    out = tmp_path / "out"
+    code = main(["run", str(scene), "--out", str(out)])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err.splitlines() == [
+        "hubvib: error: [execution] scheduler = 'inproc://nothing'; allowed with engine = "
+        "\"dask\": a running scheduler's \"tcp://HOST:PORT\", or no scheduler key for a "
+        "LocalCluster on this machine"]
+    assert not out.exists() and not cache.exists()
 
 
 SCENE = """
@@ -235,7 +284,8 @@ def test_dask_scheduler_without_workers_fails_within_the_timeout():
     """A scheduler that answers but has no worker: the cases would wait for ever."""
     from distributed import LocalCluster
 
-    with LocalCluster(n_workers=0, processes=False, dashboard_address=None) as empty:
+    with LocalCluster(n_workers=0, processes=False, protocol="tcp", host="127.0.0.1",
+                      dashboard_address=None) as empty:
         execution = parse_execution_table({"engine": "dask", "scheduler": empty.scheduler_address,
                                            "timeout_s": 1})
         on_result, delivered = collector()

@@ -197,6 +197,54 @@ def test_closed_stdout_is_quiet(argv):
     assert run.wait(timeout=60) == 141 and stderr == ""
 
 
+def _buffered_env() -> dict:
+    """The environment with Python's default block-buffered stdout (a pipe's output then
+    leaves at the flush, as for a user; PYTHONUNBUFFERED would write every print at once)."""
+    return {k: v for k, v in os.environ.items() if k != "PYTHONUNBUFFERED"}
+
+
+def test_help_into_a_closed_pipe_is_quiet():
+    """``hubvib diagnose --help | head -0``: as for a command's own output, exit 141 and
+    nothing on stderr; the help waits in the buffer, so the pipe shows at its flush, which
+    must not be the interpreter's last one ("Exception ignored ... BrokenPipeError", exit
+    120)."""
+    run = subprocess.Popen([*HUBVIB, "diagnose", "--help"], stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, env=_buffered_env())
+    run.stdout.close()
+    stderr = run.stderr.read().decode()
+    assert (run.wait(timeout=60), stderr) == (141, "")
+
+
+def test_json_error_into_a_closed_pipe_is_exit_2_and_one_line(tmp_path):
+    """Bad input with --json and stdout closed: the error's JSON object cannot be written;
+    the answer stays exit 2 with its one line on stderr, and the unwritten object is not
+    left for the interpreter's last flush ("Exception ignored ...", exit 120)."""
+    measured = tmp_path / "measured.csv"
+    measured.write_text("frequency_hz\n53.5\n")
+    run = subprocess.Popen([*HUBVIB, "diagnose", "--scene", "raba118_c_ru", "--measured",
+                            str(measured), "--json"], stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, env=_buffered_env())
+    run.stdout.close()
+    stderr = run.stderr.read().decode()
+    assert run.wait(timeout=60) == 2
+    assert stderr.splitlines() == ["hubvib: error: --scene 'raba118_c_ru' has no [crack] "
+                                   "study: diagnosis needs the crack sweep it compares the "
+                                   "measurement with"]
+
+
+@pytest.mark.parametrize("argv, code", [(["spectrum"], 141), (["diagnose", "--help"], 0)],
+                         ids=["output", "help"])
+def test_stdout_closed_from_the_start_is_quiet(argv, code):
+    """``hubvib spectrum >&-``: no standard output at all (Python's ``sys.stdout`` is None,
+    every print dropped): exit 141 and nothing on stderr, as for a closed pipe, no
+    traceback; ``--help`` goes to stderr then (argparse) and exits 0."""
+    run = subprocess.run([*HUBVIB, *argv], stderr=subprocess.PIPE, timeout=60,
+                         preexec_fn=lambda: os.close(1))
+    stderr = run.stderr.decode()
+    assert run.returncode == code and "Traceback" not in stderr, stderr
+    assert (stderr == "") if code == 141 else stderr.startswith("usage: hubvib diagnose")
+
+
 # -- item 6: a full disk --------------------------------------------------------------------
 
 def test_full_disk_leaves_the_previous_set(tmp_path, capsys, monkeypatch):

@@ -12,6 +12,8 @@ import json
 import math
 import multiprocessing
 import os
+import subprocess
+import sys
 import time
 from dataclasses import asdict, replace
 from pathlib import Path
@@ -22,6 +24,7 @@ import hubvib.studies.crack_sweep as crack_sweep
 import hubvib.runtime.fe_cache as fe_cache
 from hubvib.studies.crack_sweep import POSITIVE_KEYS, CrackSweep, case_inputs, run_fe_cases
 from hubvib.design.presets import hub4, raba118
+from hubvib.foundation.source_graph import source_key
 from hubvib.runtime.fe_cache import CacheEntryError, CacheFolderError, entry_key
 from hubvib.meshing.crack import Crack
 
@@ -70,7 +73,8 @@ def make_sweep(**changes) -> CrackSweep:
 
 
 def entry_path(sweep: CrackSweep, depth: float) -> Path:
-    return crack_sweep.cache_folder() / f"{entry_key(case_inputs(sweep, depth))}.json"
+    key = entry_key(case_inputs(sweep, depth), modules=crack_sweep.SOURCE)
+    return crack_sweep.cache_folder() / f"{key}.json"
 
 
 def notices(stderr: str) -> list[str]:
@@ -100,13 +104,13 @@ def test_good_entries_are_reused_and_store_their_inputs(fake, capsys):
     assert inputs["crack"] == asdict(Crack(tooth=0, depth=0.002, angle=0.0, start="root"))
     assert inputs["scale"] == crack_sweep.ACCURACY["fast"] == 2.0
     assert data["result"] == synthetic(0.002)
-    assert data["fe_version"] == fe_cache.fe_version()
+    assert data["source"] == source_key(*crack_sweep.SOURCE)
     assert len(data["checksum"]) == 64
 
 
 def _resign(data: dict) -> None:
     """Give an edited entry a valid checksum (a buggy writer, not a damaged file)."""
-    data["checksum"] = fe_cache._checksum(data["inputs"], data["result"])
+    data["checksum"] = fe_cache._checksum(data["inputs"], data["result"], data["source"])
 
 
 def _edit_result(change, resign: bool):
@@ -253,27 +257,111 @@ def test_swapped_entries_are_both_recomputed(fake, capsys):
     assert len(lines) == 2 and all("inputs are not those of this case" in l for l in lines), lines
 
 
-def test_entry_of_another_fe_version_is_not_trusted(fake, capsys, monkeypatch):
-    """An FE source change (fe_version) invalidates every entry, whether it is looked up
-    under its new key or found under the current one."""
+def test_entry_of_another_source_is_not_trusted(fake, capsys, edit_source):
+    """A source change invalidates every entry, whether it is looked up under its new key
+    or found under the current one."""
     sweep = make_sweep()
-    monkeypatch.setattr(fe_cache, "fe_version", lambda: "0123456789abcdef")
     run_fe_cases(sweep, progress=False)
-    old = entry_path(sweep, 0.002)
-    old_text = old.read_text()
-    monkeypatch.undo()
-    monkeypatch.setenv("HUBVIB_CACHE", str(old.parent.parent))
-    monkeypatch.setattr(crack_sweep, "fe_case", lambda s, d: (fake.append(d), synthetic(d))[1])
+    old_text = entry_path(sweep, 0.002).read_text()
+    edit_source("hubvib.fem.ring_stiffness")
     fake.clear()
     _, computed = run_fe_cases(sweep, progress=False)
-    assert computed == 3, "new FE version: new keys, every case computed"
+    assert computed == 3, "new source: new keys, every case computed"
 
     entry_path(sweep, 0.002).write_text(old_text)  # the old entry under the current key
     fake.clear()
     capsys.readouterr()
     _, computed = run_fe_cases(sweep, progress=False)
     assert (computed, fake) == (1, [0.002])
-    assert "another version of the FE stage" in notices(capsys.readouterr().err)[0]
+    assert "another version of the source" in notices(capsys.readouterr().err)[0]
+
+
+def test_a_worker_of_another_source_refuses_the_case(fake, edit_source):
+    """A worker (a Dask worker on another machine) whose source key is not the client's
+    computes nothing: its result would be stored under the client's key."""
+    sweep = make_sweep()
+    case = crack_sweep._Case(sweep, source_key(*crack_sweep.SOURCE))
+    assert case(0.002) == synthetic(0.002)
+    edit_source("hubvib.build.stages")
+    with pytest.raises(RuntimeError, match="install the same hubvib on every worker"):
+        case(0.002)
+    assert fake == [0.002]
+
+
+#: modules an FE case imports, in each stage it runs through (the ring, gear bodies and
+#: material are built by ``hubvib.build.stages``)
+IMPORTED = ["hubvib.build.stages", "hubvib.build", "hubvib.fem.ring_stiffness",
+            "hubvib.meshing.ring_mesh", "hubvib.design.model", "hubvib.studies.crack_sweep"]
+#: modules an FE case does not import
+UNRELATED = ["hubvib.render.modes", "hubvib.render.fe", "hubvib.detection.pod",
+             "hubvib.signal.mesh_curves", "hubvib.commands.run"]
+
+
+@pytest.mark.parametrize("module", IMPORTED)
+def test_an_edit_to_a_module_the_case_imports_recomputes_it(fake, capsys, edit_source, module):
+    """An edited module of the case's import graph (the build layer's included): every case
+    is computed again, and the entries of the old source are left alone."""
+    sweep = make_sweep()
+    first, _ = run_fe_cases(sweep, progress=False)
+    assert run_fe_cases(sweep, progress=False)[1] == 0
+    edit_source(module)
+    fake.clear()
+    again, computed = run_fe_cases(sweep, progress=False)
+    assert computed == 3 and sorted(fake) == list(DEPTHS), f"{module} edited: a cache miss"
+    assert again == first
+    assert len(list(crack_sweep.cache_folder().glob("*.json"))) == 6
+    assert run_fe_cases(sweep, progress=False)[1] == 0, "the new entries are reused"
+    assert notices(capsys.readouterr().err) == []
+
+
+@pytest.mark.parametrize("module", UNRELATED)
+def test_an_edit_outside_the_cases_import_graph_keeps_its_entries(fake, edit_source, module):
+    sweep = make_sweep()
+    run_fe_cases(sweep, progress=False)
+    edit_source(module)
+    fake.clear()
+    _, computed = run_fe_cases(sweep, progress=False)
+    assert computed == 0 and fake == [], f"{module} is not imported by an FE case"
+
+
+#: a sweep of the synthetic cases (JSON in argv) in a fresh interpreter; prints how many ran
+_SWEEP = """
+import json, sys
+import hubvib.studies.crack_sweep as crack_sweep
+from hubvib.design.presets import hub4
+results = {float(depth): result for depth, result in json.loads(sys.argv[1]).items()}
+crack_sweep.fe_case = lambda sweep, depth: results[depth]
+sweep = crack_sweep.CrackSweep(tuple(sorted(results)), accuracy="fast", workers=1,
+                               design=hub4())
+print(crack_sweep.run_fe_cases(sweep, progress=False)[1])
+"""
+
+
+@pytest.mark.slow
+def test_an_edited_build_module_of_an_installed_copy_recomputes_the_case(installed_copy,
+                                                                         tmp_path):
+    """The installed layout, each run a new process, the file itself edited: a comment
+    appended to ``hubvib/build/stages.py`` (which builds the ring, the gear bodies and the
+    material of every case) is a cache miss; one appended to a render module is not."""
+    results = json.dumps({str(d): synthetic(d) for d in DEPTHS})
+    env = dict(os.environ, PYTHONPATH=str(installed_copy), HUBVIB_CACHE=str(tmp_path / "c"))
+
+    def computed() -> int:
+        run = subprocess.run([sys.executable, "-c", _SWEEP, results], capture_output=True,
+                             text=True, cwd=installed_copy, env=env, timeout=300)
+        assert run.returncode == 0, run.stderr
+        return int(run.stdout.split()[-1])
+
+    def append(path: str) -> None:
+        with open(installed_copy / path, "a", encoding="utf-8") as file:
+            file.write("# an edit\n")
+
+    assert computed() == 3
+    assert computed() == 0
+    append("hubvib/render/modes.py")
+    assert computed() == 0, "a render module is not imported by an FE case"
+    append("hubvib/build/stages.py")
+    assert computed() == 3, "an edit to the build layer must not leave stale c_ru and c_rp"
 
 
 def test_design_and_accuracy_decide_the_entry(fake):
@@ -281,7 +369,8 @@ def test_design_and_accuracy_decide_the_entry(fake):
     base = make_sweep(depths=(0.0,))
     others = [make_sweep(depths=(0.0,), design=raba118()),
               make_sweep(depths=(0.0,), accuracy="default")]
-    keys = {entry_key(case_inputs(s, 0.0)) for s in [base, *others]}
+    keys = {entry_key(case_inputs(s, 0.0), modules=crack_sweep.SOURCE)
+            for s in [base, *others]}
     assert len(keys) == 3
     for n, sweep in enumerate([base, *others], start=1):
         _, computed = run_fe_cases(sweep, progress=False)

@@ -16,6 +16,9 @@ from hubvib.foundation.errors import InputError
 from hubvib.foundation.files import read_bytes, read_text
 from hubvib.runtime.fe_cache import CacheEntryError, read_entry
 
+#: the entry module the stand-in FE cache entries below are keyed on
+MODULES = ("hubvib.runtime.fe_cache",)
+
 
 def _fails(capsys, argv, *pieces):
     """``main(argv)`` exits 2 with one line on stderr holding every piece; nothing else
@@ -103,7 +106,7 @@ def test_cache_entry_that_is_a_device_is_recomputed_not_read(source, fifo, tmp_p
     if source != "fifo":
         path.symlink_to("/dev/zero")
     with pytest.raises(CacheEntryError, match="unreadable .*not a regular file"):
-        _bounded(lambda: read_entry(path, {"a": 1}), fifo)
+        _bounded(lambda: read_entry(path, {"a": 1}, modules=MODULES), fifo)
 
 
 def test_render_cache_file_symlinked_to_a_device_is_rendered_again(tmp_path, capsys):
@@ -430,17 +433,17 @@ def test_cache_checksum_has_no_key(tmp_path):
     from hubvib.runtime import fe_cache
 
     inputs, path = {"case": 1}, tmp_path / "entry.json"
-    fe_cache.write_entry(path, inputs, {"c_ru_N_m": 1.0e10})
+    fe_cache.write_entry(path, inputs, {"c_ru_N_m": 1.0e10}, modules=MODULES)
     data = json.loads(path.read_text(encoding="utf-8"))
     data["result"]["c_ru_N_m"] = 2.0e10  # edited ...
     with pytest.raises(CacheEntryError, match="checksum mismatch"):
         path.write_text(json.dumps(data), encoding="utf-8")
-        read_entry(path, inputs)  # ... is caught while the sum is stale
+        read_entry(path, inputs, modules=MODULES)  # ... is caught while the sum is stale
     data["checksum"] = hashlib.sha256(fe_cache.canonical(  # ... and re-summed: no key needed
-        [fe_cache.FORMAT, fe_cache.FORMAT_VERSION, fe_cache.fe_version(), inputs,
+        [fe_cache.FORMAT, fe_cache.FORMAT_VERSION, data["source"], inputs,
          data["result"]]).encode()).hexdigest()
     path.write_text(json.dumps(data), encoding="utf-8")
-    assert read_entry(path, inputs) == {"c_ru_N_m": 2.0e10}
+    assert read_entry(path, inputs, modules=MODULES) == {"c_ru_N_m": 2.0e10}
     page = (Path(__file__).parents[1] / "docs" / "reliability.md").read_text(encoding="utf-8")
     assert "guards against damage, not tampering" in page.replace("\n", " ")
 

@@ -39,7 +39,8 @@ def _fill_render_cache(kind, inputs, tmp_path):
         (target / "picture.png").write_bytes(b"png")
         return [target / "picture.png"]
 
-    cached_render(kind, inputs, tmp_path / "first", render)
+    cached_render(kind, inputs, tmp_path / "first", render,
+                  crack_study.FE_SOURCE if kind == "fe-ring" else crack_study.MODES_SOURCE)
 
 
 def test_renders_are_submitted_only_when_the_render_cache_lacks_them(cache):

@@ -349,6 +349,23 @@ def test_json_text_names_a_non_finite_value():
         json_text({"modes": [{"omega": 1.0}, {"omega": math.inf}]})
 
 
+def test_written_tables_leave_a_nan_cell_empty(tmp_path):
+    """A NaN (a value that has none) is an empty CSV field, never ``nan``; every other value,
+    an infinite one too, is written as before (``str`` of the float)."""
+    import csv
+
+    from hubvib.foundation.output import write_csv
+
+    numpy = pytest.importorskip("numpy")
+    path = write_csv(tmp_path / "t.csv", [
+        {"a": 1.0 / 3.0, "b": math.nan, "c": 7, "d": None},
+        {"a": numpy.float64("nan"), "b": numpy.float32(0.5), "c": math.inf, "d": "text"}])
+    text = path.read_text()
+    assert "nan" not in text.lower(), text
+    assert text.splitlines() == ["a,b,c,d", f"{1.0 / 3.0!r},,7,", ",0.5,inf,text"]
+    assert list(csv.DictReader(path.open(newline="")))[0]["b"] == ""
+
+
 # -- item 15: silent acceptance -------------------------------------------------------------
 
 @pytest.mark.parametrize("sets, message", [

@@ -6,6 +6,9 @@ import pytest
 
 from hubvib.render.cache import array_digest, cache_folder, cached_render
 
+#: the entry module of the stand-in renders below
+MODULES = ("hubvib.render.modes",)
+
 
 @pytest.fixture
 def cache(tmp_path, monkeypatch):
@@ -32,22 +35,22 @@ class _Render:
 
 def test_second_render_is_a_copy(cache):
     render = _Render()
-    first = cached_render("modes", {"a": 1}, cache / "out1", render)
-    second = cached_render("modes", {"a": 1}, cache / "out2", render)
+    first = cached_render("modes", {"a": 1}, cache / "out1", render, MODULES)
+    second = cached_render("modes", {"a": 1}, cache / "out2", render, MODULES)
     assert render.calls == 1
     assert [p.relative_to(cache / "out2") for p in second] == \
         [p.relative_to(cache / "out1") for p in first]
     for folder in ("out1", "out2"):
         assert (cache / folder / "mode_01.png").read_text() == "mode 1"
         assert (cache / folder / "mode_01" / "mode_01_0.vtp").read_text() == "piece"
-    cached_render("modes", {"a": 2}, cache / "out3", render)  # other inputs: rendered
+    cached_render("modes", {"a": 2}, cache / "out3", render, MODULES)  # other inputs: rendered
     assert render.calls == 2
 
 
 @pytest.mark.parametrize("damage", ["edit", "delete", "manifest", "empty", "list", "escape"])
 def test_a_damaged_entry_is_rendered_again(cache, capsys, damage):
     render = _Render()
-    cached_render("modes", {"a": 1}, cache / "out1", render)
+    cached_render("modes", {"a": 1}, cache / "out1", render, MODULES)
     (entry,) = cache_folder().iterdir()
     if damage == "edit":
         (entry / "mode_01.png").write_text("mode 2")
@@ -59,11 +62,11 @@ def test_a_damaged_entry_is_rendered_again(cache, capsys, damage):
                     "list": {"files": [], "returned": []},
                     "escape": {"files": {"../x.png": "0"}, "returned": ["../x.png"]}}[damage]
         (entry / "manifest.json").write_text(json.dumps(manifest))
-    cached_render("modes", {"a": 1}, cache / "out2", render)
+    cached_render("modes", {"a": 1}, cache / "out2", render, MODULES)
     assert render.calls == 2
     assert "rendering again" in capsys.readouterr().err
     assert (cache / "out2" / "mode_01.png").read_text() == "mode 1"
-    cached_render("modes", {"a": 1}, cache / "out3", render)  # repaired
+    cached_render("modes", {"a": 1}, cache / "out3", render, MODULES)  # repaired
     assert render.calls == 2
 
 
@@ -73,7 +76,7 @@ def test_a_failed_render_leaves_no_entry(cache):
         raise RuntimeError("no display")
 
     with pytest.raises(RuntimeError):
-        cached_render("modes", {"a": 1}, cache / "out", broken)
+        cached_render("modes", {"a": 1}, cache / "out", broken, MODULES)
     assert list(cache_folder().iterdir()) == []
 
 
@@ -82,7 +85,7 @@ def test_an_unusable_cache_folder_renders_in_place(tmp_path, monkeypatch):
     blocker.write_text("not a folder")
     monkeypatch.setenv("HUBVIB_CACHE", str(blocker))
     render = _Render()
-    files = cached_render("modes", {"a": 1}, tmp_path / "out", render)
+    files = cached_render("modes", {"a": 1}, tmp_path / "out", render, MODULES)
     assert files == [tmp_path / "out" / "mode_01.png", tmp_path / "out" / "mode_01.vtm"]
     assert (tmp_path / "out" / "mode_01.png").read_text() == "mode 1"
 

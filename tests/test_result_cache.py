@@ -2,15 +2,14 @@
 one-command parser of the CLI: what they return is what the uncached path returns."""
 import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-from hubvib.runtime import result_cache
 from hubvib.runtime.result_cache import cached_figure, cached_result
 
-SOURCE = (str(Path(result_cache.__file__).parent),)
+#: the entry module of the probes below
+SOURCE = ("hubvib.detection.study",)
 
 
 @pytest.fixture
@@ -40,16 +39,32 @@ def test_second_call_loads_the_same_result_without_computing(cache):
     assert len(list(cache.glob("probe-*.pickle"))) == 2
 
 
-def test_a_changed_source_is_another_entry(cache, tmp_path):
-    source = tmp_path / "src"
-    source.mkdir()
-    (source / "a.py").write_text("x = 1\n")
+@pytest.mark.parametrize("module, recomputed", [
+    ("hubvib.detection.study", True), ("hubvib.detection.pod", True),
+    ("hubvib.lumped.eigensolve", True), ("hubvib.render.modes", False),
+    ("hubvib.signal.mesh_curves", False)])
+def test_an_edit_in_the_import_graph_is_another_entry(cache, edit_source, module, recomputed):
+    """The entry module's import graph decides: an edit there is another entry, an edit
+    elsewhere is not."""
     compute, calls = _counted(3.0)
-    cached_result("probe", (), (str(source),), compute, float)
-    (source / "a.py").write_text("x = 2\n")
-    result_cache.source_version.cache_clear()
-    cached_result("probe", (), (str(source),), compute, float)
-    assert len(calls) == 2, "an edit to the source must not reuse the old entry"
+    cached_result("probe", (), SOURCE, compute, float)
+    cached_result("probe", (), SOURCE, compute, float)
+    assert len(calls) == 1
+    edit_source(module)
+    cached_result("probe", (), SOURCE, compute, float)
+    assert len(calls) == (2 if recomputed else 1), module
+
+
+def test_the_modules_of_the_inputs_classes_count(cache, edit_source):
+    """An input's methods run in the computation: an edit to its class's module is another
+    entry although the entry module does not import it."""
+    from hubvib.foundation.errors import InputError
+
+    compute, calls = _counted(3.0)
+    cached_result("probe", (InputError("x"),), ("hubvib.render.modes",), compute, float)
+    edit_source("hubvib.foundation.errors")
+    cached_result("probe", (InputError("x"),), ("hubvib.render.modes",), compute, float)
+    assert len(calls) == 2
 
 
 def test_a_damaged_entry_is_computed_again_with_a_notice(cache, capsys):
@@ -90,7 +105,7 @@ def test_cached_figure_is_the_picture_save_figure_draws(cache, tmp_path):
     values = np.array([0.0, 1.0, 4.0, 9.0])
     direct = save_figure(figure(values), tmp_path / "direct.png").read_bytes()
     for name in ("first.png", "second.png"):  # drawn, then copied from the entry
-        assert cached_figure(tmp_path / name, figure, (values,), SOURCE).read_bytes() == direct
+        assert cached_figure(tmp_path / name, figure, (values,)).read_bytes() == direct
     assert len(list(cache.glob("figure-figure-*.pickle"))) == 1
 
 

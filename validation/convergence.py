@@ -45,6 +45,7 @@ from hubvib.fem.ring_sector import sector_ring_work
 from hubvib.fem.ring_stiffness import ring_stiffness
 from hubvib.fem.tooth_stiffness import reducer_mesh_stiffness
 from hubvib.foundation.files import MAX_FILE_BYTES, read_text
+from hubvib.foundation.output import write_csv
 from hubvib.meshing.levels import scaled_options
 from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
 from hubvib.meshing.ring_sector import sector_mesh
@@ -295,12 +296,8 @@ def run_study(quantity: str, folder: Path, gears: Gears | None = None, scales=No
                  f"{row['seconds_total']:.2f} s, value {row['value']:.8e}")
     numbers = [{k: float(v) for k, v in r.items() if v not in ("", None)} for r in done]
     rows, how = with_errors(sorted(numbers, key=lambda r: -r["scale"]), ratio_of(quantity))
-    table = folder / f"convergence_{quantity}.csv"
-    with open(table, "w", newline="") as handle:
-        writer = csv.DictWriter(handle, COLUMNS)
-        writer.writeheader()
-        for r in rows:
-            writer.writerow({k: r.get(k, "") for k in COLUMNS})
+    table = write_csv(folder / f"convergence_{quantity}.csv",
+                      [{k: r.get(k, "") for k in COLUMNS} for r in rows], COLUMNS)
     _plot(rows, quantity, how, folder / f"convergence_{quantity}.png")
     return table
 

@@ -1,20 +1,12 @@
 """The detection part of a crack study: POD, detectability map, carrier position (SI)."""
 from __future__ import annotations
 
-import sys
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-import hubvib.build
-import hubvib.design
-import hubvib.fem
-import hubvib.foundation
-import hubvib.identification
-import hubvib.lumped
-import hubvib.meshing
 from hubvib.foundation.blas import blas_threads
 from hubvib.runtime.result_cache import cached_figure, cached_result
 
@@ -75,19 +67,16 @@ def detection_study(model, options: DetectionOptions, timing: MeshTiming,
             return DetectionStudy(options, timing, pod.result(), dmap, carrier)
 
 
-def _folders() -> tuple[str, ...]:
-    """The source a detection result depends on (:func:`cached_detection_study`): every
-    package the detection modules import below the studies."""
-    return tuple(str(Path(package.__file__).parent) for package in (
-        hubvib.foundation, hubvib.design, hubvib.meshing, hubvib.fem, hubvib.lumped,
-        hubvib.build, hubvib.identification, sys.modules[__package__]))
+#: the entry module of the cached detection results: they are keyed on the source of
+#: every hubvib module it imports (``hubvib.foundation.source_graph``)
+SOURCE = (__name__,)
 
 
 def cached_detection_study(model, options: DetectionOptions, timing: MeshTiming,
                            workers: int = 1) -> DetectionStudy:
-    """:func:`detection_study`, kept on disk by its inputs and by the source of the packages
+    """:func:`detection_study`, kept on disk by its inputs and by the source of the modules
     it runs (:mod:`hubvib.runtime.result_cache`): a rerun of a scene loads it."""
-    return cached_result("detection", (model, options, timing, workers), _folders(),
+    return cached_result("detection", (model, options, timing, workers), SOURCE,
                          lambda: detection_study(model, options, timing, workers=workers),
                          DetectionStudy)
 
@@ -97,7 +86,7 @@ def cached_compare_methods(model, timing: MeshTiming, record_length: float, opti
     """:func:`.mesh_stiffness.compare_methods`, kept on disk like
     :func:`cached_detection_study`."""
     return cached_result("c_rp_methods", (model, timing, record_length, options, workers),
-                         _folders(), lambda: compare_methods(model, timing, record_length,
+                         SOURCE, lambda: compare_methods(model, timing, record_length,
                                                               options, workers=workers),
                          MethodComparison)
 
@@ -105,4 +94,4 @@ def cached_compare_methods(model, timing: MeshTiming, record_length: float, opti
 def cached_plot(path: Path, build, *args) -> Path:
     """``build(*args)`` (a figure of :mod:`.plots`) saved as PNG at ``path``, drawn once
     per data and source (:func:`hubvib.runtime.result_cache.cached_figure`)."""
-    return cached_figure(path, build, args, _folders())
+    return cached_figure(path, build, args)

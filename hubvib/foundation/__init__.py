@@ -1,6 +1,7 @@
 """Shared leaves below every layer: atomic output (``output``), BLAS thread limits
 (``blas``), the base of input errors (``errors``), size-checked file reads (``files``),
-the declarative TOML table schema (``schema``) and the lazy package faces (``lazy``).
+the declarative TOML table schema (``schema``), the lazy package faces (``lazy``) and the
+source key every cache is keyed on (``source_graph``).
 Standard library and numpy only; it imports nothing else of hubvib.  Every name below is
 imported on first use (PEP 562)."""
 from typing import TYPE_CHECKING

@@ -29,6 +29,7 @@ import errno
 import io
 import json
 import math
+import numbers
 import os
 import re
 import shutil
@@ -199,13 +200,30 @@ def write_json(path: Path, data) -> Path:
     return write_text(path, json_text(data) + "\n")
 
 
-def write_csv(path: Path, rows: list[dict]) -> Path:
+def csv_cell(value):
+    """A table cell as written: a NaN (a value that has none) as an empty cell, every
+    other value as it is (``csv`` writes ``None`` as an empty cell too)."""
+    if (isinstance(value, numbers.Real) and not isinstance(value, numbers.Integral)
+            and math.isnan(value)):
+        return ""
+    return value
+
+
+def csv_text(rows: list[dict], fieldnames=None) -> str:
+    """``rows`` as CSV text with a header (``fieldnames``, default the first row's keys;
+    none and no rows: empty); a NaN is an empty cell (``csv_cell``), never ``nan``."""
+    fieldnames = list(rows[0]) if fieldnames is None and rows else fieldnames
     buffer = io.StringIO()
-    if rows:
-        writer = csv.DictWriter(buffer, fieldnames=list(rows[0]))
+    if fieldnames:
+        writer = csv.DictWriter(buffer, fieldnames=fieldnames)
         writer.writeheader()
-        writer.writerows(rows)
-    return write_text(path, buffer.getvalue())
+        writer.writerows({k: csv_cell(v) for k, v in row.items()} for row in rows)
+    return buffer.getvalue()
+
+
+def write_csv(path: Path, rows: list[dict], fieldnames=None) -> Path:
+    """``csv_text(rows, fieldnames)`` written to ``path`` atomically."""
+    return write_text(path, csv_text(rows, fieldnames))
 
 
 def save_figure(figure, path: Path) -> Path:

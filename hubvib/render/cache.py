@@ -1,9 +1,10 @@
 """Rendered files cached by what they show: a rerun copies them instead of rendering.
 
-An entry is a folder named by a hash of the render's inputs and of the rendering
-source (``render.py``, ``fe_render.py``, the pyvista and VTK versions), holding the
-files as written and a ``manifest.json`` with the SHA-256 of each and the files the
-render returned.  It is used only when every listed file is there with its
+An entry is a folder named by a hash of the render's inputs, of the source key of the
+render's entry modules (``modules``: every hubvib module they import counts,
+:func:`hubvib.foundation.source_graph.source_key`) and of the pyvista and VTK versions,
+holding the files as written and a ``manifest.json`` with the SHA-256 of each and the
+files the render returned.  It is used only when every listed file is there with its
 checksum; otherwise the files are rendered again (with a one-line notice) and the
 entry replaced.  Entries are written whole (``output.atomic_folder``): the folder
 appears under its name only when complete.  Whatever goes wrong with the cache (a
@@ -24,6 +25,7 @@ import numpy as np
 
 from hubvib.foundation.files import MAX_TABLE_BYTES, read_bytes, read_text
 from hubvib.foundation.output import atomic_folder
+from hubvib.foundation.source_graph import source_key
 from hubvib.meshing.cache import root_folder
 from hubvib.runtime.fe_cache import canonical
 
@@ -31,17 +33,15 @@ MANIFEST = "manifest.json"
 
 
 @lru_cache(maxsize=1)
-def render_version() -> str:
-    """Hash of the rendering source and of the pyvista and VTK versions."""
-    digest = hashlib.sha256()
-    for name in ("modes.py", "fe.py"):
-        digest.update((Path(__file__).parent / name).read_bytes())
+def _libraries() -> str:
+    """The pyvista and VTK versions (part of every key)."""
+    versions = []
     for package in ("pyvista", "vtk"):
         try:
-            digest.update(f"{package} {metadata.version(package)}".encode())
+            versions.append(f"{package} {metadata.version(package)}")
         except metadata.PackageNotFoundError:
-            digest.update(f"{package} absent".encode())
-    return digest.hexdigest()[:16]
+            versions.append(f"{package} absent")
+    return ", ".join(versions)
 
 
 def array_digest(array) -> str:
@@ -60,11 +60,14 @@ def cache_folder() -> Path:
     return root_folder() / "renders"
 
 
-def cached_render(kind: str, inputs: dict, folder: Path, render) -> list[Path]:
-    """``render(target)`` (returns the files it wrote below ``target``) once per ``inputs``;
-    the files land in ``folder`` either way and their paths there are returned."""
+def cached_render(kind: str, inputs: dict, folder: Path, render,
+                  modules: tuple[str, ...]) -> list[Path]:
+    """``render(target)`` (returns the files it wrote below ``target``) once per ``inputs``
+    and source of ``modules`` (the entry modules of the render, dotted names: every hubvib
+    module they import counts); the files land in ``folder`` either way and their paths
+    there are returned."""
     folder = Path(folder)
-    entry = _entry(kind, inputs)
+    entry = _entry(kind, inputs, modules)
     listed = _verified(entry, notice=True) or _render_into(entry, render)
     if listed is not None:
         try:
@@ -78,14 +81,15 @@ def cached_render(kind: str, inputs: dict, folder: Path, render) -> list[Path]:
     return render(folder)
 
 
-def is_cached(kind: str, inputs: dict) -> bool:
-    """Whether ``cached_render(kind, inputs, ...)`` would copy a complete, checked entry
-    (no notice printed here: ``cached_render`` says it when it renders again)."""
-    return _verified(_entry(kind, inputs)) is not None
+def is_cached(kind: str, inputs: dict, modules: tuple[str, ...]) -> bool:
+    """Whether ``cached_render(kind, inputs, ..., modules)`` would copy a complete, checked
+    entry (no notice printed here: ``cached_render`` says it when it renders again)."""
+    return _verified(_entry(kind, inputs, modules)) is not None
 
 
-def _entry(kind: str, inputs: dict) -> Path:
-    key = hashlib.sha256(canonical([kind, render_version(), inputs]).encode()).hexdigest()[:24]
+def _entry(kind: str, inputs: dict, modules: tuple[str, ...]) -> Path:
+    key = hashlib.sha256(canonical([kind, source_key(*modules), _libraries(), inputs])
+                         .encode()).hexdigest()[:24]
     return cache_folder() / f"{kind}-{key}"
 
 

@@ -6,7 +6,8 @@ Workers compute and return results; the calling process alone writes them
 
     [execution]
     engine = "local"              # or "dask"
-    scheduler = "tcp://host:8786" # dask: a running scheduler; absent: a LocalCluster
+    scheduler = "tcp://host:8786" # dask: a running scheduler (tcp://HOST:PORT only);
+                                  # absent: a LocalCluster
     workers = 2                   # local pool / LocalCluster workers, 1..64
     timeout_s = 10                # dask: how long to wait for the scheduler and for a
                                   # worker to join it [s], 1..600
@@ -53,13 +54,33 @@ class Execution:
     timeout: float = 10.0
 
 
+def is_scheduler_address(value) -> bool:
+    """Whether ``value`` is an address this engine can reach a running scheduler at:
+    ``tcp://HOST:PORT`` (port 1..65535).  ``inproc://`` reaches only a scheduler inside
+    this very process, which a scene's run never has, and ``tls://`` needs certificates
+    the engine does not pass: dask refuses both, and addresses without a host or port,
+    with messages that name no key (an ``inproc://`` address without its ``host/pid/n``
+    parts raises "not enough values to unpack")."""
+    if not isinstance(value, str) or not value.startswith("tcp://"):
+        return False
+    try:
+        address = urlsplit(value)
+        port = address.port
+    except ValueError:  # a port that is no number or lies outside 0..65535
+        return False
+    return (bool(address.hostname) and port is not None and 1 <= port
+            and address.path in ("", "/") and not address.query and not address.fragment
+            and address.username is None and address.password is None)
+
+
 #: the ``[execution]`` keys; a new key = one entry here
 SCHEMA = Schema("execution", (
     Field("engine", "choice", choices=ENGINES, default="local",
           doc="local process pool or Dask distributed"),
-    Field("scheduler", "string", default=None,
+    Field("scheduler", "string", default=None, check=is_scheduler_address,
           doc='dask: a running scheduler, e.g. "tcp://host:8786"; absent: a LocalCluster',
-          allowed='with engine = "dask": an address like "tcp://host:8786"',
+          allowed='with engine = "dask": a running scheduler\'s "tcp://HOST:PORT", '
+                  'or no scheduler key for a LocalCluster on this machine',
           message="{label} = {value}; allowed {allowed}"),
     Field("workers", "integer", 1, 64, default=None, unit="-",
           doc="local pool / LocalCluster workers (absent: the study's own)",
@@ -73,10 +94,8 @@ SCHEMA = Schema("execution", (
 def parse_execution_table(table: dict) -> Execution:
     """The scene's ``[execution]`` table, checked (``SCHEMA``)."""
     values = SCHEMA.parse(table, defaults=True)
-    scheduler = table.get("scheduler")
-    if scheduler is not None and (values["engine"] != "dask" or not isinstance(scheduler, str)
-                                  or not scheduler.startswith(("tcp://", "tls://", "inproc://"))):
-        raise SCHEMA.refuse(SCHEMA.by_key["scheduler"], scheduler)
+    if values["scheduler"] is not None and values["engine"] != "dask":
+        raise SCHEMA.refuse(SCHEMA.by_key["scheduler"], values["scheduler"])
     return Execution(**values)
 
 
@@ -113,12 +132,13 @@ def check_reachable(execution: Execution) -> None:
 
     The whole handshake is bounded, not only the TCP connection: an address that
     accepts the connection but never answers (another service, a stopped process)
-    hung ``Client()`` for ever.  For ``tcp://`` the scheduler is asked for its
-    identity (dask.distributed's ``identity`` message); for ``tls://`` (which needs the
-    cluster's certificates) the TCP connection is checked.
+    hung ``Client()`` for ever: the scheduler is asked for its identity (dask.distributed's
+    ``identity`` message).  Other addresses (an ``Execution`` built in Python with an
+    in-process cluster's ``inproc://`` address; scenes allow ``tcp://`` only) are left to
+    dask.
     """
     if execution.engine != "dask" or execution.scheduler is None or not \
-            execution.scheduler.startswith(("tcp://", "tls://")):
+            execution.scheduler.startswith("tcp://"):
         return
     address = urlsplit(execution.scheduler)
     try:
@@ -128,7 +148,7 @@ def check_reachable(execution: Execution) -> None:
     except (OSError, ValueError) as exc:
         raise EngineError(f"[execution] scheduler = {execution.scheduler!r} did not answer "
                           f"within {execution.timeout:g} s ({exc})") from None
-    if execution.scheduler.startswith("tcp://") and distributed_version_ok()[0]:
+    if distributed_version_ok()[0]:
         _check_identity(execution)
 
 

@@ -1,11 +1,14 @@
 """FE results cached on disk, checked before they are trusted.
 
-Each entry is one JSON file named by a hash of its inputs.  It stores the
-inputs themselves, the result, the FE-stage version (a hash of the source of
-``fem/`` and ``meshing/``: any change there invalidates every entry) and a
-SHA-256 checksum of all of it.  An entry is used only when it parses, its
-checksum matches, its inputs equal the case asked for and every value passes the
-caller's check; otherwise it is recomputed, with a one-line notice.
+Each entry is one JSON file named by a hash of its inputs and of its source key.  The
+source key (:func:`hubvib.foundation.source_graph.source_key`, the rule of every hubvib
+cache) hashes the source of every hubvib module the computation imports, named by its
+entry modules (``modules``, the caller's ``__name__``): an edit to any of them, in
+``fem/``, ``meshing/`` or ``hubvib/build/`` alike, invalidates the entries, and an edit
+elsewhere leaves them.  An entry stores the inputs themselves, the result, the source key
+and a SHA-256 checksum of all of it.  It is used only when it parses, its checksum
+matches, its source key and inputs equal the case's and every value passes the caller's
+check; otherwise it is recomputed, with a one-line notice.
 
 Concurrent runs share entries: a case being computed is locked (``fcntl``), so a
 second run waits for it instead of computing it again.
@@ -17,17 +20,15 @@ import hashlib
 import json
 import math
 from contextlib import contextmanager
-from functools import lru_cache
 from pathlib import Path
 
-import hubvib.fem
-import hubvib.meshing
 from hubvib.fem.estimate import SCHEMA_VERSION
 from hubvib.foundation.files import MAX_TABLE_BYTES, read_text
 from hubvib.foundation.output import write_json
+from hubvib.foundation.source_graph import source_key
 
 FORMAT = "hubvib-fe-cache"
-FORMAT_VERSION = 2
+FORMAT_VERSION = 3
 
 
 class CacheEntryError(ValueError):
@@ -39,46 +40,37 @@ class CacheFolderError(ValueError):
     folder); raised before any case is computed where possible."""
 
 
-@lru_cache(maxsize=1)
-def fe_version() -> str:
-    """Hash of the FE stage's source (``fem/`` and ``meshing/``)."""
-    digest = hashlib.sha256()
-    for package in (hubvib.meshing, hubvib.fem):
-        folder = Path(package.__file__).parent
-        for path in sorted(folder.glob("*.py")):
-            digest.update(path.name.encode())
-            digest.update(path.read_bytes())
-    return digest.hexdigest()[:16]
-
-
 def canonical(data) -> str:
     return json.dumps(data, sort_keys=True, allow_nan=False, separators=(",", ":"))
 
 
-def entry_key(inputs: dict) -> str:
-    """File name stem of the entry for these inputs."""
-    return hashlib.sha256(canonical([fe_version(), inputs]).encode()).hexdigest()[:24]
+def entry_key(inputs: dict, *, modules: tuple[str, ...]) -> str:
+    """File name stem of the entry for these inputs, computed by ``modules`` (the entry
+    modules of the computation, whose import graph is its source)."""
+    return hashlib.sha256(canonical([source_key(*modules), inputs]).encode()).hexdigest()[:24]
 
 
-def _checksum(inputs: dict, result: dict) -> str:
-    return hashlib.sha256(canonical([FORMAT, FORMAT_VERSION, fe_version(), inputs, result])
+def _checksum(inputs: dict, result: dict, source: str) -> str:
+    return hashlib.sha256(canonical([FORMAT, FORMAT_VERSION, source, inputs, result])
                           .encode()).hexdigest()
 
 
-def write_entry(path: Path, inputs: dict, result: dict) -> None:
-    """Store ``result`` for ``inputs`` atomically, with its checksum.
+def write_entry(path: Path, inputs: dict, result: dict, *, modules: tuple[str, ...]) -> None:
+    """Store ``result`` for ``inputs``, computed by ``modules``, atomically, with its
+    checksum.
 
     A result holding NaN or infinity is refused (``ValueError`` naming the keys), and
     a folder that cannot be written raises ``CacheFolderError``: one line, no traceback.
     """
+    source = source_key(*modules)
     try:
-        checksum = _checksum(inputs, result)
+        checksum = _checksum(inputs, result, source)
     except ValueError:
         bad = sorted(k for k, v in result.items() if isinstance(v, float) and not math.isfinite(v))
         raise ValueError(f"FE result not stored in the cache: non-finite {', '.join(bad) or 'value'} "
                          f"for {inputs.get('crack', inputs)}") from None
     try:
-        write_json(path, {"format": FORMAT, "version": FORMAT_VERSION, "fe_version": fe_version(),
+        write_json(path, {"format": FORMAT, "version": FORMAT_VERSION, "source": source,
                           "schema": SCHEMA_VERSION, "inputs": inputs, "result": result,
                           "checksum": checksum})
     except OSError as exc:
@@ -86,8 +78,9 @@ def write_entry(path: Path, inputs: dict, result: dict) -> None:
             from None
 
 
-def read_entry(path: Path, inputs: dict, check=None) -> dict:
-    """The stored result for ``inputs``; ``CacheEntryError`` says why it cannot be used.
+def read_entry(path: Path, inputs: dict, check=None, *, modules: tuple[str, ...]) -> dict:
+    """The stored result for ``inputs``, computed by ``modules`` (as in
+    :func:`write_entry`); ``CacheEntryError`` says why it cannot be used.
 
     ``check(result)`` raises ``CacheEntryError`` for values that are not plausible.
     A folder where the entry should be raises ``CacheFolderError`` (it cannot be
@@ -108,9 +101,11 @@ def read_entry(path: Path, inputs: dict, check=None) -> dict:
         raise CacheEntryError("not valid JSON") from None
     if not isinstance(data, dict) or data.get("format") != FORMAT:
         raise CacheEntryError("not a hubvib FE cache entry")
-    if (data.get("version") != FORMAT_VERSION or data.get("fe_version") != fe_version()
-            or data.get("schema") != SCHEMA_VERSION):
-        raise CacheEntryError("written by another version of the FE stage")
+    source = source_key(*modules)
+    if data.get("version") != FORMAT_VERSION or data.get("schema") != SCHEMA_VERSION:
+        raise CacheEntryError("written by another version of the FE cache")
+    if data.get("source") != source:
+        raise CacheEntryError("written by another version of the source that computes it")
     # stored inputs went through JSON (tuples read back as lists): compare like with like
     if data.get("inputs") != json.loads(canonical(inputs)):
         raise CacheEntryError("its inputs are not those of this case")
@@ -118,7 +113,7 @@ def read_entry(path: Path, inputs: dict, check=None) -> dict:
     if not isinstance(result, dict):
         raise CacheEntryError(f"its result is {type(result).__name__}, not a table")
     try:
-        expected = _checksum(inputs, result)
+        expected = _checksum(inputs, result, source)
     except ValueError:  # NaN or infinity in the result: canonical() refuses them
         raise CacheEntryError("non-finite value in its result") from None
     if data.get("checksum") != expected:

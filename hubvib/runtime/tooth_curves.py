@@ -6,9 +6,9 @@ every case.  Each worker process used to compute them itself; with
 :func:`shared_intact_curve` as the FE stage's store
 (``fem.tooth_stiffness.set_intact_store``) the first process that needs one computes
 it under its lock and writes it as an FE cache entry (``runtime.fe_cache``: keyed on
-the body, contact span, material, mesh options, tooth and the FE stage's source,
-checked before use); the others wait for that lock and read it.  The curve read
-back holds the same floats (JSON keeps every digit of a float).
+the body, contact span, material, mesh options, tooth and the source of every hubvib
+module this one imports, checked before use); the others wait for that lock and read
+it.  The curve read back holds the same floats (JSON keeps every digit of a float).
 """
 from __future__ import annotations
 
@@ -23,6 +23,9 @@ from hubvib.runtime.fe_cache import (CacheEntryError, case_lock, entry_key, fini
 
 #: what an entry holds (part of its key)
 QUANTITY = "intact tooth compliance at Chebyshev radii"
+#: the entry module of the cached computation (the curve comes from
+#: ``fem.tooth_stiffness``, which this module imports): its source key
+SOURCE = (__name__,)
 
 
 def curve_inputs(body, span, material, options, tooth: int) -> dict:
@@ -48,15 +51,16 @@ def shared_intact_curve(compute, body, span, material, options, tooth: int) -> T
     when another process computed it (waiting while it does), else computed here and
     stored (``fem.tooth_stiffness.set_intact_store``)."""
     inputs = curve_inputs(body, span, material, options, tooth)
-    path = root_folder() / "stiffness" / "tooth-curves" / f"{entry_key(inputs)}.json"
+    path = (root_folder() / "stiffness" / "tooth-curves"
+            / f"{entry_key(inputs, modules=SOURCE)}.json")
     with case_lock(path, wait=True):
         try:
-            result = read_entry(path, inputs, _check)
+            result = read_entry(path, inputs, _check, modules=SOURCE)
         except CacheEntryError:
             curve = compute()
             write_entry(path, inputs, {"radii_m": [float(r) for r in curve.radii],
                                        "compliance_m_N": [float(q) for q in curve.compliance],
-                                       "dofs": int(curve.dofs)})
+                                       "dofs": int(curve.dofs)}, modules=SOURCE)
             return curve
     return ToothCurve(np.array(result["radii_m"]), np.array(result["compliance_m_N"]),
                       int(result["dofs"]))

@@ -6,9 +6,10 @@ load sharing over the path of contact) and are functions of the roll length on
 the planet [m] (:mod:`hubvib.signal.mesh_phase` says where each planet is).
 Each FE tooth curve is cached as JSON under ``$HUBVIB_CACHE/signal-curves`` by a
 hash of everything that decides it (body, contact radii, material, mesh
-options, crack), so a scene that changes only the sensor or the speed does not
-re-solve FE.  :func:`synthetic_curves` gives the same curves with constant tooth
-compliances (no FE), for tests.
+options, crack, and the source of every hubvib module this one imports), so a scene
+that changes only the sensor or the speed does not re-solve FE.
+:func:`synthetic_curves` gives the same curves with constant tooth compliances (no
+FE), for tests.
 """
 from __future__ import annotations
 
@@ -26,6 +27,9 @@ from hubvib.meshing.cache import root_folder
 from hubvib.meshing.crack import Crack
 from hubvib.meshing.levels import scaled_options
 from hubvib.runtime.fe_cache import CacheEntryError, entry_key, read_entry, write_entry
+
+#: the entry module of the cached tooth curves: their source key
+SOURCE = (__name__,)
 
 
 @dataclass(frozen=True)
@@ -167,12 +171,12 @@ def fe_mesh_curves(depths, start: str, angle: float, scale: float, progress,
 def cached_tooth_curve(body, span, material, options, crack=None, progress=None,
                        name: str = "tooth"):
     """FE tooth compliance curve (``hubvib.fem.tooth_stiffness.fe_curve``), cached and
-    checked (``hubvib.runtime.fe_cache``: inputs, checksum, FE-stage version)."""
+    checked (``hubvib.runtime.fe_cache``: inputs, checksum, source key of this module)."""
     inputs = json.loads(json.dumps({
         "quantity": "tooth compliance curve", "body": repr(body),
         "span_m": [float(v) for v in span], "material": asdict(material),
         "options": asdict(options), "crack": None if crack is None else asdict(crack)}))
-    path = root_folder() / "signal-curves" / f"{entry_key(inputs)}.json"
+    path = root_folder() / "signal-curves" / f"{entry_key(inputs, modules=SOURCE)}.json"
 
     def check(result):
         radii, values = result.get("radii_m"), result.get("compliance_m_N")
@@ -182,7 +186,7 @@ def cached_tooth_curve(body, span, material, options, crack=None, progress=None,
             raise CacheEntryError("not a compliance curve of finite positive values")
 
     try:
-        data = read_entry(path, inputs, check)
+        data = read_entry(path, inputs, check, modules=SOURCE)
         return ToothCurve(np.array(data["radii_m"]), np.array(data["compliance_m_N"]))
     except CacheEntryError:
         pass
@@ -191,5 +195,6 @@ def cached_tooth_curve(body, span, material, options, crack=None, progress=None,
                  + ("" if crack is None else f", crack {1e3 * crack.depth:.3g} mm"))
     curve = fe_curve(body, span, material, options, crack)
     write_entry(path, inputs, {"radii_m": curve.radii.tolist(),
-                               "compliance_m_N": curve.compliance.tolist(), "dofs": curve.dofs})
+                               "compliance_m_N": curve.compliance.tolist(), "dofs": curve.dofs},
+                modules=SOURCE)
     return curve

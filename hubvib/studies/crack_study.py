@@ -36,7 +36,6 @@ from hubvib.render.html import write_html_reports
 from hubvib.render.fe import render_fe, ring_fields
 from hubvib.render.modes import render_modes
 from hubvib.runtime.engines import EngineError, Execution, submit
-from hubvib.runtime.fe_cache import fe_version
 from hubvib.runtime.process_pool import worker_pool
 from hubvib.runtime.progress import stage, working
 from hubvib.runtime.stage_seconds import timed
@@ -367,6 +366,12 @@ def rendered_depth(sweep) -> float:
     return max(open_ended, default=max(sweep.depths))
 
 
+#: the entry modules of the two renders (their cache entries are keyed on the source of
+#: every hubvib module these import: the FE ring's includes the FE stage it solves)
+MODES_SOURCE = (render_modes.__module__,)
+FE_SOURCE = (render_fe.__module__,)
+
+
 def _render_modes(scene: Scene, spectrum, folder: Path) -> list[Path]:
     """Every elastic lumped mode (``render.render_modes``), from the render cache when the
     same spectrum was rendered before."""
@@ -386,7 +391,7 @@ def render_mode_shapes(params, spectrum, gif: bool, vtm: bool, folder: Path) -> 
         return render_modes(params, spectrum, target, gif=gif, vtm=vtm)
 
     return cached_render("modes", _mode_render_inputs(params, spectrum, gif, vtm), folder,
-                         render)
+                         render, MODES_SOURCE)
 
 
 def _render_fe(scene: Scene, folder: Path) -> list[Path]:
@@ -403,7 +408,7 @@ def _fe_render_case(sweep: CrackSweep, vtm: bool) -> tuple:
     options = scaled_options(ACCURACY[sweep.accuracy])
     inputs = {"design": sweep.reducer.fingerprint(),
               "crack": None if crack is None else asdict(crack), "options": asdict(options),
-              "vtu": vtm, "fe": fe_version()}
+              "vtu": vtm}
     return crack, options, inputs
 
 
@@ -415,7 +420,7 @@ def render_fe_ring(sweep: CrackSweep, vtm: bool, folder: Path) -> list[Path]:
     def render(target):
         return render_fe(ring_fields(sweep.reducer, crack, options), target, vtu=vtm)
 
-    return cached_render("fe-ring", inputs, folder, render)
+    return cached_render("fe-ring", inputs, folder, render, FE_SOURCE)
 
 
 def _rendered(future, what: str) -> list[Path]:
@@ -441,11 +446,11 @@ def begin_renders(scene: Scene, folder: Path, pool, begun: dict, spectrum=None) 
     target = Path(folder) / "renders"
     if spectrum is not None:
         inputs = _mode_render_inputs(scene.params, spectrum, scene.gif, scene.vtm)
-        if not is_cached("modes", inputs):
+        if not is_cached("modes", inputs, MODES_SOURCE):
             begun["modes"] = submit(pool, render_mode_shapes, scene.params, spectrum,
                                     scene.gif, scene.vtm, target)
     elif scene.crack.model == "plane" and not is_cached(
-            "fe-ring", _fe_render_case(scene.crack, scene.vtm)[2]):
+            "fe-ring", _fe_render_case(scene.crack, scene.vtm)[2], FE_SOURCE):
         begun["fe"] = submit(pool, render_fe_ring, scene.crack, scene.vtm, target)
 
 

@@ -14,7 +14,8 @@ of the plane tooth model, ``fem.tooth_solid``, from the same factorisations); it
 case), which compares it with the slice method's from the plane cases.
 
 Every case is cached (``hubvib.runtime.fe_cache``: keyed on the design, the crack, the
-mesh level and the FE stage's source; checked before it is used), written
+mesh level and the source of every hubvib module this one imports, ``SOURCE``; checked
+before it is used), written
 atomically by the calling process when it finishes.  A sweep killed at any point
 resumes without losing or recomputing a finished case.  Cases run in worker
 processes or on a Dask cluster (``hubvib.runtime.engines``).
@@ -34,7 +35,7 @@ from hubvib.fem.tooth_stiffness import chebyshev_radii, contact_radii, set_intac
 from hubvib.meshing.cache import root_folder
 from hubvib.meshing.crack import Crack, CrackFront
 from hubvib.meshing.crack_path import PathCrack, path_ring_mesh
-from hubvib.runtime import fe_cache
+from hubvib.foundation.source_graph import source_key
 from hubvib.runtime.engines import Execution, check_reachable, run_cases
 from hubvib.runtime.fe_cache import (CacheEntryError, case_lock, entry_key, finite_positive,
                                      read_entry, write_entry)
@@ -49,6 +50,9 @@ MODELS = ("plane", "solid")
 PATHS = ("straight", "predicted")
 #: mesh size multiplier of each accuracy setting (1.0: c_ru to ~0.3 %, see README)
 ACCURACY = {"default": 1.0, "fast": 2.0}
+#: the entry module of an FE case: its cache entries are keyed on the source of every
+#: hubvib module it imports (``hubvib.foundation.source_graph``)
+SOURCE = (__name__,)
 #: at most this many depths in one sweep
 MAX_DEPTHS = 64
 #: every value of a case's result that must be a finite number > 0
@@ -329,12 +333,13 @@ def run_fe_cases(sweep: CrackSweep, progress: bool = True,
                          "not in the crack study")
     folder = cache_folder()
     inputs = {d: case_inputs(sweep, d) for d in sweep.cases}
-    paths = {d: folder / f"{entry_key(inputs[d])}.json" for d in sweep.cases}
+    paths = {d: folder / f"{entry_key(inputs[d], modules=SOURCE)}.json" for d in sweep.cases}
     results = {}
 
     def cached(case, notice):
         try:
-            results[case] = read_entry(paths[case], inputs[case], check_case(case))
+            results[case] = read_entry(paths[case], inputs[case], check_case(case),
+                                        modules=SOURCE)
             return True
         except CacheEntryError as exc:
             if notice and str(exc) != "missing":
@@ -349,7 +354,7 @@ def run_fe_cases(sweep: CrackSweep, progress: bool = True,
                            len(sweep.cases) - len(todo)) if progress else _Silent())
 
     def store(case, result):
-        write_entry(paths[case], inputs[case], result)
+        write_entry(paths[case], inputs[case], result, modules=SOURCE)
         results[case] = result
         bar.update(1, f"{case_label(case)}, {result['seconds_total']:.1f} s")
 
@@ -365,7 +370,7 @@ def run_fe_cases(sweep: CrackSweep, progress: bool = True,
                         busy.append(case)
                     else:
                         bar.update(1)
-                run_cases(_Case(sweep, fe_cache.fe_version()), mine, store, execution,
+                run_cases(_Case(sweep, source_key(*SOURCE)), mine, store, execution,
                           sweep.workers, pool, after_submit)
                 computed += len(mine)
             todo = [d for d in busy if not cached(d, notice=False)]
@@ -379,17 +384,17 @@ def run_fe_cases(sweep: CrackSweep, progress: bool = True,
 @dataclass(frozen=True)
 class _Case:
     """``fe_case`` bound to its sweep: one picklable callable of the case.  It refuses to
-    run on a worker whose FE stage differs from the client's (its result would be cached
-    under the client's version)."""
+    run on a worker whose source differs from the client's (its result would be cached
+    under the client's source key)."""
 
     sweep: CrackSweep
-    fe_version: str
+    source: str
 
     def __call__(self, case) -> dict:
-        if fe_cache.fe_version() != self.fe_version:
-            raise RuntimeError(f"this worker's FE stage is version {fe_cache.fe_version()}, "
-                               f"the client's "
-                               f"{self.fe_version}: install the same hubvib on every worker")
+        if source_key(*SOURCE) != self.source:
+            raise RuntimeError(f"this worker's FE source (key {source_key(*SOURCE)[:16]}) is "
+                               f"not the client's ({self.source[:16]}): install the same "
+                               "hubvib on every worker")
         set_intact_store(shared_intact_curve)  # the intact tooth curves: once per stage
         try:
             return fe_case(self.sweep, case)

@@ -6,16 +6,15 @@ force) with its step refined to the sweep's depths: the largest of 0.5 mm / k
 (k = 1 .. 10) of which every depth is a whole multiple, so that the crack at each depth
 is a crack the growth analysed (else 0.5 mm, and the depth ends inside a segment).  It
 is computed once per design, tooth and step, and cached like an FE case
-(``hubvib.runtime.fe_cache``, keyed on the FE stage's source too).  The crack at depth
-d is the path's polyline up to arc length d (``truncated``).
+(``hubvib.runtime.fe_cache``, keyed on the source of every hubvib module this one
+imports too, ``studies.crack_path`` and the builders of ``hubvib.build`` among them).
+The crack at depth d is the path's polyline up to arc length d (``truncated``).
 """
 from __future__ import annotations
 
 import functools
-import hashlib
 import json
 import sys
-from pathlib import Path
 
 import numpy as np
 
@@ -67,24 +66,14 @@ def truncated(points, depth: float, tooth: int) -> PathCrack:
     return PathCrack(tooth, tuple(map(tuple, np.vstack([points[:end], tip]).tolist())))
 
 
-#: the app-layer sources the path depends on besides fem/ and meshing/ (the cache's FE
-#: version): the growth study (load position, cracked tooth) and the stage builders
-_PATH_SOURCES = (Path(__file__).with_name("crack_path.py"),
-                 Path(__file__).parents[1] / "build" / "stages.py")
-
-
-@functools.cache
-def _path_source_hash() -> str:
-    digest = hashlib.sha256()
-    for source in _PATH_SOURCES:
-        digest.update(source.read_bytes())
-    return digest.hexdigest()
+#: the entry module of the cached path (it imports ``studies.crack_path``, the growth
+#: study): its source key
+SOURCE = (__name__,)
 
 
 def path_inputs(design, tooth: int, step: float) -> dict:
     return {"design": design.fingerprint(), "tooth": int(tooth), "step_m": float(step),
-            "quantities": "predicted crack path (crack-path, default mesh)",
-            "source": _path_source_hash()}
+            "quantities": "predicted crack path (crack-path, default mesh)"}
 
 
 def _check(result: dict) -> None:
@@ -101,9 +90,9 @@ def _predicted(design, tooth: int, step: float) -> dict:
     from hubvib.studies.crack_path import crack_path
 
     inputs = path_inputs(design, tooth, step)
-    path = root_folder() / "crack-path" / f"{entry_key(inputs)}.json"
+    path = root_folder() / "crack-path" / f"{entry_key(inputs, modules=SOURCE)}.json"
     try:
-        return read_entry(path, inputs, _check)
+        return read_entry(path, inputs, _check, modules=SOURCE)
     except CacheEntryError as exc:
         if str(exc) != "missing":
             print(f"hubvib: cache entry {path.name} for the predicted crack path: {exc}; "
@@ -115,7 +104,7 @@ def _predicted(design, tooth: int, step: float) -> dict:
     # the cracks the growth analysed (the exit point, if severed, is not meshable)
     result["path_m"] = grown.growth.crack.array.tolist()
     path.parent.mkdir(parents=True, exist_ok=True)
-    write_entry(path, inputs, result)
+    write_entry(path, inputs, result, modules=SOURCE)
     return result
 
 

@@ -1,0 +1,72 @@
+"""Coupled modes followed from one ring state to another (over crack depth).
+
+The two rings have different meshes, so modes are compared on what both share: the
+lumped DOFs (mass-weighted) and the ring's displacement on its mid-rim circle (weighted by
+the ring's mass per probe point).  A repeated frequency of the reference is one subspace:
+a mode of the other state matches it by the share of its descriptor inside that subspace
+(near-degenerate pairs rotate freely within it, so a mode-to-mode MAC would not hold).
+The assignment maximises the summed match (Hungarian algorithm).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import linear_sum_assignment
+
+from .content import PAIR_RTOL
+
+
+@dataclass(frozen=True)
+class Tracked:
+    """For each mode of the other state: the reference mode it continues (0-based index,
+    -1 when unmatched), the match in [0, 1], and whether it is a member of a reference
+    pair whose members now differ by more than ``PAIR_RTOL`` (a split pair)."""
+
+    reference: tuple
+    match: tuple
+    split_pair: tuple
+
+
+def descriptors(spectrum, ring_mass: float) -> np.ndarray:
+    """(features, modes): sqrt(m) x for the lumped DOFs, then the mid-rim displacements
+    scaled so that their squares sum to the ring's kinetic energy of a uniform motion."""
+    modes = spectrum.modes
+    lumped = np.sqrt(modes.lumped_mass)[:, None] * modes.lumped
+    probe = modes.probe * np.sqrt(ring_mass / (modes.probe.shape[0] / 2))
+    return np.vstack([lumped, probe])
+
+
+def _groups(frequency_hz: np.ndarray, rtol: float) -> list[np.ndarray]:
+    groups, start = [], 0
+    for i in range(1, frequency_hz.size + 1):
+        if i == frequency_hz.size or frequency_hz[i] - frequency_hz[i - 1] > rtol * frequency_hz[i]:
+            groups.append(np.arange(start, i))
+            start = i
+    return groups
+
+
+def track_modes(reference, other, ring_mass: float, rtol: float = PAIR_RTOL) -> Tracked:
+    """Which reference mode each mode of ``other`` continues (``ElasticSpectrum`` both)."""
+    a, b = descriptors(reference, ring_mass), descriptors(other, ring_mass)
+    b_norm = np.linalg.norm(b, axis=0)
+    score = np.zeros((a.shape[1], b.shape[1]))
+    for group in _groups(reference.frequency_hz, rtol):
+        q, _ = np.linalg.qr(a[:, group])
+        share = np.linalg.norm(q.T @ b, axis=0) ** 2 / np.where(b_norm > 0, b_norm, 1) ** 2
+        score[group] = share
+    rows, cols = linear_sum_assignment(-score)
+    ref = np.full(b.shape[1], -1)
+    match = np.zeros(b.shape[1])
+    ref[cols] = rows
+    match[cols] = score[rows, cols]
+    f_ref, f = reference.frequency_hz, other.frequency_hz
+    split = np.zeros(b.shape[1], dtype=bool)
+    for group in _groups(f_ref, rtol):
+        if group.size < 2:
+            continue
+        members = np.flatnonzero(np.isin(ref, group))
+        if members.size >= 2 and np.ptp(f[members]) > rtol * f[members].mean():
+            split[members] = True
+    return Tracked(tuple(int(r) for r in ref), tuple(float(m) for m in match),
+                   tuple(bool(s) for s in split))
