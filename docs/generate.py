@@ -1070,7 +1070,8 @@ def _elastic() -> dict:
 def _families(modes: list[dict]) -> dict[int, list[float]]:
     out: dict[int, list[float]] = {}
     for m in modes:
-        out.setdefault(m["nodal_diameter"], []).append(m["frequency_hz"])
+        if m["frequency_hz"] >= 1.0:  # a free ring's rigid-body modes are no family
+            out.setdefault(m["nodal_diameter"], []).append(m["frequency_hz"])
     return out
 
 

@@ -129,3 +129,32 @@ def test_fe_modes_sign_fixed():
     np.testing.assert_array_equal(a.shapes, b.shapes)
     for shape in a.shapes.T:
         assert shape[np.argmax(np.abs(shape))] > 0
+
+
+def test_fe_colour_bar_text_is_readable_and_clear_of_the_ticks(tmp_path, cracked_ring_fields,
+                                                               monkeypatch):
+    """Title and tick labels of every FE picture's colour bar: contrast of at least 4.5
+    (WCAG) against whatever is drawn behind them (the crack-tip close-up puts the bar over
+    dark blue mesh), and the title clear of the top tick label."""
+    from dataclasses import replace
+
+    import hubvib.render.fe as fe_render
+    from figure_checks import bar_title_over_labels, scalar_bar_texts, unreadable_bar_text
+
+    fields = replace(cracked_ring_fields, mode_shapes=cracked_ring_fields.mode_shapes[:1],
+                     mode_hz=cracked_ring_fields.mode_hz[:1])
+    bars = []
+    save = fe_render.save_picture
+
+    def checked(plotter, path):
+        bars.append(scalar_bar_texts(plotter))
+        save(plotter, path)
+
+    monkeypatch.setattr(fe_render, "save_picture", checked)
+    files = fe_render.render_fe(fields, tmp_path)
+    assert [f.name for f in files] == ["fe_ring_loaded.png", "fe_crack_tip.png",
+                                       "fe_ring_mode_01.png"]
+    assert [len(found) for found in bars] == [1, 1, 1], "one colour bar per picture"
+    wrong = [f"{path.name}: {problem}" for path, found in zip(files, bars)
+             for problem in unreadable_bar_text(found) + bar_title_over_labels(found)]
+    assert not wrong, "\n".join(wrong)

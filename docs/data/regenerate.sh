@@ -19,6 +19,7 @@ ENTRIES=(
   crack_path_backup_ratio
   convergence
   convergence_work
+  elastic_ring.json
   raba118_crack
   raba118_crack_path
   raba118_crack_3d_small

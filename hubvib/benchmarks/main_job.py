@@ -1,6 +1,8 @@
 """Figure: the main job (``hubvib run``, the default scene) in a subprocess from an empty
-cache, then again with its FE cases and renders cached; and where the fresh run's time
-goes (``main_job_stage_seconds``)."""
+cache, then again with its FE cases and renders cached; where the fresh run's time goes
+(``main_job_stage_seconds``); and the default scene with the rigid ring only
+(``[elastic] ring = "rigid"``) from an empty cache, so that ``elastic_ring_time_ratio`` is
+the whole job over the job without the elastic-ring study, in the same run."""
 from __future__ import annotations
 
 import json
@@ -26,6 +28,7 @@ def main_job(progress=None) -> dict:
     say = progress or (lambda line: None)
     out = {"main_job_fresh_seconds": None, "main_job_cached_seconds": None,
            "main_job_stage_seconds": None}
+    ratio = {"main_job_rigid_ring_seconds": None, "elastic_ring_time_ratio": None}
     with tempfile.TemporaryDirectory() as folder:
         env = dict(os.environ, HUBVIB_CACHE=os.path.join(folder, "cache"))
         for name in ("fresh", "cached"):
@@ -46,7 +49,31 @@ def main_job(progress=None) -> dict:
                 with open(env[ENV], encoding="utf-8") as parts:
                     out["main_job_stage_seconds"] = stage_breakdown(
                         json.load(parts), out["main_job_fresh_seconds"])
-    return out
+        rigid = rigid_ring_seconds(folder, env)
+        if rigid is not None:
+            say(f"main job, rigid ring only, empty cache: {rigid:.1f} s")
+            ratio = {"main_job_rigid_ring_seconds": rigid,
+                     "elastic_ring_time_ratio": out["main_job_fresh_seconds"] / rigid}
+    return out | ratio
+
+
+def rigid_ring_seconds(folder: str, env: dict) -> float | None:
+    """The default scene with ``[elastic] ring = "rigid"`` from an empty cache [s] (None
+    when it fails)."""
+    from hubvib.studies.scene import DEFAULT_SCENE, shipped_scene_text
+
+    text = shipped_scene_text(DEFAULT_SCENE)
+    if 'ring = "both"' not in text:
+        return None
+    scene = os.path.join(folder, "rigid.toml")
+    with open(scene, "w", encoding="utf-8") as out:
+        out.write(text.replace('ring = "both"', 'ring = "rigid"'))
+    env = dict(env, HUBVIB_CACHE=os.path.join(folder, "cache-rigid"))
+    env.pop(ENV, None)
+    started = time.perf_counter()
+    run = subprocess.run([sys.executable, "-m", "hubvib.cli", "run", scene, "--json", "--out",
+                          os.path.join(folder, "rigid")], env=env, capture_output=True, text=True)
+    return time.perf_counter() - started if run.returncode == 0 else None
 
 
 def stage_breakdown(parts: dict, total: float) -> dict:

@@ -27,6 +27,10 @@ ROWS = (
     ("main_job_fresh_seconds", "main job (hubvib run), empty cache", "s", None),
     ("main_job_cached_seconds", "main job, FE cases and renders cached", "s",
      "main_job_fresh_seconds"),
+    ("main_job_rigid_ring_seconds", "main job with the rigid ring only, empty cache", "s",
+     None),
+    ("elastic_ring_time_ratio", "main job over the main job without the elastic ring", "x",
+     None),
     ("tests_seconds", "default test command (python -m pytest)", "s", None),
 )
 

@@ -31,13 +31,13 @@ def moving_modes(relative: np.ndarray) -> np.ndarray:
     return np.flatnonzero(np.abs(relative).max(axis=0) > MOVING)
 
 
-def _axes(ncols: int = 1):
+def _axes(ncols: int = 1, **options):
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    return plt.subplots(1, ncols, figsize=(7 * ncols, 5), squeeze=False)
+    return plt.subplots(1, ncols, figsize=(7 * ncols, 5), squeeze=False, **options)
 
 
 def _label(i: int, frequency_hz: float, kind: str) -> str:
@@ -79,8 +79,9 @@ def relative_shift_figure(name: str, depths: np.ndarray, omega: np.ndarray, kind
 
 def shift_threshold_figure(name: str, pod):
     """|Shift| [Hz] a record sees against depth, with the alarm thresholds (log scale); the
-    seven modes moving most against their identification scatter."""
-    fig, axes = _axes()
+    seven modes moving most against their identification scatter; the alarm thresholds
+    of the watched modes as one grey band from the lowest to the highest."""
+    fig, axes = _axes(layout="constrained")
     ax = axes[0, 0]
     nominal = pod.nominal
     shift = -nominal.shift_hz
@@ -166,29 +167,68 @@ def map_figure(name: str, dmap, deepest: float, shallowest: float | None = None)
     return fig
 
 
+AT_MEAN = "at the FE mean mesh ratio over the engagement"
+AT_MINIMUM = "at the minimum mesh ratio"
+
+
 def carrier_figure(name: str, carrier, kind):
-    """Frequencies against carrier angle over one passage of planet 1, deepest crack:
-    solid at the FE mean ratio of the cracked mesh, thin dotted at its minimum ratio."""
-    fig, axes = _axes()
-    ax = axes[0, 0]
+    """What planet 1 on the cracked tooth does to each mode that moves (deepest crack):
+    the size of the frequency change at the FE mean mesh ratio over the engagement and at
+    its minimum, one row per mode on a log axis (the modes move by parts per million to
+    per cent: on a linear axis most lie on zero); beside it, one passage of the mode that
+    moves most against the carrier angle (the model switches the cracked mesh on for the
+    engagement, so the change is a step)."""
+    fig, axes = _axes(2, layout="constrained", width_ratios=(3, 2))
+    fig.get_layout_engine().set(w_pad=0.3)  # the right panel's y label reads as its own
+    rows, passage = axes[0]
     out = carrier.omega_out[-1]
     relative = carrier.omega_angle / out - 1
     low = carrier.omega_angle_min / out - 1
+    moving = moving_modes(np.vstack([relative, low]))
+    fig.suptitle(f"{name}: planet 1 on the cracked tooth (deepest crack)", fontsize=10)
+    if moving.size == 0:
+        for ax in (rows, passage):
+            _legend(ax)
+        return fig
+    fig.set_size_inches(14, max(5.0, 1.8 + 0.32 * moving.size))
+
+    def peak(change):
+        return change[np.abs(change).argmax(axis=0), np.arange(change.shape[1])]
+
+    mean, minimum = 100 * np.abs(peak(relative)), 100 * np.abs(peak(low))
+    y = -np.arange(moving.size)
+    rows.plot(mean[moving], y, ls="none", marker="o", ms=5, color="tab:blue", label=AT_MEAN)
+    rows.plot(minimum[moving], y, ls="none", marker="o", ms=10, mfc="none", mew=1.5,
+              color="tab:red", label=AT_MINIMUM)
+    rows.set_xscale("log")
+    rows.set_yticks(y, [_label(i, out[i] / (2 * math.pi), kind[i]) for i in moving],
+                    fontsize=8)
+    rows.set_ylim(y[-1] - 0.7, 0.7)
+    rows.set_xlabel("|frequency change| while planet 1 meshes the cracked tooth [%] (log "
+                    "axis)")
+    rows.set_ylabel("mode: intact frequency, type")
+    rows.grid(True, which="both", axis="x", alpha=0.3)
+    # above the rows, where it covers none of them
+    rows.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2)
+    strongest = moving[np.argmax(minimum[moving])]
     angle = np.degrees(carrier.angle)
-    for n, i in enumerate(moving_modes(np.vstack([relative, low]))):
-        s = style(n)
-        ax.plot(angle, 100 * relative[:, i], color=s["color"], linestyle=s["linestyle"],
-                marker=s["marker"], markevery=8, markersize=4,
-                label=_label(i, out[i] / (2 * math.pi), kind[i]))
-        ax.plot(angle, 100 * low[:, i], color=s["color"], lw=0.7, ls=":")
+    passage.plot(angle, 100 * relative[:, strongest], color="tab:blue", lw=1.5,
+                 label=AT_MEAN)
+    passage.plot(angle, 100 * low[:, strongest], color="tab:red", lw=1.5, ls="--",
+                 label=AT_MINIMUM)
     timing = carrier.timing
-    ax.axvspan(0, math.degrees(timing.pass_angle), color="k", alpha=0.05,
-               label=f"cracked tooth in mesh ({timing.pass_seconds * 1e3:.3g} ms)")
-    ax.set_xlabel("carrier angle from the start of the engagement [deg]")
-    ax.set_ylabel("frequency change against no planet on the crack [%]")
-    ax.set_title(f"{name}: one passage of planet 1 (dotted: minimum mesh ratio)")
-    ax.grid(True, alpha=0.3)
-    _legend(ax)
+    passage.axvspan(0, math.degrees(timing.pass_angle), color="k", alpha=0.08,
+                    label=f"cracked tooth in mesh ({timing.pass_seconds * 1e3:.3g} ms)")
+    passage.set_xlabel("carrier angle from the start of the engagement [deg]")
+    passage.set_ylabel("frequency change [%]")
+    passage.set_title(f"one passage, mode {strongest + 1} "
+                      f"({out[strongest] / (2 * math.pi):.1f} Hz)", fontsize=9)
+    shown = 100 * np.concatenate([relative[:, strongest], low[:, strongest]])
+    span = np.ptp(shown) or 1.0
+    # room below the curves for the legend
+    passage.set_ylim(shown.min() - 0.35 * span, shown.max() + 0.08 * span)
+    passage.grid(True, alpha=0.3)
+    passage.legend(fontsize=7, loc="lower center")
     return fig
 
 

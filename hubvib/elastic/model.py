@@ -62,7 +62,7 @@ class ElasticSpectrum:
     content: tuple
     multiplicity: tuple
     carrier_tooth: int
-    ring: ElasticRing
+    ring: ElasticRing | None  # None once dropped for pickling
 
     @property
     def frequency_hz(self) -> np.ndarray:

@@ -24,16 +24,19 @@ CAPTIONS = {
     "frequency_vs_depth.png": "Relative frequency shift [%] of each mode against crack depth "
                               "[mm], planet 1 on the cracked tooth.",
     "shift_vs_depth.png": "Frequency drop a record sees [Hz] of each mode against crack depth "
-                          "[mm] (log axis); the black line is the alarm threshold.",
+                          "[mm] (log axis); the grey band spans the alarm thresholds of the "
+                          "watched modes, from the lowest to the highest.",
     "pod.png": "Probability of detection against crack depth [mm] per mode; dashed: the "
                "required POD, dotted: the false-alarm rate.",
     "detectability_map.png": "Smallest detectable crack depth [mm] against the mounting "
                              "stiffness swept [N/m] (log axis).",
-    "carrier_position.png": "Frequency change [%] of each mode that moves against the "
-                            "carrier angle, over one passage of planet 1 across the cracked "
-                            "tooth (deepest crack): marked line at the mean mesh ratio, dotted "
-                            "at its minimum; the shaded band is the time the cracked tooth is "
-                            "in mesh.",
+    "carrier_position.png": "Size of the frequency change [%] of each mode that moves while "
+                            "planet 1 meshes the cracked tooth (deepest crack), one row per "
+                            "mode on a log axis: dot at the FE mean mesh ratio over the "
+                            "engagement, open circle at its minimum. Right: the mode that "
+                            "moves most over one passage against the carrier angle, solid at "
+                            "the mean ratio, dashed at the minimum; the shaded band is the "
+                            "time the cracked tooth is in mesh.",
     "c_ru_change.png": "Change of c_ru and c_r against the intact ring [%] over the crack "
                        "depth at its deepest point [mm]: one line per half-length "
                        "(semi-elliptic), and the plane crack through the face width.",
@@ -43,14 +46,19 @@ CAPTIONS = {
     "fe_crack_tip.png": "Close-up of the crack tip with the mesh: colour is von Mises stress "
                         "[MPa], the bar at the lower left gives the length scale, "
                         "deformation magnified as stated in the picture.",
-    "order_spectrum.png": "Amplitude [m/s²] of the sensor signal against carrier order, with "
-                          "a zoom around the mesh order z_r.",
+    "order_spectrum.png": "Amplitude [m/s²] of the sensor signal against carrier order: the "
+                          "orders up to the last analysed mesh harmonic and its sidebands "
+                          "(log axis), then a zoom around the mesh order z_r (dotted).",
     "spectrogram.png": "Spectrogram of the sensor signal of the deepest crack: frequency "
                        "[Hz] against time [s].",
-    "indicators.png": "Condition indicators against crack depth [mm], divided by their "
-                      "intact mean; the band is ± 2 standard deviations over noise seeds.",
+    "indicators.png": "Condition indicators against crack depth [mm], one panel per "
+                      "indicator on a scale of its own, each divided by its intact mean: "
+                      "line the mean over the noise seeds, band ± 2 standard deviations "
+                      "over them, dashed the intact level 1.",
     "tsa.png": "Time-synchronous average of the sensor signal [m/s²] over one carrier "
-               "revolution against the carrier angle [deg].",
+               "revolution against the carrier angle [deg]: intact and deepest crack in "
+               "panels of their own on one scale, then their difference (the same noise "
+               "seed, so the noise cancels).",
 }
 _PATTERNS = (
     (re.compile(r"fe_ring_mode_(\d+)\.png"),

@@ -100,6 +100,20 @@ def _outline(fields: RingFields):
 _BAR = {"color": "black", "vertical": True, "position_x": 0.86, "position_y": 0.1,
         "height": 0.7, "width": 0.06, "title_font_size": 14, "label_font_size": 12,
         "n_labels": 5, "fmt": "%.3g"}
+#: pixels between a colour bar's title and the top of the bar: the top tick label is
+#: centred on that top and reaches half its height above it
+_TITLE_SEPARATION = 8
+
+
+def _readable_bars(plotter) -> None:
+    """Each colour bar's title and tick labels black on opaque white boxes (readable over
+    any colour of the map: the crack-tip close-up puts the bar over the mesh), the title
+    clear of the top tick label."""
+    for bar in plotter.scalar_bars.values():
+        bar.SetVerticalTitleSeparation(_TITLE_SEPARATION)
+        for text in (bar.GetTitleTextProperty(), bar.GetLabelTextProperty()):
+            text.SetBackgroundColor(1.0, 1.0, 1.0)
+            text.SetBackgroundOpacity(1.0)
 
 
 def _label(plotter, text: str) -> None:
@@ -135,6 +149,7 @@ def _picture(plotter, path: Path, draw, centre=None) -> Path:
     def write(tmp):
         clear_picture(plotter)
         draw(plotter)
+        _readable_bars(plotter)
         plotter.view_xy()
         plotter.enable_parallel_projection()
         if centre is not None:

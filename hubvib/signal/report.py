@@ -228,40 +228,53 @@ def report(study: SignalStudy, pictures: list[str]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _axes(rows: int = 1):
+def _axes(rows: int = 1, **options):
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    return plt.subplots(rows, 1, figsize=(8, 3.2 * rows), squeeze=False)
+    fig, axes = plt.subplots(rows, 1, figsize=(8, 3.2 * rows), squeeze=False,
+                             layout="constrained", **options)
+    # panels further apart than a panel's labels from its frame: each label reads as its
+    # own panel's
+    fig.get_layout_engine().set(h_pad=0.15)
+    return fig, axes
 
 
 def _spectrum_figure(study: SignalStudy):
+    """Overview of the carrier orders up to the last analysed mesh harmonic and its
+    sidebands, and a zoom around the mesh order; each panel with its own axis labels."""
     fig, axes = _axes(2)
+    overview, zoom = axes[:, 0]
     intact, deepest = study.depths[0], study.depths[-1]
     record_intact = record_spectrum(angle_domain(2 * math.pi * study.carrier_hz * intact.time,
                                                  intact.record, study.points_per_revolution))
     top = study.options.mesh_harmonics * study.ring_teeth + ZOOM * study.n_planets
     keep = record_intact.orders <= top
-    axes[0, 0].semilogy(record_intact.orders[keep], record_intact.amplitude[keep], lw=0.5,
-                        color="0.6", label="intact record (noise)")
-    for d, style in ((intact, "o"), (deepest, "x")):
+    overview.semilogy(record_intact.orders[keep], record_intact.amplitude[keep], lw=0.5,
+                      color="0.6", label="intact record (noise)")
+    styles = ((intact, "o-", "tab:blue"), (deepest, "x--", "tab:orange"))
+    for d, style, colour in styles:
         k = d.spectrum.orders[1:top + 1]
-        axes[0, 0].semilogy(k, d.spectrum.amplitude[1:top + 1], style, ms=3,
-                            label=f"{1e3 * d.depth:.3g} mm (steady state)")
+        overview.semilogy(k, d.spectrum.amplitude[1:top + 1], style[0], ms=3, color=colour,
+                          label=f"{1e3 * d.depth:.3g} mm (steady state)")
     low = study.ring_teeth - ZOOM * study.n_planets
     high = study.ring_teeth + ZOOM * study.n_planets
-    for d, style in ((intact, "o-"), (deepest, "x--")):
-        axes[1, 0].plot(d.spectrum.orders[low:high + 1], d.spectrum.amplitude[low:high + 1],
-                        style, ms=4, lw=0.8, label=f"{1e3 * d.depth:.3g} mm")
-    axes[1, 0].axvline(study.ring_teeth, color="k", ls=":", lw=0.8)
-    axes[0, 0].set_ylim(bottom=1e-5 * max(d.spectrum.amplitude[1:].max() for d in study.depths))
-    axes[0, 0].set_ylabel("amplitude [m/s²]")
-    axes[1, 0].set_ylabel("amplitude [m/s²]")
-    axes[1, 0].set_xlabel("carrier order (× %.4g Hz)" % study.carrier_hz)
-    axes[1, 0].set_title(f"zoom around the mesh order z_r = {study.ring_teeth}", fontsize=9)
-    for ax in axes[:, 0]:
+    for d, style, colour in styles:
+        zoom.plot(d.spectrum.orders[low:high + 1], d.spectrum.amplitude[low:high + 1],
+                  style, ms=4, lw=0.8, color=colour,
+                  label=f"{1e3 * d.depth:.3g} mm (steady state)")
+    zoom.axvline(study.ring_teeth, color="k", ls=":", lw=0.8,
+                 label=f"mesh order z_r = {study.ring_teeth}")
+    overview.set_ylim(bottom=1e-5 * max(d.spectrum.amplitude[1:].max() for d in study.depths))
+    order = "carrier order (× %.4g Hz)" % study.carrier_hz
+    overview.set_title(f"carrier orders 1 to {top}", fontsize=9)
+    zoom.set_title(f"zoom: orders {low} to {high} around the mesh order z_r = "
+                   f"{study.ring_teeth}", fontsize=9)
+    for ax in (overview, zoom):
+        ax.set_xlabel(order)
+        ax.set_ylabel("amplitude [m/s²]")
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7)
     return fig
@@ -282,35 +295,74 @@ def _spectrogram_figure(study: SignalStudy):
     return fig
 
 
+#: one colour and marker per indicator (``INDICATORS`` has 11: the 10 tab colours and black)
+INDICATOR_COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple",
+                     "tab:brown", "tab:pink", "tab:gray", "tab:olive", "tab:cyan", "black")
+INDICATOR_MARKERS = ("o", "s", "^", "v", "D", "P", "X", "*", "<", ">", "h")
+
+
 def _indicator_figure(study: SignalStudy):
-    fig, axes = _axes(1)
-    ax = axes[0, 0]
+    """One panel per indicator, each on its own scale: the indicators grow from a few per
+    cent (RMS) to a thousandfold (M8A), and one common axis flattens all but the largest."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Patch
+
+    columns = 4
+    rows = -(-(len(INDICATORS) + 1) // columns)  # one cell more for the legend
+    fig, axes = plt.subplots(rows, columns, figsize=(2.6 * columns, 2.1 * rows + 0.5),
+                             sharex=True, squeeze=False, layout="constrained")
     depths = [1e3 * d.depth for d in study.depths]
-    for name in INDICATORS:
-        means = np.array([d.summary()[name]["mean"] for d in study.depths])
-        stds = np.array([d.summary()[name]["std"] for d in study.depths])
+    summaries = [d.summary() for d in study.depths]
+    handles = []
+    for ax, name, colour, marker in zip(axes.flat, INDICATORS, INDICATOR_COLOURS,
+                                        INDICATOR_MARKERS):
+        means = np.array([s[name]["mean"] for s in summaries])
+        stds = np.array([s[name]["std"] for s in summaries])
         ref = means[0] if means[0] else 1.0
-        line, = ax.plot(depths, means / ref, marker="o", ms=3, label=name)
+        ax.axhline(1.0, color="0.5", lw=0.8, ls="--", label="intact mean")
         ax.fill_between(depths, (means - 2 * stds) / ref, (means + 2 * stds) / ref,
-                        color=line.get_color(), alpha=0.15)
-    ax.set_xlabel("crack depth [mm]")
-    ax.set_ylabel("indicator / intact mean (band: ± 2 std over seeds)")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7, ncol=4)
+                        color=colour, alpha=0.2, lw=0)
+        line, = ax.plot(depths, means / ref, color=colour, marker=marker, ms=4, label=name)
+        handles.append(line)
+        ax.set_title(name, fontsize=9)
+        ax.tick_params(labelsize=7)
+        ax.grid(True, alpha=0.3)
+    for ax in axes.flat[len(INDICATORS):]:
+        ax.axis("off")
+    reference = axes.flat[0].get_lines()[0]
+    band = Patch(color="0.5", alpha=0.3, label="± 2 std over the noise seeds")
+    axes.flat[-1].legend(handles=handles + [reference, band], loc="center", fontsize=7,
+                         ncol=2, title="mean over the seeds", title_fontsize=7)
+    fig.supxlabel("crack depth [mm]", fontsize=9)
+    fig.supylabel("indicator / its intact mean", fontsize=9)
     return fig
 
 
 def _tsa_figure(study: SignalStudy):
-    fig, axes = _axes(1)
-    ax = axes[0, 0]
-    for d in (study.depths[0], study.depths[-1]):
-        tsa = d.tsa[0]
-        ax.plot(360 * np.arange(tsa.size) / tsa.size, tsa, lw=0.6,
-                label=f"{1e3 * d.depth:.3g} mm")
-    ax.set_xlabel("carrier angle [deg]")
-    ax.set_ylabel("TSA [m/s²]")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7)
+    """The intact and the deepest crack's TSA in panels of their own on one scale (overlaid,
+    the trace drawn last covers the other), and their difference (the same noise seed:
+    the noise cancels)."""
+    fig, axes = _axes(3, sharex=True)
+    intact, deepest = study.depths[0], study.depths[-1]
+    angle = 360 * np.arange(intact.tsa[0].size) / intact.tsa[0].size
+    names = [f"{1e3 * d.depth:.3g} mm" for d in (intact, deepest)]
+    traces = ((intact.tsa[0], f"{names[0]} (intact)", "tab:blue"),
+              (deepest.tsa[0], f"{names[1]} (deepest crack)", "tab:orange"),
+              (deepest.tsa[0] - intact.tsa[0], f"{names[1]} − {names[0]}", "black"))
+    for ax, (values, label, colour) in zip(axes[:, 0], traces):
+        ax.plot(angle, values, lw=0.6, color=colour, label=label)
+        ax.set_ylabel("TSA [m/s²]")
+        ax.grid(True, alpha=0.3)
+    axes[1, 0].sharey(axes[0, 0])
+    axes[2, 0].set_ylabel("difference [m/s²]")
+    axes[2, 0].set_xlabel("carrier angle [deg]")
+    # above the panels, over no trace
+    fig.legend(loc="outside upper center", ncol=3, fontsize=8, title_fontsize=9,
+               title="time-synchronous average over one carrier revolution (first noise "
+                     "seed)")
     return fig
 
 

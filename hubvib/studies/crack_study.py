@@ -71,6 +71,7 @@ class CrackStudyResult:
     model: CrackModel | None = None
     detection: object = None
     c_rp_comparison: object = None
+    elastic: object = None  # hubvib.detection.elastic.ElasticDetection, when the scene asks
 
     @property
     def depths(self) -> np.ndarray:
@@ -263,7 +264,10 @@ def write_crack_study(result: CrackStudyResult, folder: Path,
                                c_rp_methods_differ=result.c_rp_comparison is not None),
         "c_rp_methods": (None if result.c_rp_comparison is None
                          else result.c_rp_comparison.rows()),
-        "c_rp_other_method_family_pod": _other_family_pod(result.c_rp_comparison)})))
+        "c_rp_other_method_family_pod": _other_family_pod(result.c_rp_comparison),
+        "elastic_ring": None if result.elastic is None else _elastic_json(result.elastic)})))
+    if result.elastic is not None:
+        files.append(write_csv(folder / "elastic_ring.csv", _elastic_csv(result.elastic)))
     plots = []
     if scene.plots:
         with timed("plots"):
@@ -286,6 +290,38 @@ def write_crack_study(result: CrackStudyResult, folder: Path,
         result, [p.name for p in plots], pictures(renders), pictures(fe_renders))))
     result.files = files
     return result
+
+
+def _elastic_json(elastic) -> dict:
+    """The elastic ring's answer for results.json."""
+    return {"depths_mm": [1e3 * d for d in elastic.depths],
+            "first_detectable_mm": {f"{t:g}": (None if elastic.first_detectable(t) is None
+                                               else 1e3 * elastic.first_detectable(t))
+                                    for t in elastic.pod},
+            "family_pod": {f"{t:g}": [float(p) for p in v] for t, v in elastic.pod.items()},
+            "watched_modes": [i + 1 for i in elastic.watched],
+            "k_rest_N_m": elastic.k_rest, "ring_dofs": elastic.ring_dofs,
+            "foundation_N_m2": None if elastic.foundation is None else {
+                "normal": elastic.foundation[0], "tangential": elastic.foundation[1]},
+            "sensor_angle_deg": math.degrees(elastic.sensor_angle),
+            "modes": elastic.rows()}
+
+
+def _elastic_csv(elastic) -> list[dict]:
+    """One row per depth and coupled mode of the elastic ring."""
+    rows = []
+    for k, depth in enumerate(elastic.depths):
+        for i, f in enumerate(elastic.intact_hz):
+            rows.append({"depth_mm": 1e3 * depth, "mode": i + 1, "class": elastic.kind[i],
+                         "nodal_diameter": elastic.nodal_diameter[i],
+                         "intact_hz": float(f), "open_hz": float(elastic.open_hz[k, i]),
+                         "in_contact_hz": float(elastic.in_contact_hz[k, i]),
+                         "in_contact_intact_hz": float(elastic.in_contact_hz[0, i]),
+                         "bilinear_hz": float(elastic.bilinear_hz[k, i]),
+                         "split_pair": bool(elastic.split_pair[k, i]),
+                         "watched": i in elastic.watched,
+                         "family_pod": float(elastic.pod[elastic.record_length][k])})
+    return rows
 
 
 def _plots(scene: Scene, result: CrackStudyResult, study, folder: Path) -> list[Path]:
@@ -472,6 +508,12 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
     sources = {key: scene.lumped_source(key) for key in ("c_ru", "c_r")}
     if study is not None:
         lines += sections.short_answer(scene.name, model, study, sources)
+    if result.elastic is not None:
+        from hubvib.detection.elastic_report import side_by_side
+
+        lines += ([] if study is not None else ["## Short answer", ""])
+        lines += side_by_side(study, result.elastic)
+    if study is not None:
         lines += ["## Detectability against the ring mounting", "",
                   "The mounting is swept log-spaced in series with the FE ring body (whatever "
                   "the scene's `apply`); each point is a Monte Carlo POD. Smallest detectable "
@@ -486,6 +528,10 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
         lines += sections.carrier_section(study) + _image("carrier_position.png", plots)
     else:
         lines += [sections.mounting_sentence(model, sources), ""]
+    if result.elastic is not None:
+        from hubvib.detection.elastic_report import elastic_section
+
+        lines += elastic_section(result.elastic)
     watched = (list(study.watched_modes()) if study is not None
                else list(np.argsort(-np.abs(result.omega[-1] - result.omega[0]))[:4]))
     lines += mesh_stiffness_section(model, iso_c_rp(sweep.reducer), result.c_rp_comparison,
@@ -613,11 +659,17 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
             begin_renders(scene, staged, pool, begun, spectra[0])
 
         started = time.perf_counter()
+        elastic_cases = begin_elastic(scene, pool)
         with working("FE stage and lumped spectra"):
             result = run_crack_study(scene, pool=pool, after_fe=after_fe,
                                      on_spectra=on_spectra)
         stage(f"FE stage ({result.computed} of {len(result.fe)} cases computed) and lumped "
               "spectra", started)
+        if elastic_cases is not None:
+            started = time.perf_counter()
+            with working("elastic ring"), timed("elastic"):
+                result.elastic = finish_elastic(scene, elastic_cases)
+            stage(f"elastic ring ({len(scene.crack.depths)} depths)", started)
         started = time.perf_counter()
         if "signal" in scene.tables:  # the vibration signature beside the frequency study
             from hubvib.signal.report import write_signal_study
@@ -640,6 +692,39 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
         result.files += [p for p in write_html_reports(staged) if p not in result.files]
     stage("tables, plots, renders and report", started)
     return result
+
+
+def _elastic_scene(scene: Scene):
+    table = scene.tables.get("elastic")
+    return table if table is not None and table.elastic and scene.crack.model == "plane" \
+        else None
+
+
+def begin_elastic(scene: Scene, pool):
+    """The elastic ring's crack cases queued in ``pool`` (futures), or their arguments to
+    compute in this process (no pool); None when the scene runs the rigid ring only."""
+    elastic = _elastic_scene(scene)
+    if elastic is None:
+        return None
+    from hubvib.detection.elastic import cached_case, case_arguments
+
+    sweep = scene.crack
+    arguments = case_arguments(sweep.reducer, sweep.depths, lambda d: crack_of(sweep, d),
+                               elastic)
+    if pool is None:
+        return arguments
+    return [pool.submit(cached_case, *a) for a in arguments]
+
+
+def finish_elastic(scene: Scene, begun):
+    """The elastic ring's detection answer from the cases ``begin_elastic`` began."""
+    from hubvib.detection.elastic import cached_case, elastic_detection
+    from hubvib.detection.options import detection_options
+
+    cases = [b.result() if hasattr(b, "result") else cached_case(*b) for b in begun]
+    sweep = scene.crack
+    return elastic_detection(sweep.reducer, sweep.depths, lambda d: crack_of(sweep, d),
+                             _elastic_scene(scene), detection_options(scene), cases)
 
 
 #: the report section that links the vibration signature (scenes with a [signal] table)

@@ -42,6 +42,8 @@ A scene is TOML with these tables (all keys shown; SI units)::
                                   # (every key: hubvib/detection/options.py)
     [signal]                      # optional: the vibration signature (hubvib/signal/options.py)
     [execution]                   # optional: local pool or Dask (hubvib/engines.py)
+    [elastic]                     # optional, plane crack scenes: ring = "rigid" (default),
+                                  # "elastic" or "both" (hubvib/elastic/options.py)
 
     [output]
     folder = "hubvib-out"         # relative to the current directory
@@ -71,6 +73,7 @@ from hubvib.build.stages import lumped_parameters
 from hubvib.design import DesignError, PRESETS, preset_design
 from hubvib.detection.budget import check_scene as check_detection_budget
 from hubvib.detection.options import parse_detection_table
+from hubvib.elastic.options import parse_elastic_table
 from hubvib.foundation.errors import SceneError
 from hubvib.foundation.schema import Field, Schema
 from hubvib.lumped import METHODS, ParameterError, field_names
@@ -93,6 +96,7 @@ EXTENSION_TABLES = {
     "signal": parse_signal_table,
     "detection": parse_detection_table,
     "execution": parse_execution_table,
+    "elastic": parse_elastic_table,
 }
 
 #: the common tables (each study kind checks its own tables); a new key = one entry

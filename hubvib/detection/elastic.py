@@ -1,0 +1,240 @@
+"""Detection on the elastic-ring model: which coupled modes a root crack moves beyond the
+identification scatter, seen by the sensor, and the probability of detecting it (SI).
+
+Per crack depth the design's FE ring is meshed with the crack (faces open), coupled to
+the lumped bodies (``hubvib.elastic``), and every coupled mode is tracked to the intact
+mode it continues.  The crack is in the ring body, so it acts at every carrier position;
+the statistic is the change with planet 1 half a planet pitch from the cracked tooth (the
+change at every moment of a record), the change with planet 1 on the tooth is reported
+beside it.  Closed faces give the intact ring within the mesh's discretisation error
+(``tests/test_elastic_ring.py``), so the bilinear (breathing) estimate is
+``2 f_open f_intact / (f_open + f_intact)``; the detection uses the open crack, the
+upper bound of the change.
+
+The rule is the rigid-ring study's with the reducer's own intact record as baseline: a
+mode alarms when its change plus the difference of two identification errors,
+``N(0, 2 sigma^2)``, falls below ``-z(1 - alpha_m) sqrt(2) sigma``; the family alarms on
+any watched mode (Sidak ``alpha_m``).  The nominal reducer only: no parameter scatter,
+no FE error (the rigid-ring POD integrates both).  Watched: the modes the sensor sees
+(radial ring motion at the sensor at least ``VISIBLE`` of the largest among the band's
+modes), ranked by their largest drop over the sweep against the scatter.  A mode of the
+cracked ring continues an intact one when its subspace match is at least ``MIN_MATCH``;
+a crack through the rim opens the ring, and modes that no longer match are not tracked.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from hubvib.elastic.cases import cached_case
+from hubvib.elastic.options import ElasticScene
+from hubvib.elastic.tracking import track_modes
+
+from .options import DetectionOptions
+
+#: radial amplitude at the sensor, relative to the largest of the band's modes there, for
+#: a mode to count as seen (mass-normalised shapes)
+VISIBLE = 0.1
+RECORD_LENGTHS = (10.0, 60.0, 600.0)
+#: subspace match below which a cracked mode is not taken to continue an intact one (a
+#: crack through the rim opens the ring: its modes are no longer the intact ring's)
+MIN_MATCH = 0.5
+
+
+@dataclass(frozen=True)
+class ElasticDetection:
+    """The elastic ring's answer for one crack sweep.
+
+    Attributes
+    ----------
+    depths : tuple of float
+        [m], the first 0.
+    intact_hz : ndarray (modes,)
+        Coupled modes of the intact reducer, planet 1 half a planet pitch from the crack.
+    kind, nodal_diameter, harmonic_index, ring_share : tuple
+        Each intact mode's content.
+    open_hz, in_contact_hz : ndarray (depths, modes)
+        The tracked frequency, faces open, planet 1 away from / on the cracked tooth [Hz]
+        (NaN where no mode of the cracked ring tracks it).
+    split_pair : ndarray (depths, modes) of bool
+    sigma_hz : dict
+        Record length [s] -> identification scatter of each mode [Hz].
+    visibility : ndarray (modes,)
+        Radial amplitude at the sensor relative to the largest among the modes [-].
+    watched : tuple of int
+        Watched modes (0-based), best first.
+    pod : dict
+        Record length [s] -> family POD per depth [-].
+    k_rest, foundation, ring_dofs : float, tuple or None, int
+    """
+
+    depths: tuple
+    intact_hz: np.ndarray
+    kind: tuple
+    nodal_diameter: tuple
+    harmonic_index: tuple
+    ring_share: tuple
+    open_hz: np.ndarray
+    in_contact_hz: np.ndarray
+    split_pair: np.ndarray
+    sigma_hz: dict
+    visibility: np.ndarray
+    watched: tuple
+    pod: dict
+    detection_probability: float
+    record_length: float
+    k_rest: float
+    foundation: tuple | None
+    ring_dofs: int
+    sensor_angle: float
+
+    @property
+    def bilinear_hz(self) -> np.ndarray:
+        """Breathing crack: open half a cycle, closed (= intact) the other [Hz]."""
+        return 2 * self.open_hz * self.intact_hz / (self.open_hz + self.intact_hz)
+
+    @property
+    def shift_hz(self) -> np.ndarray:
+        """Change of each mode, planet 1 away from the cracked tooth [Hz]."""
+        return self.open_hz - self.intact_hz
+
+    @property
+    def in_contact_shift_hz(self) -> np.ndarray:
+        """Change with planet 1 on the cracked tooth, against the intact ring there [Hz]."""
+        return self.in_contact_hz - self.in_contact_hz[0]
+
+    def first_detectable(self, record_length: float) -> float | None:
+        """Smallest depth whose family POD reaches the detection probability [m]."""
+        pod = self.pod[record_length]
+        hits = [d for d, p in zip(self.depths, pod) if d > 0 and p >= self.detection_probability]
+        return min(hits) if hits else None
+
+    def rows(self) -> list[dict]:
+        """One dict per intact mode (JSON-ready; NaN as None)."""
+        out = []
+        for i, f in enumerate(self.intact_hz):
+            shifts = self.shift_hz[:, i]
+            out.append({
+                "mode": i + 1, "frequency_hz": float(f), "class": self.kind[i],
+                "nodal_diameter": self.nodal_diameter[i],
+                "harmonic_index": self.harmonic_index[i], "ring_share": self.ring_share[i],
+                "visibility": float(self.visibility[i]), "watched": i in self.watched,
+                "sigma_hz": {f"{t:g}": float(s[i]) for t, s in self.sigma_hz.items()},
+                "shift_open_hz": [_finite(x) for x in shifts],
+                "shift_in_contact_hz": [_finite(x) for x in self.in_contact_shift_hz[:, i]],
+                "shift_bilinear_hz": [_finite(x) for x in self.bilinear_hz[:, i] - f],
+                "split_pair": [bool(x) for x in self.split_pair[:, i]],
+            })
+        return out
+
+
+def _finite(x) -> float | None:
+    return float(x) if np.isfinite(x) else None
+
+
+def sensor_visibility(spectrum, sensor_angle: float) -> np.ndarray:
+    """Radial ring displacement at the sensor angle of each mode, over the largest [-]."""
+    probe = spectrum.modes.probe
+    points = probe.shape[0] // 2
+    index = int(round(sensor_angle % (2 * math.pi) / (2 * math.pi) * points)) % points
+    radial = np.abs(probe[index])
+    top = radial.max()
+    return radial / top if top > 0 else radial
+
+
+def _tracked(intact, cracked, mass, index=None) -> tuple[np.ndarray, np.ndarray]:
+    """Each intact mode's frequency in ``cracked`` (NaN where no mode continues it with a
+    match of at least ``MIN_MATCH``) and whether it is a member of a split pair;
+    ``index``: the intact modes' positions in the reported order (default the same)."""
+    tracked = track_modes(intact, cracked, mass)
+    n = intact.frequency_hz.size if index is None else int(np.max(index)) + 1
+    f = np.full(n, np.nan)
+    split = np.zeros(n, dtype=bool)
+    for j, (ref, match) in enumerate(zip(tracked.reference, tracked.match)):
+        if ref >= 0 and match >= MIN_MATCH:
+            at = ref if index is None else index[ref]
+            if at >= 0:
+                f[at] = cracked.frequency_hz[j]
+                split[at] = tracked.split_pair[j]
+    return f, split
+
+
+def _assignment(reference, other, mass):
+    tracked = track_modes(reference, other, mass)
+    return tracked.reference, tracked.match
+
+
+def _pad(values: np.ndarray, n: int) -> np.ndarray:
+    out = np.full(n, np.nan)
+    out[:min(n, values.size)] = values[:n]
+    return out
+
+
+def family_pod(shift_hz: np.ndarray, sigma_hz: np.ndarray, watched, rate: float) -> np.ndarray:
+    """Probability that some watched mode alarms, per depth (rows of ``shift_hz``) [-]."""
+    from scipy.stats import norm
+
+    z = norm.ppf(1.0 - rate)
+    miss = np.ones(shift_hz.shape[0])
+    for i in watched:
+        d = np.nan_to_num(shift_hz[:, i], nan=0.0)
+        scale = math.sqrt(2.0) * sigma_hz[i]
+        miss *= 1.0 - norm.cdf((-d - z * scale) / scale)
+    return 1.0 - miss
+
+
+def case_arguments(design, depths, crack_of, scene: ElasticScene) -> list[tuple]:
+    """The arguments of ``cached_case`` for every depth (the first 0: intact)."""
+    from hubvib.elastic.rest import rest_stiffness
+
+    k_rest = rest_stiffness(design, scene.options.rest)
+    return [(design, crack_of(d), scene, k_rest) for d in depths]
+
+
+def elastic_detection(design, depths, crack_of, scene: ElasticScene,
+                      options: DetectionOptions, cases: list | None = None) -> ElasticDetection:
+    """The elastic ring's detection answer over ``depths`` [m] (the first 0);
+    ``crack_of(depth)`` gives the ``Crack`` of a depth; ``cases``: the ``ElasticCase`` of
+    every depth when computed elsewhere (a worker pool), else computed here."""
+    if cases is None:
+        cases = [cached_case(*a) for a in case_arguments(design, depths, crack_of, scene)]
+    intact = cases[0]
+    intact_away = intact.away
+    mass = intact.ring_mass
+    n = intact_away.frequency_hz.size
+    open_hz = np.full((len(depths), n), np.nan)
+    on_hz = np.full((len(depths), n), np.nan)
+    split = np.zeros((len(depths), n), dtype=bool)
+    # the on-tooth spectra are tracked to the intact on-tooth spectrum, then reported in
+    # the order of the intact modes away from the tooth
+    away_of_on = np.full(intact.on.frequency_hz.size, -1)
+    for j, (ref, match) in enumerate(zip(*_assignment(intact_away, intact.on, mass))):
+        if ref >= 0 and match >= MIN_MATCH:
+            away_of_on[j] = ref
+    open_hz[0] = intact_away.frequency_hz
+    if (away_of_on >= 0).any():
+        on_hz[0] = _pad(_tracked(intact.on, intact.on, mass, away_of_on)[0], n)
+    for k, case in enumerate(cases[1:], start=1):
+        open_hz[k], split[k] = _tracked(intact_away, case.away, mass)
+        if (away_of_on >= 0).any():
+            on_hz[k] = _pad(_tracked(intact.on, case.on, mass, away_of_on)[0], n)
+    lengths = tuple(sorted({*RECORD_LENGTHS, options.record_length}))
+    sigma = {t: options.sigma_hz(intact_away.frequency_hz, t) for t in lengths}
+    visibility = sensor_visibility(intact_away, scene.sensor_angle)
+    shift = open_hz - intact_away.frequency_hz
+    drop = np.nan_to_num(np.clip(-shift, 0.0, None), nan=0.0).max(axis=0)
+    seen = np.flatnonzero(visibility >= VISIBLE)
+    order = seen[np.argsort(-drop[seen] / sigma[options.record_length][seen], kind="stable")]
+    watched = tuple(int(i) for i in order[:options.watched_modes])
+    rate = options.per_mode_rate(len(watched)) if watched else options.false_alarm_rate
+    pod = {t: family_pod(shift, sigma[t], watched, rate) for t in lengths}
+    c = intact_away.content
+    return ElasticDetection(
+        tuple(float(d) for d in depths), intact_away.frequency_hz,
+        tuple(x.kind for x in c), tuple(x.nodal_diameter for x in c),
+        tuple(x.harmonic_index for x in c), tuple(x.ring_share for x in c),
+        open_hz, on_hz, split, sigma, visibility, watched, pod,
+        options.detection_probability, options.record_length, intact.k_rest,
+        intact.foundation, intact.ring_dofs, scene.sensor_angle)
