@@ -4,8 +4,13 @@ Exit codes: 0 done; 1 a check failed (``validate``, ``stability``); 2 bad input,
 output that cannot be written (one line ``hubvib: error: ...`` naming the flag,
 key or file); 130 interrupted (Ctrl-C: one line ``hubvib: interrupted``); 141
 standard output closed early (``hubvib spectrum | head -1``, ``--help`` too) or
-from the start (``>&-``): quiet, like a program stopped by SIGPIPE.  No traceback
-for any of these.
+from the start (``>&-``): quiet, like a program stopped by SIGPIPE; 143 terminated
+(SIGTERM: one line ``hubvib: terminated``).  No traceback for any of these.
+
+Run as the program, SIGTERM unwinds like Ctrl-C (``Terminated``), so that every
+``finally`` runs: the output stage folders and the temporary files and folders in the
+cache are removed on the way out (what ``kill -9`` leaves, the next run removes:
+``hubvib.runtime.cache_check.sweep_cache``).  A second SIGTERM ends the process at once.
 """
 from __future__ import annotations
 
@@ -20,6 +25,25 @@ import sys
 EXIT_ERROR = 2
 EXIT_INTERRUPTED = 130
 EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE, what a shell reports for `yes | head -1`
+EXIT_TERMINATED = 143  # 128 + SIGTERM
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised in the main thread (see the module docstring); a KeyboardInterrupt,
+    so that whatever stops cleanly on Ctrl-C (worker pools, locks, stages) does so here."""
+
+
+def _raise_terminated(signum, frame):
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # a second SIGTERM ends the process
+    raise Terminated
+
+
+def _terminate_by_exception() -> None:
+    """SIGTERM raises ``Terminated`` in this process (main thread only)."""
+    try:
+        signal.signal(signal.SIGTERM, _raise_terminated)
+    except ValueError:  # not the main thread: the default stays
+        pass
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -29,12 +53,17 @@ def main(argv: list[str] | None = None) -> int:
     could still turn it into ``KeyboardInterrupt`` here is ignored: it used to escape
     ``main`` (1 run in 25 killed by the signal instead of exit 130).
     """
+    if argv is None:
+        _terminate_by_exception()
     try:
         try:
             return _main(argv)
         finally:
             if argv is None:
                 _ignore_interrupts()
+    except Terminated:
+        _say("hubvib: terminated")
+        return EXIT_TERMINATED
     except KeyboardInterrupt:  # came while main was returning: still one line, exit 130
         if argv is None:
             _ignore_interrupts()
@@ -52,6 +81,7 @@ def _ignore_interrupts() -> None:
     """
     try:
         signal.signal(signal.SIGINT, signal.SIG_IGN)
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)  # from here a SIGTERM just ends it
     except ValueError:  # not the main thread: nothing to do
         return
     try:
@@ -84,6 +114,9 @@ def _main(argv: list[str] | None) -> int:
         except ModuleNotFoundError as exc:
             return _error(f"{exc.name} is not installed; this command needs the FE extras: "
                           "pip install \"hubvib[fem]\"", as_json)
+    except Terminated:
+        _say("hubvib: terminated")
+        return EXIT_TERMINATED
     except KeyboardInterrupt:
         _say("hubvib: interrupted")
         return EXIT_INTERRUPTED

@@ -110,8 +110,8 @@ def test_contact_ratio_rule():
 
 
 def test_unequal_angles_that_assemble_are_accepted_and_proposed():
-    with pytest.raises(DesignError, match=r"planet_angles_deg = \[0.0000, 91.7647, 180.0000, "
-                                          r"268.2353\]"):
+    with pytest.raises(DesignError, match=r"planet_angles_deg = \[0.000000, 91.764706, "
+                                          r"180.000000, 268.235294\]"):
         parse_design(demo(n_planets=4))
     design = parse_design(demo(n_planets=4, planet_angles_deg=[0, 91.76470588235294, 180,
                                                                268.2352941176471]))

@@ -221,6 +221,9 @@ def test_modes_annulus_reports_ring_theory():
     (["modes", "--closed"], "--closed"),
     (["modes", "--crack-depth", "-1"], "--crack-depth"),
     (["modes", "--band", "0"], "band_hz"),
+    (["modes", "--preset", "raba118", "--design", "hub4"], "--design hub4"),
+    (["modes", "--preset", "hub4", "--annulus", "0.1", "0.12", "0.02"], "--annulus"),
+    (["modes", "--render"], "--out"),
 ])
 def test_modes_bad_input_is_one_line_exit_2(argv, words):
     code, _, err = _cli(argv)

@@ -61,10 +61,11 @@ class StabilityRow:
         return self.__dict__.copy()
 
 
-def run(raba: PlanetaryParameters, repeats: int = 20, dps: int = 50) -> list[StabilityRow]:
+def run(raba: PlanetaryParameters, repeats: int = 20, dps: int = 50,
+        on_case=None) -> list[StabilityRow]:
     """Every case made from ``raba`` (the Raba 118/76 parameters; the layers above build
     them, ``hubvib.build.lumped_preset("raba118")``) with every method, plus the paper's
-    printed (indefinite) matrix."""
+    printed (indefinite) matrix.  ``on_case(name)`` is called after each case (progress)."""
     rows = []
     for name, params in cases(raba).items():
         reference = np.sqrt(np.clip(reference_eigenvalues(params, dps), 0.0, None))
@@ -72,6 +73,8 @@ def run(raba: PlanetaryParameters, repeats: int = 20, dps: int = 50) -> list[Sta
             seconds = _median_time(lambda: natural_modes(params, method), repeats)
             spectrum = natural_modes(params, method)
             rows.append(_compare(name, method, spectrum.omega, spectrum.n_rigid, reference, seconds))
+        if on_case is not None:
+            on_case(name)
     rows.append(_printed_row(raba))
     return rows
 

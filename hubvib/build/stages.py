@@ -25,6 +25,14 @@ DEFAULT_BORE_FRACTION = 0.4
 #: lumped fields the geometry does not give; a design's ``lumped`` table supplies them
 MOUNTING_FIELDS = ("c_ru", "c_r", "c_su", "c_cu")
 
+#: the methods behind the stiffnesses of a design, as every output names them: one name
+#: per meaning, so that a name printed twice holds one value
+ISO_MESH = "ISO 6336-1 c_gamma b"
+ISO_SINGLE = "ISO 6336-1 c' b"
+FE_MESH = "FE mean over the mesh cycle"
+FE_RING = "FE rim part"
+DESIGN_TABLE = "design.lumped"
+
 
 def spur_gears(design: ReducerDesign):
     """Sun, planet, ring as ``SpurGear`` (ISO 53 rack, the design's module and shifts)."""
@@ -109,6 +117,16 @@ def planet_bearing_load(design: ReducerDesign) -> float:
     return 2 * mesh_force(design) * math.cos(working_angles(design)[0])
 
 
+def bearing_method(kind: str, load: float) -> str:
+    """The name of a bearing stiffness: ``kind`` (tangent or secant) at ``load`` [N]."""
+    return f"Palmgren {kind} at {load / 1e3:.4g} kN"
+
+
+def labelled(key: str, method: str) -> str:
+    """``key (method)``: how a value is named wherever it is printed."""
+    return f"{key} ({method})"
+
+
 def bearing_stiffness(design: ReducerDesign) -> dict[str, dict]:
     """c_p and c_c, tangent and secant [N/m], with the loads they were computed at [N].
 
@@ -124,7 +142,9 @@ def bearing_stiffness(design: ReducerDesign) -> dict[str, dict]:
         bearing = RollerBearing(rollers=spec.rollers, roller_length=spec.roller_length)
         tangent, secant = bearing.stiffness(load)
         out[name] = {"tangent_N_m": tangent, "secant_N_m": secant, "load_N": load,
-                     "rollers": spec.rollers, "roller_length_m": spec.roller_length}
+                     "rollers": spec.rollers, "roller_length_m": spec.roller_length,
+                     "method": bearing_method("tangent", load),
+                     "secant_method": bearing_method("secant", load)}
     return out
 
 
@@ -175,10 +195,22 @@ def derived_lumped_fields(design: ReducerDesign, skip=()) -> dict[str, float]:
                 ("c_rp", planet, ring_gear(design), planet_gear, ring_spur)):
             pair = GearPair(first, second)
             out[key] = iso_stiffness(p, w, pair.contact_ratio).per_face_width(
-                design.face_width)[0]
+                design.face_width)[1]
     if not {"c_p", "c_c"} <= set(skip):
         out.update({k: row["tangent_N_m"] for k, row in bearing_stiffness(design).items()})
     return {k: v for k, v in out.items() if k not in skip}
+
+
+def derived_field_methods(design: ReducerDesign) -> dict[str, str]:
+    """How each lumped field the geometry gives is computed (``derived_lumped_fields``'s
+    keys): ``geometry`` for diameters, angles and masses, ``ISO_MESH`` for c_sp and c_rp
+    (the mean mesh stiffness, as the FE's mean over the mesh cycle), the bearings' tangent
+    stiffness at their load for c_p and c_c."""
+    methods = dict.fromkeys(("d_s", "d_p", "d_r", "d_c", "alpha_s", "alpha_r", "m_s", "mu_s",
+                             "m_p", "mu_p", "m_r", "mu_r", "m_c", "mu_c"), "geometry")
+    methods.update(c_sp=ISO_MESH, c_rp=ISO_MESH)
+    methods.update({k: row["method"] for k, row in bearing_stiffness(design).items()})
+    return methods
 
 
 def lumped_parameters(design: ReducerDesign):

@@ -3,8 +3,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from hubvib.design import preset_names
-from hubvib.foundation.output import json_text
+from hubvib.foundation.output import json_text, written_line
+
+from ._reducer import add_reducer_options, reducer_name
 
 #: most growth steps the command accepts
 MAX_STEPS = 200
@@ -13,10 +14,7 @@ MAX_STEPS = 200
 def add_parser(sub) -> None:
     p = sub.add_parser("crack-path", help="grow the ring's root crack by LEFM (K_I, K_II, "
                        "maximum tangential stress) until it severs the tooth or the rim")
-    p.add_argument("--preset", default="raba118", choices=preset_names(),
-                   help="a registered design preset (hubvib.design.PRESETS)")
-    p.add_argument("--design", metavar="FILE.toml",
-                   help="a reducer design file (replaces --preset)")
+    add_reducer_options(p)
     p.add_argument("--steps", type=int, default=40, metavar="N",
                    help=f"most growth steps (FE solutions), 1..{MAX_STEPS}; default 40")
     p.add_argument("--step", type=float, default=0.5e-3, metavar="DA",
@@ -34,8 +32,9 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from hubvib.studies.crack_path import crack_path
     from hubvib.fem.crack_propagation import GrowthOptions
+    from hubvib.runtime.progress import progress
+    from hubvib.studies.crack_path import crack_path
 
     from .design import design_from_argument
 
@@ -43,9 +42,13 @@ def run(args) -> int:
         raise ValueError(f"--steps = {args.steps}, allowed 1..{MAX_STEPS}")
     if not 1e-5 <= args.step <= 1e-2:  # NaN fails too
         raise ValueError(f"--step = {args.step!r} m, allowed 1e-5..1e-2 m")
-    design = design_from_argument(args.design or args.preset)
+    design = design_from_argument(reducer_name(args))
     options = GrowthOptions(step=args.step, initial_depth=args.step, max_steps=args.steps)
-    result = crack_path(design, options, args.out, args.tooth, args.load)
+    with progress(args.steps, "crack growth", "step") as bar:
+        result = crack_path(design, options, args.out, args.tooth, args.load,
+                            on_step=lambda index, step: bar.update(
+                                1, f"depth {1e3 * step.depth:.3g} mm, K_I "
+                                   f"{step.k_i / 1e6:.3g} MPa m^0.5"))
     info = result.to_dict()
     if args.json:
         print(json_text(info))
@@ -71,5 +74,5 @@ def run(args) -> int:
     else:
         print(f"fracture: {info['fracture']} (not severed after {info['steps']} steps; its "
               f"direction leads to ({1e3 * x:.3f}, {1e3 * y:.3f}) mm)")
-    print(f"written: {', '.join(info['files'])}")
+    print(written_line(info["files"]))
     return 0

@@ -47,15 +47,17 @@ def run(args) -> int:
           f"1 : {info['ratio_carrier_to_sun']:.4g}")
     print(f"  ring: outer diameter {1e3 * info['ring_outer_diameter_m']:.3f} mm, rim "
           f"{1e3 * info['ring_rim_thickness_m']:.3f} mm below the root circle")
-    print("  lumped fields from the geometry (SI):")
+    print("  lumped fields (SI): the value the lumped model uses and how it is obtained")
     units = {"d": "m", "m": "kg", "mu": "kg", "c": "N/m", "alpha": "rad"}
-    for key, value in info["lumped_from_geometry"].items():
+    for key, row in info["lumped"].items():
         unit = units[key.split("_")[0]]
-        extra = f" ({math.degrees(value):.4f} deg)" if unit == "rad" else ""
-        print(f"    {key:<8} {value:.6g} {unit}{extra}")
-    if info["lumped_from_design_table"]:
-        print("  lumped fields from the design's lumped table: " + ", ".join(
-            f"{k} = {v:.6g}" for k, v in info["lumped_from_design_table"].items()))
+        value = f"{row['value']:.6g} {unit}"
+        if unit == "rad":
+            value += f" ({math.degrees(row['value']):.4f} deg)"
+        method = row["method"]
+        if "geometry_value" in row:
+            method += f"; {row['geometry_method']} gives {row['geometry_value']:.6g} {unit}"
+        print(f"    {key:<8} {value:<30} {method}")
     if info["lumped_missing"]:
         print("  the lumped model still needs (design.lumped or design.bearings): "
               + ", ".join(info["lumped_missing"]))

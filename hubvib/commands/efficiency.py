@@ -5,6 +5,8 @@ import json
 import math
 from pathlib import Path
 
+from hubvib.foundation.output import written_line
+
 
 def add_parser(sub) -> None:
     p = sub.add_parser("efficiency", help="efficiency-optimal lift angle, R and A of "
@@ -81,6 +83,6 @@ def run(args) -> int:
             for d in designs:
                 print("\n" + report.format_curve(d))
     if files:
-        print(f"\nwritten: {', '.join(str(f) for f in files)}")
+        print("\n" + written_line(files))
     return 0
 

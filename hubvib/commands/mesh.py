@@ -2,22 +2,21 @@
 from __future__ import annotations
 
 import math
+import time
 from pathlib import Path
 
-from hubvib.design import preset_names
-from hubvib.foundation.output import json_text
+from hubvib.foundation.output import json_text, written_line
 from hubvib.meshing.crack import FRONT_SHAPES, STARTS
 from hubvib.studies.part_mesh import MAX_ELEMENTS, PartMesh, write_part_mesh
+
+from ._reducer import add_reducer_options, reducer_name
 
 
 def add_parser(sub) -> None:
     p = sub.add_parser("mesh", help="gmsh mesh of a gear body (VTU + PNG + counts)")
     p.add_argument("part", choices=["ring", "sun", "planet"],
                    help="the ring (may be cracked), or the sun or planet on its bore")
-    p.add_argument("--preset", default="raba118", choices=preset_names(),
-                   help="a registered design preset (hubvib.design.PRESETS)")
-    p.add_argument("--design", metavar="FILE.toml", help="a reducer design file (replaces "
-                   "--preset)")
+    add_reducer_options(p)
     p.add_argument("--crack-depth", type=float, default=0.0, metavar="D",
                    help="crack length along its path [m]; 0 = intact")
     p.add_argument("--crack-tooth", type=int, default=0)
@@ -34,7 +33,7 @@ def add_parser(sub) -> None:
     p.add_argument("--size", type=float, default=None,
                    help="bulk element size [m] (default 2e-3 in 2D, 6e-3 in 3D); at most "
                    f"{MAX_ELEMENTS[2]:.0e} triangles or {MAX_ELEMENTS[3]:.0e} tetrahedra "
-                   "(ring: >= 3.2e-4 m in 2D, >= 3.3e-3 m in 3D)")
+                   "(ring: >= 3.2e-4 m in 2D, >= 3.4e-3 m in 3D)")
     p.add_argument("--tip-size", type=float, default=None,
                    help="element size at the crack tip [m] (default 5e-5 in 2D, 5e-4 in 3D)")
     p.add_argument("--out", type=Path, default=Path("hubvib-out/mesh"))
@@ -43,13 +42,19 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
+    from hubvib.runtime.progress import stage, working
+
     from .design import design_from_argument
 
     request = PartMesh(args.part, args.crack_depth, args.crack_tooth,
                        math.radians(args.crack_angle), args.crack_start, args.order, args.dim,
                        args.crack_front, args.crack_half_length, args.size, args.tip_size)
-    info, mesh = write_part_mesh(design_from_argument(args.design or args.preset), request,
-                                 args.out)
+    design = design_from_argument(reducer_name(args))
+    started = time.perf_counter()
+    what = f"{args.dim}D mesh of the {args.part}"
+    with working(what):
+        info, mesh = write_part_mesh(design, request, args.out)
+    stage(what, started)
     if args.json:
         print(json_text(info))
         return 0
@@ -64,5 +69,5 @@ def run(args) -> int:
               "(they would have been inverted)")
     print(f"element quality (gmsh minSICN): min {info['min_quality_sicn']:.3f}, "
           f"mean {info['mean_quality_sicn']:.3f}")
-    print(f"written: {', '.join(info['files'])}")
+    print(written_line(info["files"]))
     return 0

@@ -5,8 +5,9 @@ from __future__ import annotations
 
 import argparse
 
-from hubvib.design import preset_names
 from hubvib.foundation.output import json_text
+
+from ._reducer import add_reducer_options, reducer_name
 
 
 def add_parser(sub) -> None:
@@ -17,12 +18,10 @@ def add_parser(sub) -> None:
         "its mounting, reduced to its own modes and the planets' contact flexibility, coupled "
         "to the lumped sun, carrier and planets; every compliance is counted once (the "
         "ring-planet spring holds the planet tooth and the contact only).")
-    which = p.add_mutually_exclusive_group()
-    which.add_argument("--preset", choices=sorted(preset_names()),
-                       help="a registered design preset (default raba118)")
-    which.add_argument("--design", metavar="FILE.toml", help="a reducer design file")
-    which.add_argument("--annulus", nargs=3, type=float, metavar=("R_IN", "R_OUT", "WIDTH"),
-                       help="a free plain annulus [m] instead of a reducer")
+    add_reducer_options(p)
+    p.add_argument("--annulus", nargs=3, type=float, metavar=("R_IN", "R_OUT", "WIDTH"),
+                   help="a free plain annulus [m] instead of a reducer (not with --preset or "
+                   "--design)")
     p.add_argument("--ring", choices=("rigid", "elastic"), default="elastic",
                    help="rigid: the 9 + 3N model (what 'hubvib spectrum' gives); elastic: "
                    "the FE ring coupled (default)")
@@ -53,7 +52,11 @@ def add_parser(sub) -> None:
 
 def run(args) -> int:
     if args.annulus is not None:
+        if args.preset is not None or args.design is not None:
+            raise ValueError("--annulus and --preset/--design both name what to solve; give "
+                             "one of them")
         return _annulus(args)
+    reducer_name(args)  # --preset with --design: refused, naming both
     if args.render and not args.out:
         raise ValueError("--render: needs --out DIR")
     if args.ring == "rigid":
@@ -69,7 +72,7 @@ def run(args) -> int:
 def _design(args):
     from .design import design_from_argument
 
-    return design_from_argument(args.design if args.design else (args.preset or "raba118"))
+    return design_from_argument(reducer_name(args))
 
 
 def _rigid(args) -> int:
@@ -83,7 +86,7 @@ def _rigid(args) -> int:
         print(json_text({"ring": "rigid", "method": spec.method, "n_rigid": spec.n_rigid,
                          "modes": spec.rows()}))
         return 0
-    return spectrum.run(argparse.Namespace(preset=args.preset or "raba118", design=args.design,
+    return spectrum.run(argparse.Namespace(preset=args.preset, design=args.design,
                                            params=None, set=[], method="jacobi", json=False))
 
 

@@ -1,12 +1,18 @@
 """``hubvib shift --to KEY VALUE``: per-mode frequency shift when one parameter changes."""
 from __future__ import annotations
 
+import re
+
 from hubvib.lumped import ParameterError
 from hubvib.lumped.parameters import scalar_field_names
 from hubvib.foundation.output import json_text
 from hubvib.runtime.params_input import parse_number
 
 from ._parameters import PARAMETER_HELP, add_parameter_options, parameters
+
+#: what the command line of ``shift`` reads as a negative number rather than an option
+NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$",
+                             re.IGNORECASE)
 
 
 def add_parser(sub) -> None:
@@ -16,6 +22,10 @@ def add_parser(sub) -> None:
     p.add_argument("--to", nargs=2, required=True, metavar=("KEY", "VALUE"),
                    help="the modified parameter (one number, SI) and its new value, e.g. "
                    "--to c_ru 1e5")
+    # a VALUE such as -1e5 or -inf is a value, not an option (argparse takes only -1 and
+    # -1.5 for numbers), so that the parameter's own check names its allowed range; no
+    # option of this command looks like a number
+    p._negative_number_matcher = NEGATIVE_NUMBER
     p.set_defaults(handler=run)
 
 
@@ -23,7 +33,11 @@ def run(args) -> int:
     from hubvib.lumped import frequency_shift
 
     key, value = target(*args.to)
-    shift = frequency_shift(parameters(args), key, value, method=args.method)
+    params = parameters(args)
+    try:
+        shift = frequency_shift(params, key, value, method=args.method)
+    except ParameterError as exc:  # the new value out of its range: name the flag too
+        raise ParameterError(f"--to {key} {args.to[1]}: {exc}") from None
     if args.json:
         print(json_text({"parameter": key, "base": shift.base_value, "modified": value,
                          "modes": shift.rows()}))

@@ -18,6 +18,7 @@ def add_parser(sub) -> None:
 
 def run(args) -> int:
     from hubvib.foundation.output import json_text, output_set
+    from hubvib.runtime.cache_check import sweep_cache
     from hubvib.runtime.progress import stage
     from hubvib.studies.scene import load_scene
     from hubvib.signal.indicators import INDICATORS
@@ -26,6 +27,7 @@ def run(args) -> int:
 
     scene = load_scene(args.scene)
     folder = Path(args.out or scene.folder)
+    sweep_cache()  # what a killed run left in the cache, before this one adds to it
     started = time.perf_counter()
     # every input error (the time step needs the model) is raised here, before any file
     study = run_signal_study(scene, progress=lambda m: print(f"hubvib: {m}", file=sys.stderr))

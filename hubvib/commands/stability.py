@@ -19,11 +19,14 @@ def add_parser(sub) -> None:
 
 def run(args) -> int:
     from hubvib.build import lumped_preset
+    from hubvib.runtime.progress import progress
     from hubvib.validation import stability
 
     if not 1 <= args.repeats <= MAX_REPEATS:
         raise ValueError(f"--repeats = {args.repeats}, but it must be 1..{MAX_REPEATS}")
-    rows = stability.run(lumped_preset("raba118"), repeats=args.repeats)
+    raba = lumped_preset("raba118")
+    with progress(len(stability.cases(raba)), "stability cases", "case") as bar:
+        rows = stability.run(raba, repeats=args.repeats, on_case=lambda name: bar.update(1, name))
     default = [r for r in rows if r.method == "jacobi"]
     passed = all(r.max_error <= stability.TARGET for r in default)
     if args.json:

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from hubvib.foundation.output import json_text, output_set
+from hubvib.foundation.output import json_text, output_set, written_line
 
 
 def add_parser(sub) -> None:
@@ -25,5 +25,5 @@ def run(args) -> int:
         print(json_text({**result.summary(), "files": [str(f) for f in files]}))
     else:
         print(raba118.format_report(result))
-        print(f"\nwritten: {', '.join(str(f) for f in files)}")
+        print("\n" + written_line(files))
     return 0 if result.passed else 1

@@ -15,7 +15,7 @@ from hubvib.companion.torus_screw import (FINGER_KINDS, OperatingPoint, PAPER_AL
                                           finger_angle, roller_forces)
 from hubvib.companion.torus_screw_paper import claims, compare, is_paper_input, paper_forces
 from hubvib.companion.torus_screw_sweep import eta_figure, read_lift_table, sweep
-from hubvib.foundation.output import save_figure, write_csv
+from hubvib.foundation.output import save_figure, write_csv, written_line
 
 
 @dataclass(frozen=True)
@@ -97,7 +97,7 @@ def _printed_variant(gear, point):
 
 
 def _files_text(files) -> list[str]:
-    return [f"\nwritten: {', '.join(str(f) for f in files)}"] if files else []
+    return ["\n" + written_line(files)] if files else []
 
 
 def _write_sweep(out: Path, rows) -> list[Path]:

@@ -9,23 +9,29 @@ from .numbers import depth_mm, number, percent, shift_hz
 from .series import DIRECT, RATIO
 
 
-def mounting_sentence(model) -> str:
-    """How the ring support enters the lumped model, and what share the mounting holds."""
+def mounting_sentence(model, sources: dict | None = None) -> str:
+    """How the ring support enters the lumped model, and what share the mounting holds.
+
+    ``sources`` names where the lumped c_ru and c_r come from (``{"c_ru": "design 'x''s
+    lumped table", ...}``, ``Scene.lumped_source``); without it they are the reducer's."""
     params = model.params
+    sources = sources or {}
+    origin = {n: f" ({sources[n]})" if n in sources else "" for n in ("c_ru", "c_r")}
     if model.apply == RATIO:
-        return ("`apply = \"ratio\"`: the preset's c_ru and c_r scaled by FE(depth)/FE(intact). "
+        return (f"`apply = \"ratio\"`: the reducer's c_ru{origin['c_ru']} and "
+                f"c_r{origin['c_r']} scaled by FE(depth)/FE(intact). "
                 "This is the paper's hypothesis that the whole support compliance is the ring "
                 "body: an upper bound of the effect, not a mounting anyone measured.")
     if model.apply == DIRECT:
         return ("`apply = \"direct\"`: c_ru and c_r are the FE ring body itself (a rigid "
                 "mounting): the largest effect a real mounting can leave.")
     identified = []
-    for name, preset in (("c_ru", params.c_ru), ("c_r", params.c_r)):
+    for name, given in (("c_ru", params.c_ru), ("c_r", params.c_r)):
         total = float(getattr(model, name)[0])
-        if math.isclose(total, preset, rel_tol=1e-9):
-            identified.append(f"{name} = {preset:.4g} N/m")
-    how = (f"identified so that the intact totals equal the preset's {' and '.join(identified)}"
-           if identified else "given in the scene")
+        if math.isclose(total, given, rel_tol=1e-9):
+            identified.append(f"{name} = {given:.4g} N/m{origin[name]}")
+    how = (f"identified so that the intact totals equal the reducer's "
+           f"{' and '.join(identified)}" if identified else "given in the scene")
     share = [f"{100 * float(getattr(model, n)[0]) / getattr(model, f'{n}_mount'):.4g} % of the "
              f"ring's {what} compliance" for n, what in (("c_ru", "torsional"),
                                                           ("c_r", "radial"))]
@@ -136,7 +142,7 @@ def _modulation_sentence(study, watched) -> str:
             f"sidebands {study.timing.pass_frequency:.3g} Hz apart as much as a shifted line.")
 
 
-def short_answer(name: str, model, study) -> list[str]:
+def short_answer(name: str, model, study, sources: dict | None = None) -> list[str]:
     """The report's opening: modes to watch, shift per depth, detectable depth, mounting."""
     pod, options = study.pod, study.options
     watched = study.watched_modes()
@@ -151,7 +157,8 @@ def short_answer(name: str, model, study) -> list[str]:
     modes = ", ".join(f"{i + 1} ({f0[i]:.1f} Hz, signal in {pod.nominal.carried_by[-1, i]})"
                       for i in watched)
     found = ~np.isnan(depth[watched])
-    lines = ["## Short answer", "", mounting_sentence(model), "", _family_sentence(pod), ""]
+    lines = ["## Short answer", "", mounting_sentence(model, sources), "",
+             _family_sentence(pod), ""]
     if found.any():
         first = np.nanmin(depth[watched])
         shallowest = pod.depths[1]

@@ -31,10 +31,13 @@ import json
 import math
 import numbers
 import os
+import re
 import shutil
 import signal
+import socket
 import tempfile
 import threading
+import time
 from contextlib import contextmanager
 from pathlib import Path, PurePosixPath
 
@@ -43,6 +46,11 @@ LOCK_NAME = ".hubvib.lock"
 STAGE_PREFIX = ".hubvib-stage-"
 MANIFEST_NAME = ".hubvib-files.json"
 _DISK_FULL = {errno.ENOSPC, errno.EDQUOT, errno.EFBIG}
+#: hidden scratch files and folders older than this are stale whoever wrote them [s]: no
+#: single write takes a day, and an owner on another host cannot be asked
+STALE_SCRATCH_S = 24 * 3600
+#: the owner a scratch name carries, ``~<pid>@<host>~`` (``remove_stale_scratch``)
+_OWNER = re.compile(r"~(\d+)@([A-Za-z0-9-]*)~")
 
 
 class OutputError(OSError):
@@ -84,7 +92,7 @@ def atomic_path(path: Path):
     path = Path(path)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.",
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.{_owner()}",
                                    suffix=path.suffix or ".tmp")
         os.close(fd)
     except OSError as exc:
@@ -109,13 +117,63 @@ def atomic_folder(path: Path):
     ``path`` is untouched."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    scratch = Path(tempfile.mkdtemp(dir=path.parent, prefix=f".{path.name}."))
+    scratch = Path(tempfile.mkdtemp(dir=path.parent, prefix=f".{path.name}.{_owner()}"))
     try:
         yield scratch
         shutil.rmtree(path, ignore_errors=True)
         os.replace(scratch, path)
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
+
+
+def _host() -> str:
+    return re.sub(r"[^A-Za-z0-9-]", "-", socket.gethostname())[:32]
+
+
+def _owner() -> str:
+    """``~<pid>@<host>~``: who writes a scratch file or folder (read back by
+    ``remove_stale_scratch``)."""
+    return f"~{os.getpid()}@{_host()}~"
+
+
+def _running(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # another user's process, or no way to ask: take it as running
+        return True
+    return True
+
+
+def remove_stale_scratch(folder: Path, max_age: float = STALE_SCRATCH_S) -> list[Path]:
+    """Remove the hidden entries of ``folder`` that no running process will finish: those
+    whose owner (``atomic_path``, ``atomic_folder``) on this host has exited, and any
+    older than ``max_age`` [s] (an owner on another host, or a name without one).  For
+    folders where every hidden entry is such scratch (the cache's); returns what went."""
+    try:
+        entries = list(Path(folder).iterdir())
+    except OSError:
+        return []
+    host, now, removed = _host(), time.time(), []
+    for entry in entries:
+        if not entry.name.startswith("."):
+            continue
+        owner = _OWNER.search(entry.name)
+        try:
+            stale = ((owner is not None and owner.group(2) == host
+                      and not _running(int(owner.group(1))))
+                     or now - entry.lstat().st_mtime > max_age)
+            if not stale:
+                continue
+            if entry.is_dir() and not entry.is_symlink():
+                shutil.rmtree(entry)
+            else:
+                entry.unlink()
+        except OSError:
+            continue  # gone meanwhile, or not ours to remove
+        removed.append(entry)
+    return removed
 
 
 def write_text(path: Path, text: str) -> Path:
@@ -427,3 +485,26 @@ def _non_finite(data, where: str):
         if found[0] is not None:
             return found
     return None, None
+
+
+#: files of one folder and kind listed one by one on a ``written:`` line; more are counted
+LISTED_FILES = 3
+
+
+def written_line(files) -> str:
+    """``written: ...`` for ``files`` (paths) on one line: each file named, except where more
+    than ``LISTED_FILES`` share a folder and a suffix, which are counted with the first and
+    last name (``22 VTU files in out/ (crack_step_00.vtu .. crack_step_21.vtu)``), in the
+    order of their first file."""
+    groups: dict = {}
+    for file in map(Path, files):
+        groups.setdefault((file.parent, file.suffix.lower()), []).append(file)
+    parts = []
+    for (folder, suffix), members in groups.items():
+        if len(members) <= LISTED_FILES:
+            parts += [str(f) for f in members]
+            continue
+        kind = suffix.lstrip(".").upper() or "extensionless"
+        parts.append(f"{len(members)} {kind} files in {folder}{os.sep} ({members[0].name} .. "
+                     f"{members[-1].name})")
+    return f"written: {', '.join(parts)}"

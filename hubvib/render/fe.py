@@ -167,8 +167,8 @@ def render_fe(fields: RingFields, folder: Path, vtu: bool = False) -> list[Path]
     scale = _scale(fields, fields.displacement)
     mpa = fields.von_mises / 1e6
     loaded = _grid(fields, fields.displacement, scale, {"von Mises [MPa]": mpa})
-    title = (f"{fields.label}\nring torque {fields.ring_torque:.0f} N m (ASSUMED sun torque), "
-             f"deformation x{scale:.0f}")
+    title = (f"{fields.label}\nring torque {fields.ring_torque:.0f} N m (from the design's "
+             f"sun torque), deformation x{scale:.0f}")
     colour = dict(scalars="von Mises [MPa]", cmap="turbo",
                   clim=(0.0, float(np.percentile(mpa, 99.5))),
                   scalar_bar_args=_BAR | {"title": "von Mises [MPa]"})

@@ -14,6 +14,7 @@ import math
 from dataclasses import asdict, dataclass
 
 from hubvib.foundation.errors import SceneError
+from hubvib.foundation.bounds import lower_bound
 from hubvib.foundation.schema import Field, Schema
 from hubvib.signal.mesh_phase import design_teeth
 
@@ -182,7 +183,8 @@ SCHEMA = Schema("signal", (
     Field("rigid_path", "number", 0.0, 1e6, default=0.0, unit="-",
           doc="weight of the ring's rigid-body acceleration path"),
     Field("mesh_stiffness", "choice", choices=MESH_STIFFNESS, default="ratio",
-          doc="ratio: FE curve shape scaled to the preset's mean c_sp, c_rp; direct: FE values"),
+          doc="ratio: FE curve shape scaled to the lumped model's mean c_sp, c_rp; direct: FE "
+              "values"),
     Field("transmission_error_m", "number", 0.0, 1e-3, default=0.0, unit="m",
           doc="amplitude of a first-harmonic static TE per mesh"),
     Field("integrator", "choice", choices=INTEGRATORS, default="newmark",
@@ -241,6 +243,7 @@ def check_sample_rate(options: SignalOptions, design) -> None:
     needed = 2 * options.mesh_harmonics * mesh
     if options.sample_rate_hz < needed:
         raise SceneError(
-            f"[signal] sample_rate_hz = {options.sample_rate_hz:g}; allowed: >= {needed:.6g} Hz "
+            f"[signal] sample_rate_hz = {options.sample_rate_hz:g}; allowed: >= "
+            f"{lower_bound(needed)} Hz "
             f"(twice mesh harmonic {options.mesh_harmonics} at {mesh:.6g} Hz mesh frequency, "
             f"else it aliases)")

@@ -146,7 +146,7 @@ def report(study: SignalStudy, pictures: list[str]) -> str:
         "Model: the lumped 9 + 3N DOF model with every sun-planet and ring-planet mesh "
         "stiffness varying in time along the FE mesh-cycle curves (intact; the cracked "
         "tooth's curve while a planet meshes it), each mesh placed in its cycle by the gear "
-        "geometry (Parker & Lin 2004 phasing), mean curves scaled to the preset's c_sp, "
+        "geometry (Parker & Lin 2004 phasing), mean curves scaled to the lumped model's c_sp, "
         f"c_rp (`mesh_stiffness = \"{o.mesh_stiffness}\"`); modal damping "
         f"{o.damping_ratio:g}; periodic steady state by the {o.integrator} scheme, "
         f"{study.steps_per_revolution} steps per revolution (h = {study.step:.4g} s). "
@@ -370,9 +370,19 @@ def _metres(values) -> str:
     return f"{list(values)} m" if values else "none"
 
 
+def _alarm(row: dict) -> str:
+    """When an indicator alarms: above its threshold if it grows with the crack, below it
+    if it falls (``roc.detection_rates`` orients each by its mean shift at the deepest
+    crack)."""
+    side = "rises above" if row["direction"] == "increasing" else "falls below"
+    return f"{side} {row['threshold']:.4g}"
+
+
 def roc_section(roc: dict) -> list[str]:
     """The detection-rate table of the report: POD per depth at the family-wise
-    false-alarm rate, AUC at the deepest crack, the first depth seen."""
+    false-alarm rate, AUC at the deepest crack, the first depth seen, and for each
+    indicator the side of its threshold that alarms (a falling indicator detects by a
+    decrease)."""
     depths = roc["depth_mm"]
     lines = ["", "### Detection rates (ROC / POD)", "",
              f"{roc['records_per_depth']} records per depth ({roc['evaluation_noise']}); "
@@ -386,20 +396,29 @@ def roc_section(roc: dict) -> list[str]:
              f"{roc['family_false_alarm_coloured']:.3g}, with {roc['heavy_tail_noise']} noise "
              f"{roc['family_false_alarm_heavy_tail']:.3g}: thresholds must be trained on the "
              "machine's own healthy records.", "",
-             "| indicator | " + " | ".join(f"POD {d:g} mm" for d in depths)
+             "| indicator | alarm when it | " + " | ".join(f"POD {d:g} mm" for d in depths)
              + f" | AUC {depths[-1]:g} mm | first depth with POD >= 0.9 [mm] |",
-             "|---|" + "---:|" * (len(depths) + 2)]
+             "|---|---|" + "---:|" * (len(depths) + 2)]
     for name, row in roc["indicators"].items():
         seen = row["first_depth_seen_mm"]
-        lines.append(f"| {name} | " + " | ".join(f"{p:.2f}" for p in row["pod"])
+        lines.append(f"| {name} | {_alarm(row)} | " + " | ".join(f"{p:.2f}" for p in row["pod"])
                      + f" | {row['auc'][-1]:.3f} | {'-' if seen is None else f'{seen:g}'} |")
-    lines.append("| any | " + " | ".join(f"{p:.2f}" for p in roc["any_indicator_pod"])
+    lines.append("| any | | " + " | ".join(f"{p:.2f}" for p in roc["any_indicator_pod"])
                  + " | | |")
     route = roc.get("frequency_route")
     if route:
         seen = route["first_depth_seen_mm"]
-        lines.append("| frequency route (law) | " + " | ".join(f"{p:.2f}" for p in route["pod"])
+        lines.append("| frequency route (law) | | "
+                     + " | ".join(f"{p:.2f}" for p in route["pod"])
                      + f" | | {'-' if seen is None else f'{seen:g}'} |")
+    falling = [name for name, row in roc["indicators"].items()
+               if row["direction"] != "increasing"]
+    if falling:
+        one = len(falling) == 1
+        lines += ["", f"{', '.join(falling)}: lower at the deepest crack than intact, so "
+                  f"{'its' if one else 'their'} alarm is a value below the threshold; a depth "
+                  f"in the last column is detected by a decrease from the intact records, not "
+                  f"by a value that grows with depth."]
         lines += ["", "Frequency route: natural frequencies identified in this record and an "
                   "intact one (Bayesian FFT), POD from the identification law (Cramer-Rao "
                   f"bound at {route['record_s']:.3g} s, damping {route['damping_ratio']:g}, "

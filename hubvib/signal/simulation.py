@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hubvib.foundation.bounds import upper_bound
 from hubvib.lumped import PlanetaryParameters
 
 from .contact import MAX_PASSES, force_ratio, in_contact, mesh_names
@@ -111,10 +112,11 @@ def steps_per_revolution(omega_max: float, speed: float, ring_teeth: int,
     if options.time_step_s > 0:
         if options.time_step_s > mesh_period / 2:
             raise ValueError(f"[signal] time_step_s = {options.time_step_s:g}; allowed: <= "
-                             f"{mesh_period / 2:.4g} s (half a mesh period)")
+                             f"{upper_bound(mesh_period / 2, 4)} s (half a mesh period)")
         if options.integrator == "central" and options.time_step_s >= limit:
             raise ValueError(
-                f"[signal] time_step_s = {options.time_step_s:g}; allowed: < {limit:.4g} s "
+                f"[signal] time_step_s = {options.time_step_s:g}; allowed: < "
+                f"{upper_bound(limit, 4, strict=True)} s "
                 f"(the central difference scheme is unstable above 2 (sqrt(1 + zeta^2) - "
                 f"zeta) / omega_max, omega_max = {omega_max:.6g} rad/s)")
         step = options.time_step_s

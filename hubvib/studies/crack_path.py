@@ -159,10 +159,11 @@ class CrackPathResult:
 
 def crack_path(design: ReducerDesign, options: GrowthOptions = GrowthOptions(),
                out: Path | None = None, tooth: int | None = None,
-               load: str = "worst") -> CrackPathResult:
+               load: str = "worst", on_step=None) -> CrackPathResult:
     """Grow the root crack of ``design`` at ``tooth`` (default ``cracked_tooth``) under
     ``load`` (``LOADS``, see the module docstring); with ``out``, write ``crack_path.png``,
-    ``crack_step_NN.vtu`` per step and ``crack_path.json`` there, all or nothing."""
+    ``crack_step_NN.vtu`` per step and ``crack_path.json`` there, all or nothing.
+    ``on_step(index, step)`` is called after each growth step's FE solution (progress)."""
     if load not in LOADS:
         raise ValueError(f"load = {load!r}, allowed: {', '.join(LOADS)}")
     positions = mesh_cycle_positions(design) if load == "envelope" else None
@@ -174,7 +175,9 @@ def crack_path(design: ReducerDesign, options: GrowthOptions = GrowthOptions(),
     force = mesh_force(design)
     steel = material(design)
     if out is None:
-        growth = grow_crack(ring, tooth, force, steel, options, positions=positions)
+        growth = grow_crack(ring, tooth, force, steel, options, positions=positions,
+                            on_step=None if on_step is None else
+                            lambda index, mesh, model, u, step: on_step(index, step))
         return CrackPathResult(design.name, growth, ring, tooth, force, options, load=load)
     out = Path(out)
     names = []
@@ -182,6 +185,8 @@ def crack_path(design: ReducerDesign, options: GrowthOptions = GrowthOptions(),
         def write(index, mesh, model, u, step):
             names.append(f"crack_step_{index:02d}.vtu")
             write_vtu(mesh, staged / names[-1])
+            if on_step is not None:
+                on_step(index, step)
 
         growth = grow_crack(ring, tooth, force, steel, options, on_step=write,
                             positions=positions)

@@ -508,8 +508,9 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
              + ("." if sweep.model == "plane" else
                 f" at the deepest point of a semi-elliptic crack of half-length "
                 f"{1e3 * result.fe[-1]['half_length_m']:g} mm in the solid ring."), ""]
+    sources = {key: scene.lumped_source(key) for key in ("c_ru", "c_r")}
     if study is not None:
-        lines += sections.short_answer(scene.name, model, study)
+        lines += sections.short_answer(scene.name, model, study, sources)
     if result.elastic is not None:
         from hubvib.detection.elastic_report import side_by_side
 
@@ -529,7 +530,7 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
                   "per record length).", ""]
         lines += sections.carrier_section(study) + _image("carrier_position.png", plots)
     else:
-        lines += [sections.mounting_sentence(model), ""]
+        lines += [sections.mounting_sentence(model, sources), ""]
     if result.elastic is not None:
         from hubvib.detection.elastic_report import elastic_section
 
@@ -542,11 +543,12 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
         "## Assumptions", "",
         f"- Design `{sweep.reducer.name}`: "
         + "; ".join(getattr(sweep.reducer, "notes", ()) or ("see hubvib.design",)) + ".",
-        f"- Ring support: {sections.mounting_sentence(model)}",
+        f"- Ring support: {sections.mounting_sentence(model, sources)}",
         f"- The FE ring body alone gives c_ru = {intact['c_ru_N_m']:.4g} N/m and c_r = "
-        f"{intact['c_r_N_m']:.4g} N/m against the preset's {scene.params.c_ru:.4g} and "
-        f"{scene.params.c_r:.4g} N/m. These are the work-conjugate rim parts: the work of "
-        "each loaded tooth's forces on the rigid motion of its root lands (fem/ring_work.py). "
+        f"{intact['c_r_N_m']:.4g} N/m against the reducer's c_ru {scene.params.c_ru:.4g} N/m "
+        f"({sources['c_ru']}) and c_r {scene.params.c_r:.4g} N/m ({sources['c_r']}). These "
+        "are the work-conjugate rim parts: the work of each loaded tooth's forces on the "
+        "rigid motion of its root lands (fem/ring_work.py). "
         "The lumped model puts the ring body in series with the tooth pair c_rp, whose ring "
         "tooth is measured relative to that same rigid motion, so each compliance is counted "
         "once. The whole work-conjugate c_ru would count the ring tooth twice, and the "

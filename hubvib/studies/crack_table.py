@@ -6,6 +6,7 @@ import math
 from dataclasses import replace
 
 from hubvib.build.stages import ring_gear
+from hubvib.foundation.bounds import upper_bound
 from hubvib.foundation.errors import SceneError
 from hubvib.foundation.schema import Field, Schema
 from hubvib.meshing.crack import MIN_LIGAMENT, STARTS
@@ -41,7 +42,8 @@ SCHEMA = Schema("crack", (
     Field("start", "choice", choices=STARTS, default="root", doc="where the crack starts"),
     Field("apply", "choice", choices=APPLY, default="series",
           doc="series: mounting in series with the FE ring body; ratio: FE ratio on the "
-              "preset's c_ru, c_r (an upper bound); direct: FE values alone"),
+              "reducer's c_ru, c_r (the preset's or design's table, or [reducer.parameters]; "
+              "an upper bound); direct: FE values alone"),
     Field("accuracy", "choice", choices=tuple(ACCURACY), default="default",
           doc="fast: element sizes doubled"),
     Field("tooth", "integer", 0, math.inf, default=0, unit="-", allowed="integers 0..",
@@ -61,7 +63,7 @@ SCHEMA = Schema("crack", (
           doc="also the depth that cuts through the rim"),
     Field("c_ru_mount", "number", 0.0, math.inf, True, True, default=None, unit="N/m",
           allowed=_MOUNT, doc='with apply = "series"; absent: identified so that the intact '
-                              "total equals the preset's c_ru"),
+                              "total equals the reducer's c_ru"),
     Field("c_r_mount", "number", 0.0, math.inf, True, True, default=None, unit="N/m",
           allowed=_MOUNT, doc="... and c_r"),
     Field("model", "choice", choices=MODELS, default="plane",
@@ -208,7 +210,9 @@ def _checked_depths(sweep: CrackSweep, through: bool) -> CrackSweep:
         except GearGeometryError as exc:
             raise SceneError(f"[crack] depths[{i}]: {exc}") from None
         if sweep.model == "solid" and crack_of(sweep, depth).is_through(ring):
+            through = crack_of(sweep, 0.0).through_depth(ring)
             raise SceneError(f"[crack] depths[{i}] = {depth!r} m: a semi-elliptic crack must "
-                             f"stay inside the rim, allowed 0..{crack_of(sweep, 0.0).through_depth(ring):.6g} "
+                             "stay inside the rim, allowed "
+                             f"0..{upper_bound(through, strict=True)} "
                              "m (exclusive)")
     return replace(sweep, depths=tuple(depths))

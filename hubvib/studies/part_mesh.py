@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from hubvib.build import gear_body, ring_gear
+from hubvib.foundation.bounds import lower_bound
 from hubvib.foundation.output import output_set
 from hubvib.meshing import measure
 from hubvib.meshing.crack import Crack, CrackFront
@@ -75,7 +76,8 @@ def check_size(request: PartMesh, body) -> None:
     if estimate > limit:
         smallest = (extent / (cell * limit)) ** (1 / request.dim)
         raise ValueError(f"--size = {size:g} m would give ~{estimate:.1e} elements of the "
-                         f"{request.part}; allowed >= {smallest:.1e} m (at most {limit:.0e} "
+                         f"{request.part}; allowed >= {float(lower_bound(smallest, 2)):.1e} m "
+                         f"(at most {limit:.0e} "
                          f"{'tetrahedra' if request.dim == 3 else 'triangles'})")
 
 

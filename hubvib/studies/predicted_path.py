@@ -19,6 +19,7 @@ import sys
 import numpy as np
 
 from hubvib.fem.crack_propagation import GrowthOptions
+from hubvib.foundation.bounds import upper_bound
 from hubvib.meshing.cache import root_folder
 from hubvib.meshing.crack_path import PathCrack
 from hubvib.runtime.fe_cache import CacheEntryError, entry_key, read_entry, write_entry
@@ -55,7 +56,8 @@ def truncated(points, depth: float, tooth: int) -> PathCrack:
     points = np.asarray(points, float)
     s = arc_lengths(points)
     if not 0 < depth <= s[-1] + 1e-9:
-        raise PathDepthError(f"depth {depth!r} m: allowed 0..{s[-1]:.6g} m along the path")
+        raise PathDepthError(f"depth {depth!r} m: allowed 0..{upper_bound(s[-1])} m along the "
+                             "path")
     end = int(np.searchsorted(s, depth - 1e-9))
     if abs(s[end] - depth) <= 1e-9:
         return PathCrack(tooth, tuple(map(tuple, points[:end + 1].tolist())))
@@ -121,6 +123,7 @@ def predicted_crack(design, tooth: int, depths, depth: float) -> PathCrack:
         raise PathDepthError(
             f"[crack] depths: {depth:.6g} m is beyond the predicted path, which "
             f"{'severs the ' + result['fracture'] if result['severed'] else 'ends'} after "
-            f"{length:.6g} m (the last crack the growth meshed): allowed 0..{length:.6g} m "
+            f"{length:.6g} m (the last crack the growth meshed): allowed "
+            f"0..{upper_bound(length)} m "
             f"with path = \"predicted\"")
     return truncated(result["path_m"], depth, tooth)

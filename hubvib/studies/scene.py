@@ -27,10 +27,10 @@ A scene is TOML with these tables (all keys shown; SI units)::
                                   # depths along it; root, plane, no through_rim) or an
                                   # angle [deg] (= angle_deg)
     apply = "series"              # mounting in series with the FE ring body (default);
-                                  # "ratio": FE ratio on the preset's c_ru, c_r (the paper's
+                                  # "ratio": FE ratio on the reducer's c_ru, c_r (the paper's
                                   # hypothesis, an upper bound); "direct": FE values alone
     c_ru_mount = 1e6              # [N/m] with "series"; absent: identified so that the
-    c_r_mount = 1e8               # intact total equals the preset's c_ru / c_r
+    c_r_mount = 1e8               # intact total equals the reducer's c_ru / c_r
     accuracy = "default"          # or "fast" (element sizes doubled)
     workers = 2                   # worker processes for the FE cases
     model = "plane"               # or "solid": semi-elliptic root cracks in the solid ring,

@@ -122,6 +122,20 @@ class Scene:
         the detection and signal modules read)."""
         return self.study if isinstance(self.study, CrackSweep) else None
 
+    def lumped_source(self, key: str) -> str:
+        """Where the lumped model's ``key`` comes from, as a report names it: the scene's
+        ``[reducer.parameters]``, the ``[design]``'s lumped table (or its geometry), or the
+        ``[reducer]`` preset's table."""
+        overrides = self.source.get("reducer", {}).get("parameters", {})
+        if key in overrides:
+            return "the scene's [reducer.parameters]"
+        name = getattr(self.design, "name", None)
+        if "design" in self.source:
+            given = self.design is not None and key in self.design.lumped_fields
+            return f"design {name!r}'s {'lumped table' if given else 'geometry'}"
+        preset = self.source.get("reducer", {}).get("preset", name)
+        return f"the {preset} preset's table"
+
     @property
     def c_rp_given(self) -> bool:
         """Whether the lumped c_rp is a given value: a ``[reducer]`` preset's table, a
