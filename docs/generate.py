@@ -126,6 +126,14 @@ def raba_validation() -> str:
                            "energy model"], rows, "rrrrlr")
 
 
+def raba_claim() -> str:
+    """What the comparison with the published Raba 118/76 spectrum shows, in words with its
+    numbers (the study reports' validation-status sentence)."""
+    from hubvib.studies.validation_status import lumped_model_status
+
+    return lumped_model_status() + "."
+
+
 def raba_summary() -> str:
     """The headline figures of ``hubvib validate raba118``."""
     from hubvib.build import lumped_preset
