@@ -41,7 +41,10 @@ def _down(value: float) -> str:
     """``value`` > 0 rounded down to three significant digits (a bound that holds as
     printed)."""
     step = 10.0 ** (math.floor(math.log10(value)) - 2)
-    return f"{math.floor(value / step) * step:.3g}"
+    count = math.floor(value / step)
+    if count * step > value:  # value / step rounded up to a whole number
+        count -= 1
+    return f"{count * step:.3g}"
 
 
 @dataclass(frozen=True)
@@ -92,7 +95,7 @@ def _screen(predicted_hz, damping_ratio: float, record: Record):
                 helps[i] = f"modal damping below {_down(separating)} %"
         elif kappa < MIN_KAPPA:
             skipped[i] = (f"mode {nearest + 1}, a neighbour {gap:.3g} Hz away, leaves a band "
-                          f"of only {kappa:.2g} zeta f (at least {MIN_KAPPA:g} needed)")
+                          f"of only {_down(kappa)} zeta f (at least {MIN_KAPPA:g} needed)")
             helps[i] = f"modal damping below {_down(separating)} %"
         elif fi * (1 + kappa * damping_ratio) >= nyquist:
             skipped[i] = f"above the Nyquist frequency {nyquist:g} Hz of the record"
