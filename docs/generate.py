@@ -15,16 +15,33 @@ Two kinds of source:
   ``docs/data/<entry>.meta.json``) and when it ran; ``docs/data/regenerate.sh`` reruns them.
   Scene and design variants the commands read sit in ``docs/data/inputs/``.
 
+The pages keep what the markers generate, committed between the marker and its end, so
+that they read in full in the repository::
+
+    <!-- gen: NAME -->
+    ...the table's Markdown as generated...
+    <!-- /gen -->
+
+(``<!-- cli: hubvib ARGS -->`` ... ``<!-- /cli -->`` the same); the docs build replaces
+every marker and its block by what the generator gives then, and a marker without a block
+(its data not committed yet) is generated at build time as well.  ``python
+docs/generate.py --write [PAGE.md ...]`` refills the blocks of the pages (all of
+``docs/*.md`` by default); ``tests/test_docs.py`` fails when a committed block is not what
+its generator gives now, except the tables in ``LIVE`` (measured while the docs are built:
+timings) and, outside the slow run, those in ``SLOW``.
+
 Run ``python docs/generate.py NAME`` to print one table.
 """
 from __future__ import annotations
 
+import atexit
 import contextlib
 import csv
 import io
 import json
 import math
 import os
+import re
 import shlex
 import shutil
 import sys
@@ -124,6 +141,14 @@ def raba_validation() -> str:
             for r in validate(lumped_preset("raba118")).rows]
     return markdown_table(["#", "published [rad/s]", "printed matrix", "deviation [%]", "type",
                            "energy model"], rows, "rrrrlr")
+
+
+def raba_claim() -> str:
+    """What the comparison with the published Raba 118/76 spectrum shows, in words with its
+    numbers (the study reports' validation-status sentence)."""
+    from hubvib.studies.validation_status import lumped_model_status
+
+    return lumped_model_status() + "."
 
 
 def raba_summary() -> str:
@@ -881,7 +906,75 @@ def diagnosis_mode13() -> str:
             + provenance("raba118_crack/", f"{run['date']}, hubvib {run['hubvib_version']}"))
 
 
+# ---------------------------------------------------------------- closed loop, records to depth
+
+@lru_cache(maxsize=None)
+def _loop_folder() -> Path:
+    """The scratch folder the walk-through's commands share (records written by one, read
+    by the next), removed when the build ends."""
+    folder = Path(tempfile.mkdtemp(prefix="hubvib-docs-loop-"))
+    atexit.register(shutil.rmtree, folder, True)
+    return folder
+
+
+def closed_loop_records() -> str:
+    """``hubvib signal raba118_closed_loop``: the scene's records, 45 s each (what it
+    prints; the progress lines on stderr are left out)."""
+    return console(["hubvib", "signal", "raba118_closed_loop", "--out", "loop"],
+                   folder=_loop_folder(), stderr=False)
+
+
+def closed_loop_diagnosis() -> str:
+    """``hubvib diagnose`` of the closed-loop scene's 12 mm record against its intact one."""
+    table("closed_loop_records")  # the records, once per build
+    return console(["hubvib", "diagnose", "--scene", "raba118_closed_loop", "--record",
+                    "loop/signal_12mm.csv", "--baseline-record", "loop/signal_0mm.csv"],
+                   folder=_loop_folder(), stderr=False)
+
+
+def closed_loop_not_identifiable() -> str:
+    """The shipped signal scene's records (10 revolutions, no ambient forcing) through the
+    same command: the verdict ``not identifiable from these records``."""
+    console(["hubvib", "signal", "raba118_signal", "--out", "short"], folder=_loop_folder())
+    return console(["hubvib", "diagnose", "--scene", "raba118_signal", "--record",
+                    "short/signal_12mm.csv", "--baseline-record", "short/signal_0mm.csv"],
+                   folder=_loop_folder(), stderr=False)
+
+
 # ---------------------------------------------------------------- key references
+
+def command_flags() -> str:
+    """Every command with every flag and its help, from the parser the CLI runs (so the
+    reference cannot drift from it)."""
+    import argparse
+
+    from hubvib.cli import _parser
+
+    parts = []
+    for name, parser in _parser()._subparsers._group_actions[0].choices.items():
+        rows = []
+        for action in parser._actions:
+            if isinstance(action, argparse._HelpAction):
+                continue
+            if isinstance(action, argparse._SubParsersAction):
+                for sub, subparser in action.choices.items():
+                    rows.append([f"`{sub}`", (subparser.description or "").replace("|", "\\|")
+                                 or "subcommand"])
+                continue
+            label = ", ".join(action.option_strings) or action.dest
+            if action.metavar and action.option_strings:
+                label += f" {action.metavar if isinstance(action.metavar, str) else ' '.join(action.metavar)}"
+            elif action.choices and not action.option_strings:
+                label += f" ({', '.join(map(str, action.choices))})"
+            text = " ".join((action.help or "").split()).replace("|", "\\|") or (
+                "print the result as JSON" if "--json" in action.option_strings else "")
+            if action.choices and action.option_strings:
+                text += f" (one of {', '.join(map(str, action.choices))})"
+            rows.append([f"`{label}`".replace("|", "\\|"), text])
+        parts.append(f"**`hubvib {name}`**\n\n" + markdown_table(["argument", "meaning"], rows))
+    return "\n\n".join(parts)
+
+
 
 def _schema_tables(schemas) -> str:
     """One Markdown table per schema: key, default, allowed, unit, meaning, read from the
@@ -1175,9 +1268,26 @@ def elastic_ring_validity() -> str:
 
 # ---------------------------------------------------------------- entry points
 
+#: markers whose text changes from run to run: tables measured while the docs are built
+#: (times of the build machine) and a command whose zero shifts print with the sign of
+#: their round-off; their committed block is the last run's, never compared
+LIVE = frozenset({"stability", "meshing_2d", "convergence_annulus", "convergence_edge_crack",
+                  "hubvib run raba118_five_planets --out out"})
+#: markers whose generation takes seconds or minutes (a table name, or a ``cli`` marker's
+#: command): compared with their committed block in the slow test run only
+SLOW = frozenset({"batch", "harmonics_ball49", "closed_loop_records", "closed_loop_diagnosis",
+                  "closed_loop_not_identifiable"})
+
+#: a generated-figure marker and, when committed, its block up to ``<!-- /gen -->`` (or
+#: ``<!-- /cli -->``); a block holds no other marker
+BLOCK = re.compile(r"<!--[ \t]*(gen|cli):[ \t]*([^\n]*?)[ \t]*-->"
+                   r"(?:\n((?:(?!<!--[ \t]*(?:gen|cli):).)*?)\n?<!--[ \t]*/\1[ \t]*-->)?",
+                   re.S)
+
 TABLES = {name: function for name, function in list(globals().items())
           if callable(function) and not name.startswith("_") and function.__module__ == __name__
-          and name not in {"markdown_table", "provenance", "table", "console"}}
+          and name not in {"markdown_table", "provenance", "table", "console", "render",
+                           "expand", "fill", "blocks", "stale", "write_pages"}}
 
 
 @lru_cache(maxsize=None)
@@ -1188,36 +1298,105 @@ def table(name: str) -> str:
     return TABLES[name]()
 
 
-def console(argv: list[str], expected: int = 0, prepare=None) -> str:
+def console(argv: list[str], expected: int = 0, prepare=None, folder: Path | None = None,
+            stderr: bool = True) -> str:
     """``hubvib ARGS`` run in-process in a scratch folder holding ``docs/data/inputs``; a
-    console block with the command and what it printed (stdout, then stderr).
-    ``prepare(folder)``, when given, writes further input files first."""
+    console block with the command and what it printed (stdout, then stderr unless
+    ``stderr`` is false: the progress lines with their times).
+    ``prepare(folder)``, when given, writes further input files first; ``folder``: run in
+    this folder instead, kept for the next command."""
     from hubvib.cli import main
 
     if not argv or argv[0] != "hubvib":
         raise ValueError(f"a cli marker runs hubvib, not {argv[:1]}")
     out, err = io.StringIO(), io.StringIO()
-    folder = Path(tempfile.mkdtemp(prefix="hubvib-docs-cli-"))
-    here = Path.cwd()
+    keep = folder is not None
+    folder = folder or Path(tempfile.mkdtemp(prefix="hubvib-docs-cli-"))
+    here, columns = Path.cwd(), os.environ.get("COLUMNS")
     try:
         shutil.copytree(DATA / "inputs", folder, dirs_exist_ok=True)
         if prepare:
             prepare(folder)
         os.chdir(folder)
+        os.environ["COLUMNS"] = "100"  # argparse's help wraps to it: the same on every machine
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
             try:
                 code = main(argv[1:])
             except SystemExit as stop:  # argparse's --help and usage errors exit
                 code = stop.code if isinstance(stop.code, int) else 2
     finally:
+        if columns is None:
+            os.environ.pop("COLUMNS", None)
+        else:
+            os.environ["COLUMNS"] = columns
         os.chdir(here)
-        shutil.rmtree(folder, ignore_errors=True)
+        if not keep:
+            shutil.rmtree(folder, ignore_errors=True)
     if code != expected:
         raise RuntimeError(f"exit {code}, expected {expected}: {err.getvalue().strip()}")
-    text = (out.getvalue() + err.getvalue()).rstrip()
+    text = (out.getvalue() + (err.getvalue() if stderr else "")).rstrip()
     return f"```console\n$ {shlex.join(argv)}\n{text}\n```"
 
 
+def render(kind: str, body: str) -> str:
+    """What one marker generates: ``gen`` the table ``body``, ``cli`` the console block of
+    the command ``body`` (``hubvib ARGS [; exit=N]``)."""
+    if kind == "gen":
+        return table(body)
+    command, _, expected = body.partition(";")
+    expected = int(expected.split("=")[1]) if expected.strip() else 0
+    return console(shlex.split(command), expected)
+
+
+def blocks(markdown: str) -> list[tuple[str, str, str | None]]:
+    """Every marker of a page: (kind, body, committed block or None)."""
+    return [(m.group(1), m.group(2), m.group(3)) for m in BLOCK.finditer(markdown)]
+
+
+def expand(markdown: str, generate=render) -> str:
+    """The page as the site shows it: each marker and its committed block replaced by what
+    ``generate(kind, body)`` gives now."""
+    return BLOCK.sub(lambda m: generate(m.group(1), m.group(2)), markdown)
+
+
+def fill(markdown: str, generate=render) -> str:
+    """The page as committed: each marker followed by its generated block and end marker.
+    A marker whose data is not committed (the generator raises FileNotFoundError) keeps
+    its block, or stays without one."""
+    def one(match):
+        kind, body = match.group(1), match.group(2)
+        try:
+            text = generate(kind, body)
+        except FileNotFoundError:
+            return match.group(0)
+        return f"<!-- {kind}: {body} -->\n{text.rstrip()}\n<!-- /{kind} -->"
+
+    return BLOCK.sub(one, markdown)
+
+
+def stale(markdown: str, generate=render, skip=frozenset()) -> list[str]:
+    """The markers of a page whose committed block is not what ``generate`` gives now
+    (``kind: body``), leaving out markers without a block and those whose body is in
+    ``skip``."""
+    return [f"{kind}: {body}" for kind, body, block in blocks(markdown)
+            if block is not None and body not in skip
+            and block.rstrip() != generate(kind, body).rstrip()]
+
+
+def write_pages(pages: list[Path]) -> None:
+    """Refill the committed blocks of ``pages``."""
+    for page in pages:
+        text = page.read_text(encoding="utf-8")
+        filled = fill(text)
+        if filled != text:
+            page.write_text(filled, encoding="utf-8")
+            print(f"written: {page}")
+
+
 if __name__ == "__main__":
-    for name in sys.argv[1:] or sorted(TABLES):
-        print(f"## {name}\n\n{table(name)}\n")
+    if sys.argv[1:2] == ["--write"]:
+        here = Path(__file__).resolve().parent
+        write_pages([Path(p) for p in sys.argv[2:]] or sorted(here.glob("*.md")))
+    else:
+        for name in sys.argv[1:] or sorted(TABLES):
+            print(f"## {name}\n\n{table(name)}\n")

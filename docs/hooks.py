@@ -9,15 +9,17 @@
   - ``<!-- gen: NAME -->``: the table ``NAME`` of ``docs/generate.py``;
   - ``<!-- cli: hubvib ARGS [; exit=N] -->``: the command run in-process (``hubvib.cli.main``)
     in a scratch folder holding ``docs/data/inputs``, shown as a console block with its
-    output; a different exit code than ``N`` (default 0) fails the build.
+    output; a different exit code than ``N`` (default 0) fails the build;
+
+  each with the block committed after it up to ``<!-- /gen -->`` (``<!-- /cli -->``), which
+  the generated text replaces (``generate.expand``; a marker without a block is expanded
+  the same way).
 
 An unknown marker, a table that raises or a command that fails stops the build.
 """
 from __future__ import annotations
 
 import atexit
-import re
-import shlex
 import shutil
 import sys
 import tempfile
@@ -31,8 +33,6 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import generate  # noqa: E402  (docs/generate.py, beside this file)
-
-MARKER = re.compile(r"<!--\s*(gen|cli):\s*(.*?)\s*-->")
 
 
 def source_tree(root: Path = ROOT) -> Path:
@@ -62,15 +62,10 @@ def on_config(config):
 
 
 def on_page_markdown(markdown, page, config, files):
-    def expand(match):
-        kind, body = match.groups()
+    def render(kind, body):
         try:
-            if kind == "gen":
-                return generate.table(body)
-            command, _, expected = body.partition(";")
-            expected = int(expected.split("=")[1]) if expected.strip() else 0
-            return generate.console(shlex.split(command), expected)
+            return generate.render(kind, body)
         except Exception as exc:  # any failure of a figure fails the build, naming the page
-            raise PluginError(f"{page.file.src_path}: {match.group(0)}: {exc}") from exc
+            raise PluginError(f"{page.file.src_path}: <!-- {kind}: {body} -->: {exc}") from exc
 
-    return MARKER.sub(expand, markdown)
+    return generate.expand(markdown, render)

@@ -113,11 +113,17 @@ def test_generated_tables_are_the_library_figures():
         generate.console(["hubvib", "design", "check", "demo4.toml"])
 
 
+def _written(page: Path) -> str:
+    """A page without its generated blocks (what its author wrote)."""
+    return _generate().expand(page.read_text(encoding="utf-8"), lambda kind, body: "")
+
+
 @pytest.mark.parametrize("page", sorted(p.name for p in DOCS.glob("*.md")
-                                         if "```python" in p.read_text()))
+                                         if "```python" in _written(p)))
 def test_python_blocks_of_the_pages_run(page, capsys):
-    """Every ``python`` code block of a page runs as shown (house style: docs code is run)."""
-    for block in re.findall(r"```python\n(.*?)```", (DOCS / page).read_text(), re.S):
+    """Every ``python`` code block a page's author wrote runs as shown (house style: docs
+    code is run); the generated blocks are checked against their generators."""
+    for block in re.findall(r"```python\n(.*?)```", _written(DOCS / page), re.S):
         exec(compile(block, page, "exec"), {})
     assert capsys.readouterr().out, f"{page}: the blocks print what their comments describe"
 
@@ -138,3 +144,78 @@ def test_site_builds_in_strict_mode(tmp_path):
     assert "rotational" in gallery, "the gallery example ran and its output is on the page"
     for page in site.rglob("*.html"):
         assert not MARKER.search(page.read_text()), f"{page}: a marker was not expanded"
+
+
+def _pages() -> list[Path]:
+    return sorted(DOCS.glob("*.md"))
+
+
+def test_committed_blocks_are_what_the_generators_give_now():
+    """Each page reads in full in the repository: the generated text sits between its
+    marker and the end marker, and it is what the generator gives now (a stale block fails;
+    ``python docs/generate.py --write PAGE`` refills it).  Tables measured while the docs
+    are built (``LIVE``: times) are never compared, the ``SLOW`` ones in the slow run."""
+    generate = _generate()
+    stale = [f"{page.name}: {name}" for page in _pages()
+             for name in generate.stale(page.read_text(encoding="utf-8"),
+                                        skip=generate.LIVE | generate.SLOW)]
+    assert not stale, f"stale generated blocks (python docs/generate.py --write): {stale}"
+
+
+@pytest.mark.slow
+def test_slow_committed_blocks_are_current():
+    generate = _generate()
+    everything = {body for page in _pages()
+                  for _, body, _ in generate.blocks(page.read_text(encoding="utf-8"))}
+    stale = [f"{page.name}: {name}" for page in _pages()
+             for name in generate.stale(page.read_text(encoding="utf-8"),
+                                        skip=generate.LIVE | (everything - generate.SLOW))]
+    assert not stale, f"stale generated blocks (python docs/generate.py --write): {stale}"
+
+
+def test_every_marker_has_its_block_unless_its_data_is_not_committed():
+    """A marker without a block is generated at build time only; that is allowed while its
+    data file is not committed (the generator raises FileNotFoundError), not otherwise."""
+    generate = _generate()
+    missing = []
+    for page in _pages():
+        for kind, body, block in generate.blocks(page.read_text(encoding="utf-8")):
+            if block is not None:
+                continue
+            try:
+                generate.render(kind, body)
+            except FileNotFoundError:
+                continue
+            missing.append(f"{page.name}: {kind}: {body}")
+    assert not missing, f"markers without a committed block: {missing}"
+
+
+def test_blocks_are_filled_expanded_and_found_stale():
+    generate = _generate()
+    fresh = {"a": "| x |\n|---|\n| 1 |", "b": "text b"}
+
+    def render(kind, body):
+        if body == "c":
+            raise FileNotFoundError("docs/data/c.json")
+        return fresh[body]
+
+    page = ("# t\n\n<!-- gen: a -->\n| x |\n|---|\n| 0 |\n<!-- /gen -->\n\n"
+            "<!-- gen: c -->\n\n<!-- gen: b -->\n\nend\n")
+    assert generate.stale(page, render) == ["gen: a"], "a's committed block is old"
+    filled = generate.fill(page, render)
+    assert "<!-- gen: a -->\n| x |\n|---|\n| 1 |\n<!-- /gen -->" in filled
+    assert "<!-- gen: b -->\ntext b\n<!-- /gen -->" in filled
+    assert "<!-- gen: c -->\n\n" in filled, "no data yet: the marker stays without a block"
+    assert generate.stale(filled, render) == []
+    shown = generate.expand(filled, lambda kind, body: f"[{body}]")
+    assert shown == "# t\n\n[a]\n\n[c]\n\n[b]\n\nend\n"
+
+
+def test_the_command_page_names_every_command():
+    """docs/commands.md: a row of its table per command (the README's list), and the
+    generated reference of every argument."""
+    page = (DOCS / "commands.md").read_text(encoding="utf-8")
+    commands = set(_parser()._subparsers._group_actions[0].choices)
+    rows = set(re.findall(r"^\| `hubvib ([\w-]+)", page, re.M))
+    assert commands <= rows, f"commands without a row: {sorted(commands - rows)}"
+    assert "--baseline-record" in page and "<!-- gen: command_flags -->" in page

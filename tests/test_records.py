@@ -190,3 +190,80 @@ def test_record_that_is_a_pipe_or_a_device_is_refused_at_once(tmp_path, suffix):
     device.symlink_to("/dev/zero")
     with pytest.raises(RecordError, match=r"--baseline-record .*zero.* not a regular file"):
         read_record(device, "--baseline-record")
+
+
+@pytest.mark.parametrize("seed", [0, 2])
+def test_a_fit_that_leaves_its_band_is_not_found_and_never_quoted(seed):
+    """White noise plus a strong line outside the band: the fit runs off to the line
+    (seed 2) or to an absurd damping (seed 0); both are 'no resonance found', and the
+    message quotes only the band, no number of the failed fit."""
+    import re
+
+    from hubvib.identification.bfft import IdentificationError, identify_mode
+
+    rng = np.random.default_rng(seed)
+    t = np.arange(4000) / 400.0
+    x = rng.standard_normal(t.size) + 30 * np.sin(2 * np.pi * 75.0 * t)
+    lo, hi = 53.5 * (1 - 6 * 0.02), 53.5 * (1 + 6 * 0.02)
+    with pytest.raises(IdentificationError, match=r"no resonance found in its band") as caught:
+        identify_mode(x, 400.0, 53.5, 0.02, acceleration=True)
+    numbers = [float(v) for v in re.findall(r"\d+(?:\.\d+)?(?:e[+-]?\d+)?", str(caught.value))]
+    assert numbers and all(lo - 0.01 <= v <= hi + 0.01 for v in numbers), str(caught.value)
+
+
+def test_identified_modes_lie_in_their_band_with_bounded_damping():
+    """Over records of noise and of a mode's neighbour, every mode the identifier returns
+    lies inside its band with a half-power bandwidth inside the band."""
+    from hubvib.identification.bfft import IdentificationError, identify_mode
+
+    for seed in range(12):
+        rng = np.random.default_rng(seed)
+        t = np.arange(4000) / 400.0
+        x = rng.standard_normal(t.size) + 30 * np.sin(2 * np.pi * 75.0 * t)
+        try:
+            mode = identify_mode(x, 400.0, 53.5, 0.02, acceleration=True)
+        except IdentificationError:
+            continue
+        assert 53.5 * (1 - 0.12) < mode.frequency_hz < 53.5 * (1 + 0.12)
+        assert 0 < mode.damping_ratio < 6 * 0.02
+
+
+def _synthetic_fe(monkeypatch):
+    """The diagnosis's FE cases replaced by the synthetic crack model's rows."""
+    import hubvib.detection.diagnosis
+    import hubvib.studies.crack_sweep
+    from test_detection_helpers import synthetic_fe_rows
+
+    def fe_rows(sweep, progress=True):
+        return synthetic_fe_rows(sweep.depths), 0
+
+    monkeypatch.setattr(hubvib.studies.crack_sweep, "run_fe_cases", fe_rows)
+    monkeypatch.setattr(hubvib.detection.diagnosis, "run_fe_cases", fe_rows)
+
+
+def test_records_without_an_identifiable_mode_get_a_verdict_not_an_error(
+        tmp_path, monkeypatch, capsys):
+    """Two valid records of white noise, too short for the lowest modes: no mode of the
+    model is identified in both.  That is an answer (exit 0), `not identifiable from these
+    records`, with a short reason per mode and what would help, not a one-line error."""
+    import json
+
+    _synthetic_fe(monkeypatch)
+    scene = tmp_path / "scene.toml"
+    scene.write_text(SCENE.replace("samples = 300", "samples = 100"))
+    rng = np.random.default_rng(5)
+    paths = [write_csv(tmp_path / f"r{k}.csv", Record(rng.standard_normal(1200), 4000.0))
+             for k in (0, 1)]
+    argv = ["diagnose", "--scene", str(scene), "--record", str(paths[1]),
+            "--baseline-record", str(paths[0])]
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "verdict: not identifiable from these records" in out
+    assert "what would help:" in out and "records of at least" in out
+    assert max(map(len, out.splitlines())) <= 100, "short lines, no wall of text"
+    assert main(argv + ["--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["verdict"] == "not identifiable from these records" and data["modes"] == []
+    assert data["depth_m"] is None and data["what_would_help"]
+    assert set(map(int, data["skipped_modes"])) == set(range(1, 19)), "a reason per mode"
+    assert all(len(why) < 160 for why in data["skipped_modes"].values())

@@ -27,17 +27,18 @@ def test_shipped_scenes_are_the_scene_files():
 
 
 #: scenes another slow test runs too: their FE work goes to the run's shared cache
-SHARED_CACHE_SCENES = ("raba118_crack_path", "raba118_signal")
+SHARED_CACHE_SCENES = ("raba118_crack_path", "raba118_signal", "raba118_closed_loop")
 
 
 @pytest.mark.parametrize("scene", [pytest.param(s, marks=pytest.mark.slow) if s in FE_SCENES
                                    else s for s in SCENES if s not in SOLID_SCENES],
                          ids=[s.stem for s in SCENES if s not in SOLID_SCENES])
 def test_every_scene_runs(scene, tmp_path, capsys, monkeypatch, request):
-    """Each shipped scene from an empty cache, except two whose cache is the run's shared
+    """Each shipped scene from an empty cache, except three whose cache is the run's shared
     one (conftest ``shared_cache``) so that their FE work is done once in the run: the
     predicted-path scene (the Raba path, minutes of FE growth keyed on design, tooth and
-    step, also parsed by test_crack_kinds.test_predicted_path_key) and the signal scene
+    step, also parsed by test_crack_kinds.test_predicted_path_key), the closed-loop scene
+    (its FE cases, also run by test_signal_closed_loop) and the signal scene
     (its FE cases and mesh curves, also run by
     test_signal_cli.test_shipped_signal_scene_has_a_monotone_indicator)."""
     if scene.stem in SHARED_CACHE_SCENES:

@@ -1,7 +1,7 @@
 """Closed loop (issue 24 item 7): records simulated by ``hubvib signal`` are read by
 ``hubvib diagnose --record ... --baseline-record ...``, which recovers the crack depth.
 
-Settings of the loop (the scene below): Raba 118/76 (preset), plane root crack of tooth
+Settings of the loop (the shipped scene ``raba118_closed_loop``): Raba 118/76 (preset), plane root crack of tooth
 0, fast FE; signal model ``mesh_stiffness = "ratio"`` (so diagnose uses the ratio crack
 model, hubvib.detection.diagnosis.scene_reference); modal damping 1 %; records of 325
 carrier revolutions (45.0 s) at 20 kHz; ambient forcing 10 N^2/Hz (one-sided) on each
@@ -27,44 +27,11 @@ from hubvib.cli import main
 from hubvib.signal.frequency_route import observed_hz
 from hubvib.signal.mesh_phase import design_phasing
 from hubvib.signal.study import curves_for
-from hubvib.studies.scene import load_scene
+from hubvib.studies.scene import load_scene, shipped_scene_text
 
-DEPTHS = (0.0, 0.006, 0.012, 0.018)
 TRUE_DEPTH = 0.012
-SCENE = f"""# closed loop: hubvib signal -> hubvib diagnose
-[reducer]
-preset = "raba118"
-
-[crack]
-depths = {list(DEPTHS)}
-through_rim = false
-tooth = 0
-start = "root"
-angle_deg = 0.0
-accuracy = "fast"
-workers = 1
-
-[signal]
-revolutions = 325
-sample_rate_hz = 20000.0
-damping_ratio = 0.01
-noise_level = 0.05
-noise_seeds = 1
-roc_records = 0
-mesh_stiffness = "ratio"
-contact = "linear"
-ambient_force_psd_N2_Hz = 10.0
-
-[detection]
-record_length_s = 45.0
-carrier_speed_rpm = 433.3333333
-damping_ratio = 0.01
-samples = 500
-
-[output]
-plots = false
-renders = false
-"""
+#: the shipped closed-loop scene (scenes/raba118_closed_loop.toml)
+SCENE = shipped_scene_text("raba118_closed_loop")
 
 
 @pytest.fixture(scope="module", autouse=True)
@@ -93,18 +60,60 @@ def _law_shift_hz(scene, curves):
 
 
 @pytest.fixture(scope="module")
-def diagnosis(scene_file):
-    """``hubvib signal`` on the loop scene, then ``hubvib diagnose`` of its 12 mm record
-    against its intact one: the JSON result."""
+def records(scene_file):
+    """``hubvib signal`` on the loop scene: its output folder."""
     out = scene_file.parent / "out"
     with contextlib.redirect_stdout(io.StringIO()):
         assert main(["signal", str(scene_file), "--out", str(out), "--json"]) == 0
+    return out
+
+
+def _diagnose(scene, records, *flags) -> str:
     printed = io.StringIO()
     with contextlib.redirect_stdout(printed):
-        assert main(["diagnose", "--scene", str(scene_file), "--record",
+        assert main(["diagnose", "--scene", str(scene), "--record",
+                     str(records / "signal_12mm.csv"), "--baseline-record",
+                     str(records / "signal_0mm.csv"), *flags]) == 0
+    return printed.getvalue()
+
+
+@pytest.fixture(scope="module")
+def diagnosis(scene_file, records):
+    """``hubvib diagnose`` of the loop's 12 mm record against its intact one: the JSON
+    result."""
+    return json.loads(_diagnose(scene_file, records, "--json"))
+
+
+@pytest.mark.slow
+def test_the_shipped_scene_closes_the_loop_and_explains_every_figure(records):
+    """By its shipped name: the verdict with its depth, and each figure beside the table
+    (the best-fit depth, the fit p-value) said in words."""
+    text = _diagnose("raba118_closed_loop", records)
+    assert "verdict: crack indicated: depth" in text and "(posterior median)" in text
+    assert "(maximum likelihood)" in text and "p-value" in text and "fit as badly or worse" \
+        in text, text
+    assert max(map(len, text.splitlines())) <= 100, text
+
+
+@pytest.mark.slow
+def test_the_signal_scene_records_are_not_identifiable_with_what_would_help(
+        tmp_path_factory, capsys):
+    """The short, ambient-free records of the shipped signal scene (10 revolutions, 5 %
+    damping) against its own crack study: the answer `not identifiable from these records`
+    (exit 0), a reason per mode and what would help."""
+    out = tmp_path_factory.mktemp("signal")
+    with contextlib.redirect_stdout(io.StringIO()):
+        assert main(["signal", "raba118_signal", "--out", str(out), "--json"]) == 0
+    printed = io.StringIO()
+    with contextlib.redirect_stdout(printed):
+        assert main(["diagnose", "--scene", "raba118_signal", "--record",
                      str(out / "signal_12mm.csv"), "--baseline-record",
                      str(out / "signal_0mm.csv"), "--json"]) == 0
-    return json.loads(printed.getvalue())
+    result = json.loads(printed.getvalue())
+    assert result["verdict"] == "not identifiable from these records"
+    assert len(result["skipped_modes"]) == 18
+    assert any("forcing" in line for line in result["what_would_help"])
+    assert not any("fit:" in why for why in result["skipped_modes"].values())
 
 
 @pytest.mark.slow

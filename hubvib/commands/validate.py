@@ -1,4 +1,5 @@
-"""``hubvib validate raba118``: the published spectrum reproduced and explained."""
+"""``hubvib validate raba118``: the published spectrum against the printed matrix and the
+energy-consistent model, explained."""
 from __future__ import annotations
 
 from pathlib import Path

@@ -28,6 +28,9 @@ LINE_HALF_WIDTH = 25
 LINE_FALSE_ALARM = 1e-3
 #: ordinates above this many local medians (over ln 2) are clipped out of the running mean
 LINE_CLIP = 10.0
+#: largest damping ratio a fit may return [-]; a fit is also refused when its half-power
+#: bandwidth ``2 zeta f`` exceeds the band ``2 kappa zeta_g f`` it was fitted in
+MAX_DAMPING = 0.5
 
 
 def line_mask(P: np.ndarray) -> np.ndarray:
@@ -50,7 +53,8 @@ def line_mask(P: np.ndarray) -> np.ndarray:
 
 
 class IdentificationError(ValueError):
-    """No mode could be identified in the band; the message says what the fit found."""
+    """No mode could be identified in the band; the message says why, in a few words (a fit
+    that left its band is not quoted: its numbers describe no resonance)."""
 
 
 @dataclass(frozen=True)
@@ -85,7 +89,11 @@ def identify_mode(values, sample_rate: float, guess_hz: float, damping_guess: fl
     shape is ``b^4 |h|^2`` (:func:`.law.response_shape` with power 4).  ``lines``: the
     frequency lines :func:`line_mask` calls spectral lines are left out of the likelihood
     (the remaining ordinates stay independent; the Cramer-Rao bound is that of the whole
-    band)."""
+    band).
+
+    Raises :class:`IdentificationError` when the fit finds no resonance in the band: its
+    frequency outside the band, its half-power bandwidth wider than the band (or damping
+    above ``MAX_DAMPING``), or its modal SNR not above 1."""
     x = np.asarray(values, dtype=float)
     n = x.size
     dt = 1.0 / sample_rate
@@ -133,12 +141,19 @@ def identify_mode(values, sample_rate: float, guess_hz: float, damping_guess: fl
     p = start + result.x * scale
     f0, zeta, S, Se = float(p[0]), math.exp(p[1]), math.exp(p[2]), math.exp(p[3])
     snr = S / (4 * zeta * zeta * Se)
-    if not (lo < f0 < hi and 0 < zeta < 0.5 and snr > 1):
-        raise IdentificationError(f"no resonance found in {lo:.6g}..{hi:.6g} Hz (fit: "
-                                  f"{f0:.6g} Hz, damping {zeta:.3g}, SNR {snr:.3g})")
+    band = f"{lo:.5g}..{hi:.5g} Hz"
+    if not lo < f0 < hi:
+        raise IdentificationError(f"no resonance found in its band {band} (the fit left "
+                                  "the band)")
+    if not 0 < zeta < min(MAX_DAMPING, kappa * damping_guess):
+        raise IdentificationError(f"no resonance found in its band {band} (the fitted peak "
+                                  "is wider than the band)")
+    if not snr > 1:
+        raise IdentificationError(f"no resonance found in its band {band} (no peak above the "
+                                  "noise)")
     try:
         sigma = fisher_sigma_hz(f0, zeta, T, min(snr, 1e12), kappa, power)
     except np.linalg.LinAlgError:
-        raise IdentificationError(f"the fit at {f0:.6g} Hz carries no information on the "
-                                  "frequency (singular Fisher matrix)") from None
+        raise IdentificationError(f"no resonance found in its band {band} (the fit carries "
+                                  "no information on the frequency)") from None
     return IdentifiedMode(f0, zeta, snr, sigma)
