@@ -119,3 +119,27 @@ def test_crack_answer_paragraph_quotes_the_committed_default_scene_run():
     text = " ".join(README.split())
     for phrase in expected:
         assert phrase in text, f"README against docs/data/raba118_crack: {phrase!r}"
+
+
+def test_elastic_ring_answer_quotes_the_committed_default_scene_run():
+    """The README's elastic-ring answer is that of ``docs/data/raba118_crack/results.json``
+    (``elastic_ring``): the first detectable depth per record length, the best watched
+    coupled mode's frequency, nodal diameters, change at the shallowest crack and 10 s
+    scatter, and the ring's lowest elastic mode of its own."""
+    import json
+
+    run = json.loads((ROOT / "docs/data/raba118_crack/results.json").read_text())
+    elastic = run["elastic_ring"]
+    first = elastic["first_detectable_mm"]
+    best = elastic["modes"][elastic["watched_modes"][0] - 1]
+    lowest = elastic["lowest_ring_mode"]
+    expected = [
+        f"the elastic ring detects a crack from {first['10']:g} mm with 10 s records",
+        f"{best['frequency_hz']:.1f} Hz (ring nodal diameters {best['nodal_diameter']}) moves "
+        f"{best['shift_open_hz'][1]:.1f} Hz at {elastic['depths_mm'][1]:g} mm against a 10 s "
+        f"scatter of {best['sigma_hz']['10']:.2f} Hz",
+        f"lowest elastic mode of its own at {lowest['frequency_hz']:.0f} Hz "
+        f"(n = {lowest['nodal_diameter']})"]
+    text = " ".join(README.split())
+    for phrase in expected:
+        assert phrase in text, f"README against docs/data/raba118_crack: {phrase!r}"
