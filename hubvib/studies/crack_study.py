@@ -673,7 +673,7 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
             started = time.perf_counter()
             with working("elastic ring"), timed("elastic"):
                 result.elastic = finish_elastic(scene, elastic_cases)
-            stage(f"elastic ring ({len(scene.crack.depths)} depths)", started)
+            stage(f"elastic ring ({len(result.elastic.depths)} depths)", started)
         started = time.perf_counter()
         if "signal" in scene.tables:  # the vibration signature beside the frequency study
             from hubvib.signal.report import write_signal_study
@@ -713,8 +713,8 @@ def begin_elastic(scene: Scene, pool):
     from hubvib.detection.elastic import cached_case, case_arguments
 
     sweep = scene.crack
-    arguments = case_arguments(sweep.reducer, sweep.depths, lambda d: crack_of(sweep, d),
-                               elastic)
+    arguments = case_arguments(sweep.reducer, elastic_depths(sweep),
+                               lambda d: crack_of(sweep, d), elastic)
     if pool is None:
         return arguments
     return [pool.submit(cached_case, *a) for a in arguments]
@@ -727,8 +727,16 @@ def finish_elastic(scene: Scene, begun):
 
     cases = [b.result() if hasattr(b, "result") else cached_case(*b) for b in begun]
     sweep = scene.crack
-    return elastic_detection(sweep.reducer, sweep.depths, lambda d: crack_of(sweep, d),
-                             _elastic_scene(scene), detection_options(scene), cases)
+    return elastic_detection(sweep.reducer, elastic_depths(sweep),
+                             lambda d: crack_of(sweep, d), _elastic_scene(scene),
+                             detection_options(scene), cases)
+
+
+def elastic_depths(sweep) -> tuple:
+    """The sweep's depths the elastic ring is solved at: all but a crack through the rim
+    (it opens the ring; its modes no longer continue the intact ring's)."""
+    ring = ring_gear(sweep.reducer)
+    return tuple(d for d in sweep.depths if d == 0 or not crack_of(sweep, d).is_through(ring))
 
 
 #: the report section that links the vibration signature (scenes with a [signal] table)
