@@ -53,6 +53,13 @@ def _old_ratio_study(scene, fe):
         step, _ = match(spectra[k - 1], spectra[k])
         order = step[order]
         omega[k] = spectra[k].omega[order]
+    # the members of a repeated intact frequency are numbered by frequency (lower first)
+    start = 0
+    for end in range(1, omega.shape[1] + 1):
+        if end == omega.shape[1] or not math.isclose(omega[0, end], omega[0, start],
+                                                     rel_tol=1e-6):
+            omega[:, start:end] = np.sort(omega[:, start:end], axis=1)
+            start = end
     return c_ru, c_r, omega
 
 

@@ -31,6 +31,8 @@ from hubvib.build.stages import gear_body, ring_gear
 from hubvib.fem.mesh_cycle import GearPair
 from hubvib.lumped import natural_modes
 
+from .mode_names import tracked, tracked_order
+
 
 @dataclass(frozen=True)
 class MeshTiming:
@@ -149,10 +151,10 @@ def carrier_study(model, timing: MeshTiming, record_length: float,
     """Spectra of ``model`` (a CrackModel) in and out of engagement, per depth, and over
     one passage of planet 1 at the deepest crack."""
     depths = range(len(model.depths))
-    omega_in = np.array([natural_modes(model.parameters(k, True), model.method).omega
-                         for k in depths])
-    omega_out = np.array([natural_modes(model.parameters(k, False), model.method).omega
-                          for k in depths])
+    spectra_in = [natural_modes(model.parameters(k, True), model.method) for k in depths]
+    spectra_out = [natural_modes(model.parameters(k, False), model.method) for k in depths]
+    omega_in = tracked(np.array([s.omega for s in spectra_in]), tracked_order(spectra_in))
+    omega_out = tracked(np.array([s.omega for s in spectra_out]), tracked_order(spectra_out))
     observed = observed_omega(omega_in, omega_out, timing.engaged_fraction,
                               timing.long_record(record_length))
     pitch = timing.pitch_angle

@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 
+from .mode_names import mode_names
 from .numbers import ROUND_OFF
 
 COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
@@ -40,8 +41,8 @@ def _axes(ncols: int = 1, **options):
     return plt.subplots(1, ncols, figsize=(7 * ncols, 5), squeeze=False, **options)
 
 
-def _label(i: int, frequency_hz: float, kind: str) -> str:
-    return f"{i + 1}: {frequency_hz:.1f} Hz {kind}"
+def _label(i: int, frequency_hz: float, kind: str, name: str | None = None) -> str:
+    return f"{name or i + 1}: {frequency_hz:.1f} Hz {kind}"
 
 
 #: curves per panel at most: more cannot be told apart
@@ -64,7 +65,8 @@ def relative_shift_figure(name: str, depths: np.ndarray, omega: np.ndarray, kind
     for ax, modes in zip(axes[:, 0], panels):
         for n, i in enumerate(modes):
             ax.plot(1e3 * depths, 100 * relative[:, i], **style(n),
-                    label=_label(i, omega[0, i] / (2 * math.pi), kind[i]))
+                    label=_label(i, omega[0, i] / (2 * math.pi), kind[i],
+                                 mode_names(omega[0])[i]))
         if depths.size > 1:
             ax.axvline(1e3 * depths[1], color="0.6", lw=0.8, ls="-.",
                        label=f"shallowest crack computed {1e3 * depths[1]:.3g} mm")
@@ -92,7 +94,8 @@ def shift_threshold_figure(name: str, pod):
     for n, i in enumerate(sorted(strongest)):
         positive = shift[:, i] > 0
         ax.plot(1e3 * pod.depths[positive], shift[positive, i], **style(n),
-                label=_label(i, nominal.frequency_hz[0, i], pod.kind[i]))
+                label=_label(i, nominal.frequency_hz[0, i], pod.kind[i],
+                             mode_names(nominal.frequency_hz[0])[i]))
     low, high = pod.threshold_hz[pod.watched].min(), pod.threshold_hz[pod.watched].max()
     ax.axhspan(low, high * 1.0001, color="k", alpha=0.15,
                label=f"alarm thresholds of the watched modes {low:.3g}-{high:.3g} Hz")
@@ -113,7 +116,7 @@ def pod_figure(name: str, pod, modes):
     f0 = pod.nominal.frequency_hz[0]
     for n, i in enumerate(modes):
         ax.plot(1e3 * pod.depths, pod.pod[:, i], **style(n),
-                label=_label(i, f0[i], pod.kind[i]))
+                label=_label(i, f0[i], pod.kind[i], mode_names(f0)[i]))
     for n, T in enumerate(sorted(pod.family_pod)[:3]):
         ax.plot(1e3 * pod.depths, pod.family_pod[T], color="k", lw=2.5 - 0.5 * n,
                 ls=("-", "--", ":")[n], marker="o", ms=3,
@@ -201,7 +204,8 @@ def carrier_figure(name: str, carrier, kind):
     rows.plot(minimum[moving], y, ls="none", marker="o", ms=10, mfc="none", mew=1.5,
               color="tab:red", label=AT_MINIMUM)
     rows.set_xscale("log")
-    rows.set_yticks(y, [_label(i, out[i] / (2 * math.pi), kind[i]) for i in moving],
+    names = mode_names(carrier.omega_out[0])
+    rows.set_yticks(y, [_label(i, out[i] / (2 * math.pi), kind[i], names[i]) for i in moving],
                     fontsize=8)
     rows.set_ylim(y[-1] - 0.7, 0.7)
     rows.set_xlabel("|frequency change| while planet 1 meshes the cracked tooth [%] (log "

@@ -46,6 +46,7 @@ from hubvib.lumped import natural_modes
 from .budget import chunked_frequencies
 from .drift import Drift, drift_model, references
 from .drift import family_pod as family_pod_mc
+from .mode_names import mode_names
 from .numbers import ROUND_OFF
 from .uncertainty import draw, nominal, observed_frequencies_of
 
@@ -249,11 +250,13 @@ class PodResult:
     def rows(self) -> list[dict]:
         nominal = self.nominal
         carried = nominal.carried_by
+        names = mode_names(nominal.frequency_hz[0])
         rows = []
         for k, depth in enumerate(self.depths):
             for i, kind in enumerate(self.kind):
                 rows.append({
-                    "depth_mm": 1e3 * depth, "mode": i + 1, "kind": kind,
+                    "depth_mm": 1e3 * depth, "mode": i + 1, "mode_name": names[i],
+                    "kind": kind,
                     "frequency_intact_hz": float(nominal.frequency_hz[0, i]),
                     "shift_hz": float(nominal.shift_hz[k, i]),
                     "shift_percent": float(100 * nominal.shift_hz[k, i]

@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 
+from .mode_names import mode_names
 from .numbers import depth_mm, number, percent, shift_hz
 from .series import DIRECT, RATIO
 
@@ -173,7 +174,8 @@ def short_answer(name: str, model, study, sources: dict | None = None) -> list[s
                      f"their identification scatter. {_support_sentence(pod)}")
     lines += ["", "Time-averaged shift a record sees [Hz] and the mode's POD per depth (nr: "
               "smaller than the FE error of the stiffness carrying it, not resolved):", ""]
-    head = "| depth [mm] | " + " | ".join(f"mode {i + 1} [Hz] | [%] | POD" for i in watched)
+    names = mode_names(f0)
+    head = "| depth [mm] | " + " | ".join(f"mode {names[i]} [Hz] | [%] | POD" for i in watched)
     lines += [head + " |", "|---:|" + "---:|---:|---:|" * len(watched)]
     for k, d in enumerate(pod.depths):
         cells = []
@@ -311,8 +313,9 @@ def carrier_section(study) -> list[str]:
         "|---:|---:|---:|---:|---:|---:|"]
     observed = carrier.omega_observed[-1]
     index = carrier.modulation_index[-1]
+    names = mode_names(carrier.omega_out[0])
     for i in moving:
-        lines.append(f"| {i + 1} | {out[i] / (2 * math.pi):.3f} | "
+        lines.append(f"| {names[i]} | {out[i] / (2 * math.pi):.3f} | "
                      f"{inside[i] / (2 * math.pi):.3f} | {percent(100 * relative[i])} | "
                      f"{observed[i] / (2 * math.pi):.3f} | {number(index[i], 2)}"
                      f"{' (peak splits)' if index[i] > 1 else ''} |")

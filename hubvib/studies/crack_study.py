@@ -23,12 +23,12 @@ import numpy as np
 from hubvib.build.stages import ring_gear
 from hubvib.detection import report as sections
 from hubvib.detection.mesh_stiffness import family_depths, iso_c_rp, mesh_stiffness_section
+from hubvib.detection.mode_names import mode_names, tracked, tracked_order
 from hubvib.detection.model import CrackModel
 from hubvib.detection.numbers import depth_mm, percent, sensitivity, shift_hz
 from hubvib.detection.options import DetectionOptions
 from hubvib.foundation.output import write_csv, write_json, write_text
 from hubvib.lumped import Spectrum, frequency_sensitivity, natural_modes
-from hubvib.lumped.tracking import match
 from hubvib.meshing.levels import scaled_options
 from hubvib.render.cache import array_digest, cached_render, is_cached
 from hubvib.render.captions import figure_lines
@@ -83,6 +83,11 @@ class CrackStudyResult:
         return self.spectra[0].kind
 
     @property
+    def names(self) -> list[str]:
+        """Per mode its name in every table and figure (split pairs named)."""
+        return mode_names(self.omega[0])
+
+    @property
     def percent(self) -> np.ndarray:
         return 100 * (self.omega / self.omega[0] - 1)
 
@@ -117,7 +122,8 @@ class CrackStudyResult:
         rows = []
         for k, depth in enumerate(self.depths):
             for i, kind in enumerate(self.kind):
-                rows.append({"depth_mm": 1e3 * depth, "mode": i + 1, "kind": kind,
+                rows.append({"depth_mm": 1e3 * depth, "mode": i + 1,
+                             "mode_name": self.names[i], "kind": kind,
                              "omega_rad_s": float(self.omega[k, i]),
                              "frequency_hz": float(self.omega[k, i] / (2 * math.pi)),
                              "shift_hz": float((self.omega[k, i] - self.omega[0, i]) / (2 * math.pi)),
@@ -138,7 +144,7 @@ class CrackStudyResult:
         for i, kind in enumerate(self.kind):
             hits = np.flatnonzero(np.abs(self.percent[:, i]) >= self.scene.threshold_percent)
             follows = [n for n in STIFFNESSES if abs(rel[n][i]) > SENSITIVE] or ["none"]
-            row = {"mode": i + 1, "kind": kind,
+            row = {"mode": i + 1, "mode_name": self.names[i], "kind": kind,
                    "frequency_intact_hz": float(self.omega[0, i] / (2 * math.pi)),
                    "shift_at_deepest_hz": float((self.omega[-1, i] - self.omega[0, i])
                                                 / (2 * math.pi)),
@@ -190,14 +196,7 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
         c_ru, c_r = model.c_ru, model.c_r
         c_rp_factor = np.asarray(model.c_rp_factor())
         spectra = [natural_modes(model.parameters(k), scene.method) for k in range(len(fe))]
-        n = spectra[0].omega.size
-        omega = np.empty((len(spectra), n))
-        omega[0] = spectra[0].omega
-        order = np.arange(n)
-        for k in range(1, len(spectra)):
-            step, _ = match(spectra[k - 1], spectra[k])
-            order = step[order]
-            omega[k] = spectra[k].omega[order]
+        omega = tracked(np.array([s.omega for s in spectra]), tracked_order(spectra))
     if on_spectra is not None:
         on_spectra(spectra)
     with timed("detection"):
@@ -612,7 +611,7 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
     for r in result.mode_rows():
         depth = r.get("detectable_depth_mm")
         f0 = r["frequency_intact_hz"]
-        lines.append(f"| {r['mode']} | {r['kind']} | {r['frequency_intact_hz']:.3f} | "
+        lines.append(f"| {r['mode_name']} | {r['kind']} | {r['frequency_intact_hz']:.3f} | "
                      f"{shift_hz(r['shift_at_deepest_hz'], r['frequency_intact_hz'])} | "
                      f"{percent(r['shift_at_deepest_percent'])} | "
                      f"{shift_hz(r.get('record_shift_at_deepest_hz'), f0)} | "
