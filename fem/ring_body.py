@@ -179,14 +179,19 @@ def foundation_for(model, c_r: float, c_ru: float, base_radius: float) -> Founda
 
 def ring_body(ring: RingGear, mesh: FEMesh, material: Material = Material(),
               mounting: str = "foundation", foundation: Foundation | None = None,
-              tie_crack: bool = False) -> RingBody:
-    """The ring of ``mesh`` mounted as asked; ``foundation`` is required for
-    ``mounting="foundation"`` (``foundation_for`` sizes one)."""
+              tie_crack: bool = False, sized_to: tuple[float, float] | None = None
+              ) -> RingBody:
+    """The ring of ``mesh`` mounted as asked.  ``mounting="foundation"`` needs either a
+    ``foundation`` or ``sized_to = (c_r, c_ru)`` [N/m], the rigid-ring totals the
+    foundation is sized to on this model (``foundation_for``)."""
     if mounting not in MOUNTINGS:
         raise MountingError(f"mounting = {mounting!r}; allowed: {', '.join(MOUNTINGS)}")
-    if (mounting == "foundation") != (foundation is not None):
-        raise MountingError("foundation: give one exactly when mounting = 'foundation'")
+    if (mounting == "foundation") != (foundation is not None or sized_to is not None):
+        raise MountingError("foundation: give one (or sized_to) exactly when mounting = "
+                            "'foundation'")
     model = plane_model(mesh, material, thickness=ring.gear.face_width)
+    if mounting == "foundation" and foundation is None:
+        foundation = foundation_for(model, *sized_to, ring.gear.base_diameter / 2)
     K, M = model.K.tocsr(), mass_matrix(model)
     if mounting == "foundation":
         normal, tangential = support_springs(model)

@@ -13,9 +13,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from hubvib.build.stages import lumped_parameters, material, ring_gear
-from hubvib.fem.elasticity import plane_model
 from hubvib.fem.ring_basis import RingBasis, ring_basis
-from hubvib.fem.ring_body import Foundation, RingBody, foundation_for, ring_body
+from hubvib.fem.ring_body import Foundation, RingBody, ring_body
 from hubvib.lumped.elastic_ring import CoupledModes, RingOperators, coupled_modes, engagement
 from hubvib.lumped.parameters import PlanetaryParameters
 from hubvib.meshing.crack import Crack
@@ -101,16 +100,15 @@ def elastic_ring(design, crack: Crack | None = None, closed: bool = False,
         crack = None
     mesh = ring_mesh(ring, crack, options.mesh)
     seconds["mesh"] = time.perf_counter() - started
-    foundation = None
+    foundation = sized_to = None
     if options.mounting == "foundation":
         if options.foundation_k_n is not None:
             foundation = Foundation(options.foundation_k_n, options.foundation_k_t)
         else:
-            model = plane_model(mesh, mat, thickness=ring.gear.face_width)
-            foundation = foundation_for(model, params.c_r, params.c_ru,
-                                        ring.gear.base_diameter / 2)
+            sized_to = (params.c_r, params.c_ru)
     body = ring_body(ring, mesh, mat, options.mounting, foundation,
-                     tie_crack=closed and crack is not None)
+                     tie_crack=closed and crack is not None, sized_to=sized_to)
+    foundation = body.foundation
     seconds["body"] = time.perf_counter() - started - seconds["mesh"]
     tooth = 0 if crack is None else crack.tooth
     if carrier_teeth is None:
