@@ -33,6 +33,7 @@ from hubvib.meshing.ring_gear import RingGear
 
 from .elasticity import plane_model
 from .material import Material
+from .modal import mass_matrix
 from .ring_stiffness import tooth_forces
 from .ring_work import in_plane_modes
 
@@ -124,17 +125,6 @@ class RingBody:
     def rigid_stiffness(self) -> np.ndarray:
         """3 x 3 stiffness of the mounting against the rigid motions [N/m, N m/rad]."""
         return self.rigid.T @ (self.K @ self.rigid)
-
-
-def mass_matrix(model) -> sp.csr_matrix:
-    """Consistent mass [kg] (density x thickness x int u.v)."""
-    import skfem
-
-    @skfem.BilinearForm
-    def mass(u, v, w):
-        return u[0] * v[0] + u[1] * v[1]
-
-    return (model.material.density * model.thickness * mass.assemble(model.basis)).tocsr()
 
 
 def support_springs(model) -> tuple[sp.csr_matrix, sp.csr_matrix]:

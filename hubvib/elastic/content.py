@@ -127,12 +127,22 @@ def mode_content(modes, j: int, planets: int, equally_spaced: bool = True) -> Mo
     return ModeContent(n, shown, ring, p, share, kind)
 
 
+def frequency_groups(frequency_hz: np.ndarray, rtol: float = PAIR_RTOL) -> list[np.ndarray]:
+    """Index groups of ascending frequencies whose neighbours differ by at most ``rtol``
+    relative: one group per repeated frequency."""
+    f = np.asarray(frequency_hz)
+    groups, start = [], 0
+    for i in range(1, f.size + 1):
+        if i == f.size or f[i] - f[i - 1] > rtol * f[i]:
+            groups.append(np.arange(start, i))
+            start = i
+    return groups
+
+
 def multiplicities(frequency_hz: np.ndarray, rtol: float = PAIR_RTOL) -> tuple:
     """How many modes share each mode's frequency (gaps below ``rtol`` relative)."""
-    f = np.asarray(frequency_hz)
-    groups = np.zeros(f.size, dtype=int)
-    for i in range(1, f.size):
-        same = f[i] - f[i - 1] <= rtol * max(f[i], 1e-300)
-        groups[i] = groups[i - 1] if same else groups[i - 1] + 1
-    counts = np.bincount(groups) if f.size else np.zeros(0, dtype=int)
-    return tuple(int(counts[g]) for g in groups)
+    out = [0] * len(frequency_hz)
+    for group in frequency_groups(frequency_hz, rtol):
+        for i in group:
+            out[i] = int(group.size)
+    return tuple(out)

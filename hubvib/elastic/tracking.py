@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from .content import PAIR_RTOL
+from .content import PAIR_RTOL, frequency_groups
 
 
 @dataclass(frozen=True)
@@ -37,21 +37,12 @@ def descriptors(spectrum, ring_mass: float) -> np.ndarray:
     return np.vstack([lumped, probe])
 
 
-def _groups(frequency_hz: np.ndarray, rtol: float) -> list[np.ndarray]:
-    groups, start = [], 0
-    for i in range(1, frequency_hz.size + 1):
-        if i == frequency_hz.size or frequency_hz[i] - frequency_hz[i - 1] > rtol * frequency_hz[i]:
-            groups.append(np.arange(start, i))
-            start = i
-    return groups
-
-
 def track_modes(reference, other, ring_mass: float, rtol: float = PAIR_RTOL) -> Tracked:
     """Which reference mode each mode of ``other`` continues (``ElasticSpectrum`` both)."""
     a, b = descriptors(reference, ring_mass), descriptors(other, ring_mass)
     b_norm = np.linalg.norm(b, axis=0)
     score = np.zeros((a.shape[1], b.shape[1]))
-    for group in _groups(reference.frequency_hz, rtol):
+    for group in frequency_groups(reference.frequency_hz, rtol):
         q, _ = np.linalg.qr(a[:, group])
         share = np.linalg.norm(q.T @ b, axis=0) ** 2 / np.where(b_norm > 0, b_norm, 1) ** 2
         score[group] = share
@@ -63,13 +54,13 @@ def track_modes(reference, other, ring_mass: float, rtol: float = PAIR_RTOL) -> 
     f_ref, f = reference.frequency_hz, other.frequency_hz
     # a repeated frequency's members are interchangeable: its lower continuation is named
     # after its first member, the upper after the second
-    for group in _groups(f_ref, rtol):
+    for group in frequency_groups(f_ref, rtol):
         members = np.flatnonzero(np.isin(ref, group))
         if members.size >= 2:
             ordered = members[np.argsort(f[members], kind="stable")]
             ref[ordered] = np.sort(ref[members])  # the match is the group's: unchanged
     split = np.zeros(b.shape[1], dtype=bool)
-    for group in _groups(f_ref, rtol):
+    for group in frequency_groups(f_ref, rtol):
         if group.size < 2:
             continue
         members = np.flatnonzero(np.isin(ref, group))
