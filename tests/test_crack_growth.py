@@ -12,7 +12,8 @@ import pytest
 
 from hubvib.design import preset_design
 from hubvib.studies.crack_growth import slice_ratio, solid_rows
-from hubvib.studies.crack_sweep import CrackSweep, case_inputs, check_case
+from hubvib.cases.runner import case_inputs, check_case
+from hubvib.cases.sweep import CrackSweep
 from hubvib.runtime.fe_cache import CacheEntryError
 from hubvib.studies.scene import SceneError, parse_scene
 
@@ -121,7 +122,7 @@ def test_a_solid_scene_without_a_crack_is_refused():
 
 
 def test_a_semi_elliptic_crack_through_the_rim_is_refused():
-    from hubvib.studies.crack_sweep import crack_of
+    from hubvib.cases.sweep import crack_of
     from hubvib.build.stages import ring_gear
 
     sweep = parse_scene(SOLID_SCENE, "solid").crack

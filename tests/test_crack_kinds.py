@@ -16,7 +16,7 @@ from hubvib.meshing.crack_kinds import (FRONTS, START_KINDS, TOOTH_GAP, RimStart
                                         start_kind)
 from hubvib.meshing.gear import GearGeometryError
 from hubvib.meshing.ring_outline import boundary_segments, distance_to_segments
-from hubvib.studies.predicted_path import (BASE_STEP, PathDepthError, arc_lengths,
+from hubvib.cases.predicted_path import (BASE_STEP, PathDepthError, arc_lengths,
                                            refined_step, truncated)
 from hubvib.studies.scene import parse_scene
 

@@ -20,8 +20,9 @@ from hubvib.meshing.crack_path import path_ring_mesh, tooth_height
 from hubvib.meshing.levels import scaled_options
 from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
 from hubvib.studies.crack_study import crack_study_from_fe
-from hubvib.studies.crack_sweep import ACCURACY, case_inputs, run_fe_cases
-from hubvib.studies.predicted_path import predicted_path, truncated
+from hubvib.cases.runner import case_inputs, run_fe_cases
+from hubvib.cases.sweep import ACCURACY
+from hubvib.cases.predicted_path import predicted_path, truncated
 from hubvib.studies.scene import parse_scene
 
 from crack_scenes import fast_crack_scene

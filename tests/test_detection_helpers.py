@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from hubvib.studies.crack_sweep import CrackSweep
+from hubvib.cases.sweep import CrackSweep
 from hubvib.build import lumped_preset
 from hubvib.detection.carrier import MeshTiming
 from hubvib.detection.model import CrackModel
@@ -58,7 +58,7 @@ def synthetic_model(apply="series", c_ru_mount=None, c_r_mount=None, **rows) -> 
 
 
 def test_synthetic_rows_pass_the_fe_cache_plausibility_check():
-    from hubvib.studies.crack_sweep import check_case
+    from hubvib.cases.runner import check_case
 
     for row in synthetic_fe_rows():
         check_case(row["depth_m"])(row)  # raises CacheEntryError when implausible

@@ -76,7 +76,7 @@ def test_a_shift_below_its_own_fe_error_is_not_resolved():
 
 
 def test_mesh_timing_of_the_raba_design():
-    from hubvib.studies.crack_sweep import CrackSweep
+    from hubvib.cases.sweep import CrackSweep
 
     timing = mesh_timing(preset_design("raba118"), 15.0)
     assert timing.ring_teeth == 64 and timing.n_planets == 3

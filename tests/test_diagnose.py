@@ -177,12 +177,12 @@ plots = false
 def cli(tmp_path, monkeypatch):
     """A scene whose FE rows are synthetic (no FE stage) and a CSV writer."""
     import hubvib.detection.diagnosis
-    import hubvib.studies.crack_sweep
+    import hubvib.cases.runner
 
     def fe_rows(sweep, progress=True):
         return synthetic_fe_rows(sweep.depths), 0
 
-    monkeypatch.setattr(hubvib.studies.crack_sweep, "run_fe_cases", fe_rows)
+    monkeypatch.setattr(hubvib.cases.runner, "run_fe_cases", fe_rows)
     monkeypatch.setattr(hubvib.detection.diagnosis, "run_fe_cases", fe_rows)
     scene = tmp_path / "scene.toml"
     scene.write_text(SCENE)

@@ -21,7 +21,7 @@ def student_errors(rng, shape, dof=8):
 
 
 def _raba(c_rp_method):
-    from hubvib.studies.crack_sweep import run_fe_cases
+    from hubvib.cases.runner import run_fe_cases
     from hubvib.detection.carrier import mesh_timing
     from hubvib.detection.model import CrackModel
     from hubvib.detection.options import detection_options

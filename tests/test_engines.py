@@ -351,7 +351,7 @@ workers = 2
 def test_crack_sweep_dask_equals_local_to_the_last_digit(tmp_path, monkeypatch):
     """Issue 16 'done when': the same FE rows with engine "dask" as with "local" (fresh
     caches each), timings excluded; a rerun on the dask run's cache computes nothing."""
-    from hubvib.studies.crack_sweep import run_fe_cases
+    from hubvib.cases.runner import run_fe_cases
 
     sweep = parse_scene(HUB4_FAST, "hub4-fast").crack
     assert sweep.depths == (0.0, 0.002)

@@ -20,9 +20,10 @@ from pathlib import Path
 
 import pytest
 
-import hubvib.studies.crack_sweep as crack_sweep
+import hubvib.cases.runner as crack_sweep
 import hubvib.runtime.fe_cache as fe_cache
-from hubvib.studies.crack_sweep import POSITIVE_KEYS, CrackSweep, case_inputs, run_fe_cases
+from hubvib.cases.runner import POSITIVE_KEYS, case_inputs, run_fe_cases
+from hubvib.cases.sweep import CrackSweep
 from hubvib.design.presets import hub4, raba118
 from hubvib.foundation.source_graph import source_key
 from hubvib.runtime.fe_cache import CacheEntryError, CacheFolderError, entry_key
@@ -291,7 +292,7 @@ def test_a_worker_of_another_source_refuses_the_case(fake, edit_source):
 #: modules an FE case imports, in each stage it runs through (the ring, gear bodies and
 #: material are built by ``hubvib.build.stages``)
 IMPORTED = ["hubvib.build.stages", "hubvib.build", "hubvib.fem.ring_stiffness",
-            "hubvib.meshing.ring_mesh", "hubvib.design.model", "hubvib.studies.crack_sweep"]
+            "hubvib.meshing.ring_mesh", "hubvib.design.model", "hubvib.cases.runner"]
 #: modules an FE case does not import
 UNRELATED = ["hubvib.render.modes", "hubvib.render.fe", "hubvib.detection.pod",
              "hubvib.signal.mesh_curves", "hubvib.commands.run"]
@@ -327,7 +328,7 @@ def test_an_edit_outside_the_cases_import_graph_keeps_its_entries(fake, edit_sou
 #: a sweep of the synthetic cases (JSON in argv) in a fresh interpreter; prints how many ran
 _SWEEP = """
 import json, sys
-import hubvib.studies.crack_sweep as crack_sweep
+import hubvib.cases.runner as crack_sweep
 from hubvib.design.presets import hub4
 results = {float(depth): result for depth, result in json.loads(sys.argv[1]).items()}
 crack_sweep.fe_case = lambda sweep, depth: results[depth]
@@ -490,7 +491,7 @@ def test_typed_case_round_trips_and_names_what_is_missing():
     the entry's dict again (same keys, same values); a missing key or a wrong type is
     named, and the entry records the schema version of that dict form."""
     from hubvib.fem.estimate import SCHEMA_VERSION, CrackCaseEstimate
-    from hubvib.studies.crack_sweep import PlaneCase
+    from hubvib.cases.results import PlaneCase
 
     row = synthetic(0.004)
     case = PlaneCase.from_dict(row)

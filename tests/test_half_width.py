@@ -23,7 +23,7 @@ from hubvib.meshing.crack import Crack, CrackFront
 from hubvib.meshing.fe_mesh import FEMesh
 from hubvib.meshing.levels import SOLID_LEVELS, solid_options
 from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
-from hubvib.studies.crack_sweep import tooth_radii
+from hubvib.cases.runner import tooth_radii
 
 pytestmark = [pytest.mark.slow,
               pytest.mark.skipif(importlib.util.find_spec("gmsh") is None,

@@ -118,7 +118,7 @@ def test_fe_cases_in_the_shared_pool_equal_one_process(cache):
     last bits with memory alignment: a CI run saw 2.6e-12 relative in an error estimate,
     a difference of two ratios); only the wall times differ."""
     pytest.importorskip("gmsh")
-    from hubvib.studies.crack_sweep import cache_folder, run_fe_cases
+    from hubvib.cases.runner import cache_folder, run_fe_cases
 
     sweep = replace(load_scene(None).crack, depths=(0.0, 0.006), accuracy="fast")
     with worker_pool(2) as pool:

@@ -211,7 +211,7 @@ def test_raba_fe_numbers_mode_13_both_methods():
     """The FE cases of the default scene (cache or computed): the intact engaged c_rp is the
     issue's 1.48e9 N/m and mode 13 at 3 mm moves -0.69 / -3.76 Hz (series / ratio; the
     series -0.73 before issue 25 divided by the whole-cycle mean: docs/data/raba118_crack)."""
-    from hubvib.studies.crack_sweep import run_fe_cases
+    from hubvib.cases.runner import run_fe_cases
 
     scene = load_scene(None)
     fe, _ = run_fe_cases(scene.crack, progress=False)

@@ -142,7 +142,7 @@ def test_diagnose_from_two_records_end_to_end(tmp_path, monkeypatch, capsys):
     import json
 
     import hubvib.detection.diagnosis
-    import hubvib.studies.crack_sweep
+    import hubvib.cases.runner
     from test_detection_helpers import synthetic_fe_rows
 
     from hubvib.detection.diagnosis import reference
@@ -152,7 +152,7 @@ def test_diagnose_from_two_records_end_to_end(tmp_path, monkeypatch, capsys):
     def fe_rows(sweep, progress=True):
         return synthetic_fe_rows(sweep.depths), 0
 
-    monkeypatch.setattr(hubvib.studies.crack_sweep, "run_fe_cases", fe_rows)
+    monkeypatch.setattr(hubvib.cases.runner, "run_fe_cases", fe_rows)
     monkeypatch.setattr(hubvib.detection.diagnosis, "run_fe_cases", fe_rows)
     scene = tmp_path / "scene.toml"
     scene.write_text(SCENE)
@@ -231,13 +231,13 @@ def test_identified_modes_lie_in_their_band_with_bounded_damping():
 def _synthetic_fe(monkeypatch):
     """The diagnosis's FE cases replaced by the synthetic crack model's rows."""
     import hubvib.detection.diagnosis
-    import hubvib.studies.crack_sweep
+    import hubvib.cases.runner
     from test_detection_helpers import synthetic_fe_rows
 
     def fe_rows(sweep, progress=True):
         return synthetic_fe_rows(sweep.depths), 0
 
-    monkeypatch.setattr(hubvib.studies.crack_sweep, "run_fe_cases", fe_rows)
+    monkeypatch.setattr(hubvib.cases.runner, "run_fe_cases", fe_rows)
     monkeypatch.setattr(hubvib.detection.diagnosis, "run_fe_cases", fe_rows)
 
 

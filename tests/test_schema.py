@@ -15,7 +15,7 @@ from hubvib.foundation.errors import SceneError
 from hubvib.foundation.schema import REQUIRED, Field, Schema
 from hubvib.runtime.engines import SCHEMA as EXECUTION, Execution
 from hubvib.signal.options import SCHEMA as SIGNAL, SignalOptions
-from hubvib.studies.crack_sweep import CrackSweep
+from hubvib.cases.sweep import CrackSweep
 from hubvib.studies.crack_table import SCHEMA as CRACK
 from hubvib.studies.scene import OUTPUT, REDUCER, STUDY, parse_scene
 

@@ -97,21 +97,21 @@ def test_an_entry_without_a_source_file_is_refused(tmp_path):
 
 
 def test_the_key_does_not_depend_on_file_times(tmp_path, edit_source):
-    before = source_key("hubvib.studies.crack_sweep")
+    before = source_key("hubvib.cases.runner")
     copy = edit_source("hubvib.build.stages", line="")
     os.utime(copy, (0, 0))
-    assert source_key("hubvib.studies.crack_sweep") == before
+    assert source_key("hubvib.cases.runner") == before
 
 
 def test_every_process_computes_the_same_key(tmp_path):
     """Another interpreter started elsewhere (another working folder, another hash seed)
     computes the same key: a worker and its client agree."""
     code = ("from hubvib.foundation.source_graph import source_key; "
-            "print(source_key('hubvib.studies.crack_sweep', 'hubvib.detection.study'))")
+            "print(source_key('hubvib.cases.runner', 'hubvib.detection.study'))")
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          cwd=tmp_path, env=dict(os.environ, PYTHONHASHSEED="123"), check=True)
     assert run.stdout.strip() == source_key("hubvib.detection.study",
-                                            "hubvib.studies.crack_sweep")
+                                            "hubvib.cases.runner")
 
 
 def test_modules_are_found_without_being_imported():
@@ -138,10 +138,10 @@ def test_find_module_gives_the_installed_source():
 #: each cache's entry modules, and whether the computation imports the build layer's
 #: stage builders (``hubvib.build.stages``) and the mode pictures (``hubvib.render.modes``)
 CACHES = {
-    "FE crack case": ("hubvib.studies.crack_sweep", True, False),
+    "FE crack case": ("hubvib.cases.runner", True, False),
     "intact tooth curve": ("hubvib.runtime.tooth_curves", False, False),
     "signal tooth curve": ("hubvib.signal.mesh_curves", True, False),
-    "predicted crack path": ("hubvib.studies.predicted_path", True, False),
+    "predicted crack path": ("hubvib.cases.predicted_path", True, False),
     "detection study": ("hubvib.detection.study", True, False),
     "FE ring render": ("hubvib.render.fe", True, True),
     "mode render": ("hubvib.render.modes", False, True),
@@ -164,7 +164,9 @@ def test_the_caches_name_those_entry_modules():
     from hubvib.detection import study
     from hubvib.runtime import tooth_curves
     from hubvib.signal import mesh_curves
-    from hubvib.studies import crack_study, crack_sweep, predicted_path
+    from hubvib.cases import predicted_path
+    from hubvib.cases import runner as crack_sweep
+    from hubvib.studies import crack_study
 
     named = {crack_sweep.SOURCE, tooth_curves.SOURCE, mesh_curves.SOURCE,
              predicted_path.SOURCE, study.SOURCE, crack_study.FE_SOURCE,
@@ -198,10 +200,10 @@ def test_the_source_key_of_the_installed_house(installed_copy):
     module names and bytes count."""
     code = ("from hubvib.foundation.source_graph import source_key, find_module; "
             "print(find_module('hubvib.fem.solvers')); "
-            "print(source_key('hubvib.studies.crack_sweep'))")
+            "print(source_key('hubvib.cases.runner'))")
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          cwd=installed_copy,
                          env=dict(os.environ, PYTHONPATH=str(installed_copy)), check=True)
     where, key = run.stdout.split()
     assert where.startswith(str(installed_copy))
-    assert key == source_key("hubvib.studies.crack_sweep")
+    assert key == source_key("hubvib.cases.runner")

@@ -12,7 +12,8 @@ from hubvib.build import lumped_preset
 from hubvib.detection.model import CrackModel
 from hubvib.fem.estimate import CrackCaseEstimate, RingEstimate
 from hubvib.studies.crack_growth import CrackGrowthResult, solid_rows
-from hubvib.studies.crack_sweep import CrackSweep, PlaneCase, SolidCase
+from hubvib.cases.results import PlaneCase, SolidCase
+from hubvib.cases.sweep import CrackSweep
 from hubvib.studies.stiffness import _ring_rows
 
 

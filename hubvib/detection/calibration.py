@@ -1,7 +1,7 @@
 """How ``hubvib diagnose`` performs on a scene: false alarms, coverage, impossible patterns.
 
-``python -m hubvib.detection.calibration [--scene S] [--modes 13,15,16,18] [--trials N]
-[--out FILE.md]`` draws reducers from the scene's uncertainty model, identifies their
+``calibrate`` (on a scene: ``python -m hubvib.studies.diagnosis_check``) draws reducers
+from the scene's uncertainty model, identifies their
 frequencies with errors from a noise model the diagnosis was not tuned on (Student t
 with 8 degrees of freedom, unit variance, times each mode's identification scatter),
 diagnoses each against its own intact measurement and writes a markdown table:
@@ -11,21 +11,13 @@ uniformly from the sweep, and the verdicts on patterns no ring crack produces
 """
 from __future__ import annotations
 
-import argparse
 import math
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
-from hubvib.studies.crack_sweep import run_fe_cases
-from hubvib.studies.scene import load_scene
-
-from .carrier import mesh_timing
 from .diagnosis import (CRACK, NO_CRACK, NOT_EXPLAINED, NOT_IDENTIFIABLE, Posterior,
-                        reference, synthetic_measurements)
-from .model import CrackModel
-from .options import detection_options
+                        synthetic_measurements)
 
 
 def student_errors(rng, shape, dof: int = 8) -> np.ndarray:
@@ -118,32 +110,3 @@ def calibrate(model, options, timing, ref, modes, trials: int = 400,
             found[name] = (r.verdict, r.fit_p_value)
     return Calibration(tuple(int(m) for m in modes), trials, intact, covered / trials,
                        float(np.median(widths)) if widths else math.nan, found, len(widths))
-
-
-def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--scene", default="raba118_crack")
-    parser.add_argument("--modes", default="13,15,16,18")
-    parser.add_argument("--trials", type=int, default=400)
-    parser.add_argument("--out", type=Path)
-    args = parser.parse_args(argv)
-    scene = load_scene(args.scene)
-    options = detection_options(scene)
-    fe, _ = run_fe_cases(scene.crack, False)
-    model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
-                               c_rp_given=scene.c_rp_given)
-    timing = mesh_timing(scene.crack.reducer, options.carrier_speed)
-    ref = reference(model, options, timing)
-    result = calibrate(model, options, timing, ref,
-                       [int(m) for m in args.modes.split(",")], args.trials)
-    text = "\n".join([f"Scene `{scene.name}`, modes {args.modes}, damping "
-                      f"{100 * options.damping_ratio:g} %, records {options.record_length:g} s, "
-                      f"SNR {options.snr:g}, {args.trials} trials each:", "", *result.table()])
-    if args.out:
-        args.out.write_text(text + "\n", encoding="utf-8")
-    print(text)
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

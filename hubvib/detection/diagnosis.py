@@ -54,7 +54,7 @@ from hubvib.detection.carrier import mesh_timing
 from hubvib.detection.model import C_RP_RATIO, CrackModel
 from hubvib.detection.options import detection_options
 from hubvib.identification.law import fisher_sigma_hz
-from hubvib.studies.crack_sweep import run_fe_cases
+from hubvib.cases.runner import run_fe_cases
 
 from .budget import chunked_frequencies
 from .drift import drift_model

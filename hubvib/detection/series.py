@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-#: how FE enters the lumped model (hubvib.studies.crack_sweep.APPLY)
+#: how FE enters the lumped model (hubvib.cases.sweep.APPLY)
 SERIES, RATIO, DIRECT = "series", "ratio", "direct"
 
 

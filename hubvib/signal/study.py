@@ -18,7 +18,7 @@ import numpy as np
 from hubvib.foundation.errors import SceneError
 from hubvib.lumped import natural_modes
 from hubvib.signal.mesh_curves import fe_mesh_curves
-from hubvib.studies.crack_sweep import ACCURACY
+from hubvib.cases.sweep import ACCURACY
 
 from .ambient import AmbientForcing, ambient_record
 from .contact import force_ratio, mesh_names

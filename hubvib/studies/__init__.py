@@ -1,8 +1,8 @@
 """What a scene or a command runs: the study kinds (``study``: what a kind is, the registry
 and the scene, a tagged union of the kinds; ``kinds`` registers the shipped ones), the
 lumped sweep (``sweep``), the plane crack study (``crack_study``), the solid crack growth
-(``crack_growth``), the ``[crack]`` table both crack kinds own (``crack_table``), the FE
-crack cases they share (``crack_sweep``), the scene file (``scene``: the common tables),
+(``crack_growth``), the ``[crack]`` table both crack kinds own (``crack_table``; the FE
+crack cases they share are ``hubvib.cases``), the scene file (``scene``: the common tables),
 and a design's stiffness table (``stiffness``, what ``hubvib stiffness`` prints).  Every
 name below is imported on first use (PEP 562)."""
 from typing import TYPE_CHECKING
@@ -13,7 +13,6 @@ if TYPE_CHECKING:
     from .crack_growth import CrackGrowthResult, run_crack_growth
     from .crack_path import CrackPathResult
     from .crack_study import CrackStudyResult, run_crack_study
-    from .crack_sweep import CrackSweep, PlaneCase, SolidCase, run_fe_cases
     from .scene import load_scene, parse_scene, shipped_scenes
     from .stiffness import stiffness_table
     from .study import Scene, Study, register_study, select_study
@@ -22,7 +21,6 @@ if TYPE_CHECKING:
 __all__ = [
     "Scene", "Study", "register_study", "select_study", "load_scene", "parse_scene",
     "shipped_scenes", "StudyResult", "run_study", "CrackStudyResult", "run_crack_study",
-    "CrackGrowthResult", "run_crack_growth", "CrackPathResult", "CrackSweep", "PlaneCase",
-    "SolidCase", "run_fe_cases", "stiffness_table",
+    "CrackGrowthResult", "run_crack_growth", "CrackPathResult", "stiffness_table",
 ]
 __getattr__, __dir__ = lazy_face(__name__, __file__, __all__)

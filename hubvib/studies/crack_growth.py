@@ -43,8 +43,9 @@ from hubvib.runtime.progress import stage, working
 from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe,
                                         provenance, write_crack_study)
 from hubvib.meshing.levels import scaled_options
-from hubvib.studies.crack_sweep import (ACCURACY, CrackSweep, PlaneCase, SolidCase, case_label,
-                                        run_fe_cases)
+from hubvib.cases.results import PlaneCase, SolidCase
+from hubvib.cases.runner import case_label, run_fe_cases
+from hubvib.cases.sweep import ACCURACY, CrackSweep
 from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
 from hubvib.studies.study import Scene, Study
 

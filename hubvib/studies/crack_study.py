@@ -39,7 +39,9 @@ from hubvib.runtime.engines import EngineError, Execution, submit
 from hubvib.runtime.process_pool import worker_pool
 from hubvib.runtime.progress import stage, working
 from hubvib.runtime.stage_seconds import timed
-from hubvib.studies.crack_sweep import ACCURACY, CrackSweep, PlaneCase, crack_of, run_fe_cases
+from hubvib.cases.results import PlaneCase
+from hubvib.cases.runner import run_fe_cases
+from hubvib.cases.sweep import ACCURACY, CrackSweep, crack_of
 from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
 from hubvib.studies.study import Scene, Study
 from hubvib.studies.validation_status import lumped_model_status

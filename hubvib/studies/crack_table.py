@@ -12,7 +12,7 @@ from hubvib.foundation.schema import Field, Schema
 from hubvib.meshing.crack import MIN_LIGAMENT, STARTS
 from hubvib.meshing.crack_kinds import start_kind
 from hubvib.meshing.gear import GearGeometryError
-from hubvib.studies.crack_sweep import ACCURACY, APPLY, CrackSweep, MAX_DEPTHS, MODELS, crack_of
+from hubvib.cases.sweep import ACCURACY, APPLY, MAX_DEPTHS, MODELS, CrackSweep, crack_of
 
 
 def _finite_list(v) -> bool:

@@ -16,7 +16,7 @@ from typing import Any, Callable
 
 from hubvib.foundation.errors import SceneError
 from hubvib.lumped import PlanetaryParameters
-from hubvib.studies.crack_sweep import CrackSweep
+from hubvib.cases.sweep import CrackSweep
 
 
 def _always(data: dict) -> bool:

@@ -28,12 +28,11 @@ from contextlib import ExitStack
 from dataclasses import asdict, dataclass
 
 from hubvib.build.stages import gear_body, material, ring_gear
-from hubvib.fem.estimate import CrackCaseEstimate, RingEstimate, estimate_crack_case
+from hubvib.fem.estimate import estimate_crack_case
 from hubvib.fem.mesh_cycle import GearPair
 from hubvib.fem.tooth_solid import SAMPLES, SolidToothLoad
 from hubvib.fem.tooth_stiffness import chebyshev_radii, contact_radii, set_intact_store
 from hubvib.meshing.cache import root_folder
-from hubvib.meshing.crack import Crack, CrackFront
 from hubvib.meshing.crack_path import PathCrack, path_ring_mesh
 from hubvib.foundation.source_graph import source_key
 from hubvib.runtime.engines import Execution, check_reachable, run_cases
@@ -41,111 +40,20 @@ from hubvib.runtime.fe_cache import (CacheEntryError, case_lock, entry_key, fini
                                      read_entry, write_entry)
 from hubvib.runtime.progress import progress as hubvib_progress
 from hubvib.runtime.tooth_curves import shared_intact_curve
-from hubvib.studies.predicted_path import predicted_crack
+from hubvib.cases.results import PlaneCase, SolidCase
+from hubvib.cases.sweep import ACCURACY, CrackSweep, crack_of, front_of
 
-APPLY = ("series", "ratio", "direct")
-MODELS = ("plane", "solid")
-#: how the crack runs: straight at ``angle`` ("radial" in a scene: angle 0) or along the
-#: LEFM path of ``hubvib crack-path`` (``hubvib.studies.predicted_path``)
-PATHS = ("straight", "predicted")
-#: mesh size multiplier of each accuracy setting (1.0: c_ru to ~0.3 %, see README)
-ACCURACY = {"default": 1.0, "fast": 2.0}
 #: the entry module of an FE case: its cache entries are keyed on the source of every
 #: hubvib module it imports (``hubvib.foundation.source_graph``)
 SOURCE = (__name__,)
-#: at most this many depths in one sweep
-MAX_DEPTHS = 64
 #: every value of a case's result that must be a finite number > 0
 POSITIVE_KEYS = ("c_ru_N_m", "c_r_N_m", "c_ru_min_N_m", "c_ru_max_N_m", "c_rp_engaged_ratio",
                  "c_rp_engaged_min_ratio", "c_rp_engaged_intact_N_m",
                  "c_rp_engaged_intact_min_N_m", "c_rp_engaged_intact_window_N_m",
                  "c_ru_root_land_N_m", "c_r_root_land_N_m")
-#: keys a solid case must hold although ``RingEstimate`` has defaults for them
-SOLID_REQUIRED = ("min_quality", "poor_cells")
 #: the same for a solid case (its c_rp comes from the plane cases)
 SOLID_POSITIVE_KEYS = ("c_ru_N_m", "c_r_N_m", "c_ru_min_N_m", "c_ru_max_N_m", "c_ru_coarse_N_m",
                        "c_r_coarse_N_m", "c_ru_poor_half_N_m", "c_r_poor_half_N_m")
-
-
-@dataclass(frozen=True)
-class CrackSweep:
-    """Crack depths to analyse in the ring gear of the reducer.
-
-    Parameters
-    ----------
-    depths : tuple of float
-        Crack depths [m] along the path, ascending, starting at 0 (the intact ring).
-    tooth, start, angle
-        Tooth index, ``"root"`` or ``"rim"``, direction from the radial [rad].
-    apply : str
-        How FE enters the lumped model: ``"series"`` puts the ring mounting in series
-        with the FE ring body, ``1/c = 1/c_mount + 1/c_body(depth)``; ``"ratio"`` scales
-        the preset's ``c_ru`` and ``c_r`` by FE(depth) / FE(0) (the paper's hypothesis:
-        the whole compliance is the ring body, an upper bound of the effect);
-        ``"direct"`` uses the FE values themselves (a rigid mounting).
-    accuracy : str
-        ``"default"`` or ``"fast"`` (element sizes doubled).
-    workers : int
-        Worker processes for the FE cases (1 = in this process).
-    c_ru_mount, c_r_mount : float or None
-        With ``"series"``: the mounting's torsional and radial stiffness [N/m]; ``None``
-        identifies it so that the intact total equals the preset's ``c_ru`` / ``c_r``.
-    design : ReducerDesign or None
-        The reducer whose ring is cracked; ``None`` = Raba 118/76.
-    model : str
-        ``"plane"`` (cracks through the face width, plane stress) or ``"solid"``
-        (semi-elliptic root cracks in the solid ring, one per depth and half-length).
-    half_lengths : tuple of float
-        With ``"solid"``: half the crack mouth's length along the face width [m].
-    path : str
-        ``"straight"`` (the crack runs straight at ``angle``) or ``"predicted"`` (along
-        the LEFM path of ``hubvib crack-path`` at ``tooth``, ``depths`` are arc lengths
-        along it; root cracks in the plane model only).
-    """
-
-    depths: tuple[float, ...]
-    tooth: int = 0
-    start: str = "root"
-    angle: float = 0.0
-    apply: str = "series"
-    accuracy: str = "default"
-    workers: int = 2
-    c_ru_mount: float | None = None
-    c_r_mount: float | None = None
-    design: object = None
-    model: str = "plane"
-    half_lengths: tuple[float, ...] = ()
-    path: str = "straight"
-
-    @property
-    def cases(self) -> list:
-        """The FE cases: depths [m] in the plane; ``(depth, half_length)`` [m] in the solid,
-        the intact ring first as ``(0.0, 0.0)``."""
-        if self.model == "plane":
-            return list(self.depths)
-        return [(0.0, 0.0)] + [(d, c) for c in self.half_lengths for d in self.depths if d > 0]
-
-    @property
-    def reducer(self):
-        """The design whose ring is cracked (``design``; no default reducer)."""
-        if self.design is None:
-            raise ValueError("CrackSweep.design is None; give the reducer design "
-                             "(e.g. hubvib.design.preset_design(\"raba118\"))")
-        return self.design
-
-
-def crack_of(sweep: CrackSweep, depth: float):
-    """The crack of ``sweep`` at ``depth`` [m]: a ``Crack`` straight at ``sweep.angle``,
-    or with ``path = "predicted"`` the predicted path up to arc length ``depth`` (a
-    ``PathCrack``; the intact ring, depth 0, stays a ``Crack``)."""
-    if sweep.path == "predicted" and depth > 0:
-        return predicted_crack(sweep.reducer, sweep.tooth, sweep.depths, float(depth))
-    return Crack(sweep.tooth, float(depth), sweep.angle, sweep.start)
-
-
-def front_of(half_length: float):
-    """The semi-elliptic front of a solid case, centred on the face width."""
-    return CrackFront("semi_elliptic", 0.5, float(half_length))
 
 
 def case_label(case) -> str:
@@ -263,61 +171,6 @@ def _typed(kind, result: dict):
         return kind.from_dict(result)
     except ValueError as exc:
         raise CacheEntryError(str(exc)) from None
-
-
-@dataclass(frozen=True)
-class PlaneCase:
-    """One plane crack case as the FE cache and the JSON output hold it: the estimate
-    (``fem.estimate.CrackCaseEstimate``), the crack depth [m] and the wall time of the whole
-    case [s].  ``to_dict`` gives the keys of the cache entry and of ``results.json``."""
-
-    estimate: CrackCaseEstimate
-    depth: float
-    seconds_total: float
-
-    def to_dict(self) -> dict:
-        return dict(self.estimate.to_dict(), depth_m=self.depth,
-                    seconds_total=self.seconds_total)
-
-    @classmethod
-    def from_dict(cls, data: dict) -> PlaneCase:
-        """The inverse of ``to_dict``; ``ValueError`` names a missing or wrong key."""
-        estimate = CrackCaseEstimate.from_dict(data)
-        return cls(estimate, _number(data, "depth_m"), _number(data, "seconds_total"))
-
-
-@dataclass(frozen=True)
-class SolidCase:
-    """One solid crack case: the ring estimate (``fem.estimate.RingEstimate``), the crack
-    depth and half-length [m] and the wall time of the whole case [s]."""
-
-    estimate: RingEstimate
-    depth: float
-    half_length: float
-    seconds_total: float
-
-    def to_dict(self) -> dict:
-        return dict(self.estimate.to_dict(), depth_m=self.depth, half_length_m=self.half_length,
-                    seconds_total=self.seconds_total)
-
-    @classmethod
-    def from_dict(cls, data: dict) -> SolidCase:
-        """The inverse of ``to_dict``; ``ValueError`` names a missing or wrong key (the
-        mesh quality, optional in a ``RingEstimate``, is required: the 3D report reads it)."""
-        missing = [k for k in SOLID_REQUIRED if k not in data]
-        if missing:
-            raise ValueError(f"lacks {', '.join(missing)}")
-        estimate = RingEstimate.from_dict(data)
-        return cls(estimate, _number(data, "depth_m"), _number(data, "half_length_m"),
-                   _number(data, "seconds_total"))
-
-
-def _number(data: dict, key: str) -> float:
-    value = data.get(key)
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ValueError(f"lacks {key}" if key not in data else f"{key} = {value!r}; allowed: "
-                         "a number")
-    return float(value)
 
 
 def run_fe_cases(sweep: CrackSweep, progress: bool = True,

@@ -1,13 +1,13 @@
 """The LEFM crack path a crack sweep follows with ``[crack] path = "predicted"`` (SI).
 
-The path is ``hubvib crack-path``'s (``studies.crack_path.crack_path``: grown from a
+The path is ``hubvib crack-path``'s (``cases.path_growth.grow_path``: grown from a
 radial root crack at the sweep's tooth by the MTS criterion under the planet's mesh
 force) with its step refined to the sweep's depths: the largest of 0.5 mm / k
 (k = 1 .. 10) of which every depth is a whole multiple, so that the crack at each depth
 is a crack the growth analysed (else 0.5 mm, and the depth ends inside a segment).  It
 is computed once per design, tooth and step, and cached like an FE case
 (``hubvib.runtime.fe_cache``, keyed on the source of every hubvib module this one
-imports too, ``studies.crack_path`` and the builders of ``hubvib.build`` among them).
+imports too, ``cases.path_growth`` and the builders of ``hubvib.build`` among them).
 The crack at depth d is the path's polyline up to arc length d (``truncated``).
 """
 from __future__ import annotations
@@ -66,8 +66,8 @@ def truncated(points, depth: float, tooth: int) -> PathCrack:
     return PathCrack(tooth, tuple(map(tuple, np.vstack([points[:end], tip]).tolist())))
 
 
-#: the entry module of the cached path (it imports ``studies.crack_path``, the growth
-#: study): its source key
+#: the entry module of the cached path (it imports ``cases.path_growth``, the growth):
+#: its source key
 SOURCE = (__name__,)
 
 
@@ -87,7 +87,7 @@ def _check(result: dict) -> None:
 
 @functools.lru_cache(maxsize=16)
 def _predicted(design, tooth: int, step: float) -> dict:
-    from hubvib.studies.crack_path import crack_path
+    from hubvib.cases.path_growth import grow_path
 
     inputs = path_inputs(design, tooth, step)
     path = root_folder() / "crack-path" / f"{entry_key(inputs, modules=SOURCE)}.json"
@@ -97,9 +97,9 @@ def _predicted(design, tooth: int, step: float) -> dict:
         if str(exc) != "missing":
             print(f"hubvib: cache entry {path.name} for the predicted crack path: {exc}; "
                   "recomputing", file=sys.stderr)
-    grown = crack_path(design, GrowthOptions(step=step, initial_depth=step,
-                                             max_steps=int(round(40 * BASE_STEP / step))),
-                       tooth=tooth)
+    grown = grow_path(design, GrowthOptions(step=step, initial_depth=step,
+                                           max_steps=int(round(40 * BASE_STEP / step))),
+                      tooth=tooth)
     result = json.loads(json.dumps({k: v for k, v in grown.to_dict().items() if k != "files"}))
     # the cracks the growth analysed (the exit point, if severed, is not meshable)
     result["path_m"] = grown.growth.crack.array.tolist()
