@@ -68,3 +68,15 @@ def _number(data: dict, key: str) -> float:
         raise ValueError(f"lacks {key}" if key not in data else f"{key} = {value!r}; allowed: "
                          "a number")
     return float(value)
+
+
+def read_case(data: dict) -> PlaneCase | SolidCase:
+    """A case from its dict form (a cache entry, a JSON row): a ``SolidCase`` when it names
+    a half-length, else a ``PlaneCase``; ``ValueError`` names a missing or wrong key."""
+    return (SolidCase if "half_length_m" in data else PlaneCase).from_dict(data)
+
+
+def typed_case(case) -> PlaneCase | SolidCase:
+    """``case`` typed: a ``PlaneCase`` or ``SolidCase`` as it is, its dict form (rows read
+    from a file, or written by hand in a test) read once with ``read_case``."""
+    return read_case(case) if isinstance(case, dict) else case

@@ -40,7 +40,7 @@ from hubvib.runtime.fe_cache import (CacheEntryError, case_lock, entry_key, fini
                                      read_entry, write_entry)
 from hubvib.runtime.progress import progress as hubvib_progress
 from hubvib.runtime.tooth_curves import shared_intact_curve
-from hubvib.cases.results import PlaneCase, SolidCase
+from hubvib.cases.results import PlaneCase, SolidCase, read_case, typed_case
 from hubvib.cases.sweep import ACCURACY, CrackSweep, crack_of, front_of
 
 #: the entry module of an FE case: its cache entries are keyed on the source of every
@@ -76,7 +76,7 @@ def case_inputs(sweep: CrackSweep, case) -> dict:
             "scale": ACCURACY[sweep.accuracy], "quantities": "c_ru c_r c_rp_engaged"}
 
 
-def fe_case(sweep: CrackSweep, case) -> dict:
+def fe_case(sweep: CrackSweep, case) -> PlaneCase | SolidCase:
     """c_ru, c_r, c_rp with error estimate and timing for one case (runs in a worker).
 
     Plane: per mesh level one mesh, one assembly and one factorisation serve c_ru, c_r
@@ -103,14 +103,14 @@ def fe_case(sweep: CrackSweep, case) -> dict:
                                tooth=SolidToothLoad(sweep.tooth, tooth_radii(design)),
                                half_width=True)
         return SolidCase(result, float(depth), float(half_length),
-                         time.perf_counter() - started).to_dict()
+                         time.perf_counter() - started)
     depth = case
     crack = crack_of(sweep, depth)
     result = estimate_crack_case(ring_gear(design), gear_body(design, "planet"), crack,
                                  ACCURACY[sweep.accuracy],
                                  mesher=path_ring_mesh if isinstance(crack, PathCrack) else None,
                                  material=material(design), n_planets=design.n_planets)
-    return PlaneCase(result, float(depth), time.perf_counter() - started).to_dict()
+    return PlaneCase(result, float(depth), time.perf_counter() - started)
 
 
 def tooth_radii(design) -> tuple:
@@ -173,13 +173,14 @@ def _typed(kind, result: dict):
         raise CacheEntryError(str(exc)) from None
 
 
-def run_fe_cases(sweep: CrackSweep, progress: bool = True,
-                 execution: Execution = Execution(), pool=None,
-                 after_submit=None) -> tuple[list[dict], int]:
-    """Every case's FE result (``sweep.cases`` order), from the cache or computed; returns
-    them and how many ran.  ``pool``: a ``worker_pool`` of ``sweep.workers`` to run them
-    in (left open), ``after_submit``: called when they are queued there
-    (``runtime.engines.run_cases``)."""
+def crack_cases(sweep: CrackSweep, progress: bool = True,
+                execution: Execution = Execution(), pool=None,
+                after_submit=None) -> tuple[list[PlaneCase | SolidCase], int]:
+    """Every case of ``sweep`` typed (``sweep.cases`` order: ``PlaneCase`` or ``SolidCase``),
+    from the cache or computed; returns them and how many ran.  ``pool``: a ``worker_pool``
+    of ``sweep.workers`` to run them in (left open), ``after_submit``: called when they are
+    queued there (``runtime.engines.run_cases``).  The cache holds each case's dict form:
+    written from the worker's typed case, read back with ``read_case`` after its check."""
     if sweep.design is not None and not sweep.reducer.equally_spaced:
         raise ValueError(f"design {sweep.reducer.name!r}: the FE ring model loads equally spaced "
                          "planets only; unequal planet_angles_deg work in the lumped model but "
@@ -191,14 +192,14 @@ def run_fe_cases(sweep: CrackSweep, progress: bool = True,
 
     def cached(case, notice):
         try:
-            results[case] = read_entry(paths[case], inputs[case], check_case(case),
-                                        modules=SOURCE)
-            return True
+            entry = read_entry(paths[case], inputs[case], check_case(case), modules=SOURCE)
         except CacheEntryError as exc:
             if notice and str(exc) != "missing":
                 print(f"hubvib: cache entry {paths[case].name} for {case_label(case)}: {exc}; "
                       "recomputing", file=sys.stderr)
             return False
+        results[case] = read_case(entry)
+        return True
 
     todo = [d for d in sweep.cases if not cached(d, notice=True)]
     if todo:
@@ -207,9 +208,10 @@ def run_fe_cases(sweep: CrackSweep, progress: bool = True,
                            len(sweep.cases) - len(todo)) if progress else _Silent())
 
     def store(case, result):
-        write_entry(paths[case], inputs[case], result, modules=SOURCE)
+        result = typed_case(result)
+        write_entry(paths[case], inputs[case], result.to_dict(), modules=SOURCE)
         results[case] = result
-        bar.update(1, f"{case_label(case)}, {result['seconds_total']:.1f} s")
+        bar.update(1, f"{case_label(case)}, {result.seconds_total:.1f} s")
 
     computed = 0
     try:
@@ -234,6 +236,15 @@ def run_fe_cases(sweep: CrackSweep, progress: bool = True,
     return [results[d] for d in sweep.cases], computed
 
 
+def run_fe_cases(sweep: CrackSweep, progress: bool = True,
+                 execution: Execution = Execution(), pool=None,
+                 after_submit=None) -> tuple[list[dict], int]:
+    """``crack_cases`` in the dict form of the cache and of ``results.json`` (keys with
+    units, ``PlaneCase.to_dict``): for callers that hold rows, not typed cases."""
+    cases, computed = crack_cases(sweep, progress, execution, pool, after_submit)
+    return [case.to_dict() for case in cases], computed
+
+
 @dataclass(frozen=True)
 class _Case:
     """``fe_case`` bound to its sweep: one picklable callable of the case.  It refuses to
@@ -243,7 +254,7 @@ class _Case:
     sweep: CrackSweep
     source: str
 
-    def __call__(self, case) -> dict:
+    def __call__(self, case) -> PlaneCase | SolidCase:
         if source_key(*SOURCE) != self.source:
             raise RuntimeError(f"this worker's FE source (key {source_key(*SOURCE)[:16]}) is "
                                f"not the client's ({self.source[:16]}): install the same "

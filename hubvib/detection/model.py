@@ -24,6 +24,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from hubvib.cases.results import PlaneCase
 from hubvib.fem.estimate import CrackCaseEstimate
 from hubvib.lumped import PlanetaryParameters
 
@@ -114,15 +115,15 @@ class CrackModel:
     @classmethod
     def from_fe(cls, params: PlanetaryParameters, sweep, fe: list,
                 method: str = "jacobi", c_rp_given: bool = True) -> "CrackModel":
-        """From a CrackSweep and its FE cases: ``fem.estimate.CrackCaseEstimate`` objects, or
-        their dict form as the FE cache and ``crack_sweep.fe_case`` hold it (read back with
-        ``CrackCaseEstimate.from_dict``).
+        """From a CrackSweep and its FE cases: ``cases.results.PlaneCase`` (what
+        ``cases.runner.crack_cases`` gives) or ``fem.estimate.CrackCaseEstimate`` objects;
+        rows in their dict form (read from a file, written by hand) are read once with
+        ``CrackCaseEstimate.from_dict``.
 
         ``c_rp_given``: the lumped c_rp of ``params`` is a given value (a preset's table,
         a design's ``lumped.c_rp``, a scene override); otherwise every planet's c_rp is
         the FE intact c_rp (``with_fe_c_rp``)."""
-        cases = [CrackCaseEstimate.from_dict(row) if isinstance(row, dict) else row
-                 for row in fe]
+        cases = [_estimate(case) for case in fe]
 
         def column(name):
             return tuple(float(getattr(case, name)) for case in cases)
@@ -235,3 +236,12 @@ class CrackModel:
         return replace(self, depths=tuple(float(d) for d in depths), **{
             name: interpolated(getattr(self, name)) for name in names
             if len(getattr(self, name)) == len(known)})
+
+
+def _estimate(case) -> CrackCaseEstimate:
+    """The ``CrackCaseEstimate`` of a ``PlaneCase``, an estimate itself, or its dict form."""
+    if isinstance(case, PlaneCase):
+        return case.estimate
+    if isinstance(case, dict):
+        return CrackCaseEstimate.from_dict(case)
+    return case

@@ -43,8 +43,8 @@ from hubvib.runtime.progress import stage, working
 from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe,
                                         provenance, write_crack_study)
 from hubvib.meshing.levels import scaled_options
-from hubvib.cases.results import PlaneCase, SolidCase
-from hubvib.cases.runner import case_label, run_fe_cases
+from hubvib.cases.results import PlaneCase, SolidCase, typed_case
+from hubvib.cases.runner import case_label, crack_cases
 from hubvib.cases.sweep import ACCURACY, CrackSweep
 from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
 from hubvib.studies.study import Scene, Study
@@ -83,25 +83,20 @@ def slice_ratio(depth: float, half_length: float, face_width: float, plane_depth
     return float(1 - 2 * half_length / face_width * (1 - inside))
 
 
-def solid_c_rp(sweep, solid: list[dict]) -> list[dict]:
+def solid_c_rp(sweep, solid: list[SolidCase]) -> list[dict]:
     """The 3D c_rp ratios of the solid cases (``sweep.cases`` order, the intact first) [-]:
     ``c_rp_engaged_ratio`` and ``c_rp_engaged_min_ratio`` on the fine level, the error the
     fine level's ratio against the coarse level's (``fem.engaged_solid``)."""
     design = sweep.reducer
     ring, planet, steel = ring_gear(design), gear_body(design, "planet"), material(design)
     options = scaled_options(ACCURACY[sweep.accuracy])
-    intact = solid[0]
-    out = []
-    for row in solid:
-        if row is intact:
-            out.append(dict(c_rp_engaged_ratio=1.0, c_rp_engaged_min_ratio=1.0,
-                            c_rp_engaged_ratio_error=0.0))
-            continue
-        level = {}
-        for key in ("tooth_compliance_m_N", "tooth_compliance_coarse_m_N"):
-            level[key] = solid_engaged_mesh(planet, ring, row["tooth_radii_m"], row[key],
-                                            intact[key], options, steel, sweep.tooth)
-        fine, coarse = level["tooth_compliance_m_N"], level["tooth_compliance_coarse_m_N"]
+    intact = solid[0].estimate
+    out = [dict(c_rp_engaged_ratio=1.0, c_rp_engaged_min_ratio=1.0, c_rp_engaged_ratio_error=0.0)]
+    for case in solid[1:]:
+        e = case.estimate
+        fine, coarse = (solid_engaged_mesh(planet, ring, e.tooth_radii, getattr(e, name),
+                                           getattr(intact, name), options, steel, sweep.tooth)
+                        for name in ("tooth_compliance", "tooth_compliance_coarse"))
         out.append(dict(c_rp_engaged_ratio=fine.mean_ratio, c_rp_engaged_min_ratio=fine.min_ratio,
                         c_rp_engaged_ratio_error=abs(fine.mean_ratio - coarse.mean_ratio)))
     return out
@@ -156,17 +151,18 @@ class CrackGrowthResult:
 
     scene: Scene
     rows: list[dict]
-    plane: list[dict]
+    plane: list[PlaneCase]
     studies: dict[float, CrackStudyResult]
     computed: int
     files: list[Path] = field(default_factory=list)
 
     def grid_rows(self) -> list[dict]:
-        plane = {case.depth: case.estimate for case in map(PlaneCase.from_dict, self.plane)}
+        plane = {case.depth: case.estimate for case in map(typed_case, self.plane)}
         intact = plane[0.0]
         out = []
         for r in self.rows:
-            solid, through = SolidCase.from_dict(r), plane[r["depth_m"]]
+            solid = SolidCase.from_dict(r)
+            through = plane[solid.depth]
             e = solid.estimate
             out.append({
                 "depth_mm": 1e3 * solid.depth, "half_length_mm": 1e3 * solid.half_length,
@@ -198,14 +194,19 @@ def run_crack_growth(scene: Scene, progress: bool = True, detection: bool = True
     engine), then the lumped and detection stages per half-length."""
     sweep = scene.crack
     execution = scene.tables.get("execution", Execution())
-    plane, computed_plane = run_fe_cases(replace(sweep, model="plane", half_lengths=()),
-                                         progress, execution)
-    solid, computed_solid = run_fe_cases(sweep, progress, execution)
-    rows = solid_rows(sweep, solid, plane, solid_c_rp(sweep, solid))
+    plane, computed_plane = crack_cases(replace(sweep, model="plane", half_lengths=()),
+                                        progress, execution)
+    solid, computed_solid = crack_cases(sweep, progress, execution)
+    rows = solid_rows(sweep, [case.to_dict() for case in solid],
+                      [case.to_dict() for case in plane], solid_c_rp(sweep, solid))
     studies = {}
     for half in sweep.half_lengths:
-        fe = [rows[0]] + [r for r in rows[1:] if r["half_length_m"] == half]
-        studies[half] = crack_study_from_fe(scene, fe, detection=detection, workers=workers)
+        # each half-length's study: the solid ring's c_ru and c_r with the c_rp carried
+        # over, read as the plane study's cases
+        fe = [PlaneCase.from_dict(row) for row, case in zip(rows, solid)
+              if case is solid[0] or case.half_length == half]
+        studies[half] = crack_study_from_fe(scene, fe, detection=detection, workers=workers,
+                                            half_length=half)
     return CrackGrowthResult(scene, rows, plane, studies, computed_plane + computed_solid)
 
 

@@ -39,8 +39,8 @@ from hubvib.runtime.engines import EngineError, Execution, submit
 from hubvib.runtime.process_pool import worker_pool
 from hubvib.runtime.progress import stage, working
 from hubvib.runtime.stage_seconds import timed
-from hubvib.cases.results import PlaneCase
-from hubvib.cases.runner import run_fe_cases
+from hubvib.cases.results import PlaneCase, typed_case
+from hubvib.cases.runner import crack_cases
 from hubvib.cases.sweep import ACCURACY, CrackSweep, crack_of
 from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
 from hubvib.studies.study import Scene, Study
@@ -63,7 +63,7 @@ class CrackStudyResult:
     """
 
     scene: Scene
-    fe: list[dict]
+    fe: list[PlaneCase]
     c_ru: np.ndarray
     c_r: np.ndarray
     c_rp_factor: np.ndarray
@@ -75,6 +75,7 @@ class CrackStudyResult:
     detection: object = None
     c_rp_comparison: object = None
     elastic: object = None  # hubvib.detection.elastic.ElasticDetection, when the scene asks
+    half_length: float | None = None
 
     @property
     def depths(self) -> np.ndarray:
@@ -94,11 +95,10 @@ class CrackStudyResult:
         return 100 * (self.omega / self.omega[0] - 1)
 
     def stiffness_rows(self) -> list[dict]:
-        """Per depth the FE case (read back typed, ``PlaneCase``) beside the lumped values;
-        the keys with units are the CSV / JSON boundary."""
+        """Per depth the FE case (``PlaneCase``) beside the lumped values; the keys with units
+        are the CSV / JSON boundary."""
         rows = []
-        for case, cu, cr, fp in zip(map(PlaneCase.from_dict, self.fe), self.c_ru, self.c_r,
-                                    self.c_rp_factor):
+        for case, cu, cr, fp in zip(self.fe, self.c_ru, self.c_r, self.c_rp_factor):
             f = case.estimate
             rows.append({
                 "depth_mm": 1e3 * case.depth, "fe_c_ru_N_m": f.c_ru,
@@ -174,24 +174,27 @@ def run_crack_study(scene: Scene, progress: bool = True, detection: bool = True,
     in the pool (if they are) and again when they are done, ``on_spectra`` as in
     ``crack_study_from_fe``."""
     with timed("fe"):
-        fe, computed = run_fe_cases(scene.crack, progress,
-                                    scene.tables.get("execution", Execution()), pool,
-                                    after_fe)
+        fe, computed = crack_cases(scene.crack, progress,
+                                   scene.tables.get("execution", Execution()), pool, after_fe)
     if after_fe is not None:
         after_fe()
     return crack_study_from_fe(scene, fe, computed, detection=detection, workers=workers,
                                on_spectra=on_spectra)
 
 
-def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
+def crack_study_from_fe(scene: Scene, fe: list, computed: int = 0,
                         detection: bool = True, timing=None,
-                        workers: int = 1, on_spectra=None) -> CrackStudyResult:
-    """The lumped and detection stages from FE rows (``crack_sweep.fe_case`` keys).
+                        workers: int = 1, on_spectra=None,
+                        half_length: float | None = None) -> CrackStudyResult:
+    """The lumped and detection stages from the FE cases (``cases.results.PlaneCase``, or
+    their dict form read once with ``typed_case``).  ``half_length`` [m]: the solid
+    study's crack these cases stand for (``None``: cracks through the face width).
 
     ``timing`` (a ``detection.carrier.MeshTiming``) defaults to the scene's design at
     the ``[detection]`` carrier speed; ``on_spectra(spectra)`` is called with the lumped
     spectra before the detection stage.
     """
+    fe = [typed_case(case) for case in fe]
     with timed("lumped"):
         model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
                                    c_rp_given=scene.c_rp_given)
@@ -204,7 +207,8 @@ def crack_study_from_fe(scene: Scene, fe: list[dict], computed: int = 0,
     with timed("detection"):
         study, comparison = _detection(scene, model, detection, timing, workers)
     return CrackStudyResult(scene, fe, c_ru, c_r, c_rp_factor, spectra, omega, computed,
-                            model=model, detection=study, c_rp_comparison=comparison)
+                            model=model, detection=study, c_rp_comparison=comparison,
+                            half_length=half_length)
 
 
 def _detection(scene: Scene, model: CrackModel, detection: bool, timing, workers: int):
@@ -498,7 +502,7 @@ def begin_renders(scene: Scene, folder: Path, pool, begun: dict, spectrum=None) 
 def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
                  fe_renders: list[str] = ()) -> str:
     scene, sweep, model, study = result.scene, result.scene.crack, result.model, result.detection
-    intact = result.fe[0]
+    intact = result.fe[0].estimate
     info = provenance()
     lines = [f"# {scene.name}: ring-crack sensitivity study", "",
              f"hubvib {info['hubvib_version']}, {info['date']}. Ring crack at tooth "
@@ -509,7 +513,7 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
              + f"depths {', '.join(f'{1e3 * d:.3g}' for d in sweep.depths)} mm"
              + ("." if sweep.model == "plane" else
                 f" at the deepest point of a semi-elliptic crack of half-length "
-                f"{1e3 * result.fe[-1]['half_length_m']:g} mm in the solid ring."), ""]
+                f"{1e3 * result.half_length:g} mm in the solid ring."), ""]
     sources = {key: scene.lumped_source(key) for key in ("c_ru", "c_r")}
     if study is not None:
         lines += sections.short_answer(scene.name, model, study, sources)
@@ -546,8 +550,8 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
         f"- Design `{sweep.reducer.name}`: "
         + "; ".join(getattr(sweep.reducer, "notes", ()) or ("see hubvib.design",)) + ".",
         f"- Ring support: {sections.mounting_sentence(model, sources)}",
-        f"- The FE ring body alone gives c_ru = {intact['c_ru_N_m']:.4g} N/m and c_r = "
-        f"{intact['c_r_N_m']:.4g} N/m against the reducer's c_ru {scene.params.c_ru:.4g} N/m "
+        f"- The FE ring body alone gives c_ru = {intact.c_ru:.4g} N/m and c_r = "
+        f"{intact.c_r:.4g} N/m against the reducer's c_ru {scene.params.c_ru:.4g} N/m "
         f"({sources['c_ru']}) and c_r {scene.params.c_r:.4g} N/m ({sources['c_r']}). These "
         "are the work-conjugate rim parts: the work of each loaded tooth's forces on the "
         "rigid motion of its root lands (fem/ring_work.py). "
@@ -569,7 +573,7 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
         "the crack splits the repeated (translational) frequencies."
         + ("" if sweep.model == "plane" else
            f" Solid study, semi-elliptic crack of half-length "
-           f"{1e3 * result.fe[-1]['half_length_m']:g} mm: the ring body's c_ru and c_r are "
+           f"{1e3 * result.half_length:g} mm: the ring body's c_ru and c_r are "
            "the solid ring's; c_rp is the plane ratio carried over by the slice method "
            "(see the study's top report)."), "",
         "## Validation status", "",
