@@ -72,6 +72,25 @@ def test_validation_contract_refuses_a_build_import(house, tmp_path):
     assert "hubvib.validation.probe -> hubvib.build" in run.stdout, run.stdout
 
 
+def test_app_layers_are_directed(house, tmp_path):
+    """The studies sit above detection and signal, which are independent, and the crack
+    cases below them all: an import back up (detection -> studies, cases -> detection) or
+    across (signal -> detection) breaks the layers contract."""
+    probe = tmp_path / "house"
+    shutil.copytree(house, probe)
+    (probe / "hubvib" / "detection" / "probe.py").write_text("import hubvib.studies.scene\n")
+    (probe / "hubvib" / "signal" / "probe.py").write_text("import hubvib.detection.model\n")
+    (probe / "hubvib" / "cases" / "probe.py").write_text("import hubvib.detection.model\n")
+    code = ("import sys\nfrom importlinter.cli import lint_imports\n"
+            "sys.exit(lint_imports(config_filename=sys.argv[1], no_cache=True))")
+    run = _in_house(probe, code, str(ROOT / "pyproject.toml"))
+    assert run.returncode != 0, run.stdout
+    for line in ("hubvib.detection.probe -> hubvib.studies.scene",
+                 "hubvib.signal.probe -> hubvib.detection.model",
+                 "hubvib.cases.probe -> hubvib.detection.model"):
+        assert line in run.stdout, f"{line} not reported:\n{run.stdout}"
+
+
 def _cycles(graph) -> list[list[str]]:
     """Strongly connected components of more than one module (Tarjan)."""
     sys.setrecursionlimit(max(sys.getrecursionlimit(), 10_000))

@@ -12,9 +12,9 @@ if TYPE_CHECKING:
     from .path_growth import grow_path
     from .predicted_path import predicted_crack
     from .results import PlaneCase, SolidCase
-    from .runner import run_fe_cases
+    from .runner import crack_cases, run_fe_cases
     from .sweep import ACCURACY, CrackSweep, crack_of
 
-__all__ = ["CrackSweep", "ACCURACY", "crack_of", "PlaneCase", "SolidCase", "run_fe_cases",
-           "grow_path", "predicted_crack"]
+__all__ = ["CrackSweep", "ACCURACY", "crack_of", "PlaneCase", "SolidCase", "crack_cases",
+           "run_fe_cases", "grow_path", "predicted_crack"]
 __getattr__, __dir__ = lazy_face(__name__, __file__, __all__)

@@ -1,6 +1,6 @@
 """The crack as the lumped model sees it: ring support and cracked mesh per depth (SI).
 
-Built from the FE rows of a crack sweep (``hubvib.cases.runner.run_fe_cases``)
+Built from the FE cases of a crack sweep (``hubvib.cases.runner.crack_cases``)
 or from synthetic rows in tests.  ``c_ru`` and ``c_r`` of the lumped model
 follow :func:`hubvib.detection.series.ring_support`.
 
