@@ -40,7 +40,7 @@ from hubvib.runtime.fe_cache import (CacheEntryError, case_lock, entry_key, fini
                                      read_entry, write_entry)
 from hubvib.runtime.progress import progress as hubvib_progress
 from hubvib.runtime.tooth_curves import shared_intact_curve
-from hubvib.cases.results import PlaneCase, SolidCase, read_case, typed_case
+from hubvib.cases.results import PlaneCase, SolidCase, typed_case
 from hubvib.cases.sweep import ACCURACY, CrackSweep, crack_of, front_of
 
 #: the entry module of an FE case: its cache entries are keyed on the source of every
@@ -127,12 +127,13 @@ def cache_folder():
 
 def check_case(case):
     """The plausibility check of a cached case (a depth [m], or depth and half-length): the
-    typed result reads back (``PlaneCase`` / ``SolidCase``.from_dict), then its values."""
+    typed result reads back (``PlaneCase`` / ``SolidCase``.from_dict), then its values; the
+    check returns that typed case."""
     if isinstance(case, tuple):
         return _check_solid_case(case)
     depth = case
 
-    def check(result: dict) -> None:
+    def check(result: dict) -> PlaneCase:
         case = _typed(PlaneCase, result)
         finite_positive(result, POSITIVE_KEYS)
         if case.depth != depth:
@@ -144,11 +145,12 @@ def check_case(case):
             value = getattr(e, key)
             if not value <= 1 + 1e-6 or (depth == 0 and value != 1.0):
                 raise CacheEntryError(f"{key} = {value!r}: a crack cannot stiffen the tooth")
+        return case
     return check
 
 
 def _check_solid_case(case):
-    def check(result: dict) -> None:
+    def check(result: dict) -> SolidCase:
         finite_positive(result, SOLID_POSITIVE_KEYS)
         solid = _typed(SolidCase, result)
         found = (solid.depth, solid.half_length)
@@ -163,6 +165,7 @@ def _check_solid_case(case):
                     0 < v < float("inf") for v in values):
                 raise CacheEntryError(f"{key} = {list(values)!r}: allowed one finite value > 0 "
                                       f"per flank radius ({len(e.tooth_radii)})")
+        return solid
     return check
 
 
@@ -180,7 +183,7 @@ def crack_cases(sweep: CrackSweep, progress: bool = True,
     from the cache or computed; returns them and how many ran.  ``pool``: a ``worker_pool``
     of ``sweep.workers`` to run them in (left open), ``after_submit``: called when they are
     queued there (``runtime.engines.run_cases``).  The cache holds each case's dict form:
-    written from the worker's typed case, read back with ``read_case`` after its check."""
+    written from the worker's typed case, read back typed by its check (``check_case``)."""
     if sweep.design is not None and not sweep.reducer.equally_spaced:
         raise ValueError(f"design {sweep.reducer.name!r}: the FE ring model loads equally spaced "
                          "planets only; unequal planet_angles_deg work in the lumped model but "
@@ -191,14 +194,16 @@ def crack_cases(sweep: CrackSweep, progress: bool = True,
     results = {}
 
     def cached(case, notice):
+        check, typed = check_case(case), []
         try:
-            entry = read_entry(paths[case], inputs[case], check_case(case), modules=SOURCE)
+            read_entry(paths[case], inputs[case], lambda entry: typed.append(check(entry)),
+                       modules=SOURCE)
         except CacheEntryError as exc:
             if notice and str(exc) != "missing":
                 print(f"hubvib: cache entry {paths[case].name} for {case_label(case)}: {exc}; "
                       "recomputing", file=sys.stderr)
             return False
-        results[case] = read_case(entry)
+        results[case] = typed[0]
         return True
 
     todo = [d for d in sweep.cases if not cached(d, notice=True)]
