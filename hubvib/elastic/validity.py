@@ -130,7 +130,8 @@ class ValidityBand:
         """One dict per rigid-model mode (JSON-ready; NaN as None)."""
         return [{"mode": p.mode, "rigid_hz": p.rigid_hz, "elastic_hz": _finite(p.elastic_hz),
                  "relative_difference": _finite(p.relative_difference), "match": p.match,
-                 "ring_share": p.ring_share, "deformation_share": p.deformation_share,
+                 "ring_share": _finite(p.ring_share),
+                 "deformation_share": _finite(p.deformation_share),
                  "nodal_diameter": p.nodal_diameter,
                  "inside_band": bool(p.rigid_hz < self.band_top_hz)} for p in self.paired]
 
@@ -239,3 +240,106 @@ def validity_band(design, options: ElasticOptions = ElasticOptions(), rtol: floa
         None if lowest is None else lowest[1], float(er.options.band_hz), er.options.mounting,
         None if er.foundation is None else (er.foundation.k_n, er.foundation.k_t),
         int(carrier_tooth))
+
+
+# ------------------------------------------------------------------ words for report and docs
+
+def _top(band_top_hz: float, compared_to_hz: float) -> str:
+    return (f"{band_top_hz:.0f} Hz" if math.isfinite(band_top_hz)
+            else f"the top of the compared band, {compared_to_hz:.0f} Hz")
+
+
+def _reason(band: ValidityBand) -> str:
+    if band.limited_by == "ring mode":
+        ring = min(band.ring_modes, key=lambda m: m.frequency_hz, default=None)
+        if ring is not None and math.isclose(ring.frequency_hz, band.band_top_hz):
+            return (f"a coupled mode of the ring's own ({ring.frequency_hz:.0f} Hz, n = "
+                    f"{ring.nodal_diameter}, {100 * ring.deformation_share:.0f} % of its kinetic "
+                    "energy in the ring's deformation) has no rigid-ring counterpart")
+        return "a rigid-ring mode has no coupled counterpart (the ring's own modes took its place)"
+    if band.limited_by == "difference":
+        worst = min((p for p in band.paired if math.isfinite(p.relative_difference)
+                     and abs(p.relative_difference) > band.rtol),
+                    key=lambda p: (min(p.rigid_hz, p.elastic_hz), p.mode))
+        return (f"rigid-ring mode {worst.mode} ({worst.rigid_hz:.1f} Hz) and its coupled "
+                f"counterpart ({worst.elastic_hz:.1f} Hz) differ by "
+                f"{100 * worst.relative_difference:+.2f} % (tolerance {100 * band.rtol:g} %)")
+    return f"every mode compared agrees within {100 * band.rtol:g} %"
+
+
+def validity_record(band: ValidityBand) -> dict:
+    """The band as JSON (``survey`` data; NaN and inf as None).  ``rigid_ring_holds_below_hz``
+    keeps the key the docs' table reads."""
+    top = _finite(band.band_top_hz)
+    return {"lowest_ring_mode_hz": band.lowest_ring_mode_hz,
+            "lowest_ring_mode_n": band.lowest_ring_mode_n,
+            "rigid_top_hz": band.rigid_top_hz, "band_top_hz": top,
+            "rigid_ring_holds_below_hz": top, "limited_by": band.limited_by,
+            "reason": _reason(band), "rtol": band.rtol,
+            "compared_to_hz": band.compared_to_hz, "mounting": band.mounting,
+            "foundation_N_m2": None if band.foundation is None else list(band.foundation),
+            "modes": band.rows(),
+            "ring_modes": [{"frequency_hz": m.frequency_hz, "nodal_diameter": m.nodal_diameter,
+                            "deformation_share": m.deformation_share, "match": m.match}
+                           for m in band.ring_modes]}
+
+
+def validity_lines(band: ValidityBand) -> list[str]:
+    """The report's paragraph and table on the rigid-ring model's band (Markdown lines):
+    replaces the convention "half the lowest ring mode"."""
+    lowest = ("the mounted ring has no elastic mode of its own below the basis's cut-off"
+              if band.lowest_ring_mode_hz is None else
+              f"the mounted ring's lowest elastic mode of its own is "
+              f"{band.lowest_ring_mode_hz:.1f} Hz (n = {band.lowest_ring_mode_n})")
+    inside = [p for p in band.paired if p.rigid_hz < band.band_top_hz]
+    lines = [
+        f"Validity band (computed): {lowest}. Compared mode by mode with the 9 + 3N model of "
+        "the same system with the ring rigid (its mass and mounting from the FE ring's rigid "
+        "motions, the same ring-planet spring; modes paired by shape on the lumped bodies' "
+        "coordinates and the ring's rigid part), the rigid-ring model holds below "
+        f"{_top(band.band_top_hz, band.compared_to_hz)} ({len(inside)} of its "
+        f"{len(band.paired)} modes): there {_reason(band)}.", "",
+        "| mode | rigid ring [Hz] | elastic ring [Hz] | difference [%] | ring deformation "
+        "[%] | inside |", "|---:|---:|---:|---:|---:|---|"]
+    for p in band.paired:
+        if not math.isfinite(p.elastic_hz):
+            lines.append(f"| {p.mode} | {p.rigid_hz:.1f} | - | - | - | "
+                         f"{'yes' if p.rigid_hz < band.band_top_hz else 'no'} |")
+            continue
+        lines.append(f"| {p.mode} | {p.rigid_hz:.1f} | {p.elastic_hz:.1f} | "
+                     f"{100 * p.relative_difference:+.2f} | {100 * p.deformation_share:.1f} | "
+                     f"{'yes' if p.rigid_hz < band.band_top_hz else 'no'} |")
+    lines += ["", f"'-': no coupled mode below {band.compared_to_hz:.0f} Hz pairs with it "
+              f"(subspace match >= {MIN_MATCH:g}). Coupled modes of the ring's own "
+              f"(>= {100 * RING_DOMINATED:.0f} % of the kinetic energy in the ring's "
+              "deformation, or no rigid counterpart): "
+              + (", ".join(f"{m.frequency_hz:.0f} Hz (n {m.nodal_diameter})"
+                           for m in band.ring_modes) or "none") + ".", ""]
+    return lines
+
+
+def validity_table(records: dict) -> str:
+    """The docs' table of the band per design from ``validity_record`` dicts
+    (``{design name: record}``), with its explanation (Markdown)."""
+    head = ("| design | lowest ring mode [Hz] | n | rigid ring holds below [Hz] | set by |\n"
+            "|---|---:|---:|---:|---|")
+    rows = []
+    for name, r in records.items():
+        top = r["band_top_hz"]
+        rows.append(f"| {name} | {r['lowest_ring_mode_hz']:.1f} | {r['lowest_ring_mode_n']} | "
+                    + (f"{top:.0f}" if top is not None else f"> {r['compared_to_hz']:.0f}")
+                    + f" | {r['reason']} |")
+    tol = {r["rtol"] for r in records.values()}
+    return "\n".join([head, *rows]) + (
+        "\n\nComputed, not a rule of thumb: the intact coupled spectrum is compared mode by "
+        "mode with the 9 + 3N model of the same system with the ring rigid (its mass and "
+        "mounting from the FE ring's rigid motions, the same ring-planet spring), the modes "
+        "paired by shape on the lumped bodies' coordinates and the ring's rigid part "
+        "(a repeated frequency as one subspace). The band ends at the lowest frequency where "
+        f"a coupled mode is the ring's own (>= {100 * RING_DOMINATED:.0f} % of its kinetic "
+        "energy in the ring's deformation, or no rigid-model mode matches it) or where a "
+        "pair's frequencies differ by more than "
+        + ", ".join(f"{100 * t:g} %" for t in sorted(tol)) + ". The ring-planet spring "
+        "without the ring tooth makes the rigid model's mesh stiffer than the elastic "
+        "ring's contact, so low modes differ too where the ring tooth and rim give at the "
+        "contacts.")
