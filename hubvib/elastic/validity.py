@@ -172,8 +172,8 @@ def compare_spectra(er, spectrum, rigid_spectrum, rtol: float = RTOL,
                     band_hz: float = math.inf):
     """Pair the coupled modes of ``spectrum`` (``ElasticSpectrum`` of ``er``) with the
     rigid-ring model's ``rigid_spectrum`` (``lumped.Spectrum``); ``band_hz``: the top of
-    the coupled spectrum [Hz] (a rigid mode without partner below it limits the band); returns (paired, ring
-    modes, band top [Hz], what limits it)."""
+    the coupled spectrum [Hz] (a rigid mode without partner below it limits the band);
+    returns (paired, ring modes, band top [Hz], what limits it)."""
     if not (math.isfinite(rtol) and 0 < rtol < 1):
         raise ValueError(f"rtol = {rtol!r}, allowed 0 < rtol < 1")
     modes = spectrum.modes
