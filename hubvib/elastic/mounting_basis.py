@@ -28,7 +28,7 @@ import scipy.linalg as sla
 from hubvib.foundation.blas import blas_threads
 
 #: Legendre degree of the arc displacements whose foundation reaction the basis answers
-ARC_DEGREE = 4
+ARC_DEGREE = 6
 #: angular gap that separates two support arcs [rad]
 ARC_GAP = np.radians(3.0)
 
