@@ -187,7 +187,10 @@ def test_validity_band_below_the_ring_mode_and_above_the_watched_band_when_stiff
 def test_map_at_the_reference_scale_is_the_elastic_detection(raba, families):
     """At s = 1 the map's rule is ``elastic_detection``'s on the same rings: the same
     watched modes (frequencies to 0.5 Hz: the map keeps the intact ring's foundation for
-    every depth, the detection sizes each depth's own) and the same smallest depth."""
+    every depth, the detection sizes each depth's own) and the same smallest depth. The
+    clamped ring closes the map as its stiff limit: clamping the arcs is the foundation's
+    infinite limit, so the ring's lowest mode of its own lies above every finite scale's
+    (Courant-Fischer; 8053 Hz clamped on the finer mesh, docs/elastic_ring.md)."""
     from hubvib.detection.elastic import elastic_detection
     from hubvib.detection.options import DetectionOptions
     from hubvib.meshing.crack import Crack
@@ -198,7 +201,7 @@ def test_map_at_the_reference_scale_is_the_elastic_detection(raba, families):
     crack_of = lambda d: Crack(0, d)  # noqa: E731
     options = DetectionOptions()
     emap = elastic_map(design, depths, crack_of, scene, options, scales=(0.1, 1.0, 100.0),
-                       k_rest=k_rest, rings=[intact, cracked])
+                       k_rest=k_rest, rings=[intact, cracked], clamped=True)
     detection = elastic_detection(design, depths, crack_of, scene, options)
     watched = sorted(detection.intact_hz[i] for i in detection.watched)
     assert np.allclose(sorted(emap.watched[1]), watched, atol=0.5), (emap.watched[1], watched)
@@ -206,6 +209,10 @@ def test_map_at_the_reference_scale_is_the_elastic_detection(raba, families):
     assert (math.isnan(emap.family_depth[1]) and first is None) or \
         emap.family_depth[1] == pytest.approx(first)
     assert np.all(np.isfinite(emap.lowest_ring_mode_hz))
+    assert np.isinf(emap.scales[-1]) and emap.reference == 1
+    assert emap.lowest_ring_mode_hz[-1] > emap.lowest_ring_mode_hz[-2]
+    assert emap.lowest_ring_mode_hz[-1] == pytest.approx(8053, rel=0.01)
+    assert "| clamped |" in "\n".join(map_table(emap))
 
 
 @pytest.mark.slow

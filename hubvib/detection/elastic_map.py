@@ -47,7 +47,8 @@ class ElasticMap:
     Attributes
     ----------
     scales : ndarray (S,)
-        Foundation scale s [-]; the foundation is ``s * foundation``.
+        Foundation scale s [-]; the foundation is ``s * foundation``; ``inf`` (last, when
+        asked): the ring clamped on its support arcs, the stiff limit.
     foundation : tuple
         Reference ``(k_n, k_t)`` [N/m^2] (s = 1).
     depths : tuple of float
@@ -92,7 +93,7 @@ class ElasticMap:
     @property
     def reference(self) -> int:
         """Index of s = 1 in ``scales``."""
-        return int(np.argmin(np.abs(np.log(self.scales))))
+        return _reference(self.scales)
 
     def rows(self) -> list[dict]:
         """One dict per scale (JSON-ready; NaN as None)."""
@@ -119,6 +120,11 @@ def _finite(x) -> float | None:
 
 def _mm(depth) -> float | None:
     return 1e3 * float(depth) if np.isfinite(depth) else None
+
+
+def _reference(scales) -> int:
+    with np.errstate(divide="ignore"):
+        return int(np.argmin(np.abs(np.log(np.asarray(scales, dtype=float)))))
 
 
 @dataclass(frozen=True, eq=False)
@@ -167,14 +173,16 @@ def lowest_ring_mode(ring, scale: float) -> tuple[float, int | None]:
 
 def elastic_map(design, depths, crack_of, scene: ElasticScene, options: DetectionOptions,
                 scales=SCALES, pod=family_pod, k_rest: float | None = None,
-                rings: list | None = None) -> ElasticMap:
+                rings: list | None = None, clamped: bool = False) -> ElasticMap:
     """The elastic ring's detectability against the foundation scale (module docstring).
 
     ``depths`` [m] (the first 0), ``crack_of(depth)`` the ``Crack`` of a depth (as
     :func:`.elastic.elastic_detection`); ``scales`` must hold 1 (the reference
     foundation, ``scene.options``'s: given or sized); ``pod(shift_hz (depths, modes),
     sigma_hz (modes,), watched, rate) -> (depths,)``; ``rings``: the ``ScaledRing`` of
-    every depth when computed elsewhere (:func:`ring_arguments`)."""
+    every depth when computed elsewhere (:func:`ring_arguments`); ``clamped``: add the
+    ring clamped on its arcs as the stiff limit (scale ``inf``; one FE ring per depth
+    more, rebuilt: the family's basis does not reach it)."""
     from hubvib.build.stages import lumped_parameters
     from hubvib.elastic.model import out_of_contact_tooth
     from hubvib.elastic.rest import rest_stiffness
@@ -209,7 +217,15 @@ def elastic_map(design, depths, crack_of, scene: ElasticScene, options: Detectio
             f = np.vstack([intact.frequency_hz] + [tracked_hz(intact, m, mass)
                                                    for m in modes[1:]])
             spectra.append((intact, f))
-    ref = int(np.argmin(np.abs(np.log(scales))))
+        if clamped:
+            spectra.append(_clamped(design, depths, crack_of, scene, params, k_rest, tooth,
+                                    mass))
+    lowest = [lowest_ring_mode(rings[0], s) for s in scales]
+    if clamped:
+        lowest.append(spectra[-1][2])
+        scales = np.append(scales, np.inf)
+        spectra[-1] = spectra[-1][:2]
+    ref = _reference(scales)
     family_depth = np.full(scales.size, np.nan)
     family = np.zeros((scales.size, n_depths))
     watched_hz, per_scale = [], []
@@ -240,13 +256,34 @@ def elastic_map(design, depths, crack_of, scene: ElasticScene, options: Detectio
             mode_drop[k, j] = drop[i]
             alone = np.asarray(pod(shift, sigma, (int(i),), rate), dtype=float)
             mode_depth[k, j] = first_detectable(depths, alone, options.detection_probability)
-    lowest = [lowest_ring_mode(rings[0], s) for s in scales]
     return ElasticMap(
         scales, tuple(rings[0].foundation), tuple(float(d) for d in depths), family_depth,
         family, tuple(watched_hz), modes_hz, mode_depth, mode_drop,
         np.array([x[0] for x in lowest]), tuple(x[1] for x in lowest),
         float(options.record_length), float(options.detection_probability),
         getattr(pod, "__name__", type(pod).__name__))
+
+
+def _clamped(design, depths, crack_of, scene, params, k_rest, tooth, mass):
+    """The intact spectrum, the tracked frequencies per depth and the ring's lowest mode
+    of its own with the ring clamped on its support arcs."""
+    from dataclasses import replace
+
+    from hubvib.elastic.model import elastic_ring, elastic_spectrum
+    from hubvib.elastic.model import lowest_ring_mode as ring_alone
+
+    options = replace(scene.options, mounting="clamped", foundation_k_n=None,
+                      foundation_k_t=None)
+    spectra, lowest = [], (math.nan, None)
+    for d in depths:
+        er = elastic_ring(design, crack_of(d) if d > 0 else None, False, options, (tooth,),
+                          params, k_rest)
+        if d == 0:
+            lowest = ring_alone(er) or (math.nan, None)
+        spectra.append(_Spectrum(elastic_spectrum(er, tooth).modes))
+    f = np.vstack([spectra[0].frequency_hz] + [tracked_hz(spectra[0], m, mass)
+                                               for m in spectra[1:]])
+    return spectra[0], f, lowest
 
 
 def _away_tooth(design, crack_of, depths, out_of_contact_tooth) -> int:

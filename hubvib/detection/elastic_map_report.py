@@ -14,6 +14,17 @@ def _mm(depth: float) -> str:
     return "none" if not np.isfinite(depth) else f"{1e3 * depth:.3g}"
 
 
+def _span(scales) -> str:
+    finite = scales[np.isfinite(scales)]
+    top = (f"{finite[-1]:g} x the reference and clamped on the arcs" if np.isinf(scales[-1])
+           else f"{finite[-1]:g} x the reference")
+    return f"from {finite[0]:g} to {top}"
+
+
+def _scale(s: float) -> str:
+    return "clamped" if np.isinf(s) else f"{s:.3g}"
+
+
 def map_summary(emap: ElasticMap) -> list[str]:
     """One sentence on the family's smallest detectable depth over the scales, one on the
     ring's lowest mode of its own."""
@@ -21,19 +32,16 @@ def map_summary(emap: ElasticMap) -> list[str]:
     shallowest = min(d for d in emap.depths if d > 0)
     found = np.isfinite(depth)
     if not found.any():
-        first = (f"no crack of the sweep is detectable at any foundation from {s[0]:g} to "
-                 f"{s[-1]:g} x the reference")
+        first = f"no crack of the sweep is detectable at any foundation {_span(s)}"
     elif np.all(depth[found] == shallowest) and found.all():
         first = (f"the sweep's shallowest crack, {1e3 * shallowest:.3g} mm, is detectable at "
-                 f"every foundation from {s[0]:g} to {s[-1]:g} x the reference (nothing "
-                 "shallower was computed)")
+                 f"every foundation {_span(s)} (nothing shallower was computed)")
     else:
         low, high = np.nanmin(depth), np.nanmax(depth)
         first = (f"the smallest detectable depth lies between {1e3 * low:.3g} and "
-                 f"{1e3 * high:.3g} mm over the foundations from {s[0]:g} to {s[-1]:g} x "
-                 "the reference" + ("" if found.all() else
-                                    f"; none of the sweep at s = "
-                                    f"{', '.join(f'{x:.3g}' for x in s[~found])}"))
+                 f"{1e3 * high:.3g} mm over the foundations {_span(s)}"
+                 + ("" if found.all() else
+                    f"; none of the sweep at s = {', '.join(_scale(x) for x in s[~found])}"))
     ring = emap.lowest_ring_mode_hz
     second = (f"the ring's lowest mode of its own rises from {ring[0]:.0f} Hz (n = "
               f"{emap.lowest_ring_mode_n[0]}) to {ring[-1]:.0f} Hz (n = "
@@ -58,6 +66,10 @@ def map_table(emap: ElasticMap) -> list[str]:
             hz = emap.modes_hz[k, j]
             cells.append("(lost)" if not np.isfinite(hz) else
                          f"{_mm(emap.mode_depth[k, j])} ({hz:.0f} Hz)")
+        if np.isinf(s):
+            lines.append(f"| clamped | - | - | {ring} | {_mm(emap.family_depth[k])} | "
+                         + " | ".join(cells) + (" |" if cells else ""))
+            continue
         lines.append(f"| {s:.3g} | {s * emap.foundation[0]:.3g} | {s * emap.foundation[1]:.3g} "
                      f"| {ring} | {_mm(emap.family_depth[k])} | " + " | ".join(cells)
                      + (" |" if cells else ""))
@@ -99,20 +111,27 @@ def map_figure(name: str, emap: ElasticMap):
     fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5))
     deepest = max(emap.depths)
     shallowest = min(d for d in emap.depths if d > 0)
-    left.plot(emap.scales, 1e3 * emap.family_depth, color="k", lw=3, alpha=0.35,
+    # the clamped ring (scale inf) drawn one step past the stiffest foundation
+    finite = emap.scales[np.isfinite(emap.scales)]
+    x = np.where(np.isfinite(emap.scales), emap.scales, finite[-1] * 3)
+    left.plot(x, 1e3 * emap.family_depth, color="k", lw=3, alpha=0.35,
               label="family (watched anew per scale)")
     ref = emap.reference
     for j in range(emap.modes_hz.shape[1]):
-        left.plot(emap.scales, 1e3 * emap.mode_depth[:, j], **style(j),
+        left.plot(x, 1e3 * emap.mode_depth[:, j], **style(j),
                   label=f"mode {emap.modes_hz[ref, j]:.0f} Hz at s = 1, alone")
-        right.plot(emap.scales, emap.modes_hz[:, j], **style(j))
+        right.plot(x, emap.modes_hz[:, j], **style(j))
     left.axhline(1e3 * shallowest, color="0.6", lw=0.8, ls="-.",
                  label=f"shallowest crack computed {1e3 * shallowest:.3g} mm")
-    right.plot(emap.scales, emap.lowest_ring_mode_hz, color="k", lw=2, ls="--",
+    right.plot(x, emap.lowest_ring_mode_hz, color="k", lw=2, ls="--",
                label="ring's lowest mode of its own")
     for ax in (left, right):
         ax.set_xscale("log")
-        ax.set_xlim(float(emap.scales[0]), float(emap.scales[-1]))
+        ax.set_xlim(float(x[0]), float(x[-1]) * 1.2)
+        if np.isinf(emap.scales[-1]):
+            ax.axvline(finite[-1] * 1.7, color="0.6", lw=0.8)
+            ax.text(x[-1], 0.02, "clamped", transform=ax.get_xaxis_transform(),
+                    ha="center", fontsize=8)
         ax.set_xlabel("foundation scale s (k_n, k_t x s) [-]")
         ax.grid(True, which="both", alpha=0.3)
     left.set_ylim(0, 1.05e3 * deepest)
