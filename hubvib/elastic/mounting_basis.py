@@ -177,23 +177,39 @@ def _scaled_ring(body, teeth, cutoff_hz, degree, solver) -> ScaledRing:
     finally:
         factor.free()
     static = np.hstack([first, second, arcs, inertia])
-    for _ in range(2):  # Gram-Schmidt against the modes, twice: to round-off
-        static = static - phi @ (phi.T @ (body.M @ static))
-    static = static / np.sqrt(np.einsum("ij,ij->j", static, body.M @ static))
-    gram = static.T @ (body.M @ static)
+    Mphi = body.M @ phi
+    for _ in range(2):  # Gram-Schmidt against the (M-orthonormal) modes, twice: to round-off
+        static = static - phi @ (Mphi.T @ static)
+    Ms = body.M @ static
+    scale = 1 / np.sqrt(np.einsum("ij,ij->j", static, Ms))
+    gram = scale[:, None] * (static.T @ Ms) * scale[None, :]
     w, U = np.linalg.eigh(0.5 * (gram + gram.T))
     useful = w > 1e-10 * w.max()
-    V = np.hstack([phi, static @ (U[:, useful] / np.sqrt(w[useful]))])
-    M = V.T @ (body.M @ V)
-    L = sla.cholesky(0.5 * (M + M.T), lower=True)
-    V = sla.solve_triangular(L, V.T, lower=True).T
-    K1 = V.T @ (body.K @ V)
-    Fr = V.T @ (F @ V)
+    T = scale[:, None] * U[:, useful] / np.sqrt(w[useful])
+    V = np.hstack([phi, static @ T])
+    # V is M-orthonormal to round-off; one Cholesky step of its small Gram matrix (formed
+    # from the products above) makes it so to the last digits, applied to the reduced
+    # matrices rather than to V
+    cross = Mphi.T @ V
+    S_gram = T.T @ (static.T @ Ms) @ T
+    m = phi.shape[1]
+    gram = np.block([[cross[:, :m], cross[:, m:]], [cross[:, m:].T, S_gram]])
+    L = sla.cholesky(0.5 * (gram + gram.T), lower=True)
+
+    def reduced(A):  # L^-1 A L^-T
+        A = sla.solve_triangular(L, A, lower=True)
+        return sla.solve_triangular(L, A.T, lower=True).T
+
+    K1 = reduced(V.T @ (body.K @ V))
+    on = support  # the foundation acts on the support DOFs only
+    Fr = reduced(V[on].T @ (F[on][:, on] @ V[on]))
     sign = -np.sign(body.rigid[:, 2] @ body.contact)
-    contact = np.asarray(sp.csc_matrix(body.contact).T @ V).T
+    contact = sla.solve_triangular(L, np.asarray(sp.csc_matrix(body.contact).T @ V).T,
+                                   lower=True)
+    probe = sla.solve_triangular(L, np.asarray(body.probe @ V).T, lower=True).T
     return ScaledRing(
         K0=0.5 * ((K1 - Fr) + (K1 - Fr).T), F=0.5 * (Fr + Fr.T), contact=contact,
-        probe=np.asarray(body.probe @ V), moment_sign=np.asarray(sign).ravel(),
+        probe=probe, moment_sign=np.asarray(sign).ravel(),
         patch_angles=body.patch_angles, directions=body.directions,
         foundation=(f.k_n, f.k_t), ring_mass=float(body.rigid_mass()[0, 0]),
         ring_dofs=body.ndofs, teeth=teeth, mode_hz=omega / (2 * np.pi))
@@ -238,3 +254,4 @@ def cached_family_ring(design, crack, options, foundation: tuple | None, carrier
     return cached_result("elastic-mounting-ring", inputs, (__name__,),
                          lambda: family_ring(design, crack, options, foundation, teeth,
                                              degree=degree), ScaledRing)
+
