@@ -213,6 +213,8 @@ def test_map_at_the_reference_scale_is_the_elastic_detection(raba, families):
     assert emap.lowest_ring_mode_hz[-1] > emap.lowest_ring_mode_hz[-2]
     assert emap.lowest_ring_mode_hz[-1] == pytest.approx(8053, rel=0.01)
     assert "| clamped |" in "\n".join(map_table(emap))
+    import json
+    assert json.loads(json.dumps(emap.rows(), allow_nan=False))[-1]["clamped"]
 
 
 @pytest.mark.slow

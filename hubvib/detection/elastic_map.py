@@ -96,12 +96,14 @@ class ElasticMap:
         return _reference(self.scales)
 
     def rows(self) -> list[dict]:
-        """One dict per scale (JSON-ready; NaN as None)."""
+        """One dict per scale (JSON-ready; NaN as None; the clamped ring's scale None)."""
         out = []
         for k, s in enumerate(self.scales):
+            clamped = bool(np.isinf(s))
             out.append({
-                "scale": float(s), "k_n_N_m2": s * self.foundation[0],
-                "k_t_N_m2": s * self.foundation[1],
+                "scale": None if clamped else float(s), "clamped": clamped,
+                "k_n_N_m2": None if clamped else s * self.foundation[0],
+                "k_t_N_m2": None if clamped else s * self.foundation[1],
                 "smallest_detectable_depth_mm": _mm(self.family_depth[k]),
                 "lowest_ring_mode_hz": _finite(self.lowest_ring_mode_hz[k]),
                 "lowest_ring_mode_n": self.lowest_ring_mode_n[k],
@@ -205,7 +207,7 @@ def elastic_map(design, depths, crack_of, scene: ElasticScene, options: Detectio
                                                                   scene)]
     tooth = _away_tooth(design, crack_of, depths, out_of_contact_tooth)
     mass = rings[0].ring_mass
-    lengths = options.record_length
+    record = options.record_length
     n_depths = len(depths)
     spectra = []  # per scale: the intact spectrum and the tracked frequencies per depth
     with blas_threads(1):
@@ -231,7 +233,7 @@ def elastic_map(design, depths, crack_of, scene: ElasticScene, options: Detectio
     watched_hz, per_scale = [], []
     for k, (intact, f) in enumerate(spectra):
         shift = f - f[0]
-        sigma = options.sigma_hz(intact.frequency_hz, lengths)
+        sigma = options.sigma_hz(intact.frequency_hz, record)
         visibility = sensor_visibility(intact, scene.sensor_angle)
         drop = np.nan_to_num(np.clip(-shift, 0.0, None), nan=0.0).max(axis=0)
         seen = np.flatnonzero(visibility >= VISIBLE)
