@@ -85,13 +85,16 @@ class ElasticScene:
 
     ``ring``: ``"rigid"`` (the 9 + 3N model only), ``"elastic"`` or ``"both"`` (the report
     gives both answers side by side); ``sensor_angle``: the accelerometer on the ring's
-    outer surface, from the cracked tooth's centre line [rad]; ``options``: the model.
+    outer surface, from the cracked tooth's centre line [rad]; ``options``: the model;
+    ``map``: also the elastic ring's detectability against the foundation stiffness
+    (``hubvib.detection.elastic_map``; one reduced ring per crack depth).
     """
 
     ring: str = "rigid"
     sensor_angle: float = math.pi / 2
     options: ElasticOptions = field(default_factory=lambda: ElasticOptions(mesh=study_mesh(),
                                                                            cutoff_factor=2.0))
+    map: bool = False
 
     @property
     def elastic(self) -> bool:
@@ -124,6 +127,9 @@ SCHEMA = Schema("elastic", (
     Field("sensor_angle_deg", "number", -360.0, 360.0, False, False, default=90.0,
           unit="deg", doc="accelerometer on the ring's outer surface, from the cracked "
           "tooth", attr="sensor_angle", scale=math.pi / 180),
+    Field("map", "bool", default=False,
+          doc="also the elastic ring's smallest detectable depth against the foundation "
+          "stiffness (x 0.1 .. 100; needs mounting foundation)"),
 ))
 
 
@@ -139,4 +145,7 @@ def parse_elastic_table(table: dict) -> ElasticScene:
             band_hz=values["band_hz"])
     except ElasticOptionsError as error:
         raise SceneError(f"[elastic] {error}") from None
-    return ElasticScene(values["ring"], values["sensor_angle"], options)
+    if values["map"] and options.mounting != "foundation":
+        raise SceneError(f"[elastic] map = true scales the foundation: it needs mounting = "
+                         f"foundation (not {options.mounting})")
+    return ElasticScene(values["ring"], values["sensor_angle"], options, values["map"])
