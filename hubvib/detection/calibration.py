@@ -1,7 +1,9 @@
 """How ``hubvib diagnose`` performs on a scene: false alarms, coverage, impossible patterns.
 
-``python -m hubvib.detection.calibration [--scene S] [--modes 13,15,16,18] [--trials N]
-[--out FILE.md]`` draws reducers from the scene's uncertainty model, identifies their
+``python -m hubvib.detection.calibration [--scene S] [--ring rigid|elastic]
+[--modes 13,15,16,18] [--trials N] [--out FILE.md]`` draws reducers from the uncertainty
+model of the scene's spectrum model (the rigid-ring lumped model or the elastic ring,
+:mod:`.spectrum_model`), identifies their
 frequencies with errors from a noise model the diagnosis was not tuned on (Student t
 with 8 degrees of freedom, unit variance, times each mode's identification scatter),
 diagnoses each against its own intact measurement and writes a markdown table:
@@ -23,7 +25,7 @@ from hubvib.studies.scene import load_scene
 
 from .carrier import mesh_timing
 from .diagnosis import (CRACK, NO_CRACK, NOT_EXPLAINED, NOT_IDENTIFIABLE, Posterior,
-                        reference, synthetic_measurements)
+                        elastic_scene_model, reference, synthetic_measurements)
 from .model import CrackModel
 from .options import detection_options
 
@@ -93,7 +95,8 @@ def patterns(f0: np.ndarray) -> dict:
 
 def calibrate(model, options, timing, ref, modes, trials: int = 400,
               seed: int = 5) -> Calibration:
-    """Diagnose ``trials`` intact and ``trials`` cracked reducers and the patterns."""
+    """Diagnose ``trials`` intact and ``trials`` cracked reducers of ``model`` (a
+    ``SpectrumModel`` or a ``CrackModel``) and the patterns."""
     index = np.asarray(modes) - 1
     posterior = Posterior(ref, index, True)
     f, own = synthetic_measurements(model, options, timing, np.zeros(trials), seed,
@@ -123,20 +126,26 @@ def calibrate(model, options, timing, ref, modes, trials: int = 400,
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--scene", default="raba118_crack")
+    parser.add_argument("--ring", default="rigid", choices=("rigid", "elastic"))
     parser.add_argument("--modes", default="13,15,16,18")
     parser.add_argument("--trials", type=int, default=400)
     parser.add_argument("--out", type=Path)
     args = parser.parse_args(argv)
     scene = load_scene(args.scene)
     options = detection_options(scene)
-    fe, _ = run_fe_cases(scene.crack, False)
-    model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
-                               c_rp_given=scene.c_rp_given)
+    if args.ring == "elastic":
+        model = elastic_scene_model(scene)
+    else:
+        fe, _ = run_fe_cases(scene.crack, False)
+        model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
+                                   c_rp_given=scene.c_rp_given)
     timing = mesh_timing(scene.crack.reducer, options.carrier_speed)
     ref = reference(model, options, timing)
     result = calibrate(model, options, timing, ref,
                        [int(m) for m in args.modes.split(",")], args.trials)
-    text = "\n".join([f"Scene `{scene.name}`, modes {args.modes}, damping "
+    text = "\n".join([f"Scene `{scene.name}`, "
+                      + ("elastic ring, " if args.ring == "elastic" else "")
+                      + f"modes {args.modes}, damping "
                       f"{100 * options.damping_ratio:g} %, records {options.record_length:g} s, "
                       f"SNR {options.snr:g}, {args.trials} trials each:", "", *result.table()])
     if args.out:

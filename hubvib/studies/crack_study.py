@@ -299,6 +299,11 @@ def _elastic_json(elastic) -> dict:
                                                else 1e3 * elastic.first_detectable(t))
                                     for t in elastic.pod},
             "family_pod": {f"{t:g}": [float(p) for p in v] for t, v in elastic.pod.items()},
+            "family_pod_nominal": None if elastic.pod_nominal is None else {
+                f"{t:g}": [float(p) for p in v] for t, v in elastic.pod_nominal.items()},
+            "monte_carlo_samples": elastic.samples,
+            "scatter": None if not elastic.scatter else dict(zip(
+                ("masses", "stiffnesses", "mounting", "fe_change_error"), elastic.scatter)),
             "watched_modes": [i + 1 for i in elastic.watched],
             "k_rest_N_m": elastic.k_rest, "ring_dofs": elastic.ring_dofs,
             "foundation_N_m2": None if elastic.foundation is None else {
