@@ -1,8 +1,9 @@
 """Crack depth from measured natural frequencies, with a credible interval (SI).
 
-The reference is a Monte Carlo of the study's crack model (:mod:`.uncertainty`):
-at every depth of the sweep, the distribution of each mode's frequency as a
-record sees it.  For the measured modes the statistic is the shift against the
+The reference is a Monte Carlo of the study's spectrum model
+(:mod:`.spectrum_model`: the rigid-ring lumped model through :mod:`.uncertainty`, or
+the elastic ring through :mod:`.elastic_uncertainty`): at every depth of the sweep,
+the distribution of each mode's frequency as a record sees it.  For the measured modes the statistic is the shift against the
 baseline (the reducer's own intact frequencies when the CSV gives
 ``baseline_hz``, else the model's nominal intact spectrum).  Its mean and
 covariance over the samples, plus the identification noise (normal, standard

@@ -328,7 +328,10 @@ def _elastic_csv(elastic) -> list[dict]:
                          "bilinear_hz": float(elastic.bilinear_hz[k, i]),
                          "split_pair": bool(elastic.split_pair[k, i]),
                          "watched": i in elastic.watched,
-                         "family_pod": float(elastic.pod[elastic.record_length][k])})
+                         "family_pod": float(elastic.pod[elastic.record_length][k]),
+                         "family_pod_nominal": (
+                             None if elastic.pod_nominal is None else
+                             float(elastic.pod_nominal[elastic.record_length][k]))})
     return rows
 
 
