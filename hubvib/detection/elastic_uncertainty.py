@@ -18,7 +18,8 @@ identity); every sample's ``M^-1/2 K M^-1/2`` is solved at once (batched ``eigva
 A sample's modes are named after the nominal ones in sorted order: mode i at depth d is
 the sample's ``slot_i(d)``-th frequency, where the nominal mode of the cracked ring that
 tracks intact mode i lies (:mod:`hubvib.elastic.tracking`; a split pair's lower member
-is the lower frequency, as the nominal's).
+is the lower frequency, as the nominal's); :func:`sorted_order_kept` measures how often
+a sample's mode in that place is the nominal's by subspace match.
 """
 from __future__ import annotations
 
@@ -36,7 +37,7 @@ from .drift import Drift
 from .uncertainty import lognormal
 
 __all__ = ["FE_CHANGE_ERROR", "ElasticSpectrum", "ElasticSamples", "elastic_spectrum_model",
-           "draw_elastic", "batched_hz", "depth_operators"]
+           "draw_elastic", "batched_hz", "depth_operators", "sorted_order_kept"]
 
 #: relative error of a crack's change of a coupled mode from the ring's discretisation:
 #: the crack study's ring mesh gives changes within 1 Hz of the modal mesh's at 9 mm on
@@ -176,6 +177,42 @@ def batched_hz(op: DepthOperators, samples: ElasticSamples, masks: dict) -> np.n
     K *= w[:, None, :]
     values = np.linalg.eigvalsh(K)
     return np.sqrt(np.clip(values, 0.0, None)) / (2 * math.pi)
+
+
+def sorted_order_kept(model: "ElasticSpectrum", cases, samples: ElasticSamples, k: int,
+                      modes) -> np.ndarray:
+    """Per intact mode of ``modes`` (0-based), the share of ``samples`` at grid depth ``k``
+    whose mode in the nominal's sorted place is the nominal's mode there by subspace match
+    (:func:`hubvib.elastic.tracking.track_modes` of the sample's modes against
+    ``cases[k].away``) [-]: the check that naming a sample's modes by sorted order keeps
+    the nominal's identities."""
+    from types import SimpleNamespace
+
+    op, case = model.operators[k], cases[k]
+    size = op.K.shape[0]
+    factors = np.column_stack([samples.stiffness.get(name, np.ones(samples.n)) - 1.0
+                               for name in op.names])
+    K = (factors @ op.pieces.reshape(len(op.names), -1)).reshape(samples.n, size, size)
+    K += op.K
+    lumped = np.ones((samples.n, op.mass.size))
+    for name, mask in model.masks.items():
+        lumped[:, mask] = samples.masses[name][:, None]
+    w = 1.0 / np.sqrt(np.hstack([np.repeat(samples.ring_mass[:, None], op.n_ring, axis=1),
+                                 lumped * op.mass]))
+    values, vectors = np.linalg.eigh(K * w[:, :, None] * w[:, None, :])
+    shapes = vectors * w[:, :, None]  # mass-normalised
+    count = min(size, case.away.frequency_hz.size + 6)
+    kept = np.zeros(len(modes))
+    for j in range(samples.n):
+        ring = shapes[j, :op.n_ring, :count]
+        other = SimpleNamespace(
+            modes=SimpleNamespace(lumped_mass=op.mass, lumped=shapes[j, op.n_ring:, :count],
+                                  probe=np.asarray(case.operators.probe @ ring)),
+            frequency_hz=np.sqrt(np.clip(values[j, :count], 0.0, None)) / (2 * math.pi))
+        reference = track_modes(case.away, other, cases[0].ring_mass).reference
+        for a, i in enumerate(modes):
+            kept[a] += reference[op.slot[i]] == op.slot[i]
+    return kept / samples.n
 
 
 def _mass_masks(params, lumped_mass: np.ndarray) -> dict:
