@@ -126,3 +126,27 @@ renders = false
     assert report.count("## Short answer") == 1 and "## Elastic ring" in report
     assert "| 10 s | none of the sweep | 6 mm |" in report
     assert (tmp_path / "out" / "elastic_ring.csv").stat().st_size > 0
+
+
+def test_family_pod_over_sampled_reducers_is_their_mean_pod():
+    """(samples, depths, modes) shifts: the family POD is the mean of each reducer's own
+    (the identification noise integrated per reducer); NaN (not tracked) counts as no
+    change."""
+    rng = np.random.default_rng(2)
+    shifts = rng.normal(-2.0, 1.0, (50, 3, 4))
+    shifts[:, 0] = 0.0
+    shifts[3, 2, 1] = np.nan
+    sigma, watched, rate = np.array([1.0, 0.8, 1.2, 2.0]), (0, 1, 3), 0.004
+    pooled = family_pod(shifts, sigma, watched, rate)
+    each = np.mean([family_pod(s, sigma, watched, rate) for s in shifts], axis=0)
+    assert np.allclose(pooled, each, rtol=1e-12)
+    assert abs(pooled[0] - (1 - (1 - rate) ** 3)) < 1e-12
+
+
+def test_monte_carlo_fields_have_defaults_and_reach_the_report():
+    det = _synthetic(samples=2000, pod_nominal=_synthetic().pod,
+                     scatter=(0.02, 0.10, 0.30, 0.01))
+    assert _synthetic().samples == 0 and _synthetic().pod_nominal is None
+    text = "\n".join(side_by_side(None, det))
+    assert "2000 Monte Carlo reducers" in text
+    assert "nominal reducer" in "\n".join(side_by_side(None, _synthetic()))

@@ -1,5 +1,7 @@
-"""``hubvib diagnose --scene SCENE (--measured FILE.csv | --record FILE --baseline-record FILE)``:
-crack depth from measured frequencies or from two accelerometer records."""
+"""``hubvib diagnose --scene SCENE (--measured FILE.csv | --record FILE --baseline-record FILE)
+[--ring rigid|elastic]``: crack depth from measured frequencies or from two accelerometer
+records, on the ring model the scene's ``[elastic] ring`` chooses (``both``: both verdicts)
+or ``--ring``."""
 from __future__ import annotations
 
 import json
@@ -29,8 +31,27 @@ def add_parser(sub) -> None:
                    "CSV time_s,acceleration_m_s2, WAV or UFF 58 (instead of --measured)")
     p.add_argument("--baseline-record", type=Path,
                    help="record of the same reducer intact (with --record)")
+    p.add_argument("--ring", help="ring model: rigid (the 9 + 3N model) or elastic (the FE "
+                   "ring coupled to the lumped bodies); default: the scene's [elastic] ring "
+                   "(both: both verdicts, the rigid ring's first)")
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
+
+
+RINGS = ("rigid", "elastic")
+
+
+def rings_of(scene, flag: str | None) -> tuple[str, ...]:
+    """The ring models to diagnose on: ``--ring`` if given, else the scene's ``[elastic]
+    ring`` (``both``: rigid, then elastic)."""
+    from hubvib.detection.diagnosis import scene_ring
+
+    if flag is not None:
+        if flag not in RINGS:
+            raise ValueError(f"--ring = {flag!r}; allowed: {', '.join(RINGS)}")
+        return (flag,)
+    ring = scene_ring(scene)
+    return RINGS if ring == "both" else (ring,)
 
 
 def _print_skipped(found) -> None:
@@ -56,11 +77,12 @@ def _print_not_identified(scene, answer) -> None:
 
 
 def run(args) -> int:
-    from hubvib.detection.diagnosis import diagnose_scene
     from hubvib.detection.from_records import NotIdentified, diagnose_records
     from hubvib.detection.measured import read_measured
     from hubvib.studies.scene import load_scene
 
+    if args.ring is not None and args.ring not in RINGS:
+        raise ValueError(f"--ring = {args.ring!r}; allowed: {', '.join(RINGS)}")
     if (args.measured is None) == (args.record is None):
         raise ValueError("give either --measured FILE.csv or --record FILE with "
                          "--baseline-record FILE")
@@ -68,8 +90,12 @@ def run(args) -> int:
         raise ValueError("--record and --baseline-record go together: the record now and "
                          "the record of the same reducer intact")
     scene = load_scene(args.scene)
-    found = None
+    rings = rings_of(scene, args.ring)
     if args.record is not None:
+        if args.ring == "elastic":
+            raise ValueError("--ring = 'elastic' with --record: records are identified on the "
+                             "rigid ring's modes only; identify the frequencies and give "
+                             "them with --measured FILE.csv")
         result, ref, found = diagnose_records(scene, args.record, args.baseline_record,
                                               progress=not args.json)
         if isinstance(result, NotIdentified):
@@ -80,17 +106,64 @@ def run(args) -> int:
                 _print_skipped(found)
                 _print_not_identified(scene, result)
             return 0
-        measured = found.measured
-    else:
-        measured = read_measured(args.measured)
-        result, ref = diagnose_scene(scene, measured, progress=not args.json)
-    if args.json:
-        extra = {} if found is None else {"skipped_modes": {
-            str(mode): why for mode, why in found.skipped().items()}}
-        print(json.dumps({"scene": scene.name, **result.to_dict(), **ref.mesh_stiffness,
-                          **extra}, indent=2,
-                         allow_nan=False))
+        if len(rings) > 1 and not args.json:
+            _say("records are identified on the rigid ring's modes: the verdict is the "
+                 "rigid ring's (for the elastic ring give the identified frequencies with "
+                 "--measured)")
+        return _report(scene, found.measured, [("rigid", result, ref)], found, args.json)
+    measured = read_measured(args.measured)
+    answers = [_diagnosed(scene, measured, ring, progress=not args.json, fail=len(rings) == 1)
+               for ring in rings]
+    return _report(scene, measured, answers, None, args.json)
+
+
+def _diagnosed(scene, measured, ring: str, progress: bool, fail: bool):
+    """(ring, diagnosis, reference) of ``measured`` on ``ring``; with ``fail`` False a
+    measurement that does not pair with this ring's modes gives (ring, message, None)."""
+    from hubvib.detection.diagnosis import diagnose_scene
+    from hubvib.detection.measured import MeasuredError
+
+    try:
+        result, ref = diagnose_scene(scene, measured, progress=progress, ring=ring)
+    except MeasuredError as error:
+        if fail:
+            raise
+        return ring, str(error), None
+    return ring, result, ref
+
+
+def _report(scene, measured, answers, found, as_json: bool) -> int:
+    """Print every ring's answer (JSON: the first at the top level as a single ring gives
+    it, the second under its ring's name)."""
+    if all(ref is None for _, _, ref in answers):
+        raise ValueError("; ".join(f"{ring} ring: {message}" for ring, message, _ in answers))
+    if as_json:
+        payload = None
+        for ring, result, ref in answers:
+            body = ({"error": result} if ref is None else
+                    {"ring": ring, **result.to_dict(), **ref.mesh_stiffness})
+            if payload is None:
+                payload = {"scene": scene.name, **body}
+                if found is not None:
+                    payload["skipped_modes"] = {str(mode): why
+                                                for mode, why in found.skipped().items()}
+            else:
+                payload[ring] = body
+        print(json.dumps(payload, indent=2, allow_nan=False))
         return 0
+    for n, (ring, result, ref) in enumerate(answers):
+        if len(answers) > 1:
+            print(("" if n == 0 else "\n") + f"== {ring} ring "
+                  + ("(9 + 3N model)" if ring == "rigid" else "(FE ring coupled to the lumped "
+                     "bodies)") + " ==")
+        if ref is None:
+            _say(f"verdict: not diagnosed on the {ring} ring: {result}")
+            continue
+        _print_answer(scene, measured, result, ref, found)
+    return 0
+
+
+def _print_answer(scene, measured, result, ref, found) -> None:
     if found is not None:
         damping = ", ".join(f"{100 * m.damping_ratio:.3g} % (mode {i + 1})"
                             for i, m in zip(found.now.index, found.now.modes)
@@ -126,7 +199,6 @@ def run(args) -> int:
     else:
         _say(f"verdict: {result.verdict}: depth below {1e3 * result.depth_high:.3g} mm "
               f"at {100 * result.confidence:g} %")
-    return 0
 
 
 def explain(result, ref) -> list[str]:

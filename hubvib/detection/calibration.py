@@ -1,7 +1,8 @@
 """How ``hubvib diagnose`` performs on a scene: false alarms, coverage, impossible patterns.
 
 ``calibrate`` (on a scene: ``python -m hubvib.studies.diagnosis_check``) draws reducers
-from the scene's uncertainty model, identifies their
+from the uncertainty model of a spectrum model (the rigid-ring lumped model or the elastic
+ring, :mod:`.spectrum_model`), identifies their
 frequencies with errors from a noise model the diagnosis was not tuned on (Student t
 with 8 degrees of freedom, unit variance, times each mode's identification scatter),
 diagnoses each against its own intact measurement and writes a markdown table:
@@ -85,7 +86,8 @@ def patterns(f0: np.ndarray) -> dict:
 
 def calibrate(model, options, timing, ref, modes, trials: int = 400,
               seed: int = 5) -> Calibration:
-    """Diagnose ``trials`` intact and ``trials`` cracked reducers and the patterns."""
+    """Diagnose ``trials`` intact and ``trials`` cracked reducers of ``model`` (a
+    ``SpectrumModel`` or a ``CrackModel``) and the patterns."""
     index = np.asarray(modes) - 1
     posterior = Posterior(ref, index, True)
     f, own = synthetic_measurements(model, options, timing, np.zeros(trials), seed,

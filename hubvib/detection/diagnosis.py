@@ -1,8 +1,9 @@
 """Crack depth from measured natural frequencies, with a credible interval (SI).
 
-The reference is a Monte Carlo of the study's crack model (:mod:`.uncertainty`):
-at every depth of the sweep, the distribution of each mode's frequency as a
-record sees it.  For the measured modes the statistic is the shift against the
+The reference is a Monte Carlo of the study's spectrum model
+(:mod:`.spectrum_model`: the rigid-ring lumped model through :mod:`.uncertainty`, or
+the elastic ring through :mod:`.elastic_uncertainty`): at every depth of the sweep,
+the distribution of each mode's frequency as a record sees it.  For the measured modes the statistic is the shift against the
 baseline (the reducer's own intact frequencies when the CSV gives
 ``baseline_hz``, else the model's nominal intact spectrum).  Its mean and
 covariance over the samples, plus the identification noise (normal, standard
@@ -56,11 +57,9 @@ from hubvib.detection.options import detection_options
 from hubvib.identification.law import fisher_sigma_hz
 from hubvib.cases.runner import run_fe_cases
 
-from .budget import chunked_frequencies
-from .drift import drift_model
 from .measured import Measured, MeasuredError
 from .options import DetectionOptions
-from .uncertainty import draw, nominal, observed_frequencies
+from .spectrum_model import as_spectrum_model
 
 CRACK, NO_CRACK, NOT_IDENTIFIABLE, NOT_EXPLAINED = (
     "crack indicated", "no crack indicated", "not identifiable from these modes",
@@ -93,7 +92,12 @@ class Reference:
     mesh_stiffness : dict
         Which ring-planet mesh stiffness the crack model uses
         (``CrackModel.mesh_stiffness``: ``c_rp_method``, ``c_rp_source``,
-        ``c_rp_lumped_N_m``, ``c_rp_fe_intact_N_m``).
+        ``c_rp_lumped_N_m``, ``c_rp_fe_intact_N_m``; the elastic ring's: ``k_rest_N_m``,
+        its foundation and FE error).
+    labels : tuple of str
+        One name per mode.
+    ring : str
+        The spectrum model: ``"rigid"`` (9 + 3N) or ``"elastic"``.
     """
 
     depths: np.ndarray
@@ -106,6 +110,8 @@ class Reference:
     fit_false_alarm_rate: float = 0.01
     drift_cov: np.ndarray | None = None
     mesh_stiffness: dict = field(default_factory=dict)
+    labels: tuple = ()
+    ring: str = "rigid"
 
     @property
     def n_modes(self) -> int:
@@ -119,18 +125,18 @@ class Reference:
 
 
 def reference(model, options, timing, seed: int | None = None, workers: int = 1) -> Reference:
-    """Monte Carlo reference of ``model`` (CrackModel) under ``options``."""
+    """Monte Carlo reference of ``model`` (a ``SpectrumModel``, or a ``CrackModel``: the
+    rigid-ring lumped model) under ``options``."""
+    model = as_spectrum_model(model)
     rng = np.random.default_rng(options.seed + 1 if seed is None else seed)
-    fraction, long = timing.engaged_fraction, timing.long_record(options.record_length)
-    samples = chunked_frequencies(model, draw(model, options, options.samples, rng),
-                                  fraction, long, workers)
-    nominal_hz = observed_frequencies(model, nominal(model), fraction, long)[0]
-    drift = drift_model(model.parameters(0), nominal_hz[0], options, model.method)
+    samples = model.sampled_hz(options, timing, options.samples, rng, workers)
+    nominal_hz = model.nominal_hz(timing, options)
+    drift = model.drift(nominal_hz[0], options)
     return Reference(np.array(model.depths), samples, nominal_hz,
                      options.sigma_hz(nominal_hz[0]), options.false_alarm_rate,
                      options.detection_probability, options.confidence,
                      options.fit_false_alarm_rate, drift.covariance(),
-                     model.mesh_stiffness())
+                     model.mesh_stiffness(), tuple(model.mode_labels()), model.ring)
 
 
 def pair_modes(measured: Measured, ref: Reference) -> np.ndarray:
@@ -451,10 +457,10 @@ def diagnose(measured: Measured, ref: Reference, options=None) -> Diagnosis:
 
 def synthetic_measurements(model, options, timing, depths: np.ndarray, seed: int,
                            workers: int = 1, errors=None) -> tuple[np.ndarray, np.ndarray]:
-    """Frequencies and own baselines [Hz] of reducers drawn from the uncertainty model
-    with cracks of ``depths`` [m], each identified with the scene's identification
-    scatter ``options.sigma_hz``, the drift between the two records
-    (:mod:`.drift`) on the cracked one.
+    """Frequencies and own baselines [Hz] of reducers drawn from the uncertainty model of
+    ``model`` (a ``SpectrumModel`` or a ``CrackModel``) with cracks of ``depths`` [m], each
+    identified with the scene's identification scatter ``options.sigma_hz``, the drift
+    between the two records (:mod:`.drift`) on the cracked one.
 
     ``errors(rng, shape)``: standardised identification errors (default standard normal),
     e.g. resampled from identified simulated records.  Returns arrays of shape
@@ -462,25 +468,54 @@ def synthetic_measurements(model, options, timing, depths: np.ndarray, seed: int
     """
     rng = np.random.default_rng(seed)
     depths = np.asarray(depths, dtype=float)
-    at = model.at_depths(np.concatenate([[0.0], depths]))
-    samples = draw(at, options, depths.size, rng)
-    f = observed_frequencies(at, samples, timing.engaged_fraction,
-                             timing.long_record(options.record_length), workers,
-                             depth_index=np.arange(1, depths.size + 1))
-    sigma = options.sigma_hz(observed_frequencies(at, nominal(at), timing.engaged_fraction,
-                                                  True)[0, 0])
+    at = as_spectrum_model(model).at_depths(np.concatenate([[0.0], depths]))
+    f = at.sampled_hz(options, timing, depths.size, rng, workers,
+                      depth_index=np.arange(1, depths.size + 1))
+    intact = at.nominal_hz(timing, options, long_record=True)[0]
+    sigma = options.sigma_hz(intact)
     draw_errors = errors or (lambda generator, shape: generator.standard_normal(shape))
     noise = draw_errors(rng, f.shape) * sigma
-    drift = drift_model(at.parameters(0), observed_frequencies(
-        at, nominal(at), timing.engaged_fraction, True)[0, 0], options, at.method)
+    drift = at.drift(intact, options)
     return f[:, 1] + noise[:, 1] + drift.draw(rng, depths.size), f[:, 0] + noise[:, 0]
 
 
-def scene_reference(scene, progress: bool = True, workers: int = 2):
+def scene_ring(scene) -> str:
+    """The ring model(s) the scene's ``[elastic] ring`` asks for: rigid, elastic or both."""
+    table = scene.tables.get("elastic")
+    return "rigid" if table is None else table.ring
+
+
+def elastic_scene_model(scene):
+    """The elastic-ring spectrum model of ``scene``'s crack sweep (its ``[elastic]`` table,
+    or the defaults), the ring's cases from the result cache or computed; a crack through
+    the rim is left out (it opens the ring)."""
+    from hubvib.build.stages import ring_gear
+    from hubvib.elastic.cases import cached_case
+    from hubvib.elastic.options import ElasticScene
+    from hubvib.cases.sweep import crack_of
+
+    from .elastic import case_arguments
+    from .elastic_uncertainty import elastic_spectrum_model
+
+    table = scene.tables.get("elastic") or ElasticScene()
+    sweep = scene.crack
+    ring = ring_gear(sweep.reducer)
+    depths = tuple(d for d in sweep.depths
+                   if d == 0 or not crack_of(sweep, d).is_through(ring))
+    cases = [cached_case(*a) for a in case_arguments(sweep.reducer, depths,
+                                                     lambda d: crack_of(sweep, d), table)]
+    return elastic_spectrum_model(depths, cases)
+
+
+def scene_reference(scene, progress: bool = True, workers: int = 2, ring: str = "rigid"):
     """The Monte Carlo reference of ``scene``'s crack study and its DetectionOptions (FE
-    cases from the cache or computed).  A scene whose ``[signal]`` table simulates with
-    ``mesh_stiffness = "ratio"`` is diagnosed with the crack entering c_rp by the same
-    ratio (the model its simulated records come from)."""
+    cases from the cache or computed).  ``ring``: ``"rigid"`` (the 9 + 3N model) or
+    ``"elastic"`` (the FE ring coupled to the lumped bodies).  A scene whose ``[signal]``
+    table simulates with ``mesh_stiffness = "ratio"`` is diagnosed on the rigid ring with
+    the crack entering c_rp by the same ratio (the model its simulated records come
+    from)."""
+    if ring not in ("rigid", "elastic"):
+        raise ValueError(f"ring = {ring!r}; allowed: rigid, elastic")
     if scene.crack is None:
         raise ValueError(f"--scene {scene.name!r} has no [crack] study: diagnosis needs the "
                          "crack sweep it compares the measurement with")
@@ -489,6 +524,9 @@ def scene_reference(scene, progress: bool = True, workers: int = 2):
                          "half-length): diagnosis needs a plane crack sweep, one crack "
                          "per depth ([crack] model = \"plane\")")
     options = detection_options(scene)
+    timing = mesh_timing(scene.crack.reducer, options.carrier_speed)
+    if ring == "elastic":
+        return reference(elastic_scene_model(scene), options, timing, workers=workers), options
     fe, _ = run_fe_cases(scene.crack, progress)
     model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
                                c_rp_given=scene.c_rp_given)
@@ -497,13 +535,13 @@ def scene_reference(scene, progress: bool = True, workers: int = 2):
         # the scene's records come from its [signal] model, whose cracked mesh is the FE
         # ratio on the preset's c_rp (hubvib.signal.study.curves_for): compare like with like
         model = model.with_c_rp_method(C_RP_RATIO)
-    ref = reference(model, options, mesh_timing(scene.crack.reducer, options.carrier_speed),
-                    workers=workers)
+    ref = reference(model, options, timing, workers=workers)
     return ref, options
 
 
 def diagnose_scene(scene, measured: Measured, progress: bool = True,
-                   workers: int = 2) -> tuple[Diagnosis, Reference]:
-    """Diagnosis of ``measured`` against the crack study of ``scene``."""
-    ref, options = scene_reference(scene, progress, workers)
+                   workers: int = 2, ring: str = "rigid") -> tuple[Diagnosis, Reference]:
+    """Diagnosis of ``measured`` against the crack study of ``scene`` on the ``ring``
+    model (``"rigid"`` or ``"elastic"``)."""
+    ref, options = scene_reference(scene, progress, workers, ring)
     return diagnose(measured, ref, options), ref

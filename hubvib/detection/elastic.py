@@ -14,8 +14,10 @@ upper bound of the change.
 The rule is the rigid-ring study's with the reducer's own intact record as baseline: a
 mode alarms when its change plus the difference of two identification errors,
 ``N(0, 2 sigma^2)``, falls below ``-z(1 - alpha_m) sqrt(2) sigma``; the family alarms on
-any watched mode (Sidak ``alpha_m``).  The nominal reducer only: no parameter scatter,
-no FE error (the rigid-ring POD integrates both).  Watched: the modes the sensor sees
+any watched mode (Sidak ``alpha_m``).  The POD is the mean of that probability over the
+Monte Carlo reducers of :mod:`.elastic_uncertainty` (parameter scatter and FE error, as
+the rigid-ring POD), the identification noise integrated exactly; the nominal reducer's
+POD (identification noise only) is kept beside it.  Watched: the modes the sensor sees
 (radial ring motion at the sensor at least ``VISIBLE`` of the largest among the band's
 modes), ranked by their largest drop over the sweep against the scatter.  A mode of the
 cracked ring continues an intact one when its subspace match is at least ``MIN_MATCH``;
@@ -32,15 +34,16 @@ from hubvib.elastic.cases import cached_case
 from hubvib.elastic.options import ElasticScene
 from hubvib.elastic.tracking import track_modes
 
+from .elastic_uncertainty import FE_CHANGE_ERROR, MIN_MATCH, elastic_spectrum_model
 from .options import DetectionOptions
 
 #: radial amplitude at the sensor, relative to the largest of the band's modes there, for
 #: a mode to count as seen (mass-normalised shapes)
 VISIBLE = 0.1
 RECORD_LENGTHS = (10.0, 60.0, 600.0)
-#: subspace match below which a cracked mode is not taken to continue an intact one (a
-#: crack through the rim opens the ring: its modes are no longer the intact ring's)
-MIN_MATCH = 0.5
+#: MIN_MATCH (from .elastic_uncertainty): subspace match below which a cracked mode is not
+#: taken to continue an intact one (a crack through the rim opens the ring: its modes are
+#: no longer the intact ring's)
 
 
 @dataclass(frozen=True)
@@ -66,8 +69,17 @@ class ElasticDetection:
     watched : tuple of int
         Watched modes (0-based), best first.
     pod : dict
-        Record length [s] -> family POD per depth [-].
+        Record length [s] -> family POD per depth [-], over the Monte Carlo reducers
+        (parameter scatter and FE error).
     k_rest, foundation, ring_dofs : float, tuple or None, int
+    pod_nominal : dict or None
+        Record length [s] -> family POD per depth of the nominal reducer [-]
+        (identification noise only).
+    samples : int
+        Monte Carlo reducers behind ``pod`` (0: ``pod`` is the nominal reducer's).
+    scatter : tuple
+        Relative scatter (masses, stiffnesses, mounting) [-] and the FE error of a
+        crack's change [-].
     """
 
     depths: tuple
@@ -90,6 +102,9 @@ class ElasticDetection:
     ring_dofs: int
     sensor_angle: float
     lowest_ring_mode: tuple | None = None
+    pod_nominal: dict | None = None
+    samples: int = 0
+    scatter: tuple = ()
 
     @property
     def bilinear_hz(self) -> np.ndarray:
@@ -174,16 +189,31 @@ def _pad(values: np.ndarray, n: int) -> np.ndarray:
 
 
 def family_pod(shift_hz: np.ndarray, sigma_hz: np.ndarray, watched, rate: float) -> np.ndarray:
-    """Probability that some watched mode alarms, per depth (rows of ``shift_hz``) [-]."""
+    """Probability that some watched mode alarms, per depth [-]: ``shift_hz`` (depths,
+    modes) of one reducer, or (samples, depths, modes) of Monte Carlo reducers (their mean
+    probability).  A NaN shift (the mode is not tracked) counts as no change."""
     from scipy.stats import norm
 
     z = norm.ppf(1.0 - rate)
-    miss = np.ones(shift_hz.shape[0])
+    shift_hz = np.asarray(shift_hz, dtype=float)
+    miss = np.ones(shift_hz.shape[:-1])
     for i in watched:
-        d = np.nan_to_num(shift_hz[:, i], nan=0.0)
+        d = np.nan_to_num(shift_hz[..., i], nan=0.0)
         scale = math.sqrt(2.0) * sigma_hz[i]
-        miss *= 1.0 - norm.cdf((-d - z * scale) / scale)
-    return 1.0 - miss
+        miss *= norm.cdf((d + z * scale) / scale)
+    pod = 1.0 - miss
+    return pod if pod.ndim == 1 else pod.mean(axis=0)
+
+
+def sampled_shifts(model, options: DetectionOptions, seed: int | None = None) -> np.ndarray:
+    """Changes of every mode of ``options.samples`` Monte Carlo reducers against their own
+    intact spectrum [Hz], (samples, depths, modes); NaN where the nominal continuation is
+    not tracked (``MIN_MATCH``)."""
+    rng = np.random.default_rng(options.seed + 3 if seed is None else seed)
+    f = model.sampled_hz(options, None, options.samples, rng)
+    shift = f - f[:, :1]
+    shift[:, ~model.tracked] = np.nan
+    return shift
 
 
 def case_arguments(design, depths, crack_of, scene: ElasticScene) -> list[tuple]:
@@ -230,7 +260,15 @@ def elastic_detection(design, depths, crack_of, scene: ElasticScene,
     order = seen[np.argsort(-drop[seen] / sigma[options.record_length][seen], kind="stable")]
     watched = tuple(int(i) for i in order[:options.watched_modes])
     rate = options.per_mode_rate(len(watched)) if watched else options.false_alarm_rate
-    pod = {t: family_pod(shift, sigma[t], watched, rate) for t in lengths}
+    pod_nominal = {t: family_pod(shift, sigma[t], watched, rate) for t in lengths}
+    pod, samples = pod_nominal, 0
+    if intact.operators is not None and options.samples > 0:
+        model = elastic_spectrum_model(depths, cases)
+        sampled = sampled_shifts(model, options)
+        pod = {t: family_pod(sampled, sigma[t], watched, rate) for t in lengths}
+        samples = options.samples
+    scatter = (options.scatter_masses, options.scatter_stiffnesses, options.scatter_mounting,
+               FE_CHANGE_ERROR)
     c = intact_away.content
     return ElasticDetection(
         tuple(float(d) for d in depths), intact_away.frequency_hz,
@@ -238,4 +276,5 @@ def elastic_detection(design, depths, crack_of, scene: ElasticScene,
         tuple(x.harmonic_index for x in c), tuple(x.ring_share for x in c),
         open_hz, on_hz, split, sigma, visibility, watched, pod,
         options.detection_probability, options.record_length, intact.k_rest,
-        intact.foundation, intact.ring_dofs, scene.sensor_angle, intact.lowest_ring_mode)
+        intact.foundation, intact.ring_dofs, scene.sensor_angle, intact.lowest_ring_mode,
+        pod_nominal, samples, scatter)

@@ -45,9 +45,7 @@ def side_by_side(study, elastic: ElasticDetection) -> list[str]:
                   if n >= 2 and share >= 0.3), default=None)
     return [
         "**Both ring models** (smallest depth with family POD >= "
-        f"{elastic.detection_probability:g}; the elastic ring for the nominal reducer with "
-        "identification noise only, the rigid ring with parameter scatter and FE error as "
-        "above):", "", *rows, "",
+        f"{elastic.detection_probability:g}; {_scatter_words(elastic)}):", "", *rows, "",
         "They differ because the rigid-ring model has no mode of the ring's own: there the "
         "crack acts only through the ring body's c_ru, c_r in series with a soft mounting "
         "and through one tooth pair's c_rp, which hardly move the lumped modes. The elastic "
@@ -57,8 +55,31 @@ def side_by_side(study, elastic: ElasticDetection) -> list[str]:
         f"moves them tens to hundreds of Hz: {best}.", ""]
 
 
+def _scatter_words(elastic: ElasticDetection) -> str:
+    """How the elastic ring's POD was obtained, for the side-by-side caption."""
+    if not elastic.samples:
+        return ("the elastic ring for the nominal reducer with identification noise only, "
+                "the rigid ring with parameter scatter and FE error as above")
+    masses, springs, mounting, fe = elastic.scatter
+    return (f"both with parameter scatter and FE error: the elastic ring over "
+            f"{elastic.samples} Monte Carlo reducers, masses and the ring's mass "
+            f"{100 * masses:g} %, springs and the ring-planet spring {100 * springs:g} %, "
+            f"the ring's foundation {100 * mounting:g} %, the ring's FE error "
+            f"{100 * fe:g} % of each crack change")
+
+
 def _shift(value: float) -> str:
     return "(not tracked)" if not np.isfinite(value) else f"{value:+.1f} Hz"
+
+
+def _pod_words(elastic: ElasticDetection) -> str:
+    if not elastic.samples:
+        return ("The family POD is the nominal reducer's (identification noise only).")
+    return ("The family POD is the mean over " f"{elastic.samples} Monte Carlo reducers "
+            "(lumped masses and the ring's mass, springs and the ring-planet spring, the "
+            "foundation scattered log-normal, and the ring's FE error on each crack change), "
+            "the identification noise integrated exactly, each against its own intact record; "
+            "the nominal reducer's is in results.json (`family_pod_nominal`).")
 
 
 def elastic_section(elastic: ElasticDetection) -> list[str]:
@@ -81,7 +102,8 @@ def elastic_section(elastic: ElasticDetection) -> list[str]:
         "2 f_open f_intact / (f_open + f_intact). Watched: the modes the sensor at "
         f"{math.degrees(elastic.sensor_angle):g} deg from the cracked tooth sees (radial "
         "ring motion there at least 10 % of the largest), ranked by change against "
-        "scatter. docs/elastic_ring.md has the model, its checks and the ring's modes.", ""]
+        "scatter. " + _pod_words(elastic)
+        + " docs/elastic_ring.md has the model, its checks and the ring's modes.", ""]
     if elastic.lowest_ring_mode is not None:
         f, n = elastic.lowest_ring_mode
         lines += [f"Validity band: the mounted ring's lowest elastic mode of its own is "

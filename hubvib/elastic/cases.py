@@ -1,8 +1,10 @@
 """One crack depth of the elastic ring as a cacheable case: the coupled spectra with
-planet 1 away from and on the cracked tooth (SI)."""
+planet 1 away from and on the cracked tooth, and the reduced ring's operators (SI)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+
+import numpy as np
 
 from .model import elastic_ring, elastic_spectrum, lowest_ring_mode, out_of_contact_tooth
 from .options import ElasticScene
@@ -11,7 +13,13 @@ from .options import ElasticScene
 @dataclass(frozen=True, eq=False)
 class ElasticCase:
     """One crack depth on the elastic ring: the spectra with planet 1 away from and on the
-    cracked tooth (their ``ring`` dropped: light to pickle)."""
+    cracked tooth (their ``ring`` dropped: light to pickle).
+
+    ``operators``: the reduced ring (``lumped.elastic_ring.RingOperators``, dense, M = I);
+    ``foundation_K``: the mounting's part of its reduced stiffness [N/m] (zeros unless on
+    a foundation), so that the mounting can be varied apart from the ring body;
+    ``params``: the lumped model the ring is coupled to.
+    """
 
     depth: float
     away: object
@@ -21,6 +29,9 @@ class ElasticCase:
     ring_dofs: int
     ring_mass: float
     lowest_ring_mode: tuple | None = None  # (Hz, nodal diameters) of the mounted ring alone
+    operators: object = None
+    foundation_K: np.ndarray | None = None
+    params: object = None
 
 
 def carrier_positions(design, tooth: int) -> tuple[int, int]:
@@ -29,6 +40,23 @@ def carrier_positions(design, tooth: int) -> tuple[int, int]:
 
     z = ring_gear(design).teeth
     return (tooth + out_of_contact_tooth(z, design.n_planets)) % z, tooth
+
+
+def reduced_foundation(er) -> np.ndarray:
+    """The foundation's part of the reduced ring stiffness ``V^T F V`` [N/m] (zeros when
+    the ring is not on a foundation)."""
+    size = er.basis.size
+    if er.foundation is None:
+        return np.zeros((size, size))
+    from hubvib.fem.ring_body import support_springs
+
+    body = er.body
+    normal, tangential = support_springs(body.model)
+    F = body.expand.T @ ((er.foundation.k_n * normal + er.foundation.k_t * tangential)
+                         @ body.expand)
+    V = er.basis.V
+    reduced = V.T @ (F @ V)
+    return 0.5 * (reduced + reduced.T)
 
 
 def elastic_case(design, crack, scene: ElasticScene, k_rest: float) -> ElasticCase:
@@ -44,7 +72,8 @@ def elastic_case(design, crack, scene: ElasticScene, k_rest: float) -> ElasticCa
         replace(elastic_spectrum(er, away), ring=None),
         replace(elastic_spectrum(er, on), ring=None), er.k_rest,
         None if er.foundation is None else (er.foundation.k_n, er.foundation.k_t),
-        er.body.ndofs, float(er.body.rigid_mass()[0, 0]), lowest_ring_mode(er))
+        er.body.ndofs, float(er.body.rigid_mass()[0, 0]), lowest_ring_mode(er),
+        er.operators, reduced_foundation(er), er.params)
 
 
 def cached_case(design, crack, scene: ElasticScene, k_rest: float) -> ElasticCase:

@@ -305,6 +305,11 @@ def _elastic_json(elastic) -> dict:
                                                else 1e3 * elastic.first_detectable(t))
                                     for t in elastic.pod},
             "family_pod": {f"{t:g}": [float(p) for p in v] for t, v in elastic.pod.items()},
+            "family_pod_nominal": None if elastic.pod_nominal is None else {
+                f"{t:g}": [float(p) for p in v] for t, v in elastic.pod_nominal.items()},
+            "monte_carlo_samples": elastic.samples,
+            "scatter": None if not elastic.scatter else dict(zip(
+                ("masses", "stiffnesses", "mounting", "fe_change_error"), elastic.scatter)),
             "watched_modes": [i + 1 for i in elastic.watched],
             "k_rest_N_m": elastic.k_rest, "ring_dofs": elastic.ring_dofs,
             "foundation_N_m2": None if elastic.foundation is None else {
@@ -329,7 +334,10 @@ def _elastic_csv(elastic) -> list[dict]:
                          "bilinear_hz": float(elastic.bilinear_hz[k, i]),
                          "split_pair": bool(elastic.split_pair[k, i]),
                          "watched": i in elastic.watched,
-                         "family_pod": float(elastic.pod[elastic.record_length][k])})
+                         "family_pod": float(elastic.pod[elastic.record_length][k]),
+                         "family_pod_nominal": (
+                             None if elastic.pod_nominal is None else
+                             float(elastic.pod_nominal[elastic.record_length][k]))})
     return rows
 
 

@@ -1,0 +1,375 @@
+"""Monte Carlo of the elastic-ring spectrum: parameter scatter and FE error (SI).
+
+Each sample is one reducer as built, scattered like the rigid-ring model's
+(:mod:`.uncertainty`): every lumped mass and the ring's mass by ``scatter_masses``, every
+lumped spring and the ring-planet spring without the ring body ``k_rest`` by
+``scatter_stiffnesses``, the ring's foundation (its mounting) by ``scatter_mounting``,
+log-normal, independent.  The ring body's stiffness is the FE ring's; its discretisation
+error enters as ``z e_i(d)`` on mode i's frequency at depth d, one standard-normal ``z``
+per sample common to every depth and mode, with ``e_i(d) = FE_CHANGE_ERROR |f_i(d) -
+f_i(0)|`` (nominal): the crack's change of a mode is known to ``FE_CHANGE_ERROR`` of
+itself.  The error of the intact frequencies themselves is not modelled: it cancels
+against the reducer's own intact record, not against the model's intact spectrum.
+
+Per depth the coupled model (planet 1 half a planet pitch from the cracked tooth) is
+``K = K_0 + sum_j (s_j - 1) K_j`` with ``K_j`` the parts of the scattered springs and of
+the foundation, and ``M = diag(s_ring I, m_lumped)`` (the reduced ring's mass is the
+identity); every sample's ``M^-1/2 K M^-1/2`` is solved at once (batched ``eigvalsh``).
+A sample's modes are named after the nominal ones in sorted order: mode i at depth d is
+the sample's ``slot_i(d)``-th frequency, where the nominal mode of the cracked ring that
+tracks intact mode i lies (:mod:`hubvib.elastic.tracking`; a split pair's lower member
+is the lower frequency, as the nominal's); :func:`sorted_order_kept` measures how often
+a sample's mode in that place is the nominal's by subspace match.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from hubvib.elastic.tracking import track_modes
+from hubvib.lumped.elastic_ring import RING_DOFS, coupled_matrices
+from hubvib.lumped.network import mass_diagonal, spring_network
+from hubvib.lumped.parameters import MASS_FIELDS
+
+from .drift import Drift
+from .uncertainty import lognormal
+
+__all__ = ["FE_CHANGE_ERROR", "ElasticSpectrum", "ElasticSamples", "elastic_spectrum_model",
+           "draw_elastic", "batched_hz", "depth_operators", "sorted_order_kept"]
+
+#: relative error of a crack's change of a coupled mode from the ring's discretisation:
+#: the crack study's ring mesh gives changes within 1 Hz of the modal mesh's at 9 mm on
+#: the Raba ring, where the watched modes move 100-370 Hz, and the modal mesh's changes
+#: converge to 0.3 Hz over two finer levels (docs/elastic_ring.md)
+FE_CHANGE_ERROR = 0.01
+#: a cracked mode continues an intact one when its subspace match is at least this
+MIN_MATCH = 0.5
+#: relative step of the mesh stiffnesses for the load drift's sensitivity
+LOAD_STEP = 1e-4
+
+
+@dataclass(frozen=True, eq=False)
+class DepthOperators:
+    """One depth's coupled model, split into the parts the samples scatter.
+
+    ``K`` (n, n) [N/m] nominal; ``pieces`` (p, n, n): the part of each name in ``names``
+    (``K`` is linear in each); ``slot`` (modes,): index in the sorted spectrum of the mode
+    that continues each intact mode; ``tracked`` (modes,): whether that continuation
+    matches at least ``MIN_MATCH``.
+    """
+
+    K: np.ndarray
+    pieces: np.ndarray
+    names: tuple
+    n_ring: int
+    mass: np.ndarray
+    slot: np.ndarray
+    tracked: np.ndarray
+
+
+def _lumped_spring_parts(params, ring, tooth: int, k_rest: float):
+    """(names, parts): the coupled stiffness's part of every lumped spring field kept in
+    the coupled model and of ``k_rest`` [N/m]."""
+    mats = coupled_matrices(params, ring, tooth, k_rest)
+    network = spring_network(params.replace(theta=mats.engagement.theta))
+    keep = np.array([i for i in range(params.n_dof) if i not in RING_DOFS])
+    n_ring = ring.size
+    names, parts = [], []
+    for name in dict.fromkeys(network.parameter):
+        if name in ("c_r", "c_ru", "c_rp"):
+            continue
+        rows = [j for j, p in enumerate(network.parameter) if p == name]
+        if not np.any(network.k[rows]):
+            continue
+        G = network.G[np.ix_(rows, keep)]
+        part = np.zeros_like(mats.K)
+        part[n_ring:, n_ring:] = G.T @ (network.k[rows][:, None] * G)
+        names.append(name)
+        parts.append(part)
+    doubled = coupled_matrices(params, ring, tooth, 2.0 * k_rest).K
+    names.append("k_rest")
+    parts.append(doubled - mats.K)
+    return mats, names, parts
+
+
+def depth_operators(case, intact, ring_mass: float) -> DepthOperators:
+    """The coupled model of ``case`` (an ``ElasticCase`` with its operators) at planet 1
+    away from the crack, its parts, and the slots of the intact modes of ``intact``."""
+    if case.operators is None:
+        raise ValueError("the elastic case holds no ring operators: recompute it "
+                         "(hubvib.elastic.cases.cached_case)")
+    tooth = case.away.carrier_tooth
+    mats, names, parts = _lumped_spring_parts(case.params, case.operators, tooth,
+                                              case.k_rest)
+    n_ring = case.operators.size
+    if case.foundation_K is not None and np.any(case.foundation_K):
+        part = np.zeros_like(mats.K)
+        part[:n_ring, :n_ring] = case.foundation_K
+        names.append("foundation")
+        parts.append(part)
+    n = intact.away.frequency_hz.size
+    tracked = track_modes(intact.away, case.away, ring_mass)
+    slot, ok = np.full(n, -1), np.zeros(n, dtype=bool)
+    for j, (ref, match) in enumerate(zip(tracked.reference, tracked.match)):
+        if 0 <= ref < n:
+            slot[ref], ok[ref] = j, match >= MIN_MATCH
+    free = [j for j in range(mats.K.shape[0]) if j not in set(slot)]
+    for i in np.flatnonzero(slot < 0):
+        slot[i] = free.pop(0)
+    return DepthOperators(np.asarray(mats.K), np.array(parts), tuple(names), n_ring,
+                          np.asarray(mats.lumped_mass, dtype=float), slot, ok)
+
+
+@dataclass(frozen=True)
+class ElasticSamples:
+    """``n`` draws of the uncertain reducer on the elastic ring: relative factors [-] of
+    the lumped masses (by field), of the ring's mass, of every scattered stiffness part
+    (by name, as ``DepthOperators.names``), and the FE error's standard normal ``z``."""
+
+    masses: dict
+    ring_mass: np.ndarray
+    stiffness: dict
+    z: np.ndarray
+
+    @property
+    def n(self) -> int:
+        return self.z.size
+
+
+def draw_elastic(model: "ElasticSpectrum", options, n: int, rng) -> ElasticSamples:
+    """``n`` samples under ``options`` (DetectionOptions: ``scatter_masses``,
+    ``scatter_stiffnesses``, ``scatter_mounting``)."""
+    masses = {name: lognormal(1.0, options.scatter_masses, rng, n)
+              for name in model.mass_fields}
+    ring = lognormal(1.0, options.scatter_masses, rng, n)
+    stiffness = {name: lognormal(1.0, options.scatter_mounting if name == "foundation"
+                                 else options.scatter_stiffnesses, rng, n)
+                 for name in model.stiffness_names}
+    return ElasticSamples(masses, ring, stiffness, rng.standard_normal(n))
+
+
+def unscattered(model: "ElasticSpectrum", n: int = 1) -> ElasticSamples:
+    """``n`` copies of the nominal reducer (every factor 1, no FE error)."""
+    ones = np.ones(n)
+    return ElasticSamples({k: ones for k in model.mass_fields}, ones,
+                          {k: ones for k in model.stiffness_names}, np.zeros(n))
+
+
+def batched_hz(op: DepthOperators, samples: ElasticSamples, masks: dict) -> np.ndarray:
+    """Every sample's coupled frequencies at one depth [Hz], ascending, (n, dofs).
+
+    ``masks``: lumped mass field -> which lumped DOFs it is the mass of."""
+    n = samples.n
+    factors = np.column_stack([samples.stiffness.get(name, np.ones(n)) - 1.0
+                               for name in op.names]) if op.names else np.zeros((n, 0))
+    size = op.K.shape[0]
+    K = (factors @ op.pieces.reshape(len(op.names), -1)).reshape(n, size, size)
+    K += op.K
+    lumped = np.ones((n, op.mass.size))
+    for name, mask in masks.items():
+        lumped[:, mask] = samples.masses[name][:, None]
+    mass = np.hstack([np.repeat(samples.ring_mass[:, None], op.n_ring, axis=1),
+                      lumped * op.mass])
+    w = 1.0 / np.sqrt(mass)
+    K *= w[:, :, None]
+    K *= w[:, None, :]
+    values = np.linalg.eigvalsh(K)
+    return np.sqrt(np.clip(values, 0.0, None)) / (2 * math.pi)
+
+
+def sorted_order_kept(model: "ElasticSpectrum", cases, samples: ElasticSamples, k: int,
+                      modes) -> np.ndarray:
+    """Per intact mode of ``modes`` (0-based), the share of ``samples`` at grid depth ``k``
+    whose mode in the nominal's sorted place is the nominal's mode there by subspace match
+    (:func:`hubvib.elastic.tracking.track_modes` of the sample's modes against
+    ``cases[k].away``) [-]: the check that naming a sample's modes by sorted order keeps
+    the nominal's identities."""
+    from types import SimpleNamespace
+
+    op, case = model.operators[k], cases[k]
+    size = op.K.shape[0]
+    factors = np.column_stack([samples.stiffness.get(name, np.ones(samples.n)) - 1.0
+                               for name in op.names])
+    K = (factors @ op.pieces.reshape(len(op.names), -1)).reshape(samples.n, size, size)
+    K += op.K
+    lumped = np.ones((samples.n, op.mass.size))
+    for name, mask in model.masks.items():
+        lumped[:, mask] = samples.masses[name][:, None]
+    w = 1.0 / np.sqrt(np.hstack([np.repeat(samples.ring_mass[:, None], op.n_ring, axis=1),
+                                 lumped * op.mass]))
+    values, vectors = np.linalg.eigh(K * w[:, :, None] * w[:, None, :])
+    shapes = vectors * w[:, :, None]  # mass-normalised
+    count = min(size, case.away.frequency_hz.size + 6)
+    kept = np.zeros(len(modes))
+    for j in range(samples.n):
+        ring = shapes[j, :op.n_ring, :count]
+        other = SimpleNamespace(
+            modes=SimpleNamespace(lumped_mass=op.mass, lumped=shapes[j, op.n_ring:, :count],
+                                  probe=np.asarray(case.operators.probe @ ring)),
+            frequency_hz=np.sqrt(np.clip(values[j, :count], 0.0, None)) / (2 * math.pi))
+        reference = track_modes(case.away, other, cases[0].ring_mass).reference
+        for a, i in enumerate(modes):
+            kept[a] += reference[op.slot[i]] == op.slot[i]
+    return kept / samples.n
+
+
+def _mass_masks(params, lumped_mass: np.ndarray) -> dict:
+    """Lumped mass field -> mask of the coupled model's lumped DOFs whose mass it is."""
+    keep = np.array([i for i in range(params.n_dof) if i not in RING_DOFS])
+    base = mass_diagonal(params)[keep]
+    masks = {}
+    for name in MASS_FIELDS:
+        value = getattr(params, name)
+        if name in ("m_r", "mu_r"):
+            continue  # the ring's mass is the FE body's
+        changed = mass_diagonal(params.replace(**{name: 2.0 * value}))[keep] != base
+        if changed.any():
+            masks[name] = changed
+    return masks
+
+
+@dataclass(frozen=True, eq=False)
+class ElasticSpectrum:
+    """The elastic ring as a spectrum model (``spectrum_model.SpectrumModel``): the
+    spectrum with planet 1 half a planet pitch from the cracked tooth (the crack is in the
+    ring body: it acts at every carrier position) at the sweep's depths ``grid``, linearly
+    interpolated in depth to ``depths``.
+
+    ``labels``: one name per intact mode; ``k_rest`` [N/m]; ``fe_change_error`` [-].
+    """
+
+    grid: tuple
+    operators: tuple
+    masks: dict
+    nominal_grid_hz: np.ndarray
+    labels: tuple
+    k_rest: float
+    foundation: tuple | None
+    fe_change_error: float = FE_CHANGE_ERROR
+    depths: tuple = ()
+    ring: str = "elastic"
+    mesh: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        if not self.depths:
+            object.__setattr__(self, "depths", tuple(self.grid))
+
+    @property
+    def mass_fields(self) -> tuple:
+        return tuple(self.masks)
+
+    @property
+    def stiffness_names(self) -> tuple:
+        return tuple(dict.fromkeys(n for op in self.operators for n in op.names))
+
+    @property
+    def tracked(self) -> np.ndarray:
+        """(grid depths, modes): whether the nominal continuation matches ``MIN_MATCH``."""
+        return np.array([op.tracked for op in self.operators])
+
+    def fe_error_hz(self) -> np.ndarray:
+        """Standard deviation of the FE error of each mode at each grid depth [Hz]."""
+        change = np.abs(self.nominal_grid_hz - self.nominal_grid_hz[0])
+        return self.fe_change_error * change
+
+    def grid_hz(self, samples: ElasticSamples) -> np.ndarray:
+        """Frequencies of the samples at the grid depths [Hz], (n, grid, modes), FE error
+        included."""
+        out = np.empty((samples.n, len(self.grid), self.nominal_grid_hz.shape[1]))
+        for k, op in enumerate(self.operators):
+            out[:, k] = batched_hz(op, samples, self.masks)[:, op.slot]
+        return out + samples.z[:, None, None] * self.fe_error_hz()[None]
+
+    def _interpolated(self, values: np.ndarray, depths) -> np.ndarray:
+        """``values`` (n, grid, modes) at ``depths`` (one set for all, or (n, m) per
+        sample), linearly in depth."""
+        grid = np.asarray(self.grid)
+        depths = np.asarray(depths, dtype=float)
+        per_sample = depths.ndim == 2
+        d = depths if per_sample else np.broadcast_to(depths, (values.shape[0], depths.size))
+        index = np.clip(np.searchsorted(grid, d, side="right") - 1, 0, grid.size - 2)
+        t = (d - grid[index]) / (grid[index + 1] - grid[index])
+        rows = np.arange(values.shape[0])[:, None]
+        low, high = values[rows, index], values[rows, index + 1]
+        exact = t == 0
+        out = (1 - t)[..., None] * low + t[..., None] * high
+        out[exact] = low[exact]
+        return out
+
+    def nominal_hz(self, timing=None, options=None, long_record=None) -> np.ndarray:
+        values = self.nominal_grid_hz[None]
+        return self._interpolated(values, self.depths)[0]
+
+    def sampled_hz(self, options, timing=None, samples: int = 0, rng=None, workers: int = 1,
+                   depth_index=None, long_record=None) -> np.ndarray:
+        drawn = draw_elastic(self, options, samples, rng)
+        return self.frequencies_of(drawn, depth_index)
+
+    def frequencies_of(self, drawn: ElasticSamples, depth_index=None) -> np.ndarray:
+        """Frequencies [Hz] of the drawn samples at ``depths`` (samples, depths, modes), or
+        with ``depth_index`` at depth 0 and that depth (samples, 2, modes)."""
+        values = self.grid_hz(drawn)
+        if depth_index is None:
+            return self._interpolated(values, self.depths)
+        depths = np.asarray(self.depths)[np.asarray(depth_index)]
+        pairs = np.column_stack([np.zeros(drawn.n), depths])
+        return self._interpolated(values, pairs)
+
+    def mode_labels(self) -> tuple:
+        return self.labels
+
+    def drift(self, intact_hz, options) -> Drift:
+        """Temperature: every spring (and the ring body) by ``(e_E + alpha) dT``, every
+        frequency by half that; load: the mesh springs (``c_sp``, ``k_rest``) by ``dL``,
+        the sensitivity by a finite difference of the intact model."""
+        f = np.asarray(intact_hz, dtype=float)
+        per_kelvin = 0.5 * (options.modulus_per_K + options.expansion_per_K) * f
+        op = self.operators[0]
+        stepped = unscattered(self)
+        stepped = replace(stepped, stiffness={
+            name: (np.full(1, 1.0 + LOAD_STEP) if name in ("c_sp", "k_rest") else v)
+            for name, v in stepped.stiffness.items()})
+        moved = batched_hz(op, stepped, self.masks)[0, op.slot]
+        per_load = (moved - self.nominal_grid_hz[0]) / LOAD_STEP
+        return Drift(per_kelvin, per_load, options.temperature_std, options.mesh_load_std)
+
+    def mesh_stiffness(self) -> dict:
+        return {"ring_model": "elastic", "k_rest_N_m": float(self.k_rest),
+                "foundation_N_m2": None if self.foundation is None else {
+                    "normal": self.foundation[0], "tangential": self.foundation[1]},
+                "fe_change_error_relative": self.fe_change_error, **self.mesh}
+
+    def at_depths(self, depths) -> "ElasticSpectrum":
+        depths = np.asarray(depths, dtype=float)
+        if depths[0] != 0 or depths.min() < 0 or depths.max() > self.grid[-1] * (1 + 1e-12):
+            raise ValueError(f"depths {depths[0]:.4g}..{depths.max():.4g} m: they must start "
+                             f"at 0 and stay within the sweep 0..{self.grid[-1]:.4g} m")
+        return replace(self, depths=tuple(float(d) for d in depths))
+
+
+def mode_label(i: int, content) -> str:
+    """``mode 16 (rotational, n = 3)``."""
+    return f"mode {i + 1} ({content.kind}, n = {content.nodal_diameter})"
+
+
+def elastic_spectrum_model(depths, cases, fe_change_error: float = FE_CHANGE_ERROR
+                           ) -> ElasticSpectrum:
+    """The elastic spectrum model of ``cases`` (``ElasticCase`` per depth of ``depths``
+    [m], the first intact, each holding its ring operators)."""
+    intact = cases[0]
+    operators = tuple(depth_operators(case, intact, intact.ring_mass) for case in cases)
+    masks = _mass_masks(intact.params, operators[0].mass)
+    nominal = np.array([case.away.frequency_hz[op.slot] if op.slot.max() <
+                        case.away.frequency_hz.size else np.full(op.slot.size, np.nan)
+                        for case, op in zip(cases, operators)])
+    model = ElasticSpectrum(tuple(float(d) for d in depths), operators, masks, nominal,
+                            tuple(mode_label(i, c) for i, c in
+                                  enumerate(intact.away.content)),
+                            float(intact.k_rest), intact.foundation, fe_change_error)
+    # the nominal reducer as the batched solve gives it: every mode, also those the band
+    # of a cracked spectrum no longer holds
+    solved = np.array([batched_hz(op, unscattered(model), masks)[0, op.slot]
+                       for op in operators])
+    return replace(model, nominal_grid_hz=np.where(np.isfinite(nominal), nominal, solved))
