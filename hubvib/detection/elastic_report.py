@@ -82,7 +82,7 @@ def _pod_words(elastic: ElasticDetection) -> str:
             "the nominal reducer's is in results.json (`family_pod_nominal`).")
 
 
-def elastic_section(elastic: ElasticDetection) -> list[str]:
+def elastic_section(elastic: ElasticDetection, validity=None) -> list[str]:
     """The elastic ring's model, watched modes and their changes per depth."""
     f = elastic.foundation
     mount = ("clamped on the support arcs" if f is None else
@@ -104,11 +104,14 @@ def elastic_section(elastic: ElasticDetection) -> list[str]:
         "ring motion there at least 10 % of the largest), ranked by change against "
         "scatter. " + _pod_words(elastic)
         + " docs/elastic_ring.md has the model, its checks and the ring's modes.", ""]
-    if elastic.lowest_ring_mode is not None:
+    if validity is not None:
+        from hubvib.elastic.validity import validity_lines
+
+        lines += validity_lines(validity)
+    elif elastic.lowest_ring_mode is not None:
         f, n = elastic.lowest_ring_mode
-        lines += [f"Validity band: the mounted ring's lowest elastic mode of its own is "
-                  f"{f:.1f} Hz (n = {n}); the rigid-ring model has no such mode and can hold "
-                  f"only well below it (here below about {f / 2:.0f} Hz).", ""]
+        lines += [f"The mounted ring's lowest elastic mode of its own is {f:.1f} Hz "
+                  f"(n = {n}); the rigid-ring model has no such mode.", ""]
     watched = list(elastic.watched)
     if not watched:
         return lines + ["The sensor sees none of the modes the crack moves.", ""]

@@ -76,6 +76,8 @@ class CrackStudyResult:
     c_rp_comparison: object = None
     elastic: object = None  # hubvib.detection.elastic.ElasticDetection, when the scene asks
     half_length: float | None = None
+    elastic_validity: object = None  # hubvib.elastic.validity.ValidityBand, with ``elastic``
+    elastic_map: object = None  # hubvib.detection.elastic_map.ElasticMap, ``[elastic] map``
 
     @property
     def depths(self) -> np.ndarray:
@@ -271,7 +273,11 @@ def write_crack_study(result: CrackStudyResult, folder: Path,
         "c_rp_methods": (None if result.c_rp_comparison is None
                          else result.c_rp_comparison.rows()),
         "c_rp_other_method_family_pod": _other_family_pod(result.c_rp_comparison),
-        "elastic_ring": None if result.elastic is None else _elastic_json(result.elastic)})))
+        "elastic_ring": None if result.elastic is None else dict(
+            _elastic_json(result.elastic),
+            validity=None if result.elastic_validity is None
+            else _validity_record(result.elastic_validity)),
+        "elastic_map": None if result.elastic_map is None else result.elastic_map.rows()})))
     if result.elastic is not None:
         files.append(write_csv(folder / "elastic_ring.csv", _elastic_csv(result.elastic)))
     plots = []
@@ -296,6 +302,12 @@ def write_crack_study(result: CrackStudyResult, folder: Path,
         result, [p.name for p in plots], pictures(renders), pictures(fe_renders))))
     result.files = files
     return result
+
+
+def _validity_record(band) -> dict:
+    from hubvib.elastic.validity import validity_record
+
+    return validity_record(band)
 
 
 def _elastic_json(elastic) -> dict:
@@ -360,6 +372,11 @@ def _plots(scene: Scene, result: CrackStudyResult, study, folder: Path) -> list[
                         _pod_modes(study)),
             cached_plot(folder / "carrier_position.png", figures.carrier_figure, name,
                         study.carrier, result.kind)]
+    if result.elastic_map is not None:
+        from hubvib.detection.elastic_map_report import map_figure
+
+        plots.append(cached_plot(folder / "elastic_map.png", map_figure, name,
+                                 result.elastic_map))
     return plots
 
 
@@ -548,7 +565,11 @@ def crack_report(result: CrackStudyResult, plots: list[str], renders: list[str],
     if result.elastic is not None:
         from hubvib.detection.elastic_report import elastic_section
 
-        lines += elastic_section(result.elastic)
+        lines += elastic_section(result.elastic, result.elastic_validity)
+    if result.elastic_map is not None:
+        from hubvib.detection.elastic_map_report import map_section
+
+        lines += map_section(result.elastic_map) + _image("elastic_map.png", plots)
     watched = (list(study.watched_modes()) if study is not None
                else list(np.argsort(-np.abs(result.omega[-1] - result.omega[0]))[:4]))
     lines += mesh_stiffness_section(model, iso_c_rp(sweep.reducer), result.c_rp_comparison,
@@ -686,6 +707,8 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
             started = time.perf_counter()
             with working("elastic ring"), timed("elastic"):
                 result.elastic = finish_elastic(scene, elastic_cases)
+                result.elastic_validity, result.elastic_map = elastic_band_and_map(
+                    scene, result.elastic)
             stage(f"elastic ring ({len(result.elastic.depths)} depths)", started)
         started = time.perf_counter()
         if "signal" in scene.tables:  # the vibration signature beside the frequency study
@@ -743,6 +766,28 @@ def finish_elastic(scene: Scene, begun):
     return elastic_detection(sweep.reducer, elastic_depths(sweep),
                              lambda d: crack_of(sweep, d), _elastic_scene(scene),
                              detection_options(scene), cases)
+
+
+def elastic_band_and_map(scene: Scene, elastic) -> tuple:
+    """The rigid-ring model's computed validity band on the scene's mounting (planet 1 where
+    the detection's statistic has it) and, when ``[elastic] map`` asks, the elastic ring's
+    detectability against the foundation scale; both through the result cache."""
+    from hubvib.elastic.cases import carrier_positions
+    from hubvib.elastic.validity import cached_validity_band
+
+    es = _elastic_scene(scene)
+    sweep = scene.crack
+    away = carrier_positions(sweep.reducer, crack_of(sweep, sweep.depths[-1]).tooth)[0]
+    band = cached_validity_band(sweep.reducer, es.options, away)
+    if not es.map:
+        return band, None
+    from hubvib.detection.elastic import family_pod
+    from hubvib.detection.elastic_map import elastic_map
+    from hubvib.detection.options import detection_options
+
+    emap = elastic_map(sweep.reducer, elastic_depths(sweep), lambda d: crack_of(sweep, d), es,
+                       detection_options(scene), pod=family_pod, k_rest=elastic.k_rest)
+    return band, emap
 
 
 def elastic_depths(sweep) -> tuple:
