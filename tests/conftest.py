@@ -1,11 +1,8 @@
 import importlib.util
 import os
-import sys
 from pathlib import Path
 
 import pytest
-
-sys.path.insert(0, str(Path(__file__).parent))
 
 #: worker processes of the whole default run (pytest-xdist, the ``test`` extra): the
 #: machine the default command must finish on has two cores
