@@ -192,7 +192,7 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
     and solve half the face width, its mid-plane a mirror plane (``fem.solid``): for a
     mirror-symmetric case (crack, if any, centred on the width) the whole ring's solution
     on the half's mesh (the same to round-off on a mirrored mesh, within discretisation of
-    another whole mesh: ``tests/test_half_width.py``), at ~40 % of the CPU time on the 3D
+    another whole mesh: ``tests/fem/test_half_width.py``), at ~40 % of the CPU time on the 3D
     scene; ``dofs`` are then the half's.
     """
     if definition not in RING_DEFINITIONS:

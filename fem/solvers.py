@@ -17,7 +17,7 @@ later.  PARDISO takes a model's node blocks as they are (``factorise_blocks``),
 factorised in single precision and refined in double to 1e-12 (``fem/pardiso.py``;
 on the solid ring about twice as fast as pypardiso's CSR path, same run: README), or, for
 ``DOUBLE_COLUMNS`` load columns and more, in double precision.  SuperLU runs
-with one BLAS thread (``fem/threads.py``).  Every solver refuses a singular
+with one BLAS thread (``hubvib.foundation.blas``).  Every solver refuses a singular
 (unsupported) system with ``SingularSystemError``.
 
 Measured on the solid ring (5.6e5 DOFs, one load column, 2 loaded cores, issue 25) and
@@ -236,7 +236,7 @@ class _SuperLU(Factor):
                 f"{diag.min() / diag.max():.1e}): check the supports")
 
     def _solve(self, columns):
-        with blas_threads(1):  # small BLAS kernels: more threads only wait (hubvib/blas.py)
+        with blas_threads(1):  # small BLAS kernels: more threads only wait (foundation/blas.py)
             return self._lu.solve(columns)
 
     def free(self):

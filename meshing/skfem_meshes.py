@@ -7,7 +7,7 @@ tooth loads 1.0-1.3 s that way, 0.7 s and 0.35 s with these keys (same mesh,
 alternated in one run, loaded 2-core machine).  Here each sorted vertex tuple is one
 int64 key (its vertices as digits in base ``vertices``), and ``np.unique`` of the keys gives the same entities, in the same
 (lexicographic) order, with the same first-occurrence indices and element map:
-``tests/test_solid.py`` compares both bit for bit.  Imported lazily (it imports
+``tests/fem/test_solid.py`` compares both bit for bit.  Imported lazily (it imports
 scikit-fem), by ``to_skfem``.
 """
 from __future__ import annotations

@@ -82,7 +82,8 @@ def test_import_lumped_stays_light():
 def test_mesh_planet_json(capsys, tmp_path):
     pytest.importorskip("gmsh")
     data = _json(capsys, ["mesh", "planet", "--out", str(tmp_path), "--json"])
-    # exact area of the planet body (closed forms, tests/test_meshing.py), P2 within 1e-5
+    # exact area of the planet body (closed forms, tests/meshing/test_plane_meshes.py),
+    # P2 within 1e-5
     assert abs(data["relative_error"]) < 1e-5 and data["min_quality_sicn"] > 0.5
     assert {"supports", "tooth0_load"} <= set(data["groups"])
     assert all((tmp_path / f"planet.{ext}").stat().st_size > 0 for ext in ("vtu", "png"))

@@ -123,15 +123,22 @@ def _written(page: Path) -> str:
 def test_python_blocks_of_the_pages_run(page, capsys):
     """Every ``python`` code block a page's author wrote runs as shown (house style: docs
     code is run); the generated blocks are checked against their generators."""
-    for block in re.findall(r"```python\n(.*?)```", _written(DOCS / page), re.S):
+    for number, block in enumerate(re.findall(r"```python\n(.*?)```", _written(DOCS / page), re.S)):
         exec(compile(block, page, "exec"), {})
-    assert capsys.readouterr().out, f"{page}: the blocks print what their comments describe"
+        printed = capsys.readouterr().out.splitlines()
+        prints = [line for line in block.splitlines() if line.startswith("print(")]
+        assert len(printed) == len(prints), (
+            f"{page}, python block {number + 1}: {len(prints)} print lines, each commented with "
+            f"what it shows, but the block printed {len(printed)} lines: {printed}")
+        for line, statement in zip(printed, prints):
+            assert re.search(r"\d", line) and not re.search(r"\bnan\b|\binf\b", line), (
+                f"{page}: {statement.strip()!r} printed {line!r}, not the finite figures "
+                "its comment describes")
 
 
 @pytest.mark.slow
 def test_site_builds_in_strict_mode(tmp_path):
-    mkdocs = pytest.importorskip("mkdocs")
-    assert mkdocs
+    pytest.importorskip("mkdocs")
     env = dict(os.environ, NO_MKDOCS_2_WARNING="1", DISABLE_MKDOCS_2_WARNING="true")
     result = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict",
                              "--site-dir", str(tmp_path / "site")], cwd=ROOT, env=env,

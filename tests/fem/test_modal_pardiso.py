@@ -32,7 +32,7 @@ def ring_model():
 
 
 # ~5 s with the ring's mesh: the default run's renders take the PARDISO path
-# (tests/test_render.py: test_fe_ring_fields_physics)
+# (tests/render/test_renders.py: test_fe_ring_fields_physics)
 @pytest.mark.slow
 @pytest.mark.parametrize("case, groups, first", [("clamped", ["supports"], 0),
                                                   ("free-free", None, 3)],
@@ -58,7 +58,8 @@ def test_pardiso_modes_equal_superlu_modes(ring_model, case, groups, first):
         f"PARDISO: Rayleigh quotient = eigenvalue to 1e-12 (got {pardiso.rayleigh_error:.1e})"
 
 
-@pytest.mark.slow  # ~2 s; the default run's renders take the "auto" path (tests/test_render.py)
+# slow: the default run's renders take the "auto" path (tests/render/test_renders.py)
+@pytest.mark.slow
 def test_auto_solver_is_pardiso_and_repeatable(ring_model):
     """``solver="auto"`` picks PARDISO where pypardiso is installed
     (``fem.solvers.pick``): the same modes as naming it, twice alike."""

@@ -1,7 +1,7 @@
 """Stiff and extreme cases against an independent 50-digit reference.
 
 The reference is built here from the paper's energy by polarisation in mpmath
-(tests/energy_reference.py), sharing no code with the solver under test.
+(tests/helpers/energy_reference.py), sharing no code with the solver under test.
 """
 import numpy as np
 import pytest

@@ -1,7 +1,7 @@
 """Crack start kinds and front shapes (issue 21 item 2), root cracks turned -90..+60 deg
 and the ``[crack] path`` key (issue 23 item 3): geometry against independent
 computations, and every refusal naming its key and range.  Meshing at large angles and
-the predicted path's FE cases are in tests/test_crack_path_sweep.py (slow)."""
+the predicted path's FE cases are in tests/studies/test_crack_path_sweep.py (slow)."""
 import math
 
 import numpy as np

@@ -42,7 +42,7 @@ def test_root_crack_meshes_and_solves_at_large_angles(design, degrees):
     other fillet), mesh with every flank facet on a cell, the crack tip on the path's tip
     (1e-12 m), and give a finite c_ru within a factor 2 of the intact ring's on the same
     sizes, below it once the crack splits the rim (+60..90 deg are refused:
-    tests/test_crack_kinds.py)."""
+    tests/meshing/test_crack_kinds.py)."""
     ring = ring_gear(design)
     intact = ring_stiffness(ring, ring_mesh(ring, None, COARSE), carrier_teeth=[0],
                             solver="superlu").c_ru

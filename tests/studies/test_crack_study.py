@@ -154,7 +154,8 @@ def test_crack_study_physics_and_cache(tmp_path, capsys, monkeypatch):
     assert first["fe_cases_computed"] == 3
     stiffness = np.genfromtxt(tmp_path / "a" / "stiffness_vs_depth.csv", delimiter=",",
                               names=True)
-    # c_ru falls monotonically with depth (mean over carrier positions, test_fem.py)
+    # c_ru falls monotonically with depth (mean over carrier positions,
+    # tests/fem/test_elasticity_and_ring_stiffness.py)
     assert np.all(np.diff(stiffness["fe_c_ru_N_m"]) < 0)
     # series: the mounting is identified so that the intact total is the paper's c_ru
     assert stiffness["lumped_c_ru_N_m"][0] == pytest.approx(1e6, rel=1e-12)
