@@ -43,7 +43,7 @@ USABLE_QUALITY = 0.1
 #: (2: the crack case stores the absolute intact engaged c_rp, issue 22 item 6; 3: the
 #: crack case's c_ru and c_r are the work-conjugate rim parts, the root-land readings and
 #: the intact engaged c_rp over the contact window beside them, issue 25 item 1; 4: the
-#: solid case stores its cracked tooth's line-load compliance, issue 23 item 4)
+#: solid case stores its cracked tooth's line-load compliance)
 SCHEMA_VERSION = 4
 
 
@@ -157,7 +157,7 @@ class RingEstimate:
 
 
 #: what ``estimate_ring`` gives as c_ru and c_r: the root-land readings or the
-#: work-conjugate rim parts (the lumped model's definition, issue 25)
+#: work-conjugate rim parts (the lumped model's definition)
 RING_DEFINITIONS = ("root_land", "rim")
 
 

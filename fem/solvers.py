@@ -20,7 +20,7 @@ on the solid ring about twice as fast as pypardiso's CSR path, same run: README)
 with one BLAS thread (``hubvib.foundation.blas``).  Every solver refuses a singular
 (unsupported) system with ``SingularSystemError``.
 
-Measured on the solid ring (5.6e5 DOFs, one load column, 2 loaded cores, issue 25) and
+Measured on the solid ring (5.6e5 DOFs, one load column, 2 loaded cores) and
 not taken: pyamg smoothed aggregation with the six rigid-body modes (symmetric strength,
 4 levels, operator complexity 1.11) needs 45 s to set up and 63 / 77 / 92 CG iterations
 (80-165 s) for 1e-8 / 1e-10 / 1e-12, against 15-22 s for PARDISO in the same run (c_ru

@@ -4,7 +4,7 @@ Built from the FE rows of a crack sweep (``hubvib.studies.crack_sweep.run_fe_cas
 or from synthetic rows in tests.  ``c_ru`` and ``c_r`` of the lumped model
 follow :func:`hubvib.detection.series.ring_support`.
 
-Planet 1's ring mesh while the cracked tooth is in mesh (issue 22 item 6): the
+Planet 1's ring mesh while the cracked tooth is in mesh: the
 crack adds the compliance ``dq = (1/ratio - 1) / c_rp_FE`` [m/N] to the tooth
 pair, where ``ratio`` is the FE cracked / intact c_rp over the cracked tooth's contact
 window and ``c_rp_FE`` the FE intact mean over the same window (the ratio's

@@ -1,4 +1,4 @@
-"""Vibration signature of a cracked ring gear at a fixed sensor (issue 14).
+"""Vibration signature of a cracked ring gear at a fixed sensor.
 
 FE mesh-cycle stiffness (``mesh_curves``) placed per planet by the gear geometry
 (``mesh_phase``) drives the lumped model in time (``dynamics``, ``time_response``,

@@ -1,4 +1,4 @@
-"""Curated package faces (issue 21): each package's ``__all__`` is what a user of that
+"""Curated package faces: each package's ``__all__`` is what a user of that
 layer imports, resolved on first use (PEP 562, ``hubvib.foundation.lazy``), so importing
 a package stays light and its face stays true."""
 import importlib

@@ -1,4 +1,4 @@
-"""What ``pip install .`` puts into site-packages: only the ``hubvib`` namespace (issue 12)."""
+"""What ``pip install .`` puts into site-packages: only the ``hubvib`` namespace."""
 import subprocess
 import sys
 import tomllib

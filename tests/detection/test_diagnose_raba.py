@@ -3,7 +3,7 @@ modes 13/15/16/18, 2 % damping, 10 s records.
 
 The calibration targets are checked on the crack model under the ratio method (the
 preset's c_rp = 3e8 N/m times the FE ratio, an upper bound of the crack's effect, where a
-10 s record identifies a crack); under the primary series method (issue 22 item 6) the
+10 s record identifies a crack); under the primary series method the
 crack moves these modes by less than one identification scatter, and the diagnosis says
 so (last test)."""
 import numpy as np

@@ -1,4 +1,4 @@
-"""The load envelope of ``hubvib crack-path --load envelope`` (issue 23 item 1: "the load is
+"""The load envelope of ``hubvib crack-path --load envelope`` ("the load is
 the planet's mesh force at the worst position of the mesh cycle (and optionally the
 envelope over the cycle)"): the MTS driving force against its closed forms, the mesh
 cycle's load positions against the gear pair's geometry, and (slow) the envelope growth

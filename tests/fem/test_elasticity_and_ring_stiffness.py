@@ -30,7 +30,7 @@ EXACT = 4 * math.pi * STEEL.shear_modulus * T * A ** 2 * B ** 2 / (B ** 2 - A **
 
 def test_annulus_curved_p2_reaches_1e6():
     """Exact k_theta = 4 pi G t a^2 b^2 / (b^2 - a^2) (Timoshenko & Goodier, Lame problem):
-    curved P2 within 1e-6 at under 1e4 DOFs (issue 4)."""
+    curved P2 within 1e-6 at under 1e4 DOFs."""
     k, dofs = annulus_k_theta(4e-3, 2)
     assert dofs < 1e4
     assert k == pytest.approx(EXACT, rel=1e-6)
@@ -110,7 +110,7 @@ def test_ring_stiffness_needs_its_groups():
         ring_stiffness(RING, mesh)
 
 
-# -- boundary integrals and point location on fine curved meshes (issue 17, item 19) -------
+# -- boundary integrals and point location on fine curved meshes -------
 
 def _small_curved_mesh(side=1e-5, origin=(0.1, 0.05)):
     """A curved-type (isoparametric P2) square of side ``side`` [m] far from the origin, with
@@ -189,7 +189,7 @@ def test_c_ru_at_scale_0_6():
     assert 1.6632e10 < value < 1.6638e10
 
 
-# -- one factorisation for c_ru, c_r and the cracked tooth (issue 16, item 4) ---------------
+# -- one factorisation for c_ru, c_r and the cracked tooth ---------------
 
 def test_one_factorisation_gives_the_ring_and_the_cracked_tooth():
     """Ring loads and the cracked tooth's unit forces as columns of one solve: c_ru at every
@@ -207,7 +207,7 @@ def test_one_factorisation_gives_the_ring_and_the_cracked_tooth():
     alone = ring_stiffness(RING, mesh, solver="superlu")  # and a second solver
     np.testing.assert_allclose(ring.c_ru_positions, alone.c_ru_positions, rtol=1e-9)
     assert ring.c_r == pytest.approx(alone.c_r, rel=1e-9)
-    # the work-conjugate rim parts (the lumped model's, issue 25) from the shared solve too
+    # the work-conjugate rim parts (the lumped model's) from the shared solve too
     np.testing.assert_allclose(ring.work.c_ru_rim_positions, alone.work.c_ru_rim_positions,
                                rtol=1e-9)
     assert ring.work.c_r_rim == pytest.approx(alone.work.c_r_rim, rel=1e-9)

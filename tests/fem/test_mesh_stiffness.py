@@ -22,7 +22,7 @@ from hubvib.fem.tooth_stiffness import EngagedMesh
 from hubvib.studies.crack_study import crack_study_from_fe, write_crack_study
 from hubvib.studies.scene import load_scene, parse_scene
 
-#: the FE intact c_rp of Raba 118/76 (issue 22: 1.48e9 N/m) and the FE cracked/intact
+#: the FE intact c_rp of Raba 118/76 (1.48e9 N/m) and the FE cracked/intact
 #: ratio while the cracked tooth is in contact, at 3 mm (default mesh: 0.93998; it was
 #: 0.97394 over the cycles' eps + 2 pitches, which diluted it by eps / (eps + 2))
 C_RP_FE, RATIO_3MM = 1.48e9, 0.9399812774938344

@@ -1,4 +1,4 @@
-"""The ring's work-conjugate c_ru from one tooth pitch (issue 25, items 2-3): the pitch mesh,
+"""The ring's work-conjugate c_ru from one tooth pitch: the pitch mesh,
 its exact condensation, the cyclic solve, and the convergence of the pitch family."""
 import csv
 import math

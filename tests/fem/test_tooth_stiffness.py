@@ -1,4 +1,4 @@
-"""Tooth and mesh stiffness, bearings, FE modes and the edge-cracked strip (issue 4).
+"""Tooth and mesh stiffness, bearings, FE modes and the edge-cracked strip.
 
 Each assertion names its independent reference and tolerance.
 """
@@ -249,7 +249,7 @@ def test_clamped_ring_has_no_zero_mode_and_bad_groups_are_named():
 @pytest.mark.parametrize("ratio", [0.2, 0.4, 0.6])
 def test_edge_cracked_strip_matches_brown_srawley(ratio):
     """Compliance added by the crack vs the integral of the Brown-Srawley polynomial (Tada,
-    Paris & Irwin 2.13, itself within 0.2 % for a/W <= 0.6): within 1 % (issue 4; measured
+    Paris & Irwin 2.13, itself within 0.2 % for a/W <= 0.6): within 1 % (measured
     0.2-0.35 %).  The uncracked strip is exact beam theory, 2L / (E I), to 1e-10."""
     W, t = 0.01, 0.001
     c0, _ = fe_rotation_compliance(0.0, W, t)

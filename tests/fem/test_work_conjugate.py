@@ -1,4 +1,4 @@
-"""Work-conjugate ring stiffnesses (issue 25, item 1): c_ru and c_r from the work of the
+"""Work-conjugate ring stiffnesses: c_ru and c_r from the work of the
 loads, and the exact split of c_ru into the rim and the loaded teeth."""
 import csv
 import math

@@ -1,5 +1,5 @@
-"""Crack start kinds and front shapes (issue 21 item 2), root cracks turned -90..+60 deg
-and the ``[crack] path`` key (issue 23 item 3): geometry against independent
+"""Crack start kinds and front shapes, root cracks turned -90..+60 deg
+and the ``[crack] path`` key: geometry against independent
 computations, and every refusal naming its key and range.  Meshing at large angles and
 the predicted path's FE cases are in tests/studies/test_crack_path_sweep.py (slow)."""
 import math

@@ -120,7 +120,7 @@ def test_load_force_has_the_base_radius_as_arm():
 
 
 def test_curved_p2_mesh_area_matches_exact(intact):
-    """Curved P2 mesh area within 1e-5 of the exact geometry (issue 3); mass likewise."""
+    """Curved P2 mesh area within 1e-5 of the exact geometry; mass likewise."""
     assert measure.area(intact) == pytest.approx(RING.area(), rel=1e-5)
     assert measure.mass(intact, RING.gear.face_width, RING.density) == pytest.approx(6.8, rel=1e-5)
 

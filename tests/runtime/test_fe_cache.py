@@ -171,7 +171,7 @@ def _drop_top(key):
 
 
 def _schema_1_entry(path: Path) -> None:
-    """An entry as schema 1 wrote it (issue 22 item 6): no absolute intact c_rp, validly
+    """An entry as schema 1 wrote it: no absolute intact c_rp, validly
     signed, ``schema`` 1."""
     data = json.loads(path.read_text())
     for key in ("c_rp_engaged_intact_N_m", "c_rp_engaged_intact_min_N_m"):
@@ -239,7 +239,7 @@ def test_damaged_entry_is_recomputed_with_one_notice(fake, capsys, name):
 
 
 def test_swapped_entries_are_both_recomputed(fake, capsys):
-    """Two depths' files exchanged: each holds the other case's inputs (issue 17: the
+    """Two depths' files exchanged: each holds the other case's inputs (the
     depth column read 0, 12, 8, 4 mm)."""
     sweep = make_sweep()
     run_fe_cases(sweep, progress=False)

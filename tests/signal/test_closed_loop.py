@@ -1,4 +1,4 @@
-"""Closed loop (issue 24 item 7): records simulated by ``hubvib signal`` are read by
+"""Closed loop: records simulated by ``hubvib signal`` are read by
 ``hubvib diagnose --record ... --baseline-record ...``, which recovers the crack depth.
 
 Settings of the loop (the shipped scene ``raba118_closed_loop``): Raba 118/76 (preset), plane root crack of tooth

@@ -1,4 +1,4 @@
-"""Time integration of the lumped model against independent references (issue 14, point 1)."""
+"""Time integration of the lumped model against independent references."""
 import math
 from dataclasses import replace
 

@@ -1,5 +1,5 @@
 """Indicators by their published definitions (Lebold et al. 2000), each on a synthetic TSA
-whose value is known in closed form (issue 24, item 2)."""
+whose value is known in closed form."""
 import math
 
 import numpy as np

@@ -1,5 +1,5 @@
 """Manufacturing errors, load sharing, the energy off the multiples of N, and contact loss
-(issue 24, items 1 and 6)."""
+."""
 import math
 from dataclasses import replace
 

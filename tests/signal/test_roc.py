@@ -1,4 +1,4 @@
-"""Detection rates from many records (issue 24, item 5): the AUC against its count
+"""Detection rates from many records: the AUC against its count
 definition, the family-wise false-alarm rate measured on a noise model the thresholds
 were not tuned on, and POD rising with the fault."""
 import math

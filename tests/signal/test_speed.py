@@ -1,4 +1,4 @@
-"""Speed fluctuation, tacho and order tracking before the TSA (issue 24, item 4)."""
+"""Speed fluctuation, tacho and order tracking before the TSA."""
 import math
 
 import numpy as np

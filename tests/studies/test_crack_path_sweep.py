@@ -1,4 +1,4 @@
-"""Crack scenes that follow the path (issue 23 item 3), slow: root cracks at -75 and -90 deg
+"""Crack scenes that follow the path, slow: root cracks at -75 and -90 deg
 mesh and solve on the Raba ring and a thin-rim variant, and a sweep with ``path =
 "predicted"`` takes the crack-path command's path, meshes the polyline truncated at each
 depth, and carries its FE values into the lumped model and the detection study."""
@@ -67,7 +67,7 @@ def test_root_crack_meshes_and_solves_at_large_angles(design, degrees):
 
 @pytest.mark.slow
 def test_predicted_sweep_follows_the_crack_path(tmp_path, monkeypatch, capsys):
-    """``path = "predicted"`` (issue 23 item 3), Raba tooth 0, depths 0 and 3 mm:
+    """``path = "predicted"``, Raba tooth 0, depths 0 and 3 mm:
 
     - the path's first step is the crack-path command's (``hubvib crack-path --tooth 0
       --steps 2 --json``: same points to 1e-12 m, same first kink angle to 1e-9 deg);
@@ -99,7 +99,7 @@ def test_predicted_sweep_follows_the_crack_path(tmp_path, monkeypatch, capsys):
     options = scaled_options(ACCURACY["fast"])
     direct = crack_level(ring, planet, at_3mm, path_ring_mesh(ring, at_3mm, options), options,
                          steel, RABA.n_planets)
-    # c_ru, c_r: the work-conjugate rim parts (issue 25), the root-land readings beside
+    # c_ru, c_r: the work-conjugate rim parts, the root-land readings beside
     assert fe[1]["c_ru_N_m"] == pytest.approx(direct.ring.work.c_ru_rim, rel=1e-9)
     assert fe[1]["c_r_N_m"] == pytest.approx(direct.ring.work.c_r_rim, rel=1e-9)
     assert fe[1]["c_ru_root_land_N_m"] == pytest.approx(direct.ring.c_ru, rel=1e-9)
@@ -112,7 +112,7 @@ def test_predicted_sweep_follows_the_crack_path(tmp_path, monkeypatch, capsys):
         "mean c_rp ratio predicted < radial (docs/crack_path.md, 0.923 vs 0.940)")
 
     result = crack_study_from_fe(scene, fe, computed, detection=True)
-    # the intact mean over the contact window is the ratio's denominator (issue 25)
+    # the intact mean over the contact window is the ratio's denominator
     ratio, c_fe = fe[1]["c_rp_engaged_ratio"], fe[1]["c_rp_engaged_intact_window_N_m"]
     series = 1 / (1 + scene.params.c_rp * (1 / ratio - 1) / c_fe)  # the crack's compliance
     np.testing.assert_allclose(result.c_rp_factor, [1.0, series], rtol=1e-12,
