@@ -1,4 +1,4 @@
-"""Issue 21: the layers hold (import-linter contracts in pyproject.toml) and no module
+"""The layers hold (import-linter contracts in pyproject.toml) and no module
 imports itself back through others (grimp's graph, imports inside functions included).
 
 The stage folders (fem/, meshing/, lumped/, validation/) sit at the repository root and

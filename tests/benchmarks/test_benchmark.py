@@ -34,7 +34,7 @@ def test_reference_outside_the_asymptotic_range_is_the_finest_level(values):
 
 
 def test_ring_levels_reach_past_the_default():
-    """Issue 17, item 19: the c_ru table goes at least two levels finer than the default
+    """The c_ru table goes at least two levels finer than the default
     (scale 1), and its reference levels are all finer than the default."""
     from hubvib.benchmarks.ring_2d import REFERENCE_SCALES
     from hubvib.validation.convergence import scales_of

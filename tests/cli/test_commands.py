@@ -128,7 +128,7 @@ def test_convergence_writes_csv_plot_and_resumes(capsys, tmp_path):
 
 @pytest.mark.slow
 def test_stiffness_prints_every_stiffness_intact_and_cracked(capsys):
-    """Issue 4's done-when: c_ru, c_r, c_rp, c_sp, c_p (and c_c) intact and cracked, each with
+    """Every stiffness: c_ru, c_r, c_rp, c_sp, c_p (and c_c) intact and cracked, each with
     an error estimate and a run time; the crack lowers c_ru and c_r, and c_rp while engaged."""
     from hubvib.fem.bearing import RollerBearing
 

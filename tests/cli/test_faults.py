@@ -1,4 +1,4 @@
-"""Issue 17, fault injection: Ctrl-C, killed parents, closed pipes, a full disk, concurrent
+"""Fault injection: Ctrl-C, killed parents, closed pipes, a full disk, concurrent
 runs.  Real processes and signals where it matters; lumped-only scenes keep it fast.
 
 A run either leaves its whole set of files in the output folder or leaves the folder as it

@@ -1,6 +1,6 @@
-"""Issue 26, items 1-5: every file input through one guarded reader, physical ranges
+"""Every file input through one guarded reader, physical ranges
 checked before computing, errors that name the file, line or key, and contradictions
-refused.  Each test names the issue item it covers; each failed before its fix."""
+refused."""
 from __future__ import annotations
 
 import json
@@ -52,7 +52,7 @@ def _bounded(call, fifo: Path | None = None):
     if not done.wait(20):
         if fifo is not None:
             os.close(os.open(fifo, os.O_WRONLY | os.O_NONBLOCK))
-        pytest.fail("the reader blocked on a FIFO (issue 26 item 1)")
+        pytest.fail("the reader blocked on a FIFO")
     if "error" in result:
         raise result["error"]
     return result["value"]
@@ -379,7 +379,7 @@ def test_damaged_convergence_levels_file_is_named(content, words, tmp_path, caps
 
 # Item 4, "not enough values to unpack": every input that takes a pair or a list, given too
 # few values, an empty string, a list for a table or a row of one column, is refused naming
-# its key, flag or file (the origin of the issue's message was not found again: this keeps
+# its key, flag or file (the origin of the reported message was not found again: this keeps
 # each of these inputs from producing one).
 _DESIGN = """[design]
 n_planets = 3

@@ -1,6 +1,6 @@
-"""Issue 17: every bad input is one line naming the flag, key or file, exit 2, nothing written.
+"""Every bad input is one line naming the flag, key or file, exit 2, nothing written.
 
-Each test names the issue item it covers.  The fault-injection tests (signals, a full
+The fault-injection tests (signals, a full
 disk, killed parents, concurrent runs) are in ``test_faults.py``.
 """
 import codecs
@@ -476,9 +476,9 @@ def test_failed_set_changes_nothing_and_says_what_was_discarded(tmp_path):
 
 
 def test_atomic_path_is_the_only_file_replacer():
-    """Issue 12 point 5: one atomic-write helper, hubvib.foundation.output.atomic_path.  A module that
+    """One atomic-write helper, hubvib.foundation.output.atomic_path.  A module that
     renames a temporary file into place itself is listed below until it uses the helper
-    (those files are not this change's; the issue report gives the lead the exact edit)."""
+    (the list may only shrink)."""
     root = Path(__file__).parents[2]
     patterns = ("os.replace(", "mkstemp(", "tmp.replace(")
     writers = {p.relative_to(root).as_posix()

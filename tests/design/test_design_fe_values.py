@@ -48,7 +48,7 @@ def test_hub4_mesh_stiffness_has_the_iso_6336_order_of_magnitude():
 
 
 def test_stiffness_command_from_a_design_file(tmp_path, capsys):
-    """Issue 12: `hubvib stiffness --design` gives c_ru, c_r, c_sp, c_rp in the --json shape
+    """`hubvib stiffness --design` gives c_ru, c_r, c_sp, c_rp in the --json shape
     cases -> case -> quantity -> value_N_m, and the ring the mesh command builds has the
     design's exact mass."""
     import json

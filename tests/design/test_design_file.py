@@ -182,14 +182,14 @@ def test_scene_design_file_is_relative_to_the_scene(tmp_path):
 
 @pytest.mark.parametrize("depth", ["-0.005", "nan", "inf"])
 def test_stiffness_refuses_a_crack_depth_that_is_not_a_depth(depth, capsys):
-    """Issue 17 item 2: it used to exit 0 with the intact ring only."""
+    """It used to exit 0 with the intact ring only."""
     assert main(["stiffness", f"--crack-depth={depth}"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--crack-depth" in err and "allowed" in err
 
 
 def test_scene_refusals_name_the_file_or_the_key(tmp_path, capsys):
-    """Issue 17 items 3, 10, 15: a non-UTF-8 scene names its file; 5000 depths and a crack
+    """A non-UTF-8 scene names its file; 5000 depths and a crack
     scene's ignored [study] values are refused before any FE work."""
     bad = tmp_path / "latin.toml"
     bad.write_bytes("# Zürich\n[crack]\ndepths = [0.0]\n".encode("latin-1"))

@@ -1,4 +1,4 @@
-"""Issue 21: one preset registry (hubvib.design.PRESETS).  A preset registered at run time
+"""One preset registry (hubvib.design.PRESETS).  A preset registered at run time
 (here a copy of hub4 under another name) works in ``design check``, ``spectrum``,
 ``mesh``, ``stiffness`` and a scene with no other edit, and gives hub4's numbers."""
 import dataclasses

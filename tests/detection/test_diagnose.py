@@ -61,7 +61,7 @@ def _coverage(direct, errors, modes):
     covered, verdicts = _verdicts(Posterior(ref, np.array(modes), True), frequency, own,
                                   modes, truth)
     assert 0.80 <= covered / trials <= 0.97, \
-        f"90 % interval covered the true depth in {covered}/{trials} trials (issue 22: 80-97 %)"
+        f"90 % interval covered the true depth in {covered}/{trials} trials (80-97 %)"
     assert verdicts.count(NOT_EXPLAINED) <= 8, "crack patterns are explained by a crack"
 
 
@@ -84,7 +84,7 @@ def _intact(direct, errors):
     modes = [11, 15, 16, 17]
     _, verdicts = _verdicts(Posterior(ref, np.array(modes), True), frequency, own, modes)
     crack = verdicts.count(CRACK) / trials
-    assert verdicts.count(NO_CRACK) / trials >= 0.9, "issue 22: >= 90 % 'no crack indicated'"
+    assert verdicts.count(NO_CRACK) / trials >= 0.9, ">= 90 % 'no crack indicated'"
     assert crack <= OPTIONS.false_alarm_rate + 3 * math.sqrt(0.01 * 0.99 / trials), \
         f"crack verdicts on intact reducers {crack:.3f} vs false-alarm rate 0.01 (+3 sigma)"
 

@@ -1,4 +1,4 @@
-"""issue 22 targets on the Raba 118/76 default scene (FE stage from the cache or computed):
+"""Diagnosis targets on the Raba 118/76 default scene (FE stage from the cache or computed):
 modes 13/15/16/18, 2 % damping, 10 s records.
 
 The calibration targets are checked on the crack model under the ratio method (the
@@ -67,7 +67,7 @@ def test_intact_raba_reducer_is_called_intact(raba):
                                     errors=student_errors)
     verdicts = [posterior.diagnose(f[j, MODES] - own[j, MODES], "m").verdict
                 for j in range(trials)]
-    assert verdicts.count(NO_CRACK) >= 0.9 * trials, "issue 22: >= 90 % no crack indicated"
+    assert verdicts.count(NO_CRACK) >= 0.9 * trials, ">= 90 % no crack indicated"
     assert verdicts.count(CRACK) <= 0.01 * trials + 3 * np.sqrt(0.0099 * trials)
 
 
@@ -81,17 +81,17 @@ def test_raba_intervals_cover_the_true_depth(raba):
     for j in range(trials):
         r = posterior.diagnose(f[j, MODES] - own[j, MODES], "m")
         covered += r.depth_low is not None and r.depth_low <= truth[j] <= r.depth_high
-    assert 0.80 <= covered / trials <= 0.97, f"issue 22: coverage {covered}/{trials} in 80-97 %"
+    assert 0.80 <= covered / trials <= 0.97, f"coverage {covered}/{trials} in 80-97 %"
 
 
-def test_the_issue_s_impossible_patterns(raba):
+def test_shift_patterns_no_ring_crack_produces_are_not_explained(raba):
     model, options, timing, ref, posterior = raba
     f0 = ref.nominal_hz[0, MODES]
     for name, y in {"every mode +1 %": 0.01 * f0, "every mode -1 %": -0.01 * f0,
                     "mode 18 +8.6 Hz above its baseline": np.array([0, 0, 0, 8.6]),
                     "mode 13 -141 Hz": np.array([-141.0, 0, 0, 0])}.items():
         result = posterior.diagnose(y, "measured", f0)
-        assert result.verdict == NOT_EXPLAINED, f"issue 22, {name}: {result.verdict}"
+        assert result.verdict == NOT_EXPLAINED, f"{name}: {result.verdict}"
     # mode 18 alone down 6.9 Hz: within 10 s noise (sigma 1.8 Hz per record), rejected with
     # 600 s records
     alone = np.array([0, 0, 0, -6.9])

@@ -34,7 +34,7 @@ def test_temperature_moves_every_mode_by_the_same_relative_amount(drift):
     elastic = f0 > 1.0
     np.testing.assert_allclose((f - f0)[elastic], dT * model.per_kelvin_hz[elastic],
                                rtol=1e-4, err_msg="first order vs exact eigen-solve")
-    # the number: 1 K moves mode 13 (4548 Hz) by about -0.6 Hz
+    # the reference figures: 1 K moves mode 13 (4548 Hz) by about -0.6 Hz
     assert model.per_kelvin_hz[12] == pytest.approx(-0.56, abs=0.02)
 
 

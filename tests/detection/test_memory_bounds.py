@@ -1,4 +1,4 @@
-"""Issue 26, item 3: memory within documented bounds.  The POD Monte Carlo and the
+"""Memory within documented bounds.  The POD Monte Carlo and the
 detectability map are estimated from the array shapes when the scene is parsed and refused
 above the memory budget (one error line, exit 2, nothing written); the eigen-solves run in
 chunks (the same numbers as in one piece); a long map reports progress off a terminal."""
@@ -32,7 +32,7 @@ def _scene(tmp_path, old, new):
 
 
 def test_samples_beyond_the_memory_budget_are_refused_before_anything_runs(tmp_path, capsys):
-    # issue 26 item 3: samples = 1000000 was allowed and took 24 GB until the kernel killed it
+    # samples = 1000000 was allowed and took 24 GB until the kernel killed it
     scene = _scene(tmp_path, "samples = 2000", "samples = 1000000")
     out = tmp_path / "out"
     assert main(["run", str(scene), "--out", str(out)]) == 2
@@ -189,8 +189,8 @@ def test_a_short_map_stays_quiet(capsys):
     assert capsys.readouterr().err == ""
 
 
-def test_the_issue_s_long_map_is_long_enough_to_report():
-    # map_samples = 1e5 with mount_points = 200 (the issue's case) is above the threshold
+def test_a_map_of_200_mount_points_is_long_enough_to_report():
+    # map_samples = 1e5 with mount_points = 200 (the reference case) is above the threshold
     scene = parse_scene(default_scene_text(), "raba118_crack")
     solves = 2 * 200 * estimate(scene.params, len(scene.study.depths), 100_000, False).solves
     assert solves > detectability.PROGRESS_SOLVES

@@ -1,4 +1,4 @@
-"""Mounting in series with the FE ring body: limits, identification, the issue's numbers."""
+"""Mounting in series with the FE ring body: limits, identification, the reference figures."""
 import math
 
 import numpy as np
@@ -53,16 +53,16 @@ def test_ratio_scales_the_preset_and_direct_uses_the_body():
 
 
 def test_a_soft_mounting_hides_the_crack_issue_13_numbers():
-    # issue 13, measured with the lumped model: mounting identified for c_ru = 1e6 N/m in
+    # Measured with the lumped model: mounting identified for c_ru = 1e6 N/m in
     # series with the body; the through-rim crack (body x0.942) moves the total c_ru by 4e-6
     # and mode 1 by -0.0001 %
     model = synthetic_model("series", c_rp_drop=0.0, c_r_drop=0.0)
     change = 1 - model.c_ru[-1] / model.c_ru[0]
-    assert change == pytest.approx(4e-6, rel=0.1), "issue 13: total c_ru moves by 4e-6"
+    assert change == pytest.approx(4e-6, rel=0.1), "total c_ru moves by 4e-6"
     intact = natural_modes(model.parameters(0))
     cracked = natural_modes(model.parameters(len(model.depths) - 1))
     shift = cracked.omega[0] / intact.omega[0] - 1
-    assert 100 * shift == pytest.approx(-0.0001, abs=0.5e-4), "issue 13: mode 1 -0.0001 %"
+    assert 100 * shift == pytest.approx(-0.0001, abs=0.5e-4), "mode 1 -0.0001 %"
     # first-order perturbation: relative shift = sensitivity x relative stiffness change
     sensitivity = frequency_sensitivity(model.parameters(0), "c_ru").relative[0]
     assert shift == pytest.approx(-sensitivity * change, rel=1e-3), \
@@ -70,7 +70,7 @@ def test_a_soft_mounting_hides_the_crack_issue_13_numbers():
 
 
 def test_a_rigid_mounting_shows_the_crack():
-    # issue 13: with the body alone the most sensitive mode moves by percents
+    # With the body alone the most sensitive mode moves by percents
     model = synthetic_model("direct")
     intact = natural_modes(model.parameters(0)).omega
     cracked = natural_modes(model.parameters(len(model.depths) - 1)).omega

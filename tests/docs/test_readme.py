@@ -22,7 +22,7 @@ def _slug(heading: str) -> str:
 
 def test_readme_is_at_most_250_lines():
     lines = README.count("\n")
-    assert lines <= 250, f"README.md has {lines} lines; the issue allows 250 (the rest is in docs/)"
+    assert lines <= 250, f"README.md has {lines} lines; the house rule allows 250 (the rest is in docs/)"
 
 
 def test_worked_example_prints_the_figures_its_comments_quote(capsys):

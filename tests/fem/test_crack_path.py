@@ -34,7 +34,7 @@ def ring():
 
 def test_backup_ratio_of_raba(ring):
     assert backup_ratio(ring) == pytest.approx(24.5 / 6.58, rel=0.01), (
-        "Raba 118/76 backup ratio = rim 24.5 mm / tooth height 6.58 mm (issue 23), 1 %")
+        "Raba 118/76 backup ratio = rim 24.5 mm / tooth height 6.58 mm, 1 %")
     assert tooth_height(ring) == pytest.approx(ring.profile.root_radius
                                                - ring.profile.tip_radius, abs=0)
 
@@ -129,7 +129,7 @@ def test_kinked_path_mesh_has_both_faces_along_the_path(ring):
 @pytest.mark.slow
 @pytest.mark.parametrize("degrees", [60.0, -60.0])
 def test_crack_at_sixty_degrees_solves(ring, degrees):
-    """Issue 23: a 3 mm root crack turned +60 deg failed in the FE ("boundary group
+    """A 3 mm root crack turned +60 deg failed in the FE ("boundary group
     'tooth0_flank_pos' has facets that are not mesh facets"); both +-60 deg now mesh with
     every flank facet on a cell and solve.  The planet on the cracked tooth: c_ru (measured
     on that tooth's root lands, which the crack partly frees) stays within 10 % of the intact

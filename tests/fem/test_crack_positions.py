@@ -1,4 +1,4 @@
-"""Issue 17 item 17: why the highest c_ru over carrier positions rises with a root crack."""
+"""Why the highest c_ru over carrier positions rises with a root crack."""
 import numpy as np
 import pytest
 

@@ -179,7 +179,7 @@ def test_points_are_located_in_small_curved_elements():
 
 @pytest.mark.slow
 def test_c_ru_at_scale_0_6():
-    """Issue 17, item 19: the ring at element scale 0.6 (the tooth-load facet basis failed);
+    """The ring at element scale 0.6 (the tooth-load facet basis failed);
     c_ru lies between the values at scales 0.71 and 0.5 within their spread (1.66337e10,
     1.66364e10 N/m, convergence study)."""
     from hubvib.build import raba118

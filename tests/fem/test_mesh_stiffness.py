@@ -1,7 +1,7 @@
-"""Issue 22 item 6: one consistent cracked-tooth mesh stiffness.
+"""One consistent cracked-tooth mesh stiffness.
 
 The crack's extra compliance dq = (1/ratio - 1) / c_rp_FE over the engagement enters
-planet 1's lumped c_rp in series (primary); the ratio method (before issue 22) is shown
+planet 1's lumped c_rp in series (primary); the ratio method (formerly) is shown
 beside it where the lumped c_rp is not the FE one (the paper's preset, 3e8 N/m).
 """
 import importlib.util
@@ -94,11 +94,11 @@ def _synthetic_engagement(eps: float) -> EngagedMesh:
 
 @pytest.mark.parametrize("eps", [1e-3, 0.05])
 def test_series_compliance_uses_the_intact_mean_over_the_contact_window(eps):
-    """Issue 25: the crack's extra compliance is exact, dq = 1/mean(cracked) - 1/mean(intact)
+    """The crack's extra compliance is exact, dq = 1/mean(cracked) - 1/mean(intact)
     over the contact window, when the series method divides by the window's intact mean
     (``c_rp_engaged_intact_window_N_m``): the factor equals 1 / (1 + c dq_exact) to 1e-12.
     With the lumped c_rp at the window's intact mean both methods give the exact cracked
-    window mean (1e-12).  The whole-cycle mean (before issue 25) makes the crack's effect
+    window mean (1e-12).  The whole-cycle mean (formerly) makes the crack's effect
     too large by the ratio of the means to first order (1e-3 relative at eps = 1e-3), so
     this test fails on the old denominator."""
     engaged = _synthetic_engagement(eps)
@@ -137,7 +137,7 @@ def test_series_compliance_uses_the_intact_mean_over_the_contact_window(eps):
 
 
 def test_mode_13_at_3mm_moves_five_times_less_in_series_than_by_the_ratio():
-    """Mode 13 at 3 mm, time-averaged: -0.73 Hz (series) vs -3.76 Hz (ratio) (issue 22's
+    """Mode 13 at 3 mm, time-averaged: -0.73 Hz (series) vs -3.76 Hz (ratio) (the
     -0.30 / -1.52 Hz with the ratio diluted over the cycles' eps + 2 pitches)."""
     comparison = compare_methods(_model(_rows_3mm()), TIMING, 10.0)
     series, ratio = comparison.shift_hz[1, 12], comparison.other_shift_hz[1, 12]
@@ -150,7 +150,7 @@ def test_mode_13_at_3mm_moves_five_times_less_in_series_than_by_the_ratio():
     expected = (1 - RATIO_3MM) / (1 - _hand_series(RATIO_3MM, C_RP_FE, PRESET_C_RP))
     assert ratio / series == pytest.approx(expected, rel=0.12), \
         "shift ratio vs (1 - ratio)/(1 - series factor), first order, 12 %"
-    assert 4.5 < ratio / series < 5.5, "issue 22: a five times smaller shift"
+    assert 4.5 < ratio / series < 5.5, "a five times smaller shift"
 
 
 def test_the_preset_gives_its_c_rp_and_a_design_derived_scene_takes_the_fe_one():
@@ -200,29 +200,29 @@ def test_preset_results_show_both_methods(tmp_path):
     assert f"{iso_c_rp(raba118()):.4g} N/m" in report
 
 
-def test_iso_c_rp_of_the_preset_is_the_issue_s_value():
+def test_iso_c_rp_of_the_preset_is_7_85e8():
     assert iso_c_rp(raba118()) == pytest.approx(7.85e8, rel=5e-3), \
-        "issue 22: ISO 6336-1 gives 7.85e8 N/m (3 digits)"
+        "ISO 6336-1 gives 7.85e8 N/m (3 digits)"
 
 
 @pytest.mark.slow
 @fe_stage
 def test_raba_fe_numbers_mode_13_both_methods():
     """The FE cases of the default scene (cache or computed): the intact engaged c_rp is the
-    issue's 1.48e9 N/m and mode 13 at 3 mm moves -0.69 / -3.76 Hz (series / ratio; the
-    series -0.73 before issue 25 divided by the whole-cycle mean: docs/data/raba118_crack)."""
+    reference 1.48e9 N/m and mode 13 at 3 mm moves -0.69 / -3.76 Hz (series / ratio; the
+    series -0.73 formerly divided by the whole-cycle mean: docs/data/raba118_crack)."""
     from hubvib.studies.crack_sweep import run_fe_cases
 
     scene = load_scene(None)
     fe, _ = run_fe_cases(scene.crack, progress=False)
     intact = [r["c_rp_engaged_intact_N_m"] for r in fe]
-    assert intact[0] == pytest.approx(1.48e9, rel=0.01), "issue 22: FE intact c_rp 1.48e9"
+    assert intact[0] == pytest.approx(1.48e9, rel=0.01), "FE intact c_rp 1.48e9"
     assert max(intact) == min(intact), "the intact tooth is the same at every depth"
     result = crack_study_from_fe(scene, fe, detection=False)
     k = scene.crack.depths.index(0.003)
     window = fe[k]["c_rp_engaged_intact_window_N_m"]
     assert window / intact[k] == pytest.approx(1.0478, abs=5e-4), \
-        "the window's intact mean 4.8 % above the cycle's (issue 25; raba118_crack: 1.04777)"
+        "the window's intact mean 4.8 % above the cycle's (raba118_crack: 1.04777)"
     assert result.c_rp_factor[k] == pytest.approx(
         _hand_series(fe[k]["c_rp_engaged_ratio"], window, PRESET_C_RP), rel=1e-12)
     comparison = result.c_rp_comparison

@@ -112,7 +112,7 @@ def test_sector_input_is_checked(pitch):
 
 @pytest.mark.slow
 def test_pitch_family_converges_at_a_stable_order_and_its_route_is_within_1e4():
-    """Issue 25, items 2-3, on the real Raba ring: the pitch family (convergence.SECTOR_BASE
+    """On the real Raba ring: the pitch family (convergence.SECTOR_BASE
     split 0..3 times) converges monotonically from above (energy functional) with two
     observed orders that agree within 0.3 (convergence.STABLE_BAND) and lie in theory's
     [2, 4] (support ends resolved: the load-patch ends' 2 and the smooth part's 4), so its

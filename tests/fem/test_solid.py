@@ -318,7 +318,7 @@ def test_blas_threads_are_set_and_restored():
 
 @pytest.mark.slow
 def test_rim_split_works_on_the_solid_model(coarse_solid_ring):
-    """Issue 25: the work-conjugate rim parts (the lumped model's c_ru, c_r) on the solid
+    """The work-conjugate rim parts (the lumped model's c_ru, c_r) on the solid
     model (the solid crack cases use them): the rigid motion fitted on the root lands of an
     in-plane rigid displacement is that motion (1e-9); the rim parts are stiffer than the
     whole work-conjugate values; and like the root-land readings they lie between plane

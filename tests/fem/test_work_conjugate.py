@@ -91,7 +91,7 @@ def test_land_rigid_motion_reproduces_a_rigid_displacement(raba_coarse):
 
 def test_ring_stiffness_carries_the_work_conjugate_values(raba_coarse):
     """``ring_stiffness`` gives the same work-conjugate values as the pieces (1e-10), and
-    its root-land c_ru (a secondary output since issue 25) is the reading on the same
+    its root-land c_ru (a secondary output now) is the reading on the same
     solution."""
     ring, mesh, _, _, _, work = raba_coarse
     result = ring_stiffness(ring, mesh)
@@ -102,7 +102,7 @@ def test_ring_stiffness_carries_the_work_conjugate_values(raba_coarse):
 
 
 def test_c_r_rim_is_the_work_on_the_land_rigid_motions(raba_coarse):
-    """c_r_rim (the lumped model's c_r since issue 25) recomputed another way: each tooth's
+    """c_r_rim (the lumped model's c_r now) recomputed another way: each tooth's
     share of the translation load as a load vector (``ToothForces.loads``) times the rigid
     displacement field of its root lands (``rigid_body_modes``), to 1e-10; it is stiffer
     than the whole c_r_work (the teeth left out), and within 2 % of the root-land c_r, an
@@ -129,7 +129,7 @@ def test_c_r_rim_is_the_work_on_the_land_rigid_motions(raba_coarse):
 
 @pytest.mark.slow
 def test_root_land_reading_is_unchanged():
-    """The root-land c_ru (a secondary output since issue 25) equals the committed convergence
+    """The root-land c_ru (a secondary output now) equals the committed convergence
     table at scale 4 (docs/data/convergence/convergence_c_ru.csv) to 1e-9."""
     from hubvib.validation.convergence import _ring_level
 

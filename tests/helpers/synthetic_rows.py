@@ -10,7 +10,7 @@ from hubvib.build import lumped_preset
 from hubvib.detection.carrier import MeshTiming
 from hubvib.detection.model import CrackModel
 
-#: FE ring body of Raba 118/76 as the root lands read it before issue 25 (c_ru 1.663e10 N/m
+#: FE ring body of Raba 118/76 as the root lands read it formerly (c_ru 1.663e10 N/m
 #: +-0.15 %, c_r 3.807e10 N/m +-0.03 %; the rim parts the lumped model uses since are
 #: 1.075e10 and 3.764e10); the through-rim crack lowers c_ru to x0.942: synthetic
 #: rows, the tests built on them pin their own arithmetic, not the FE values

@@ -63,7 +63,7 @@ def test_identified_frequencies_scatter_as_the_bound_predicts():
 @pytest.mark.slow
 @pytest.mark.parametrize("zeta", [0.01, 0.02, 0.05])
 def test_issue_case_mode_13_from_10_s_records(zeta):
-    # the issue's case: 4548 Hz, 10 s; scatter vs the bound the diagnosis uses
+    # the reference case: 4548 Hz, 10 s; scatter vs the bound the diagnosis uses
     est = identified(4548.0, zeta, 10.0, 100.0, records=150, seed=2)
     low, high = _std_band(est.size)
     ratio = est.std(ddof=1) / fisher_sigma_hz(4548.0, zeta, 10.0, 100.0)

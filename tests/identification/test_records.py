@@ -178,7 +178,7 @@ def test_diagnose_from_two_records_end_to_end(tmp_path, monkeypatch, capsys):
 
 @pytest.mark.parametrize("suffix", [".csv", ".wav", ".uff"])
 def test_record_that_is_a_pipe_or_a_device_is_refused_at_once(tmp_path, suffix):
-    """Issue 26 item 1 for the record readers: a FIFO would block and /dev/zero never end;
+    """The record readers: a FIFO would block and /dev/zero never end;
     both are refused in one line naming the flag and the file."""
     import os
 

@@ -1,4 +1,4 @@
-"""Issue 26 item 16: ``report.html`` beside ``report.md``, one self-contained page, tested in
+"""``report.html`` beside ``report.md``, one self-contained page, tested in
 a real headless browser (Chromium from Debian's packages, driven by its command line).
 
 The page is loaded with a probe added around it (errors and ``console.error`` recorded,

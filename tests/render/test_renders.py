@@ -88,7 +88,7 @@ def test_fe_renders_are_real_distinct_and_repeatable(tmp_path, cracked_ring_fiel
     alone = render_fe(fields, tmp_path / "b")
     for shared, own in zip(files[:4], alone):
         np.testing.assert_array_equal(_image(own), _image(shared), err_msg=shared.name)
-    # issue 26 item 13: the close-up's title sits on a light box (it was black on dark
+    # The close-up's title sits on a light box (it was black on dark
     # navy: 0 % light pixels there) and a labelled length bar sits at the lower left
     light, dark = tip[..., :3].min(axis=2) > 200, tip[..., :3].max(axis=2) < 60
     assert light[:22, :470].mean() > 0.4 and dark[:22, :470].mean() > 0.03, \

@@ -1,4 +1,4 @@
-"""Issue 26, item 10 (Dask part): Ctrl-C during a run on a LocalCluster printed 2-4 worker
+"""Ctrl-C during a run on a LocalCluster printed 2-4 worker
 tracebacks (KeyboardInterrupt) before the one line ``hubvib: interrupted``.  The terminal's
 SIGINT reaches the whole foreground process group, the worker processes included; they now
 ignore it (``hubvib.runtime.dask_worker``, their preload) and ``hubvib`` closes the cluster.

@@ -1,7 +1,7 @@
 """Where a sweep's cases run (hubvib.runtime.engines): the scene's [execution] table and run_cases.
 
 A 2-worker ``LocalCluster`` costs a few seconds, so one test gathers the fault
-behaviours of issue 16 point 1 (a worker killed mid-task, a case that raises, the
+behaviours (a worker killed mid-task, a case that raises, the
 numbers of the local engine) and one slow test runs a real crack sweep on both
 engines.  Tasks are functions defined inside the tests, so cloudpickle ships them to
 the workers by value.
@@ -269,7 +269,7 @@ def free_port() -> int:
 
 
 def test_dask_scheduler_that_does_not_answer_fails_within_the_timeout():
-    """Issue 16 bad input: a clear EngineError naming the address and the timeout."""
+    """A clear EngineError naming the address and the timeout."""
     address = f"tcp://127.0.0.1:{free_port()}"
     execution = parse_execution_table({"engine": "dask", "scheduler": address, "timeout_s": 1})
     on_result, delivered = collector()
@@ -295,7 +295,7 @@ def test_dask_scheduler_without_workers_fails_within_the_timeout():
 
 
 def test_dask_local_cluster_killed_worker_and_failing_case(tmp_path):
-    """Issue 16 point 1 on a 2-worker LocalCluster, in one cluster start:
+    """Faults on a 2-worker LocalCluster, in one cluster start:
 
     - case 3 kills its worker (``os._exit``) the first time it runs: the nanny replaces
       the worker and the case is recomputed;
@@ -349,7 +349,7 @@ workers = 2
 
 @pytest.mark.slow
 def test_crack_sweep_dask_equals_local_to_the_last_digit(tmp_path, monkeypatch):
-    """Issue 16 'done when': the same FE rows with engine "dask" as with "local" (fresh
+    """The same FE rows with engine "dask" as with "local" (fresh
     caches each), timings excluded; a rerun on the dask run's cache computes nothing."""
     from hubvib.studies.crack_sweep import run_fe_cases
 

@@ -2,7 +2,7 @@
 
 The FE stage is replaced by a synthetic ``fe_case`` (monkeypatched; the sweep runs with
 ``workers = 1``, in this process), so each test takes well under a second.  Every
-fault of issue 17 item 1 is injected into one entry of a three-depth sweep; the run
+fault is injected into one entry of a three-depth sweep; the run
 must recompute exactly that case, say so in one line on stderr, and return the
 recomputed value, never the stored one.
 """
@@ -183,7 +183,7 @@ def _schema_1_entry(path: Path) -> None:
 
 #: fault name -> (edit of the entry file, words the one-line notice must contain)
 FAULTS = {
-    # issue 22 item 6: entries of the schema before the intact c_rp are recomputed
+    # Entries of the schema before the intact c_rp are recomputed
     "schema 1 entry (no intact c_rp)": (_schema_1_entry, "another version"),
     "result missing the intact c_rp": (
         _edit_result(_drop("c_rp_engaged_intact_N_m"), resign=True), "c_rp_engaged_intact_N_m"),
@@ -217,7 +217,7 @@ FAULTS = {
 
 @pytest.mark.parametrize("name", FAULTS)
 def test_damaged_entry_is_recomputed_with_one_notice(fake, capsys, name):
-    """Issue 17 item 1: each fault -> that case recomputed, a one-line notice, no traceback."""
+    """Each fault -> that case recomputed, a one-line notice, no traceback."""
     fault, words = FAULTS[name]
     sweep = make_sweep()
     run_fe_cases(sweep, progress=False)
@@ -401,7 +401,7 @@ def test_entry_that_is_a_folder_is_refused_before_any_case(fake):
 
 
 def test_cache_that_is_a_file_is_refused_before_any_case(fake, tmp_path, monkeypatch):
-    """Issue 17 item 7: HUBVIB_CACHE pointing at a file is found before the FE work."""
+    """HUBVIB_CACHE pointing at a file is found before the FE work."""
     blocker = tmp_path / "not-a-folder"
     blocker.write_text("x")
     monkeypatch.setenv("HUBVIB_CACHE", str(blocker))
@@ -465,7 +465,7 @@ def _concurrent_run(cache: str, counter: str, out: str) -> None:
 
 
 def test_concurrent_runs_compute_each_case_once(tmp_path):
-    """Issue 17 item 12: two runs of one sweep on one cache share the entries."""
+    """Two runs of one sweep on one cache share the entries."""
     context = multiprocessing.get_context("fork")
     counter = tmp_path / "computed.txt"
     outs = [tmp_path / f"run{i}.json" for i in range(2)]
@@ -486,7 +486,7 @@ def test_concurrent_runs_compute_each_case_once(tmp_path):
 
 
 def test_typed_case_round_trips_and_names_what_is_missing():
-    """Issue 21 item 3: a cached case reads back as a typed, frozen result whose to_dict is
+    """A cached case reads back as a typed, frozen result whose to_dict is
     the entry's dict again (same keys, same values); a missing key or a wrong type is
     named, and the entry records the schema version of that dict form."""
     from hubvib.fem.estimate import SCHEMA_VERSION, CrackCaseEstimate

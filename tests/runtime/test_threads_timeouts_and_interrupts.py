@@ -1,5 +1,5 @@
-"""Issue 26, items 9-11: engines and interrupts (a scheduler that never answers, Ctrl-C,
-the same digits after a killed run).  Each test names the issue item it covers."""
+"""Engines and interrupts (a scheduler that never answers, Ctrl-C,
+the same digits after a killed run)."""
 from __future__ import annotations
 
 import numpy  # noqa: F401 - loads the OpenBLAS whose threads are compared
@@ -174,7 +174,7 @@ def test_work_without_a_count_says_it_is_working_off_a_terminal():
     prints one at least every HEARTBEAT_S (5 s) until the work ends, and none after."""
     from hubvib.runtime.progress import HEARTBEAT_S, working
 
-    assert HEARTBEAT_S <= 5.0, "the issue's bound: a line at least every 5 s of work"
+    assert HEARTBEAT_S <= 5.0, "the documented bound: a line at least every 5 s of work"
     stream = _Lines()
     with working("plots", every=0.01, stream=stream):
         assert stream.arrived.wait(30), "no heartbeat line within 30 s"

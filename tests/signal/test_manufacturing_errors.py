@@ -1,5 +1,4 @@
-"""Manufacturing errors, load sharing, the energy off the multiples of N, and contact loss
-."""
+"""Manufacturing errors, load sharing, the energy off the multiples of N, and contact loss."""
 import math
 from dataclasses import replace
 

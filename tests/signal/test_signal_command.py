@@ -1,4 +1,4 @@
-"""``[signal]`` scene table, ``hubvib signal`` end to end, and every bad input of issue 14."""
+"""``[signal]`` scene table, ``hubvib signal`` end to end, and every bad input."""
 import csv
 import json
 import math
@@ -189,12 +189,12 @@ def test_shipped_signal_scene_has_a_monotone_indicator(tmp_path, capsys, shared_
     out = tmp_path / "out"
     assert main(["signal", "raba118_signal", "--out", str(out), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["monotone_indicators"], "issue 14: at least one indicator monotone with depth"
+    assert data["monotone_indicators"], "at least one indicator monotone with depth"
     assert data["checks"]["step_halving"]["relative_change"] < 0.02
     assert np.isfinite(data["depths"][-1]["indicators"]["fm0"]["mean"])
-    # issue 24: ideal planets leave round-off off the multiples of N at every depth; with
+    # Ideal planets leave round-off off the multiples of N at every depth; with
     # every mesh harmonic and its first sidebands removed, FM4 goes from ~3 intact to
-    # "about 36 at 3 mm" (the issue's reconstruction from order_spectrum.csv; 30 % here)
+    # "about 36 at 3 mm" (reconstruction from order_spectrum.csv; 30 % here)
     assert max(r["fraction"] for r in data["non_multiple_fraction"]) < 1e-18
     fm4 = [d["indicators"]["fm4"]["mean"] for d in data["depths"]]
     assert 2.5 < fm4[0] < 3.6 and 25 < fm4[1] < 47, fm4

@@ -180,7 +180,7 @@ def test_solid_rows_change_and_its_error():
 
 @pytest.mark.slow
 def test_poor_cells_do_not_move_c_ru():
-    """Issue 16: the solid meshes keep cells with min SICN < 0.1 (the intact ring's too,
+    """The solid meshes keep cells with min SICN < 0.1 (the intact ring's too,
     along the 0.24 mm root lands and 0.9 mm fillets).  Halving or doubling the stiffness
     of every one of them moves c_ru (mean over one planet pitch) by less than its error
     estimate (default solid level against the one before it).  The crack's change of c_ru
@@ -259,7 +259,7 @@ def test_small_3d_scene_is_the_shipped_one_cut_down():
 
 @pytest.mark.slow
 def test_3d_scene_on_a_local_cluster(tmp_path):
-    """Issue 16: a 3D crack-growth scene (the shipped one cut to 3 solid cases,
+    """A 3D crack-growth scene (the shipped one cut to 3 solid cases,
     ``SMALL_3D_SCENE``) runs on a Dask LocalCluster from the CLI; the physics every case
     must meet: a crack never stiffens the ring (within the change's error), a part-width
     crack softens it less than the plane crack through the width at the same depth, a

@@ -36,7 +36,7 @@ THIN = replace(RABA, name="raba118_mB0.5",
 @pytest.mark.parametrize("design", [RABA, THIN], ids=["raba", "thin_rim_mB0.5"])
 @pytest.mark.parametrize("degrees", [-75.0, -90.0])
 def test_root_crack_meshes_and_solves_at_large_angles(design, degrees):
-    """Issue 23 item 3: "any angle between -90 and +90 deg meshes and solves".  Root cracks
+    """"any angle between -90 and +90 deg meshes and solves".  Root cracks
     turned -75 and -90 deg (towards and along the root circle under their own tooth), 2 mm
     deep and as deep as they are allowed (through the rim, or to 0.5 mm from the tooth's
     other fillet), mesh with every flank facet on a cell, the crack tip on the path's tip

@@ -64,7 +64,7 @@ def test_ratio_reproduces_the_numbers_before_series_mounting():
     np.testing.assert_array_equal(result.c_r, c_r)
     np.testing.assert_array_equal(result.omega, omega)
     assert result.percent[-1, 0] == pytest.approx(-1.71, abs=0.01), \
-        "issue 13: the ratio report showed -1.72 % for mode 1 (body x0.942)"
+        "the ratio report showed -1.72 % for mode 1 (body x0.942)"
 
 
 @pytest.fixture(scope="module")
@@ -87,7 +87,7 @@ def test_default_scene_runs_in_series_and_its_report_opens_with_the_answer(defau
     short = report.split("## Detectability")[0]
     assert "Watch modes" in short and "the mounting decides" in short
     # the identified mounting holds nearly all of the compliance: 1e6 against the synthetic
-    # rows' 1.663e10 N/m (the FE rim part since issue 25, 1.075e10, gives 1.00009e6)
+    # rows' 1.663e10 N/m (the FE rim part now, 1.075e10, gives 1.00009e6)
     assert "c_ru mounting 1.00006e+06 N/m" in short and "99.99 % of the ring's torsional" in short
     for name in ("pod.csv", "detectability_map.csv"):
         assert (folder / name).stat().st_size > 0, name

@@ -1,4 +1,4 @@
-"""Issue 21: the scene is a tagged union of registered study kinds.  A study kind defined
+"""The scene is a tagged union of registered study kinds.  A study kind defined
 here, registered at run time with no other edit, is selected by its own scene table and run
 by ``hubvib run``; its spectrum is checked against ``hubvib.lumped.natural_modes`` called
 directly.  The registry's errors name the tables."""

@@ -1,5 +1,4 @@
-"""Observed convergence orders and where Richardson extrapolation is used (issue 25,
-items 1 and 2)."""
+"""Observed convergence orders and where Richardson extrapolation is used."""
 import math
 
 import numpy as np
@@ -32,7 +31,7 @@ def test_richardson_only_where_the_order_is_stable(values, extrapolated):
 
 @pytest.mark.slow
 def test_work_conjugate_c_ru_converges_at_a_stable_order_in_the_theoretical_band():
-    """Issue 25, item 1: the work-conjugate c_ru of the Raba ring on the four nested
+    """The work-conjugate c_ru of the Raba ring on the four nested
     curved-P2 levels (2.0e4..1.1e6 DOFs) falls monotonically (an energy functional of a
     conforming FE: the stiffness from above), its two observed orders agree within 0.3
     and lie in [1, 4] (theory: 2p = 4 on smooth solutions, 1 from the clamped-free support
@@ -52,7 +51,7 @@ def test_work_conjugate_c_ru_converges_at_a_stable_order_in_the_theoretical_band
 
 @pytest.mark.slow
 def test_curved_p2_beats_p1_at_equal_dofs():
-    """Issue 25, item 2: on the same nested mesh family, curved P2 (1 split) and P1 (2
+    """On the same nested mesh family, curved P2 (1 split) and P1 (2
     splits) have the same nodes and so the same DOFs; the P2 error in the work-conjugate
     c_ru is at least 4 times smaller (measured 6.6x), both against the P2 level with one
     more split (whose own error, ~1.2e-3, the comparison leaves in)."""
