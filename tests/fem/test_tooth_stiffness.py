@@ -29,9 +29,14 @@ SUN, PLANET, RING = raba118.gear_body("sun"), raba118.gear_body("planet"), raba1
 STEEL = Material()
 
 
+#: the coarse ring mesh of the FE tests (rim 4 mm, teeth 1 mm, load patches 0.2 mm): the
+#: pair stiffnesses below sit as far inside their tolerances as on the default mesh
+COARSE = MeshOptions(size=4e-3, tooth_size=1e-3, load_size=0.2e-3)
+
+
 @pytest.fixture(scope="module")
 def raba_pairs():
-    return reducer_mesh_stiffness(SUN, PLANET, RING, crack=Crack(0, 5e-3))
+    return reducer_mesh_stiffness(SUN, PLANET, RING, COARSE, crack=Crack(0, 5e-3))
 
 
 def involute_radii(body, n=5):
@@ -120,7 +125,7 @@ def test_beam_compliance_scales_with_face_width_and_modulus():
 def test_sun_planet_mesh_stiffness_against_iso_6336_and_analytical(raba_pairs):
     """c_sp by FE vs ISO 6336-1 method B without C_M = 0.8 (the standard's factor from
     theoretical to measured values): mean within 10 % of c_gamma_alpha, single-pair maximum
-    within 15 % of c'.  vs the potential-energy method: within 15 % (measured +11 %)."""
+    within 15 % of c'.  vs the potential-energy method: within 15 %."""
     c_sp = raba_pairs["c_sp"]
     assert c_sp.fe.mean == pytest.approx(c_sp.iso_mesh / C_M, rel=0.10)
     assert c_sp.fe.single_pair_max == pytest.approx(c_sp.iso_single / C_M, rel=0.15)
@@ -155,9 +160,8 @@ def test_ring_crack_lowers_c_rp_while_the_tooth_is_engaged(raba_pairs):
 @pytest.mark.slow  # two FE mesh-stiffness runs; the default run checks the same gate below
 def test_zero_depth_crack_gives_the_intact_c_rp():
     """Crack depth 0 is the intact ring (no cracked cycle; same c_rp to 1e-12)."""
-    options = MeshOptions(size=4e-3, tooth_size=1e-3, load_size=0.2e-3)
-    zero = reducer_mesh_stiffness(SUN, PLANET, RING, options, Crack(0, 0.0))
-    intact = reducer_mesh_stiffness(SUN, PLANET, RING, options)
+    zero = reducer_mesh_stiffness(SUN, PLANET, RING, COARSE, Crack(0, 0.0))
+    intact = reducer_mesh_stiffness(SUN, PLANET, RING, COARSE)
     assert zero["c_rp"].cracked is None
     assert zero["c_rp"].value == pytest.approx(intact["c_rp"].value, rel=1e-12)
 
