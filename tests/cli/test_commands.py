@@ -66,6 +66,8 @@ def test_validate_writes_report(capsys, tmp_path):
         assert (tmp_path / name).stat().st_size > 0
 
 
+@pytest.mark.slow  # the same command and answer as the default run's
+# tests/cli/test_progress_and_file_lists.py::test_stability_reports_each_case_on_stderr
 def test_stability_command(capsys):
     data = _json(capsys, ["stability", "--repeats", "1", "--json"])
     assert data["passed"] and data["target"] == 1e-6

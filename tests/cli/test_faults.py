@@ -79,10 +79,10 @@ def _children(pid: int) -> list[int]:
     return out
 
 
-# -- item 8: Ctrl-C ---------------------------------------------------------------------
+# -- Ctrl-C ---------------------------------------------------------------------
 
 def test_interrupt_in_process_is_one_line_and_keeps_the_folder(tmp_path, capsys, monkeypatch):
-    """Item 8: KeyboardInterrupt anywhere in a run: exit 130, exactly one line, and the
+    """KeyboardInterrupt anywhere in a run: exit 130, exactly one line, and the
     output folder keeps the previous run's set byte for byte (the stage is removed)."""
     import hubvib.studies.sweep
 
@@ -98,7 +98,7 @@ def test_interrupt_in_process_is_one_line_and_keeps_the_folder(tmp_path, capsys,
 
 
 def test_sigint_to_a_real_run_exits_130_with_one_line(tmp_path):
-    """Item 8: SIGINT (what Ctrl-C sends) to a running ``hubvib run``: exit 130, stderr is
+    """SIGINT (what Ctrl-C sends) to a running ``hubvib run``: exit 130, stderr is
     the one line, no traceback, nothing left in the output folder."""
     scene = tmp_path / "slow.toml"
     scene.write_text(SLOW_SCENE)
@@ -116,7 +116,7 @@ def test_sigint_to_a_real_run_exits_130_with_one_line(tmp_path):
     assert not out.exists() or not [p for p in out.rglob("*") if p.is_file()]
 
 
-# -- item 9: worker processes -------------------------------------------------------------
+# -- worker processes -------------------------------------------------------------
 
 POOL_PARENT = textwrap.dedent("""
     import sys, time
@@ -152,7 +152,7 @@ def _start_pool_parent(tmp_path):
 
 @pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGTERM], ids=["kill-9", "SIGTERM"])
 def test_pool_workers_exit_when_only_the_parent_is_killed(sig, tmp_path):
-    """Item 9: kill -9 / SIGTERM of the parent alone: every worker and the resource
+    """kill -9 / SIGTERM of the parent alone: every worker and the resource
     tracker exit (a plain ProcessPoolExecutor's workers live on, holding the pipes)."""
     parent, children = _start_pool_parent(tmp_path)
     try:
@@ -168,7 +168,7 @@ def test_pool_workers_exit_when_only_the_parent_is_killed(sig, tmp_path):
 
 
 def test_ctrl_c_to_the_process_group_stops_the_pool_quietly(tmp_path):
-    """Items 8, 9: SIGINT to the whole group (a terminal's Ctrl-C) reaches the workers too:
+    """SIGINT to the whole group (a terminal's Ctrl-C) reaches the workers too:
     they print nothing (the idle one would print a KeyboardInterrupt traceback), the parent
     stops the pool without waiting for the 120 s task and exits 130."""
     parent, children = _start_pool_parent(tmp_path)
@@ -185,11 +185,11 @@ def test_ctrl_c_to_the_process_group_stops_the_pool_quietly(tmp_path):
             os.kill(pid, signal.SIGKILL)
 
 
-# -- item 14: a closed pipe -----------------------------------------------------------------
+# -- a closed pipe -----------------------------------------------------------------
 
 @pytest.mark.parametrize("argv", [["spectrum"], ["shift", "--to", "c_ru", "1e5", "--json"]])
 def test_closed_stdout_is_quiet(argv):
-    """Item 14: ``hubvib ... | head -0``: the reader is gone before the first line; exit 141
+    """``hubvib ... | head -0``: the reader is gone before the first line; exit 141
     (128 + SIGPIPE, as a shell reports ``yes | head``), nothing on stderr."""
     run = subprocess.Popen([*HUBVIB, *argv], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     run.stdout.close()
@@ -245,10 +245,10 @@ def test_stdout_closed_from_the_start_is_quiet(argv, code):
     assert (stderr == "") if code == 141 else stderr.startswith("usage: hubvib diagnose")
 
 
-# -- item 6: a full disk --------------------------------------------------------------------
+# -- a full disk --------------------------------------------------------------------
 
 def test_full_disk_leaves_the_previous_set(tmp_path, capsys, monkeypatch):
-    """Item 6: ENOSPC while the third file is put in place: one line naming the file and
+    """ENOSPC while the third file is put in place: one line naming the file and
     what was discarded, exit 2, and the folder still holds the previous set byte for byte
     (no file of the failed run, no stage, no temporary file)."""
     out, before = _snapshot_set(tmp_path, capsys)
@@ -271,7 +271,7 @@ def test_full_disk_leaves_the_previous_set(tmp_path, capsys, monkeypatch):
 
 
 def test_full_tmpfs(tmp_path, capsys):
-    """Item 6 on a real full disk: a 32 kB tmpfs cannot take the five-planet set
+    """On a real full disk: a 32 kB tmpfs cannot take the five-planet set
     (results.json alone is ~32 kB): one line, exit 2, and the disk is left empty."""
     disk = tmp_path / "disk"
     disk.mkdir()
@@ -288,10 +288,10 @@ def test_full_tmpfs(tmp_path, capsys):
         subprocess.run(["umount", str(disk)], check=True)
 
 
-# -- item 12: concurrent runs ----------------------------------------------------------------
+# -- concurrent runs ----------------------------------------------------------------
 
 def test_busy_output_folder_is_refused(tmp_path, capsys):
-    """Item 12: a folder another run holds is refused at once in one line naming the folder
+    """A folder another run holds is refused at once in one line naming the folder
     and the holder's pid; the folder keeps its set."""
     from hubvib.foundation.output import folder_lock
 
@@ -307,7 +307,7 @@ def test_busy_output_folder_is_refused(tmp_path, capsys):
 
 @pytest.mark.slow
 def test_two_scenes_at_once_never_mix(tmp_path):
-    """Item 12: two runs of different scenes started together into one folder: each either
+    """Two runs of different scenes started together into one folder: each either
     writes its whole set or is refused; the folder then holds one scene's set only (the
     results.json scene and the baseline CSV's 9 + 3N modes agree, nothing else is there)."""
     out = tmp_path / "out"

@@ -76,7 +76,7 @@ INPUTS = {  # the flag and the words that name it in the error line
 @pytest.mark.parametrize("source", ["fifo", "dev-zero", "symlink to dev-zero"])
 @pytest.mark.parametrize("name", INPUTS)
 def test_every_file_input_refuses_devices_and_pipes(name, source, fifo, tmp_path, capsys):
-    """Item 1: --design, --measured, --periods (and --params) refuse a FIFO at once (it
+    """--design, --measured, --periods (and --params) refuse a FIFO at once (it
     blocked forever) and /dev/zero (MemoryError) with one line naming the flag and file."""
     argv, words = INPUTS[name]
     path = {"fifo": fifo, "dev-zero": Path("/dev/zero")}.get(source)
@@ -90,7 +90,7 @@ def test_every_file_input_refuses_devices_and_pipes(name, source, fifo, tmp_path
 
 
 def test_scene_design_file_key_refuses_a_fifo(fifo, tmp_path, capsys):
-    """Item 1: ``[design] file =`` in a scene goes through the same reader."""
+    """``[design] file =`` in a scene goes through the same reader."""
     scene = tmp_path / "s.toml"
     scene.write_text(f'[design]\nfile = "{fifo}"\n', encoding="utf-8")
     code = _bounded(lambda: main(["run", str(scene), "--out", str(tmp_path / "out")]), fifo)
@@ -100,7 +100,7 @@ def test_scene_design_file_key_refuses_a_fifo(fifo, tmp_path, capsys):
 
 @pytest.mark.parametrize("source", ["fifo", "symlink to dev-zero"])
 def test_cache_entry_that_is_a_device_is_recomputed_not_read(source, fifo, tmp_path):
-    """Item 1: an FE cache entry that is a FIFO or a symlink to /dev/zero is 'unreadable'
+    """An FE cache entry that is a FIFO or a symlink to /dev/zero is 'unreadable'
     (recomputed), not a hang or a MemoryError."""
     path = fifo if source == "fifo" else tmp_path / "entry.json"
     if source != "fifo":
@@ -110,7 +110,7 @@ def test_cache_entry_that_is_a_device_is_recomputed_not_read(source, fifo, tmp_p
 
 
 def test_render_cache_file_symlinked_to_a_device_is_rendered_again(tmp_path, capsys):
-    """Item 1: a render-cache file replaced by a symlink to /dev/zero fails its check (one
+    """A render-cache file replaced by a symlink to /dev/zero fails its check (one
     notice, rendered again) instead of reading forever."""
     from hubvib.render.cache import _verified
 
@@ -124,7 +124,7 @@ def test_render_cache_file_symlinked_to_a_device_is_rendered_again(tmp_path, cap
 
 
 def test_reader_limits_and_messages(tmp_path):
-    """Item 1 and 4: the one reader bounds the size and names file and line of bad bytes."""
+    """The one reader bounds the size and names file and line of bad bytes."""
     big = tmp_path / "big.csv"
     big.write_bytes(b"1\n" * 600)
     with pytest.raises(InputError, match=r"--periods .*big.csv' is larger than 1000 bytes"):
@@ -137,7 +137,7 @@ def test_reader_limits_and_messages(tmp_path):
     assert read_text(big, "x", kind="CSV").count("\n") == 600
 
 
-# -- item 2: physical ranges checked before computing; no warning text -------------------
+# -- physical ranges checked before computing; no warning text -------------------
 
 def _periods(tmp_path, value, count=16):
     path = tmp_path / "periods.csv"
@@ -146,7 +146,7 @@ def _periods(tmp_path, value, count=16):
 
 
 def test_mode_number_too_large_for_numpy_is_one_line(tmp_path, capsys):
-    """Item 2: mode = 99999999999999999999999 in --measured ended in OverflowError."""
+    """Mode = 99999999999999999999999 in --measured ended in OverflowError."""
     path = tmp_path / "m.csv"
     path.write_text("frequency_hz,mode\n50,99999999999999999999999\n", encoding="utf-8")
     _fails(capsys, ["diagnose", "--scene", "raba118_crack", "--measured", str(path)],
@@ -158,14 +158,14 @@ def test_mode_number_too_large_for_numpy_is_one_line(tmp_path, capsys):
     (["--stages", "20", "--z2", "10000"], "allowed: a total ratio <= 1e+12"),
 ])
 def test_harmonics_stage_count_bounded_before_computing(flags, message, tmp_path, capsys):
-    """Item 2: --stages 1000 overflowed (OverflowError) in the engagement orders."""
+    """--stages 1000 overflowed (OverflowError) in the engagement orders."""
     _fails(capsys, ["harmonics", "--periods", _periods(tmp_path, 0.01), "--pulses-per-rev",
                     "4", "--z2", "6", *flags], message)
 
 
 @pytest.mark.parametrize("value", ["1e308", "1e-320"])
 def test_periods_outside_physical_range_refused_without_warnings(value, tmp_path, capsys):
-    """Item 2: periods of 1e308 s printed numpy RuntimeWarnings before an error naming
+    """Periods of 1e308 s printed numpy RuntimeWarnings before an error naming
     nothing (``y must contain only finite values``)."""
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # any numpy warning fails the test
@@ -175,35 +175,35 @@ def test_periods_outside_physical_range_refused_without_warnings(value, tmp_path
 
 
 def test_torus_screw_speed_bounded(capsys):
-    """Item 2: --input-speed-rpm 1e300 overflowed Phi4 (OverflowError)."""
+    """--input-speed-rpm 1e300 overflowed Phi4 (OverflowError)."""
     _fails(capsys, ["torus-screw", "--input-speed-rpm", "1e300"], "--input-speed-rpm",
            "0..1e+06")
 
 
 @pytest.mark.parametrize("ratio", ["1e300", "1001"])
 def test_efficiency_ratio_bounded(ratio, capsys):
-    """Item 2: --ratio 1e300 exited 0 printing R = -inf."""
+    """--ratio 1e300 exited 0 printing R = -inf."""
     _fails(capsys, ["efficiency", "--ratio", ratio], "--ratio", "2..1000")
 
 
 def test_efficiency_largest_ratio_still_finite(capsys):
-    """Item 2: the bound is not too tight: i = 1000 gives finite R, A and eta; R grows
+    """The bound is not too tight: i = 1000 gives finite R, A and eta; R grows
     like i (eq. 12: R ~ i d_c / (2 pi) x ..., 12.39 m for 15 mm balls, computed here)."""
     assert main(["efficiency", "--ratio", "1000", "--json"]) == 0
     text = capsys.readouterr().out
     assert "Infinity" not in text and "NaN" not in text, "non-finite value at i = 1000"
 
 
-# -- item 8: negative contact forces ----------------------------------------------------
+# -- negative contact forces ----------------------------------------------------
 
 def test_torus_screw_negative_contact_force_refused(capsys):
-    """Item 8: alpha1 = 89.999, alpha3 = 0.001 deg printed N3 = -40.6 N without a word."""
+    """Alpha1 = 89.999, alpha3 = 0.001 deg printed N3 = -40.6 N without a word."""
     _fails(capsys, ["torus-screw", "--alpha1-deg", "89.999", "--alpha3-deg", "0.001"],
            "outside the force model's validity", "N3 = -40.61 N < 0", "--alpha1-deg")
 
 
 def test_torus_screw_paper_point_still_solves(capsys):
-    """Item 8: the paper's operating point keeps positive contact forces (paper: N1 =
+    """The paper's operating point keeps positive contact forces (paper: N1 =
     160.61 N, N3 = 844.47 N cylindrical; this model 162.1, 844.2 as its doctest says)."""
     assert main(["torus-screw", "--fingers", "cylindrical", "--json"]) == 0
     forces = json.loads(capsys.readouterr().out)["results"][0]
@@ -211,7 +211,7 @@ def test_torus_screw_paper_point_still_solves(capsys):
     assert forces["N3_n"] == pytest.approx(844.47, rel=0.01), "N3 vs seed 002 table, 1 %"
 
 
-# -- item 5: --set after --design contradicting the design ------------------------------
+# -- --set after --design contradicting the design ------------------------------
 
 @pytest.mark.parametrize("setting, message", [
     ("n_planets=3", "--set: 3 planets, but the design 'hub4' has n_planets = 4"),
@@ -220,14 +220,14 @@ def test_torus_screw_paper_point_still_solves(capsys):
                                "at 270 deg"),
 ])
 def test_spectrum_design_refuses_a_contradicting_set(setting, message, capsys):
-    """Item 5: accepted without a word, while a scene refused the same contradiction
+    """Accepted without a word, while a scene refused the same contradiction
     (d_r = 0.187938524 m is the base diameter the hub4 design derives, as the scene's
     check reports it)."""
     _fails(capsys, ["spectrum", "--design", "hub4", "--set", setting], message)
 
 
 def test_spectrum_design_accepts_a_set_the_design_leaves_open(capsys):
-    """Item 5: a mounting stiffness the geometry does not give still overrides; c_ru
+    """A mounting stiffness the geometry does not give still overrides; c_ru
     lowered by 10^4 lowers the first (rotational) frequency."""
     assert main(["spectrum", "--design", "hub4", "--json"]) == 0
     base = json.loads(capsys.readouterr().out)["modes"][0]["omega_rad_s"]
@@ -236,10 +236,10 @@ def test_spectrum_design_accepts_a_set_the_design_leaves_open(capsys):
     assert soft < base, f"c_ru = 1e4 N/m should lower mode 1: {soft} vs {base} rad/s"
 
 
-# -- item 7: [signal] revolutions, the documented minimum --------------------------------
+# -- [signal] revolutions, the documented minimum --------------------------------
 
 def test_signal_revolutions_minimum_is_checked_before_the_work():
-    """Item 7: revolutions = 1 (then the documented minimum) failed after the FE and the
+    """Revolutions = 1 (then the documented minimum) failed after the FE and the
     time integration with "allowed: >= 1"; it is now refused when the scene is parsed,
     and the minimum stated is one that works."""
     from hubvib.foundation.errors import SceneError
@@ -253,7 +253,7 @@ def test_signal_revolutions_minimum_is_checked_before_the_work():
 
 @pytest.mark.parametrize("revolutions, whole", [(1.0, 0), (2.0, 1), (10.0, 9)])
 def test_signal_record_holds_one_whole_revolution_less_than_asked(revolutions, whole):
-    """Item 7, why the minimum is 2: ``sampled`` gives 0 <= t < duration, so the
+    """Why the minimum is 2: ``sampled`` gives 0 <= t < duration, so the
     angle-domain record of R revolutions holds R - 1 whole ones (computed here with the
     pipeline's own functions on a pure order-3 signal)."""
     import math
@@ -272,19 +272,31 @@ def test_signal_record_holds_one_whole_revolution_less_than_asked(revolutions, w
         assert angle_domain(2 * math.pi * 5.0 * t, values, 64).revolutions == whole
 
 
-# -- item 15: console and text ------------------------------------------------------------
+# -- console and text ------------------------------------------------------------
 
-def test_sweep_console_shows_hz_beside_rad_s(tmp_path, capsys):
-    """Item 15: sweep scenes printed rad/s only, crack scenes Hz: both now; mode 1 of the
-    Raba preset is 336.454 rad/s (README worked example) = 53.548 Hz (omega / 2 pi)."""
-    assert main(["run", "raba118_c_ru", "--out", str(tmp_path / "o")]) == 0
-    lines = capsys.readouterr().out.splitlines()
+@pytest.fixture(scope="module")
+def sweep_run(tmp_path_factory):
+    """``hubvib run raba118_c_ru`` (the lumped sweep scene, plots included): its output
+    folder and what it printed."""
+    import contextlib
+    import io
+
+    out, printed = tmp_path_factory.mktemp("sweep") / "o", io.StringIO()
+    with contextlib.redirect_stdout(printed):
+        assert main(["run", "raba118_c_ru", "--out", str(out)]) == 0
+    return out, printed.getvalue()
+
+
+def test_sweep_console_shows_hz_beside_rad_s(sweep_run):
+    """Sweep scenes print Hz beside rad/s, as crack scenes do; mode 1 of the Raba preset is
+    336.454 rad/s (README worked example) = 53.548 Hz (omega / 2 pi)."""
+    lines = sweep_run[1].splitlines()
     assert "base [Hz]" in lines[1] and "base [rad/s]" in lines[1], lines[1]
     assert lines[2].split()[2:4] == ["53.548", "336.454"], lines[2]
 
 
 def test_scene_descriptions_are_whole_sentences(capsys):
-    """Item 15: ``hubvib scenes`` cut descriptions after the first line, mid-sentence."""
+    """``hubvib scenes`` cut descriptions after the first line, mid-sentence."""
     assert main(["scenes", "--json"]) == 0
     scenes = json.loads(capsys.readouterr().out)["scenes"]
     assert scenes["raba118_c_ru"].endswith("Lumped only: no FE stage."), scenes["raba118_c_ru"]
@@ -294,7 +306,7 @@ def test_scene_descriptions_are_whole_sentences(capsys):
 
 
 def test_tip_interference_names_the_design_keys(tmp_path, capsys):
-    """Item 15: zero profile shifts said "GearPair.first: the path of contact runs below
+    """Zero profile shifts said "GearPair.first: the path of contact runs below
     the form circle"; now the gear and the keys that fix it (shifts 0.2/0.2/0.6 of the
     same teeth assemble, checked here)."""
     text = ("[design]\nn_planets = 3\nmodule = 2.5e-3\nface_width = 0.03\n"
@@ -310,7 +322,7 @@ def test_tip_interference_names_the_design_keys(tmp_path, capsys):
 
 
 def test_missing_bearing_suggests_keys_that_exist():
-    """Item 15: the message suggested planet_bearing / carrier_bearing, which are not
+    """The message suggested planet_bearing / carrier_bearing, which are not
     design-file keys; the keys are [design.bearings] planet / carrier."""
     from hubvib.build import lumped_parameters
     from hubvib.design import DesignError, read_design
@@ -337,7 +349,7 @@ def _design_without_bearings() -> Path:
 @pytest.mark.parametrize("argv", [["spectrum", "--set", "c_ru=-1", "--json"],
                                   ["efficiency", "--ratio", "1e300", "--json"]])
 def test_json_errors_are_a_json_object_on_stdout(argv, capsys):
-    """Item 15: with --json an error left stdout empty; now one JSON object with the same
+    """With --json an error left stdout empty; now one JSON object with the same
     message, and the one line on stderr (exit 2)."""
     assert main(argv) == 2
     captured = capsys.readouterr()
@@ -346,10 +358,10 @@ def test_json_errors_are_a_json_object_on_stdout(argv, capsys):
     assert captured.err.strip() == f"hubvib: error: {data['error']}"
 
 
-# -- item 6: part-width cracks in the signal study ---------------------------------------------
+# -- part-width cracks in the signal study ---------------------------------------------
 
 def test_signal_refuses_the_solid_scenes_part_width_cracks(tmp_path, capsys):
-    """Item 6: ``hubvib signal raba118_crack_3d`` exited 0, simulating the semi-elliptic
+    """``hubvib signal raba118_crack_3d`` exited 0, simulating the semi-elliptic
     cracks as through-width ones; now refused before any FE work, naming the key."""
     out = tmp_path / "out"
     _fails(capsys, ["signal", "raba118_crack_3d", "--out", str(out)],
@@ -358,7 +370,7 @@ def test_signal_refuses_the_solid_scenes_part_width_cracks(tmp_path, capsys):
     assert not out.exists()
 
 
-# -- item 4: errors that name the file and line ----------------------------------------------
+# -- errors that name the file and line ----------------------------------------------
 
 @pytest.mark.parametrize("content, words", [
     (b"scale,value\n1.0,\xe9\n", "is not UTF-8 text (line 2, byte 16 is 0xe9)"),
@@ -366,7 +378,7 @@ def test_signal_refuses_the_solid_scenes_part_width_cracks(tmp_path, capsys):
     (b"scale,value\n1,2,3\n", "line 2:"),
 ])
 def test_damaged_convergence_levels_file_is_named(content, words, tmp_path, capsys):
-    """Item 4: a damaged levels file of a resumed convergence study said only "'utf-8'
+    """A damaged levels file of a resumed convergence study said only "'utf-8'
     codec can't decode byte 0xe9 in position 16" (or "could not convert string to
     float: 'abc'"); now the file, the line and what to do, before any level is computed."""
     out = tmp_path / "cv"
@@ -377,7 +389,7 @@ def test_damaged_convergence_levels_file_is_named(content, words, tmp_path, caps
            f"convergence levels file {str(levels)!r}", words)
 
 
-# Item 4, "not enough values to unpack": every input that takes a pair or a list, given too
+# "not enough values to unpack": every input that takes a pair or a list, given too
 # few values, an empty string, a list for a table or a row of one column, is refused naming
 # its key, flag or file (the origin of the reported message was not found again: this keeps
 # each of these inputs from producing one).
@@ -423,10 +435,10 @@ def test_short_pairs_and_lists_name_their_key(argv, files, pieces, tmp_path, cap
     assert "unpack" not in line and "values to" not in line, line
 
 
-# -- item 12: what the cache checksum guards against ------------------------------------------
+# -- what the cache checksum guards against ------------------------------------------
 
 def test_cache_checksum_has_no_key(tmp_path):
-    """Item 12: an entry edited and re-summed is trusted: the checksum guards against
+    """An entry edited and re-summed is trusted: the checksum guards against
     damage, not tampering.  docs/reliability.md says so; this test keeps that true."""
     import hashlib
 
@@ -448,7 +460,7 @@ def test_cache_checksum_has_no_key(tmp_path):
     assert "guards against damage, not tampering" in page.replace("\n", " ")
 
 
-# -- item 13: every figure in a report has a caption ------------------------------------------
+# -- every figure in a report has a caption ------------------------------------------
 
 def _uncaptioned(report: str) -> list[str]:
     lines = report.splitlines()
@@ -457,16 +469,15 @@ def _uncaptioned(report: str) -> list[str]:
                      and lines[i + 2].endswith("*"))]
 
 
-def test_every_figure_of_a_report_has_a_caption(tmp_path, capsys):
-    """Item 13: figures came without a word on what they show; each now has a caption
-    line under it (the lumped sweep's report, run here)."""
-    assert main(["run", "raba118_c_ru", "--out", str(tmp_path / "o")]) == 0
-    report = (tmp_path / "o" / "report.md").read_text(encoding="utf-8")
+def test_every_figure_of_a_report_has_a_caption(sweep_run):
+    """Each figure has a caption line under it saying what it shows (the lumped sweep's
+    report)."""
+    report = (sweep_run[0] / "report.md").read_text(encoding="utf-8")
     assert report.count("![") == 2 and _uncaptioned(report) == [], report
 
 
 def test_captions_cover_every_figure_name_and_state_the_drawn_scale():
-    """Item 13: a figure without a caption is an error (found when its report is built);
+    """A figure without a caption is an error (found when its report is built);
     the stated magnifications are those the renders use."""
     from hubvib.render import captions
     from hubvib.render.fe import MAGNIFIED

@@ -51,7 +51,8 @@ def test_stability_reports_each_case_on_stderr(capsys):
 
     assert main(["stability", "--repeats", "1", "--json"]) == 0
     captured = capsys.readouterr()
-    json.loads(captured.out)  # stdout: the answer alone
+    data = json.loads(captured.out)  # stdout: the answer alone
+    assert data["passed"] and data["target"] == 1e-6
     total = len(cases(lumped_preset("raba118")))
     assert [line.split(":")[0] for line in captured.err.splitlines()] == (
         ["stability cases"] * total)

@@ -38,7 +38,7 @@ def _fails(capsys, argv, *pieces):
     return lines[0]
 
 
-# -- item 3: the --params file ---------------------------------------------------------
+# -- the --params file ---------------------------------------------------------
 
 def _params_files(tmp_path):
     files = {}
@@ -71,13 +71,13 @@ def _params_files(tmp_path):
 @pytest.mark.parametrize("case", ["missing", "directory", "device", "huge", "malformed",
                                   "utf-16", "binary", "latin-1", "preset"])
 def test_params_file_refused_naming_the_file(case, tmp_path, capsys):
-    """Item 3: each bad --params file is one line naming the file; /dev/zero is not read."""
+    """Each bad --params file is one line naming the file; /dev/zero is not read."""
     path, why = _params_files(tmp_path)[case]
     _fails(capsys, ["spectrum", "--params", str(path)], f"parameters file {str(path)!r}", why)
 
 
 def test_params_file_with_utf8_bom_reads_as_without(tmp_path, capsys):
-    """Item 3: a UTF-8 byte-order mark (Windows editors) is skipped, not an error."""
+    """A UTF-8 byte-order mark (Windows editors) is skipped, not an error."""
     plain, marked = tmp_path / "plain.toml", tmp_path / "bom.toml"
     plain.write_text("c_ru = 1e5\n", encoding="utf-8")
     marked.write_bytes(codecs.BOM_UTF8 + b"c_ru = 1e5\n")
@@ -91,13 +91,13 @@ def test_params_file_with_utf8_bom_reads_as_without(tmp_path, capsys):
 
 
 def test_params_file_bad_key_names_the_file(tmp_path, capsys):
-    """Item 3: a bad value inside the file says which file it came from."""
+    """A bad value inside the file says which file it came from."""
     path = tmp_path / "p.toml"
     path.write_text("c_ru = -1\n")
     _fails(capsys, ["spectrum", "--params", str(path)], str(path), "c_ru = -1")
 
 
-# -- item 4: shift --to ------------------------------------------------------------------
+# -- shift --to ------------------------------------------------------------------
 
 @pytest.mark.parametrize("key, value, message", [
     ("foo", "1e5", "--to 'foo' is not a parameter; allowed: m_s"),
@@ -111,13 +111,13 @@ def test_params_file_bad_key_names_the_file(tmp_path, capsys):
     ("c_ru", "nan", "c_ru = nan, but it must be finite"),
 ])
 def test_shift_to_names_the_flag(key, value, message, capsys):
-    """Item 4: no AttributeError/TypeError; the error names --to, not --set."""
+    """No AttributeError/TypeError; the error names --to, not --set."""
     line = _fails(capsys, ["shift", "--to", key, value], message)
     assert "--set" not in line
 
 
 def test_shift_to_a_pressure_angle_still_works(capsys):
-    """Item 4: the one-number fields stay shiftable: the modified frequencies of
+    """The one-number fields stay shiftable: the modified frequencies of
     ``shift --to alpha_s 0.5`` (tracked along a path) are those ``spectrum --set
     alpha_s=0.5`` computes directly (1e-9)."""
     assert main(["shift", "--to", "alpha_s", "0.5", "--json"]) == 0
@@ -128,7 +128,7 @@ def test_shift_to_a_pressure_angle_still_works(capsys):
         [m["omega_rad_s"] for m in direct], rel=1e-9)
 
 
-# -- item 5: output folders of mesh, validate, convergence ---------------------------------
+# -- output folders of mesh, validate, convergence ---------------------------------
 
 def _bad_folders(tmp_path):
     blocker = tmp_path / "a-file"
@@ -140,7 +140,7 @@ def _bad_folders(tmp_path):
 @pytest.mark.parametrize("command", ["mesh", "validate", "convergence"])
 @pytest.mark.parametrize("where", ["file", "under a file", "proc", "long name"])
 def test_output_folder_checked_before_any_work(command, where, tmp_path, capsys, monkeypatch):
-    """Item 5: the folder is refused in one line before meshing/validating/computing."""
+    """The folder is refused in one line before meshing/validating/computing."""
     import hubvib.studies.part_mesh
     import hubvib.validation.convergence
     import hubvib.validation.raba118
@@ -157,7 +157,7 @@ def test_output_folder_checked_before_any_work(command, where, tmp_path, capsys,
     _fails(capsys, argv, f"cannot write the output folder {folder!r}")
 
 
-# -- item 7: the FE cache -----------------------------------------------------------------
+# -- the FE cache -----------------------------------------------------------------
 
 CRACK_SCENE = """# tiny crack scene
 [crack]
@@ -171,7 +171,7 @@ plots = false
 
 @pytest.mark.parametrize("cache", ["file", "proc"])
 def test_unwritable_cache_refused_before_fe_work(cache, tmp_path, capsys, monkeypatch):
-    """Item 7: HUBVIB_CACHE that is a file or cannot be created: one line naming it, exit 2,
+    """HUBVIB_CACHE that is a file or cannot be created: one line naming it, exit 2,
     before any FE case (the FE entry point would fail the test) and with nothing written."""
     pytest.importorskip("gmsh")
     import hubvib.studies.crack_study
@@ -192,7 +192,7 @@ def test_unwritable_cache_refused_before_fe_work(cache, tmp_path, capsys, monkey
     assert not out.exists()
 
 
-# -- item 10: bounds ------------------------------------------------------------------------
+# -- bounds ------------------------------------------------------------------------
 
 BOUNDS = [
     (["spectrum", "--set", "n_planets=1000"],
@@ -243,7 +243,7 @@ def bounds_runs(tmp_path_factory):
 @pytest.mark.parametrize("index", range(len(BOUNDS)),
                          ids=[message for _, message in BOUNDS])
 def test_documented_bounds(index, bounds_runs):
-    """Item 10: each bound is one line at once (in a subprocess with a time limit: the old
+    """Each bound is one line at once (in a subprocess with a time limit: the old
     code hung in an N^2 angle check, meshed for minutes or ran the benchmark forever),
     exit 2, nothing written."""
     argv, message = BOUNDS[index]
@@ -256,7 +256,7 @@ def test_documented_bounds(index, bounds_runs):
 
 
 def test_huge_planet_count_in_a_params_file(tmp_path):
-    """Item 10: n_planets = 1e9 in a file (the old code tried to build 1e9 angles)."""
+    """N_planets = 1e9 in a file (the old code tried to build 1e9 angles)."""
     path = tmp_path / "p.toml"
     path.write_text("n_planets = 1e9\n")
     run = subprocess.run([sys.executable, "-m", "hubvib.cli", "spectrum", "--params", str(path)],
@@ -267,7 +267,7 @@ def test_huge_planet_count_in_a_params_file(tmp_path):
 
 
 def test_planet_angle_check_agrees_with_every_pair():
-    """Item 10: the N log N neighbour check refuses exactly the angle sets that the plain
+    """The N log N neighbour check refuses exactly the angle sets that the plain
     check of all N^2 pairs refuses (random sets with near-duplicates and wrap-around)."""
     def brute_force(theta):
         wrap = lambda a: (a + math.pi) % (2 * math.pi) - math.pi  # noqa: E731
@@ -299,7 +299,7 @@ def test_planet_angle_check_agrees_with_every_pair():
 
 
 def test_most_planets_allowed_still_solve():
-    """Item 10: N = MAX_PLANETS is inside the bound and keeps Lin & Parker's structure
+    """N = MAX_PLANETS is inside the bound and keeps Lin & Parker's structure
     (equally spaced planets): 6 rotational modes, 6 translational pairs and 3 groups of
     N - 3 planet modes, 9 + 3N in all."""
     params = lumped_preset("raba118").replace(theta=lumped.equally_spaced_angles(MAX_PLANETS))
@@ -310,20 +310,20 @@ def test_most_planets_allowed_still_solve():
     assert kinds.count("planet") == 3 * (MAX_PLANETS - 3)
 
 
-# -- item 11: overflow and standard JSON ---------------------------------------------------
+# -- overflow and standard JSON ---------------------------------------------------
 
 MASSES = ("m_s", "m_c", "m_r", "m_p", "mu_s", "mu_c", "mu_r", "mu_p")
 
 
 def test_overflowing_spectrum_is_refused(capsys):
-    """Item 11: every mass x 1e-300 puts omega^2 beyond the double range (3e8 / 1e-300):
+    """Every mass x 1e-300 puts omega^2 beyond the double range (3e8 / 1e-300):
     refused in one line, not 9 modes of 'inf' labelled 'mixed'."""
     argv = ["spectrum", "--json"] + [a for m in MASSES for a in ("--set", f"{m}=1e-300")]
     _fails(capsys, argv, "overflow double precision", "c_sp = 3e+08 N/m over m_s = 1e-300 kg")
 
 
 def test_light_but_representable_masses_still_solve():
-    """Item 11: only non-finite results are refused.  Every mass x 1e-290 kg is fine, and
+    """Only non-finite results are refused.  Every mass x 1e-290 kg is fine, and
     scales every frequency by exactly 1e145 (omega ~ sqrt(k / m): homogeneity), 1e-9."""
     base = lumped_preset("raba118")
     scaled = base.replace(**{m: getattr(base, m) * 1e-290 for m in MASSES})
@@ -335,14 +335,14 @@ def test_light_but_representable_masses_still_solve():
                                   ["shift", "--to", "c_ru", "1e5", "--json"],
                                   ["stability", "--repeats", "1", "--json"]])
 def test_json_output_is_standard(argv, capsys):
-    """Item 11: --json is RFC 8259 JSON (the stability table had NaN for the printed matrix:
+    """--json is RFC 8259 JSON (the stability table had NaN for the printed matrix:
     it is null now)."""
     main(argv)
     _strict_json(capsys.readouterr().out)
 
 
 def test_json_text_names_a_non_finite_value():
-    """Item 11: a NaN on its way to a JSON file is an error naming where it is."""
+    """A NaN on its way to a JSON file is an error naming where it is."""
     from hubvib.foundation.output import json_text
 
     with pytest.raises(ValueError, match=r"modes\[1\]\.omega = inf is not a finite number"):
@@ -366,7 +366,7 @@ def test_written_tables_leave_a_nan_cell_empty(tmp_path):
     assert list(csv.DictReader(path.open(newline="")))[0]["b"] == ""
 
 
-# -- item 15: silent acceptance -------------------------------------------------------------
+# -- silent acceptance -------------------------------------------------------------
 
 @pytest.mark.parametrize("sets, message", [
     (["n_planets=4", "theta_deg=0,90"], "n_planets = 4, but theta_deg gives 2 planet angle(s)"),
@@ -379,14 +379,14 @@ def test_written_tables_leave_a_nan_cell_empty(tmp_path):
     (["alpha_w_deg=0"], "alpha_w_deg = 0.0"),
 ])
 def test_contradictions_and_ranges_name_the_key(sets, message, capsys):
-    """Item 15: no silent choice between contradicting keys; the key the user typed is the
+    """No silent choice between contradicting keys; the key the user typed is the
     one named (alpha_w_deg, not alpha_s)."""
     argv = ["spectrum"] + [a for s in sets for a in ("--set", s)]
     _fails(capsys, argv, message)
 
 
 def test_planet_count_and_matching_angles_agree(capsys):
-    """Item 15: n_planets with angles of the same count is not a contradiction; unequal
+    """N_planets with angles of the same count is not a contradiction; unequal
     spacing breaks the cyclic symmetry, so no 'planet' multiplicity-2 modes remain."""
     assert main(["spectrum", "--set", "n_planets=3", "--set", "theta_deg=0,100,200",
                  "--json"]) == 0
@@ -394,10 +394,10 @@ def test_planet_count_and_matching_angles_agree(capsys):
     assert len(modes) == 18 and all(m["multiplicity"] == 1 for m in modes)
 
 
-# -- item 16 (progress lines) -----------------------------------------------------------------
+# -- progress lines -----------------------------------------------------------------
 
 def test_run_prints_one_line_per_stage_when_not_a_terminal(tmp_path, capsys):
-    """Item 16: stderr that is not a terminal gets one line per finished stage."""
+    """Stderr that is not a terminal gets one line per finished stage."""
     assert main(["run", "raba118_five_planets", "--out", str(tmp_path / "out")]) == 0
     err = capsys.readouterr().err.splitlines()
     assert err[0].startswith("hubvib: lumped spectra and shifts of 3 values done (")
@@ -405,7 +405,7 @@ def test_run_prints_one_line_per_stage_when_not_a_terminal(tmp_path, capsys):
 
 
 def test_line_progress_counts_and_estimates():
-    """Item 16: the plain progress line: done/total, the note, elapsed and time left."""
+    """The plain progress line: done/total, the note, elapsed and time left."""
     import io
 
     from hubvib.runtime.progress import progress
@@ -421,10 +421,10 @@ def test_line_progress_counts_and_estimates():
     assert lines[2].startswith("FE crack cases: 4/4 cases (depth 12 mm), ") and len(lines) == 3
 
 
-# -- items 6, 12, 13: the output set ------------------------------------------------------------
+# -- the output set ------------------------------------------------------------
 
 def test_output_files_are_0644_under_umask_022(tmp_path, capsys):
-    """Item 13: CSV, JSON, report and plots get the umask's mode, 0644 under 022, as the
+    """CSV, JSON, report and plots get the umask's mode, 0644 under 022, as the
     renders always did (mkstemp alone creates 0600)."""
     previous = os.umask(0o022)
     try:
@@ -438,7 +438,7 @@ def test_output_files_are_0644_under_umask_022(tmp_path, capsys):
 
 
 def test_a_new_set_replaces_the_previous_one_whole(tmp_path):
-    """Item 12: the second set into a folder removes the first set's files it does not
+    """The second set into a folder removes the first set's files it does not
     have (no plot of scene A beside the tables of scene B), leaves files hubvib did not
     write, and follows no manifest entry out of the folder."""
     from hubvib.foundation.output import MANIFEST_NAME, output_set, write_text
@@ -461,7 +461,7 @@ def test_a_new_set_replaces_the_previous_one_whole(tmp_path):
 
 
 def test_failed_set_changes_nothing_and_says_what_was_discarded(tmp_path):
-    """Item 6: an error while writing the set leaves the folder as it was."""
+    """An error while writing the set leaves the folder as it was."""
     from hubvib.foundation.output import OutputError, output_set, write_text
 
     out = tmp_path / "out"
@@ -493,7 +493,7 @@ KNOWN_OTHER_WRITERS = set()
 
 
 def test_leftovers_of_a_killed_run_are_cleared(tmp_path):
-    """Items 6, 9: kill -9 leaves the hidden stage and lock file behind (no handler runs);
+    """Kill -9 leaves the hidden stage and lock file behind (no handler runs);
     the next run into the folder removes the stage and takes the lock (the kernel released
     the dead run's flock)."""
     from hubvib.foundation.output import LOCK_NAME, STAGE_PREFIX, output_set, write_text

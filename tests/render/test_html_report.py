@@ -82,7 +82,7 @@ def _screenshot(page: Path, name: str, tmp_path: Path) -> Path:
 @pytest.mark.slow  # a run and two browser starts: ~17 s
 @needs_browser
 def test_html_report_loads_shows_every_figure_and_sorts(tmp_path, capsys):
-    """Item 16: the lumped sweep's report.html loads without a console error, every figure
+    """The lumped sweep's report.html loads without a console error, every figure
     is decoded by the browser (2 of 2, embedded: no external source), the baseline table
     sorts by mode (descending: 18 first, Raba preset has 18 modes), and a screenshot is
     kept."""
@@ -102,7 +102,7 @@ def test_html_report_loads_shows_every_figure_and_sorts(tmp_path, capsys):
 
 
 def test_html_report_embeds_animations_and_links_html(tmp_path):
-    """Item 16: a mode's GIF replaces its PNG in the page (the animation), and a link to
+    """A mode's GIF replaces its PNG in the page (the animation), and a link to
     another report.md points at its report.html; no browser needed."""
     import base64
 

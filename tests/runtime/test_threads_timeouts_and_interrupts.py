@@ -23,7 +23,7 @@ def _collect(items, workers):
 
 @pytest.mark.slow
 def test_a_case_run_in_process_has_the_pool_workers_blas_threads():
-    """Item 11: after kill -9 the one case left ran in this process with the default
+    """After kill -9 the one case left ran in this process with the default
     (multi-threaded) BLAS, the others in single-threaded pool workers: the rerun differed
     in the last digits (7e-16 relative).  Same threads now, so the same digits."""
     if not blas_thread_counts():
@@ -36,7 +36,7 @@ def test_a_case_run_in_process_has_the_pool_workers_blas_threads():
 
 
 def test_in_process_cases_restore_the_threads_after():
-    """Item 11: the limit holds only while the case runs (the lumped batch and the report
+    """The limit holds only while the case runs (the lumped batch and the report
     keep the process's own threads)."""
     from hubvib.runtime.engines import _load_mkl
 
@@ -77,7 +77,7 @@ def silent_server():
 
 @pytest.mark.slow  # two 1 s timeouts and the import of dask.distributed: ~3 s
 def test_scheduler_that_accepts_but_never_answers_fails_within_the_timeout(silent_server):
-    """Item 9: the connection is accepted, the handshake never answered: before, ``timeout_s``
+    """The connection is accepted, the handshake never answered: before, ``timeout_s``
     bounded only the connect and the run hung (measured: > 60 s at timeout_s = 2); now one
     EngineError naming the address and the timeout."""
     pytest.importorskip("distributed")
@@ -95,7 +95,7 @@ def test_scheduler_that_accepts_but_never_answers_fails_within_the_timeout(silen
 
 
 def test_ctrl_c_while_the_output_lock_is_taken_leaves_no_lock_file(tmp_path, monkeypatch):
-    """Item 10: a Ctrl-C between creating ``.hubvib.lock`` and the block that removes it
+    """A Ctrl-C between creating ``.hubvib.lock`` and the block that removes it
     left an empty lock file.  The SIGINT is sent (to this process, as a terminal does)
     from inside the lock's own write, deterministically in that window."""
     import os
@@ -123,7 +123,7 @@ def test_ctrl_c_while_the_output_lock_is_taken_leaves_no_lock_file(tmp_path, mon
 
 
 def test_a_late_ctrl_c_cannot_escape_main_as_a_program(monkeypatch):
-    """Item 10: called as the program (argv None), a SIGINT that arrives as main returns
+    """Called as the program (argv None), a SIGINT that arrives as main returns
     is ignored instead of escaping (the process then died by the signal, not exit 130,
     1 run in 25).  Here it is sent from the command itself, as it returns."""
     import signal
@@ -170,7 +170,7 @@ class _Lines:
 
 
 def test_work_without_a_count_says_it_is_working_off_a_terminal():
-    """Item 14: off a terminal plots and renders ran 32 s without a line; ``working``
+    """Off a terminal plots and renders ran 32 s without a line; ``working``
     prints one at least every HEARTBEAT_S (5 s) until the work ends, and none after."""
     from hubvib.runtime.progress import HEARTBEAT_S, working
 
@@ -186,7 +186,7 @@ def test_work_without_a_count_says_it_is_working_off_a_terminal():
 
 
 def test_working_is_silent_on_a_terminal():
-    """Item 14: on a terminal the bars and the command's own output say enough."""
+    """On a terminal the bars and the command's own output say enough."""
     from hubvib.runtime.progress import working
 
     stream = _Lines()
@@ -219,7 +219,7 @@ sys.exit(cli.main())
 
 
 def test_python_m_exits_130_after_a_ctrl_c_during_the_imports(tmp_path):
-    """Item 10: ``python -m hubvib.cli`` interrupted while importing printed the one line
+    """``python -m hubvib.cli`` interrupted while importing printed the one line
     and chose exit 130, then CPython killed it by SIGINT (a flag left by the interrupted
     PyRun_* call; 13 of 40 storm runs).  The same path, made deterministic."""
     import subprocess
