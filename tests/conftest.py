@@ -26,6 +26,16 @@ def pytest_cmdline_main(config):
 
 
 @pytest.fixture(scope="session")
+def fig4_sweep():
+    """The shipped lumped sweep scene ``raba118_c_ru`` (the paper's fig. 4: c_ru swept)
+    run once per test process: its ``StudyResult``, read by tests, never changed."""
+    from hubvib.studies.scene import load_scene
+    from hubvib.studies.sweep import run_study
+
+    return run_study(load_scene(str(Path(__file__).parents[1] / "scenes" / "raba118_c_ru.toml")))
+
+
+@pytest.fixture(scope="session")
 def shared_cache_folder(tmp_path_factory):
     """One FE cache folder for the whole test run, shared by its xdist workers (below the
     run's base temporary folder), for tests that need the same expensive cached entries

@@ -70,13 +70,9 @@ def test_default_scene_is_the_shipped_crack_scene():
     assert load_scene(None).crack.depths[-1] > 0.024  # through the rim
 
 
-def test_fig4_scene_detects_the_crack_in_rotational_modes_only():
+def test_fig4_scene_detects_the_crack_in_rotational_modes_only(fig4_sweep):
     """The files of the run (plots included) are checked in test_every_scene_runs."""
-    fig4 = Path(__file__).parents[2] / "scenes" / "raba118_c_ru.toml"
-    from hubvib.studies.sweep import run_study
-
-    result = run_study(load_scene(fig4))
-    detected = {r["kind"] for r in result.detection() if r["detectable_at"] is not None}
+    detected = {r["kind"] for r in fig4_sweep.detection() if r["detectable_at"] is not None}
     assert detected == {"rotational"}
 
 

@@ -32,10 +32,8 @@ def test_the_status_sentence_carries_the_validation_numbers():
     assert "printed matrix" in text and "energy-consistent model" in text
 
 
-def test_the_sweep_report_states_it():
-    from hubvib.studies.scene import load_scene
-    from hubvib.studies.sweep import report_markdown, run_study
+def test_the_sweep_report_states_it(fig4_sweep):
+    from hubvib.studies.sweep import report_markdown
 
-    result = run_study(load_scene(str(ROOT / "scenes" / "raba118_c_ru.toml")))
-    report = report_markdown(result, [])
+    report = report_markdown(fig4_sweep, [])
     assert f"- Model: {lumped_model_status()}." in report
