@@ -12,8 +12,9 @@ DEFAULT_WORKERS = 2
 @pytest.hookimpl(tryfirst=True)
 def pytest_cmdline_main(config):
     """The whole default run (``python -m pytest``, no file named) goes to two worker
-    processes when pytest-xdist is installed; naming files, ``-n``, ``-p no:xdist`` or a
-    worker process keep the run as asked."""
+    processes when pytest-xdist is installed, a test file at a time (``--dist loadfile``:
+    a module's fixtures are built in one worker only, not in both); naming files, ``-n``,
+    ``-p no:xdist`` or a worker process keep the run as asked."""
     if (importlib.util.find_spec("xdist") is None or os.environ.get("PYTEST_XDIST_WORKER")
             or not config.pluginmanager.hasplugin("xdist")
             or config.option.file_or_dir or getattr(config.option, "numprocesses", None)
@@ -21,7 +22,7 @@ def pytest_cmdline_main(config):
         return None
     config.option.numprocesses = DEFAULT_WORKERS
     if getattr(config.option, "dist", "no") == "no":
-        config.option.dist = "load"
+        config.option.dist = "loadfile"
     return None
 
 
