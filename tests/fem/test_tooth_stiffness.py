@@ -250,11 +250,13 @@ def test_clamped_ring_has_no_zero_mode_and_bad_groups_are_named():
 
 
 # crack model: edge-cracked strip -----------------------------------------------
-@pytest.mark.parametrize("ratio", [0.2, 0.4, 0.6])
+# a/W = 0.4 in the default run: the same FE strip and handbook integral as 0.2 and 0.6 (slow)
+@pytest.mark.parametrize("ratio", [pytest.param(0.2, marks=pytest.mark.slow), 0.4,
+                                   pytest.param(0.6, marks=pytest.mark.slow)])
 def test_edge_cracked_strip_matches_brown_srawley(ratio):
     """Compliance added by the crack vs the integral of the Brown-Srawley polynomial (Tada,
-    Paris & Irwin 2.13, itself within 0.2 % for a/W <= 0.6): within 1 % (measured
-    0.2-0.35 %).  The uncracked strip is exact beam theory, 2L / (E I), to 1e-10."""
+    Paris & Irwin 2.13, itself within 0.2 % for a/W <= 0.6): within 1 %.  The uncracked
+    strip is exact beam theory, 2L / (E I), to 1e-10."""
     W, t = 0.01, 0.001
     c0, _ = fe_rotation_compliance(0.0, W, t)
     assert c0 == pytest.approx(4 * W / (STEEL.E * t * W ** 3 / 12), rel=1e-10)
