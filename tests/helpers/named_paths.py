@@ -89,9 +89,11 @@ def exists(path: str, root: Path) -> bool:
 def missing_paths(files, root: Path) -> list[NamedPath]:
     """Every path named in the docstrings and comments of the Python ``files`` (or the whole
     text of a Markdown file) that is not in the repository at ``root``."""
-    roots = tuple(sorted({p.name for p in root.iterdir() if p.is_dir()}
+    folders = [p for p in root.iterdir() if p.is_dir() and not p.name.startswith(".")]
+    roots = tuple(sorted({p.name for p in folders} | {".ci"}
                          | {p.name for p in (root / "hubvib").iterdir() if p.is_dir()}))
-    modules = {p.name for p in root.rglob("*.py")}
+    modules = {p.name for folder in folders if not (folder / "pyvenv.cfg").exists()
+               for p in folder.rglob("*.py")} | {p.name for p in root.glob("*.py")}
     missing = []
     for file in files:
         source = file.read_text(encoding="utf-8")
