@@ -26,7 +26,7 @@ that they read in full in the repository::
 every marker and its block by what the generator gives then, and a marker without a block
 (its data not committed yet) is generated at build time as well.  ``python
 docs/generate.py --write [PAGE.md ...]`` refills the blocks of the pages (all of
-``docs/*.md`` by default); ``tests/test_docs.py`` fails when a committed block is not what
+``docs/*.md`` by default); ``tests/docs/test_docs_site.py`` fails when a committed block is not what
 its generator gives now, except the tables in ``LIVE`` (measured while the docs are built:
 timings) and, outside the slow run, those in ``SLOW``.
 

@@ -8,7 +8,7 @@ measured where the crack is (its own frame), and its engagement is compared with
 the same tooth intact: the tooth's compliance relative to its root lands depends
 on where it sits between the supports (tooth 5 of the Raba ring, between two
 support arcs, differs from tooth 0, over one, by up to 4-6 % over the flank;
-``tests/test_fem.py``).
+``tests/fem/test_elasticity_and_ring_stiffness.py``).
 """
 from __future__ import annotations
 

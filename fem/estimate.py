@@ -40,10 +40,10 @@ RING_KEYS = {"c_ru": "c_ru_N_m", "c_ru_error": "c_ru_error_N_m", "c_ru_min": "c_
 USABLE_QUALITY = 0.1
 #: version of the dict form of the estimates (``to_dict`` / ``from_dict``), stored with
 #: every FE cache entry: a change of the fields is a new version, and old entries go
-#: (2: the crack case stores the absolute intact engaged c_rp, issue 22 item 6; 3: the
+#: (2: the crack case stores the absolute intact engaged c_rp; 3: the
 #: crack case's c_ru and c_r are the work-conjugate rim parts, the root-land readings and
-#: the intact engaged c_rp over the contact window beside them, issue 25 item 1; 4: the
-#: solid case stores its cracked tooth's line-load compliance, issue 23 item 4)
+#: the intact engaged c_rp over the contact window beside them; 4: the
+#: solid case stores its cracked tooth's line-load compliance)
 SCHEMA_VERSION = 4
 
 
@@ -157,7 +157,7 @@ class RingEstimate:
 
 
 #: what ``estimate_ring`` gives as c_ru and c_r: the root-land readings or the
-#: work-conjugate rim parts (the lumped model's definition, issue 25)
+#: work-conjugate rim parts (the lumped model's definition)
 RING_DEFINITIONS = ("root_land", "rim")
 
 
@@ -192,7 +192,7 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
     and solve half the face width, its mid-plane a mirror plane (``fem.solid``): for a
     mirror-symmetric case (crack, if any, centred on the width) the whole ring's solution
     on the half's mesh (the same to round-off on a mirrored mesh, within discretisation of
-    another whole mesh: ``tests/test_half_width.py``), at ~40 % of the CPU time on the 3D
+    another whole mesh: ``tests/fem/test_half_width.py``), at ~40 % of the CPU time on the 3D
     scene; ``dofs`` are then the half's.
     """
     if definition not in RING_DEFINITIONS:
@@ -269,7 +269,7 @@ class CrackCaseEstimate:
         error [N/m].
     c_ru_root_land, c_ru_root_land_error, c_r_root_land, c_r_root_land_error : float
         The root-land readings (``ring_stiffness.ring_response``; the lumped model's c_ru
-        and c_r before issue 25) and their errors [N/m], a secondary output (NaN: not
+        and c_r formerly) and their errors [N/m], a secondary output (NaN: not
         measured, e.g. rows built from a solid case that lacks them).
     c_rp_engaged_ratio, c_rp_engaged_ratio_error : float
         Ring-planet mesh stiffness averaged over the cracked tooth's engagement, as a

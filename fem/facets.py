@@ -4,7 +4,7 @@ scikit-fem's ``FacetBasis`` maps each facet quadrature point to the global
 coordinates and back into its element by Newton's method, with an absolute
 tolerance of 1e-12 on the reference coordinates.  On small curved elements
 far from the origin the round-off of that residual (about eps |x| / h) is
-larger than the tolerance and the iteration fails (issue 17, item 19: the
+larger than the tolerance and the iteration fails (the
 ring at element scale 0.6).  The reference coordinates are known exactly
 without it: a point with facet coordinates ``X`` lies at the same barycentric
 position between the element's reference vertices that the facet joins,

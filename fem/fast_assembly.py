@@ -15,7 +15,7 @@ into CSR: in 3D that sort is most of the assembly time and memory.  Here
 
 The result is the upper block triangle, which PARDISO factorises as it is
 (``solvers.factorise_blocks``); ``BlockMatrix.csr`` gives the whole matrix.
-Same quadrature, same matrix to rounding (``tests/test_solid.py`` against
+Same quadrature, same matrix to rounding (``tests/fem/test_solid.py`` against
 scikit-fem's own assembly).  A vector basis numbers its DOFs node by node,
 ``dim * node + component`` (scikit-fem's ``Dofs`` with ``order='F'``); this is checked.
 """

@@ -2,8 +2,8 @@
 
 MKL's inspector-executor ``mkl_sparse_d_mv`` multiplies a block-CSR matrix marked
 symmetric (upper triangle stored) without forming the lower triangle; scipy has to
-transpose it slice by slice.  Solid ring (5.6e5 DOFs, 2 loaded cores, same run):
-0.035 s per product against 0.157 s.  ``tests/test_solid.py`` checks it against the
+transpose it slice by slice, several times slower on the solid ring.
+``tests/fem/test_solid.py`` checks it against the
 whole CSR matrix.  The handle shares the caller's arrays (no copy of the matrix).
 """
 from __future__ import annotations

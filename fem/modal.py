@@ -13,10 +13,9 @@ Each shape is mass-normalised with its largest entry positive.
 PARDISO a double-precision Cholesky factor of the free DOFs' CSR matrix where that
 matrix is positive definite (sigma < 0, or 0 with supports), else ARPACK's own SuperLU.
 ARPACK's iteration and the solves run on one BLAS (and MKL) thread: on two cores the
-second only spin-waits.  The default scene's rendered ring (P2, 1.5e5 DOFs, 4 clamped
-modes, process CPU, alternated in one run): 11.8 s with SuperLU on the default threads,
-5.0 s now.  eigsh alone there: SuperLU 9.1 s, on one thread 5.7 s; PARDISO on one thread
-3.3 s, on the node blocks (as ``elasticity.supported`` factorises K) 4.2 s.
+second only spin-waits.  PARDISO on one thread is the fastest of SuperLU and PARDISO,
+on the default or one thread, on the CSR matrix or the node blocks (the figures:
+``docs/fe_accuracy.md``, Speed and memory).
 """
 from __future__ import annotations
 
@@ -102,7 +101,7 @@ def lowest_modes(model: PlaneModel, count: int = 6, fixed_groups: list[str] | No
     factor = None
     try:
         # ARPACK's and the solves' small BLAS kernels only spin-wait on a second thread;
-        # the factorisation too was measured there on one (eigsh 3.3 s on the rendered ring)
+        # the factorisation too is fastest there on one
         with blas_threads(1):
             if use_pardiso:
                 try:

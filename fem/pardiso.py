@@ -3,14 +3,14 @@
 pypardiso (our MKL loader) hands PARDISO a scalar CSR matrix, runs analysis and
 factorisation with MKL's default parameters, copies or hashes the matrix to
 recognise it again and converts the index arrays to 1-based on every solve.
-Here, measured on the default solid ring (5.6e5 DOFs, 2 cores, same run):
+Here (the figures on the default solid ring: ``docs/fe_accuracy.md#measured-behind-the-codes-choices``):
 
 - the matrix goes in as 3 x 3 node blocks (``iparm[36]``): the fill-reducing
-  ordering works on the node graph, 9 times smaller (analysis 2.2 s against 5.7 s);
+  ordering works on the node graph, 9 times smaller, and the analysis is faster;
 - the two-level parallel factorisation (``iparm[23] = 1``) uses both cores on
-  block input, where the default left one idle (1.3e5 DOFs: 2.6 s against 5.2 s);
-- the factorisation may be single precision (``iparm[27]``, float32 values):
-  4.7 s against 8.0 s; ``solvers`` then refines the solution in double precision
+  block input, where the default left one idle;
+- the factorisation may be single precision (``iparm[27]``, float32 values), faster
+  than double; ``solvers`` then refines the solution in double precision
   against the double matrix, to the residual of a double factorisation;
 - one factorisation serves any number of right-hand sides; indices are 0-based.
 
@@ -53,7 +53,7 @@ class PardisoError(ArithmeticError):
 def mkl_runtime() -> ctypes.CDLL:
     """``libmkl_rt`` beside the interpreter (or the base interpreter of a virtual
     environment) where pip puts it, else wherever pypardiso's loader finds it (a recursive
-    search, ~1 s)."""
+    search, slow)."""
     # a virtual environment's prefix holds no libraries: look beside the base interpreter too
     found = [p for prefix in dict.fromkeys((sys.prefix, sys.base_prefix))
              for p in sorted(glob.glob(f"{prefix}/lib/libmkl_rt.so*"), key=len)]

@@ -1,11 +1,9 @@
 """Sparse symmetric positive definite solvers for ``K u = f``, chosen by problem size.
 
-Measured on 2 cores (``hubvib/benchmarks/`` and fe_facts.md, 3D elasticity
-~3e5 DOF): SuperLU does not finish in 330 s (13 GB), smoothed-aggregation AMG
-with the rigid-body near-null space as CG preconditioner takes 7-15 s (1 GB),
-PARDISO in SPD mode ~10 s (2.5 GB).  On node blocks PARDISO is also twice as
-fast as SuperLU on the plane ring (6.8e4 DOFs, 24 load columns: 0.29 s against
-0.60 s, same run).  ``"auto"`` therefore picks
+On 3D elasticity SuperLU runs out of time and memory, smoothed-aggregation AMG with the
+rigid-body near-null space as CG preconditioner and PARDISO in SPD mode both finish, and on
+node blocks PARDISO is also faster than SuperLU on the plane ring (the figures:
+``docs/fe_accuracy.md#measured-behind-the-codes-choices``).  ``"auto"`` therefore picks
 
 - ``"pardiso"`` when pypardiso (our MKL loader) is installed,
 - else ``"superlu"`` for plane problems and anything below ``DIRECT_LIMIT`` DOFs,
@@ -15,18 +13,15 @@ fast as SuperLU on the plane ring (6.8e4 DOFs, 24 load columns: 0.29 s against
 A factorisation (``factorise``) serves any number of load columns, now or
 later.  PARDISO takes a model's node blocks as they are (``factorise_blocks``),
 factorised in single precision and refined in double to 1e-12 (``fem/pardiso.py``;
-on the solid ring about twice as fast as pypardiso's CSR path, same run: README), or, for
+faster than pypardiso's CSR path on the solid ring), or, for
 ``DOUBLE_COLUMNS`` load columns and more, in double precision.  SuperLU runs
-with one BLAS thread (``fem/threads.py``).  Every solver refuses a singular
+with one BLAS thread (``hubvib.foundation.blas``).  Every solver refuses a singular
 (unsupported) system with ``SingularSystemError``.
 
-Measured on the solid ring (5.6e5 DOFs, one load column, 2 loaded cores, issue 25) and
-not taken: pyamg smoothed aggregation with the six rigid-body modes (symmetric strength,
-4 levels, operator complexity 1.11) needs 45 s to set up and 63 / 77 / 92 CG iterations
-(80-165 s) for 1e-8 / 1e-10 / 1e-12, against 15-22 s for PARDISO in the same run (c_ru
-within 7e-11 already at 1e-8); PARDISO's parallel nested dissection (``iparm[1] = 3``)
-and improved two-level factorisation (``iparm[23] = 10``) gave the same times as METIS
-and the two-level default within the load's noise (alternated, same run).
+Tried on the solid ring and not taken (the figures: the same page): pyamg smoothed
+aggregation with the six rigid-body modes is several times slower than PARDISO for the
+same c_ru; PARDISO's parallel nested dissection (``iparm[1] = 3``) and improved two-level
+factorisation (``iparm[23] = 10``) gave the same times as METIS and the two-level default.
 """
 from __future__ import annotations
 
@@ -49,18 +44,15 @@ PIVOT_RATIO = 1e-13    # a pivot this small relative to the largest: singular
 REFINE_TOLERANCE = 1e-12
 REFINE_STEPS = 8
 #: unknowns times load columns per refined single-precision solve: the refinement's
-#: temporaries and PARDISO's solve workspace grow with the columns solved at once.  Solid
-#: ring (5.6e5 DOFs), the 24 columns of the carrier sweep, same run: peak 2.56 GB at once
-#: (solve phase 11.8 s), 2.45 GB in chunks of 12 (13.6 s); that many entries go at once
-#: (speed: each refinement step is one PARDISO solve of all of them), more in chunks
+#: temporaries and PARDISO's solve workspace grow with the columns solved at once; the
+#: solid ring's 24 carrier columns go at once (each refinement step is one PARDISO solve
+#: of all of them: chunks save little memory and cost time), more in chunks
 SOLVE_ENTRIES = 24 * 560_000
 #: from this many load columns on, a 3D system is factorised in double precision (no
 #: refinement): each refined column costs about four single-precision solves and three
-#: products with K.  Half-width solid ring (3.5e5 DOFs, 33 columns, one BLAS thread,
-#: process CPU time, same run): single 4.3 s factorisation + 7.5 s refined solve, double
-#: 6.4 s + 2.0 s, agreeing to 7e-13; 24 columns: single 4.3 + 5.2 s, double 6.2 + 1.3 s.
-#: Break-even ~13 columns there, ~18 estimated on the whole-width ring (5.6e5 DOFs;
-#: factorisation ~n^2, solve ~n^1.3)
+#: products with K; the two agree to 7e-13.  Break-even ~13 columns on the half-width
+#: solid ring, ~18 estimated on the whole-width ring (factorisation ~n^2, solve ~n^1.3;
+#: the figures: docs/fe_accuracy.md)
 DOUBLE_COLUMNS = 24
 
 
@@ -138,8 +130,8 @@ def factorise_free_blocks(blocks, keep: np.ndarray, single: bool = True) -> Fact
 
     PARDISO gets the upper block triangle in the factorisation's precision only
     (single: float32, half the bytes); the refinement multiplies by ``blocks`` itself,
-    the unknowns set in a whole vector with zeros at the other nodes.  On the solid
-    ring (5.6e5 DOFs) this saves the 0.17 GB double copy during the factorisation's peak.
+    the unknowns set in a whole vector with zeros at the other nodes.  This saves a
+    double copy of the matrix during the factorisation's peak.
     """
     dim = blocks.pattern.dim
     keep = np.asarray(keep, dtype=bool)
@@ -236,7 +228,7 @@ class _SuperLU(Factor):
                 f"{diag.min() / diag.max():.1e}): check the supports")
 
     def _solve(self, columns):
-        with blas_threads(1):  # small BLAS kernels: more threads only wait (hubvib/blas.py)
+        with blas_threads(1):  # small BLAS kernels: more threads only wait (foundation/blas.py)
             return self._lu.solve(columns)
 
     def free(self):
@@ -319,7 +311,7 @@ class _PardisoFactor(Factor):
 def _symmetric_block_matvec(indptr, indices, values) -> SymmetricBlockProduct:
     """``x -> K x`` for the symmetric K whose upper block triangle is given (block CSR):
     MKL's symmetric block product, sharing the arrays (no copy of the matrix: a CSR copy
-    was the peak of the solid ring's solve, 0.28 GB over the factorisation)."""
+    was the peak of the solid ring's solve)."""
     return SymmetricBlockProduct(indptr, indices, values)
 
 

@@ -106,9 +106,8 @@ def element_finder(model):
     As skfem's ``MeshTet1.element_finder`` (barycentric coordinates within a few ulps of
     the cell), but each point is tried against its own nearest cells only (centroids,
     ``CANDIDATES`` at a time, then every cell): skfem's tries every point against the
-    union of all points' candidates, then against every cell of the mesh: on a solid
-    crack case of the Raba 118/76 ring (two levels) 32 s of 230 s in cProfile and a peak of
-    5.0 GB against 3.1 GB now (``/usr/bin/time``, same run; issue 25).  The cells found are
+    union of all points' candidates, then against every cell of the mesh, a large part of
+    a solid crack case's time and memory peak.  The cells found are
     the same (``test_element_finder_finds_the_cell_of_every_point``)."""
     from scipy.spatial import cKDTree
 

@@ -17,7 +17,7 @@ The bound of the lowest elastic mode is the largest; the default tolerance
 1e-10 is the agreement with the Jacobi solver the tests check.
 
 The matrices are 18 x 18: threading inside BLAS only costs synchronisation
-(20 ms instead of 4 ms per call measured on a loaded 2-core machine), so
+(several times the call's own time on a loaded 2-core machine), so
 the batch runs with one BLAS thread; parallelism, when asked for, is over
 chunks of points.
 """

@@ -10,7 +10,7 @@ from hubvib.foundation.errors import InputError
 
 ANGLE_TOLERANCE = 1e-9  # [rad] two planets closer than this are the same planet
 #: most planets a stage may have: real stages have 3..12; the eigensolver's cost grows as
-#: N^3 (one shift sweep, one BLAS thread, 2 cores: 0.19 s at N = 12, 0.70 s at N = 32)
+#: N^3 (one shift sweep stays well under a second at N = 32)
 MAX_PLANETS = 32
 #: largest |planet angle| [rad]: one turn either way (a float far beyond it no longer
 #: resolves ANGLE_TOLERANCE, e.g. 1e300 rad)

@@ -199,7 +199,7 @@ class RingBuilder:
             self.gmsh.model.mesh.embed(1, self.crack_lines, 2, self.surface)
         model = self.gmsh.model
         # the tags gmsh would number itself (one past the largest), given explicitly: its
-        # own numbering scans every entity per group (0.35 s for the ~200 groups)
+        # own numbering scans every entity per group (slow for the ~200 groups)
         first = max((tag for _, tag in model.getPhysicalGroups()), default=0) + 1
         model.addPhysicalGroup(2, [self.surface], tag=first, name="ring")
         for tag, (name, curves) in enumerate(self.groups.items(), start=first + 1):

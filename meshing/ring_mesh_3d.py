@@ -78,7 +78,7 @@ def ring_mesh_3d(ring: RingGear, crack: Crack | None = None, front: CrackFront =
 def release_freed_heap() -> None:
     """Hand the heap memory gmsh freed back to the operating system (glibc's
     ``malloc_trim``; elsewhere nothing).  gmsh frees its model in many small pieces that
-    glibc keeps resident: 0.56 GB after the default solid mesh, measured, which the
+    glibc keeps resident (a large part of a GB after the default solid mesh), which the
     factorisation that follows then stacked its own peak on (``hubvib stiffness --solid``)."""
     trim = _malloc_trim()
     if trim is not None:
@@ -100,7 +100,7 @@ class _SolidBuilder(RingBuilder):
         self.half_width = half_width
         # z of the top face [m]: the face width, or the mid-plane of a half-width mesh
         self.height = ring.gear.face_width / (2 if half_width else 1)
-        self.geo = gmsh.model.occ  # its extrusion is topological: 10x faster than geo's
+        self.geo = gmsh.model.occ  # its extrusion is topological: much faster than geo's
         self.front = front
         self.part_width = crack is not None and front.kind.part_width
         self.crack_surfaces: list[int] = []
@@ -128,7 +128,7 @@ class _SolidBuilder(RingBuilder):
         self.volume = out[1][1]
         if self.crack is not None and self.part_width:
             self.part_width_crack()  # synchronised at its end
-        else:  # each synchronisation of the whole ring costs ~0.5 s
+        else:  # each synchronisation of the whole ring is costly
             self.geo.synchronize()
         swept = {c: [] for c in section_curves}
         faces = {}

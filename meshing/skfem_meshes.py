@@ -1,13 +1,12 @@
 """scikit-fem's triangle and tetrahedron meshes with a faster edge and facet numbering.
 
 scikit-fem numbers a mesh's edges and facets (``Mesh.build_entities``) with
-``np.unique(..., axis=1)``, which sorts the columns as structured records.  On the
-solid ring (1e5 curved tetrahedra) the mesh and basis build took 2.4-2.6 s and the
-tooth loads 1.0-1.3 s that way, 0.7 s and 0.35 s with these keys (same mesh,
-alternated in one run, loaded 2-core machine).  Here each sorted vertex tuple is one
+``np.unique(..., axis=1)``, which sorts the columns as structured records: on the
+solid ring the mesh and basis build and the tooth loads take several times longer that
+way (the figures: ``docs/fe_accuracy.md#measured-behind-the-codes-choices``).  Here each sorted vertex tuple is one
 int64 key (its vertices as digits in base ``vertices``), and ``np.unique`` of the keys gives the same entities, in the same
 (lexicographic) order, with the same first-occurrence indices and element map:
-``tests/test_solid.py`` compares both bit for bit.  Imported lazily (it imports
+``tests/fem/test_solid.py`` compares both bit for bit.  Imported lazily (it imports
 scikit-fem), by ``to_skfem``.
 """
 from __future__ import annotations

@@ -1,11 +1,8 @@
 import importlib.util
 import os
-import sys
 from pathlib import Path
 
 import pytest
-
-sys.path.insert(0, str(Path(__file__).parent))
 
 #: worker processes of the whole default run (pytest-xdist, the ``test`` extra): the
 #: machine the default command must finish on has two cores
@@ -15,8 +12,9 @@ DEFAULT_WORKERS = 2
 @pytest.hookimpl(tryfirst=True)
 def pytest_cmdline_main(config):
     """The whole default run (``python -m pytest``, no file named) goes to two worker
-    processes when pytest-xdist is installed; naming files, ``-n``, ``-p no:xdist`` or a
-    worker process keep the run as asked."""
+    processes when pytest-xdist is installed, a test file at a time (``--dist loadfile``:
+    a module's fixtures are built in one worker only, not in both); naming files, ``-n``,
+    ``-p no:xdist`` or a worker process keep the run as asked."""
     if (importlib.util.find_spec("xdist") is None or os.environ.get("PYTEST_XDIST_WORKER")
             or not config.pluginmanager.hasplugin("xdist")
             or config.option.file_or_dir or getattr(config.option, "numprocesses", None)
@@ -24,8 +22,18 @@ def pytest_cmdline_main(config):
         return None
     config.option.numprocesses = DEFAULT_WORKERS
     if getattr(config.option, "dist", "no") == "no":
-        config.option.dist = "load"
+        config.option.dist = "loadfile"
     return None
+
+
+@pytest.fixture(scope="session")
+def fig4_sweep():
+    """The shipped lumped sweep scene ``raba118_c_ru`` (the paper's fig. 4: c_ru swept)
+    run once per test process: its ``StudyResult``, read by tests, never changed."""
+    from hubvib.studies.scene import load_scene
+    from hubvib.studies.sweep import run_study
+
+    return run_study(load_scene(str(Path(__file__).parents[1] / "scenes" / "raba118_c_ru.toml")))
 
 
 @pytest.fixture(scope="session")

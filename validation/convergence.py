@@ -7,7 +7,7 @@ the value, and its error: against the exact or handbook value where one exists
 (``annulus``, ``edge_crack``), else against a reference from the finest levels
 (``reference_value``).  The ring's levels go three steps finer than the default
 (scale 1) and the gear meshes' two, so that the reference of the levels the FE
-stage uses comes from finer ones, not from themselves (issue 17, item 19); at
+stage uses comes from finer ones, not from themselves; at
 the finest ring levels c_ru still rises by ~1.6e-4 per level (the tooth
 boundary's element size drives it), so its reference is the finest value.
 

@@ -2,7 +2,7 @@
 scikit-fem basis, stiffness triplets sorted and summed by scipy, facet bases by
 scikit-fem's Newton inversion, one facet basis per carrier position, ``K[free][:, free]``,
 pypardiso's CSR interface in 3D.  It solves the same problem as ``fem.ring_stiffness``
-(tests/test_benchmark.py), more slowly."""
+(tests/benchmarks/test_benchmark.py), more slowly."""
 from __future__ import annotations
 
 import time

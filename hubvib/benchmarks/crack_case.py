@@ -25,7 +25,7 @@ def crack_case(scale: float = 1.0, depth: float = CRACK_DEPTH, progress=None) ->
     mesher = functools.lru_cache(maxsize=4)(ring_mesh)
 
     def separate():
-        # the crack case's c_ru, c_r: the work-conjugate rim parts (issue 25)
+        # the crack case's c_ru, c_r: the work-conjugate rim parts
         ring_part = estimate_ring(ring, crack, scale, mesher=mesher, definition="rim")
         fine, coarse = (engaged_ring_mesh(planet, ring, crack, scaled_options(s), mesher=mesher)
                         for s in (scale, 2 * scale))

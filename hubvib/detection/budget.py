@@ -38,7 +38,7 @@ _F8 = 8
 #: (samples, depths, modes) arrays alive at the peak of the statistics of ``pod_study``:
 #: the sampled frequencies, the shifts, the argument of the normal CDF and its scaled
 #: copy, and scipy's ``norm.cdf`` working copies and result (measured: 7.3 with
-#: tracemalloc, tests/test_issue26_bounds.py)
+#: tracemalloc, tests/detection/test_memory_bounds.py)
 KEPT_ARRAYS = 7
 #: float arrays over the identification band alive at the peak of the Cramer-Rao bound
 #: (:func:`hubvib.identification.law.fisher_sigma_hz`: bins, ordinates, the shape, its

@@ -77,7 +77,7 @@ class Calibration:
 
 
 def patterns(f0: np.ndarray) -> dict:
-    """Shift patterns [Hz] of four modes that no ring crack produces (issue 22)."""
+    """Shift patterns [Hz] of four modes that no ring crack produces."""
     return {"every mode +1 %": 0.01 * f0, "every mode -1 %": -0.01 * f0,
             "last mode +8.6 Hz above its own baseline": np.array([0, 0, 0, 8.6]),
             "first mode -141 Hz, the others unchanged": np.array([-141.0, 0, 0, 0]),

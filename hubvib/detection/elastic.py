@@ -7,7 +7,7 @@ mode it continues.  The crack is in the ring body, so it acts at every carrier p
 the statistic is the change with planet 1 half a planet pitch from the cracked tooth (the
 change at every moment of a record), the change with planet 1 on the tooth is reported
 beside it.  Closed faces give the intact ring within the mesh's discretisation error
-(``tests/test_elastic_ring.py``), so the bilinear (breathing) estimate is
+(``tests/elastic/test_elastic_ring.py``), so the bilinear (breathing) estimate is
 ``2 f_open f_intact / (f_open + f_intact)``; the detection uses the open crack, the
 upper bound of the change.
 

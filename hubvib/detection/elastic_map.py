@@ -5,7 +5,7 @@ support arcs, by default sized to the design's lumped ``c_r`` and ``c_ru``) is s
 ``s`` (both together, log-spaced).  Per crack depth the FE ring is reduced once for every
 scale (:mod:`hubvib.elastic.mounting_basis`: its modes, the contact responses and the
 arcs' reaction responses), so each ``(depth, s)`` is a small dense coupled problem; the
-reduced ring equals full rebuilds over the scales served (``tests/test_elastic_map.py``).
+reduced ring equals full rebuilds over the scales served (``tests/elastic/test_elastic_map.py``).
 The reference foundation is the intact ring's, for every depth (the crack does not touch
 the support arcs).
 

@@ -1,11 +1,11 @@
 """Which ring-planet mesh stiffness the crack model uses, and what the other method gives (SI).
 
-Issue 22 item 6.  The crack adds the FE compliance ``dq = (1/ratio - 1) / c_rp_FE``
+The crack adds the FE compliance ``dq = (1/ratio - 1) / c_rp_FE``
 [m/N] to planet 1's tooth pair over the cracked tooth's engagement; the lumped
 model takes it in series with its ``c_rp`` (``model.C_RP_SERIES``).  Where the
 lumped ``c_rp`` is not the FE one (the paper's preset: 3e8 N/m, an effective
 value holding more compliance than the tooth pair's), multiplying it by the FE
-ratio instead (``model.C_RP_RATIO``, before issue 22) gives a larger shift, an
+ratio instead (``model.C_RP_RATIO``, formerly) gives a larger shift, an
 upper bound of the crack's effect; both are reported there.
 """
 from __future__ import annotations

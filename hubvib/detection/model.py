@@ -4,18 +4,18 @@ Built from the FE cases of a crack sweep (``hubvib.cases.runner.crack_cases``)
 or from synthetic rows in tests.  ``c_ru`` and ``c_r`` of the lumped model
 follow :func:`hubvib.detection.series.ring_support`.
 
-Planet 1's ring mesh while the cracked tooth is in mesh (issue 22 item 6): the
+Planet 1's ring mesh while the cracked tooth is in mesh: the
 crack adds the compliance ``dq = (1/ratio - 1) / c_rp_FE`` [m/N] to the tooth
 pair, where ``ratio`` is the FE cracked / intact c_rp over the cracked tooth's contact
 window and ``c_rp_FE`` the FE intact mean over the same window (the ratio's
-denominator; before issue 25 the mean over the whole mesh cycle, which the window's
+denominator; formerly the mean over the whole mesh cycle, which the window's
 exceeds by a factor 1.048 on the Raba stage, so dq was that much too large); in series
 with the lumped ``c_rp`` it gives the factor ``1 / (1 + c_rp dq)`` (``C_RP_SERIES``, the primary method).
 When the lumped ``c_rp`` equals that window mean this factor equals the FE ratio; the
 FE c_rp of design-derived scenes (``with_fe_c_rp``) is the whole-cycle mean, so there
 the factor is the ratio's crack effect times about 1 / 1.048 (Raba), and the two
 methods differ (``c_rp_differs``).  ``C_RP_RATIO`` multiplies the lumped ``c_rp``
-by the ratio itself (before issue 22: an upper bound of the crack's effect when
+by the ratio itself (formerly: an upper bound of the crack's effect when
 the lumped ``c_rp`` is below the FE one, as the paper's 3e8 N/m is).
 """
 from __future__ import annotations

@@ -301,7 +301,7 @@ def pod_study(model, options, timing, samples: int | None = None, model_baseline
         Also the watched family's POD per record length, the drift model and the
         reference modes (``family_pod``, ``drift``, ``references``; without it they are
         empty or None).  The map's POD runs use none of them, and the Cramer-Rao bounds
-        of the 60 and 600 s records at every mounting value were half its CPU time.
+        of the 60 and 600 s records at every mounting value would be most of its work.
     """
     from scipy.stats import norm
 

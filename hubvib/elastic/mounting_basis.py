@@ -16,7 +16,7 @@ M-orthonormalised.  The foundation reaction of a mode is smooth along an arc whe
 arc is not held outright, so these loads span it; every scale is then a small dense
 problem.  Stiff enough to clamp, the reaction concentrates at the arcs' ends and the
 basis no longer holds: the scales it serves are checked against full rebuilds
-(``tests/test_elastic_map.py``).  Only the reduced matrices are kept (light to pickle).
+(``tests/elastic/test_elastic_map.py``).  Only the reduced matrices are kept (light to pickle).
 """
 from __future__ import annotations
 

@@ -3,8 +3,7 @@ of threads (the FE solvers and the batched lumped solves both need it; stdlib on
 
 SuperLU's triangular solves with many right-hand sides call small BLAS
 kernels; with two OpenBLAS threads on a busy 2-core machine they spin-wait
-(24 load columns at 4e4 DOFs: 5.4 s with the default threads, 0.7 s with
-one, measured in the same run).  ``OPENBLAS_NUM_THREADS`` is read only when
+(many times slower than on one thread: ``docs/fe_accuracy.md#measured-behind-the-codes-choices``).  ``OPENBLAS_NUM_THREADS`` is read only when
 the library loads, so the count is set through the library itself, in every
 OpenBLAS found in ``/proc/self/maps`` (numpy and scipy each bundle one).
 """
@@ -43,8 +42,8 @@ def blas_thread_counts() -> list[int]:
 def _handles() -> tuple:
     """(get, set) thread-count functions of every OpenBLAS and MKL loaded now: the maps
     are read again whenever a library was loaded or unloaded since the last reading
-    (``_loads``), so a library loaded later (MKL with PARDISO) is found too.  (The
-    detection stage's ~1,300 batched solves each read them, 3 ms apiece.)"""
+    (``_loads``), so a library loaded later (MKL with PARDISO) is found too (the
+    detection stage's ~1,300 batched solves each read them)."""
     loads = _loads()
     last_loads, last_handles = _LAST[0]
     if loads is not None and loads == last_loads:
@@ -101,7 +100,7 @@ def _read_handles() -> tuple:
     try:
         with open("/proc/self/maps", encoding="utf-8") as maps:
             # the substring test on the raw line first: of ~1,000 mapped lines only those
-            # that can name a BLAS are split (4.0 -> 3.0 ms a call; reading is the rest)
+            # that can name a BLAS are split (reading is most of the call's time)
             paths = sorted({line.split()[-1] for line in maps
                             if ("openblas" in (low := line.lower()) or "libmkl_rt" in low)
                             and _is_blas(os.path.basename(line.split()[-1]).lower())})

@@ -5,8 +5,8 @@ A package lists its face once, as imports in an ``if TYPE_CHECKING:`` block of i
 ``__getattr__`` and ``__dir__`` to :func:`lazy_face`, which reads that block from the
 source.  ``import hubvib.fem`` then costs no submodule; ``hubvib.fem.solve`` imports
 ``hubvib.fem.elasticity`` when it is first used and keeps it on the package.  A face
-name must not be a submodule's name (``tests/test_faces.py`` checks): an imported
-submodule would take its place on the package.  Standard library only.
+name must not be a submodule's name (``tests/architecture/test_package_faces.py``
+checks): an imported submodule would take its place on the package.  Standard library only.
 """
 from __future__ import annotations
 

@@ -18,7 +18,7 @@ from .bfft import identify_mode
 from .law import au_sigma_hz, fisher_sigma_hz
 from .records import simulate
 
-#: the issue's case: Raba 118/76 mode 13 (4548 Hz), 10 s records
+#: the reference case: Raba 118/76 mode 13 (4548 Hz), 10 s records
 CASES = ((4548.0, 0.01, 10.0), (4548.0, 0.02, 10.0), (4548.0, 0.05, 10.0),
          (4548.0, 0.02, 60.0))
 SNR = 100.0

@@ -2,7 +2,7 @@
 
 Figures are embedded as data URIs (a mode shape's GIF animation, when one was written,
 replaces its still PNG), tables sort by a click on a column head (numbers as numbers),
-and links to other reports (``signal/report.md``) point at their HTML.  No network, no
+and links to other reports (the signal study's ``report.md``) point at their HTML.  No network, no
 external file: the page can be mailed or archived alone.
 """
 from __future__ import annotations

@@ -23,9 +23,8 @@ AMPLITUDE = 0.08
 TOOTH_PITCH = 10.2e-3   # [m] arc between drawn teeth (module 3.25 mm: pi m)
 THICKNESS = 0.02        # [m] plate thickness, for shading only
 SIZE = (900, 900)       # [px]
-#: zlib level of the PNG files (Pillow's default: 6), the same pixels: the default scene's
-#: 24 pictures encode in 0.74 CPU s instead of 1.00 s and take 2.10 MB instead of 1.79 MB
-#: (level 1: 0.72 s, 2.23 MB)
+#: zlib level of the PNG files (Pillow's default: 6), the same pixels: encoding is
+#: faster than at 6 and the files hardly larger (level 1 gains no more time)
 PNG_COMPRESSION = 3
 #: what the colours, the grey outline and the scale of a mode render mean (in the picture)
 LEGEND = (f"sun orange, planets green, ring purple, carrier grey; grey outline: at rest; "
@@ -149,10 +148,9 @@ def plotter_for(plotter=None):
 
     One plotter serves many pictures (``clear_picture``, ``save_picture``), pixel for pixel
     as a new one per picture drew them, which cost a window, an OpenGL context and its
-    shaders each time.  Default scene, process CPU, alternated (PNG level included): 18
-    lumped mode pictures 9.4 s -> 7.3 s, 6 FE pictures 2.4 s -> 1.7 s.  Most of what is
-    left is the render itself (~0.26 s a picture, multisampled on Mesa's llvmpipe; 0.1 s
-    without anti-aliasing, 0.6 s with FXAA)."""
+    shaders each time (the figures: ``docs/fe_accuracy.md``, Speed and memory).  Most of
+    what is left is the render itself (multisampled on Mesa's llvmpipe; cheaper without
+    anti-aliasing, dearer with FXAA)."""
     if plotter is not None:
         yield plotter
         return

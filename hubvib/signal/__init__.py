@@ -1,10 +1,10 @@
-"""Vibration signature of a cracked ring gear at a fixed sensor (issue 14).
+"""Vibration signature of a cracked ring gear at a fixed sensor.
 
 FE mesh-cycle stiffness (``mesh_curves``) placed per planet by the gear geometry
 (``mesh_phase``) drives the lumped model in time (``dynamics``, ``time_response``,
 ``simulation``); a ring-mounted sensor (``sensor``) records it; ``spectral``
 (shared with the seed-000 harmonics), ``indicators``, ``study`` and ``report``
-turn it into spectra and condition indicators against crack depth.  Issue 24:
+turn it into spectra and condition indicators against crack depth.  Beside them:
 manufacturing errors and load sharing (``errors``), tooth separation (``contact``),
 sensors placed from the crack (``sensors``), speed fluctuation, tacho and order
 tracking (``speed``), the records pipeline (``records``) and detection rates

@@ -1,4 +1,4 @@
-"""POD of the frequency route beside the indicators' (issue 24 item 5; SI).
+"""POD of the frequency route beside the indicators' (SI).
 
 The frequency route compares natural frequencies identified in a record of the reducer
 now with those of an intact record.  Per crack depth of the study, the frequencies a

@@ -1,5 +1,5 @@
 """Detection rates of the indicators from many simulated records: ROC curves, POD vs depth
-at a family-wise false-alarm rate (issue 24, item 5).
+at a family-wise false-alarm rate.
 
 Records: the noise-free steady-state record of each depth (the study's sensor) plus
 noise of the study's RMS [m/s^2].  Two noise models, so that the rates are measured

@@ -1,4 +1,4 @@
-"""Several sensors on the ring, placed relative to the cracked tooth (issue 24, item 3).
+"""Several sensors on the ring, placed relative to the cracked tooth.
 
 The study's own sensor sits at ``sensor_angle_deg`` from planet 1's position at
 t = 0.  Each angle of ``[signal] sensor_angles_from_crack_deg`` places one more

@@ -167,7 +167,7 @@ def check_crack_model(scene) -> None:
     """``SceneError`` for a scene whose cracks the signal study cannot model: its mesh
     curves come from the plane FE tooth (a crack through the whole face width), so the
     solid model's semi-elliptic part-width cracks would be simulated as through-width
-    cracks (issue 26: ``hubvib signal raba118_crack_3d`` did so and exited 0)."""
+    cracks (``hubvib signal raba118_crack_3d`` did so and exited 0)."""
     sweep = scene.crack
     if sweep is not None and sweep.model != "plane":
         raise SceneError(

@@ -20,7 +20,7 @@ from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
 from hubvib.meshing.ring_mesh_3d import SOLID_OPTIONS, ring_mesh_3d
 
 #: most bulk elements ``size`` may ask for (estimated from the exact area or volume before
-#: meshing): 5e5 triangles take ~2 min to mesh on 2 cores (2.1e5 at 5e-4 m: 41 s)
+#: meshing): 5e5 triangles take minutes to mesh on 2 cores
 MAX_ELEMENTS = {2: 5e5, 3: 2e5}
 
 

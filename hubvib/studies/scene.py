@@ -41,7 +41,7 @@ A scene is TOML with these tables (all keys shown; SI units)::
     [detection]                   # optional, crack scenes: record length, scatter, POD
                                   # (every key: hubvib/detection/options.py)
     [signal]                      # optional: the vibration signature (hubvib/signal/options.py)
-    [execution]                   # optional: local pool or Dask (hubvib/engines.py)
+    [execution]                   # optional: local pool or Dask (hubvib/runtime/engines.py)
     [elastic]                     # optional, plane crack scenes: ring = "rigid" (default),
                                   # "elastic" or "both" (hubvib/elastic/options.py)
 

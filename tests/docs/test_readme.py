@@ -1,0 +1,145 @@
+"""The README: at most 250 lines, its worked example prints the figures its comments quote,
+its set-up commands are the ones CI runs, its links resolve, its command table is the CLI's."""
+import contextlib
+import io
+import re
+from pathlib import Path
+
+import pytest
+
+from hubvib.cli import main
+
+ROOT = Path(__file__).parents[2]
+README = (ROOT / "README.md").read_text()
+NUMBER = r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?"
+
+
+def _slug(heading: str) -> str:
+    """The anchor Python-Markdown's toc (MkDocs) and GitHub give a heading."""
+    text = re.sub(r"[^\w\s-]", "", heading.replace("`", "")).strip().lower()
+    return re.sub(r"[-\s]+", "-", text)
+
+
+def test_readme_is_at_most_250_lines():
+    lines = README.count("\n")
+    assert lines <= 250, f"README.md has {lines} lines; the house rule allows 250 (the rest is in docs/)"
+
+
+def test_worked_example_prints_the_figures_its_comments_quote(capsys):
+    """Each ``print(...)  # ... [a b] ...`` line: the printed numbers equal the quoted ones
+    to the last digit quoted (half a unit of it), and the quoted words are printed."""
+    blocks = re.findall(r"```python\n(.*?)```", README, re.S)
+    assert len(blocks) == 1, "the README has one worked example (the rest is in docs/)"
+    exec(compile(blocks[0], "README.md", "exec"), {})
+    printed = capsys.readouterr().out.strip().splitlines()
+    quoted = [line.split("#", 1)[1] for line in blocks[0].splitlines()
+              if line.startswith("print(") and "#" in line]
+    assert len(printed) == len(quoted) == 3, (printed, quoted)
+    for output, comment in zip(printed, quoted):
+        claimed = re.search(r"\[([^\]]*)\]", comment).group(1).split()
+        got = [float(x) for x in re.findall(NUMBER, re.search(r"\[([^\]]*)\]", output).group(1))]
+        assert len(got) == len(claimed), f"README quotes {claimed}, the example prints {output}"
+        for value, text in zip(got, claimed):
+            decimals = len(text.split(".")[1]) if "." in text else 0
+            assert value == pytest.approx(float(text), abs=0.5 * 10 ** -decimals), (
+                f"README comment {comment.strip()!r} against a fresh run: {output}")
+        for word in re.findall(r"[a-z]{5,}", comment.split("]")[-1]):
+            if word in {"rotational", "translational", "planet", "mixed"}:
+                assert word in output, f"README says {word!r}; the run prints {output}"
+
+
+def test_setup_commands_are_the_ones_ci_runs():
+    commands = re.findall(r"```bash\n(.*?)\n```", README, re.S)
+    assert commands[:2] == ['pip install ".[report,fem,render]" && hubvib run',
+                            'pip install -e ".[test]" && python -m pytest']
+    ci = (ROOT / ".ci" / "run").read_text()
+    assert 'pip install -e ".[test]" && python -m pytest' in ci
+    assert "hubvib run" in ci
+    assert 'pip install -e ".[docs]" && mkdocs build --strict' in commands
+    assert 'pip install -e ".[docs]" && mkdocs build --strict' in ci, "CI builds the docs"
+
+
+def test_every_relative_link_resolves():
+    links = re.findall(r"\]\(([^)\s]+)\)", README)
+    relative = [link for link in links if not re.match(r"[a-z]+://", link)]
+    assert len(relative) >= 12, "the README links the docs pages"
+    for link in relative:
+        path, _, anchor = link.partition("#")
+        target = ROOT / path
+        assert target.exists(), f"README links {link!r}, but {path} does not exist"
+        if anchor:
+            headings = re.findall(r"^#+ (.+)$", target.read_text(), re.M)
+            assert anchor in {_slug(h) for h in headings}, (
+                f"README links {link!r}; {path} has no heading with that anchor")
+
+
+def test_command_table_is_the_cli():
+    """Every command in the README's table exists in ``hubvib --help``, and every command of
+    ``hubvib --help`` is in the table."""
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out), pytest.raises(SystemExit):
+        main(["--help"])
+    available = set(re.search(r"\{([a-z,-]+)\}", out.getvalue()).group(1).split(","))
+    table = README.split("## Commands", 1)[1].split("\n## ", 1)[0]
+    listed = set(re.findall(r"^\| `hubvib ([a-z-]+)", table, re.M))
+    assert listed, "the README has a command table"
+    assert listed <= available, f"README lists commands hubvib lacks: {listed - available}"
+    assert available <= listed, f"commands missing from the README table: {available - listed}"
+
+
+def test_crack_answer_paragraph_quotes_the_committed_default_scene_run():
+    """The README's "Can a frequency measurement see the crack?" figures are those of
+    ``docs/data/raba118_crack/results.json`` (``hubvib run raba118_crack``), to the digits
+    quoted: the 10 s identification scatter of the watched modes, mode 13's frequency and
+    its record shifts (series), the first depth with family POD >= 0.9 per record length,
+    and the ratio method's detectable depths."""
+    import json
+
+    run = json.loads((ROOT / "docs/data/raba118_crack/results.json").read_text())
+    detection, depths = run["detection"], run["crack"]["depths"]
+    sigma = [detection["sigma_hz"][m - 1] for m in detection["watched_modes"]]
+    mode13 = run["modes"][12]
+    at_3mm = next(r for r in run["c_rp_methods"] if r["mode"] == 13 and r["depth_mm"] == 3.0)
+
+    def first_depth_mm(pod):
+        seen = [1e3 * d for d, p in zip(depths, pod) if p >= 0.9]
+        return round(seen[0]) if seen else None
+
+    first = {s: first_depth_mm(detection["family_pod"][s]) for s in ("10", "60", "600")}
+    ratio = run["c_rp_other_method_family_pod"]["family_detectable_depth_m"]
+    expected = [f"scatters by {min(sigma):.2f}-{max(sigma):.2f} Hz",
+                f"mode 13 ({mode13['frequency_intact_hz']:.1f} Hz) moves "
+                f"{at_3mm['record_shift_series_hz']:.2f} Hz at 3 mm and "
+                f"{mode13['record_shift_at_deepest_hz']:.2f} Hz through the rim",
+                f"with 600 s records from {first['600']} mm",
+                f"would give {round(1e3 * ratio['10'])} mm at 10 s and "
+                f"{round(1e3 * ratio['60'])} mm at 60 s"]
+    assert first["10"] is None and first["60"] is None, \
+        "README: no crack of the sweep detectable with 10 or 60 s records"
+    text = " ".join(README.split())
+    for phrase in expected:
+        assert phrase in text, f"README against docs/data/raba118_crack: {phrase!r}"
+
+
+def test_elastic_ring_answer_quotes_the_committed_default_scene_run():
+    """The README's elastic-ring answer is that of ``docs/data/raba118_crack/results.json``
+    (``elastic_ring``): the first detectable depth per record length, the best watched
+    coupled mode's frequency, nodal diameters, change at the shallowest crack and 10 s
+    scatter, and the ring's lowest elastic mode of its own."""
+    import json
+
+    run = json.loads((ROOT / "docs/data/raba118_crack/results.json").read_text())
+    elastic = run["elastic_ring"]
+    first = elastic["first_detectable_mm"]
+    best = elastic["modes"][elastic["watched_modes"][0] - 1]
+    lowest = elastic["lowest_ring_mode"]
+    expected = [
+        f"the elastic ring detects a crack from {first['10']:g} mm with 10 s records",
+        f"{best['frequency_hz']:.1f} Hz (ring nodal diameters {best['nodal_diameter']}) moves "
+        f"{best['shift_open_hz'][1]:.1f} Hz at {elastic['depths_mm'][1]:g} mm against a 10 s "
+        f"scatter of {best['sigma_hz']['10']:.2f} Hz",
+        f"lowest elastic mode of its own at {lowest['frequency_hz']:.0f} Hz "
+        f"(n = {lowest['nodal_diameter']})"]
+    text = " ".join(README.split())
+    for phrase in expected:
+        assert phrase in text, f"README against docs/data/raba118_crack: {phrase!r}"

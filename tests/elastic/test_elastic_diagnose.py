@@ -1,0 +1,324 @@
+"""Detection and diagnosis through the spectrum-model protocol: the rigid-ring model
+unchanged through it, the elastic ring's Monte Carlo (batched solve, zero scatter, POD),
+its calibration on a noise model the diagnosis was not tuned on, and ``hubvib diagnose
+--ring``."""
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from tests.helpers.synthetic_rows import TIMING, synthetic_model
+
+from hubvib.cli import main
+from hubvib.detection.budget import chunked_frequencies
+from hubvib.detection.calibration import calibrate, student_errors
+from hubvib.detection.diagnosis import reference, synthetic_measurements
+from hubvib.detection.drift import drift_model
+from hubvib.detection.elastic import family_pod, sampled_shifts
+from hubvib.detection.elastic_uncertainty import (ElasticSamples, batched_hz,
+                                                  elastic_spectrum_model, unscattered)
+from hubvib.detection.options import DetectionOptions
+from hubvib.detection.spectrum_model import RigidSpectrum, SpectrumModel, as_spectrum_model
+from hubvib.detection.uncertainty import draw, nominal, observed_frequencies
+
+OPTIONS = DetectionOptions(samples=400)
+
+
+# ---------------------------------------------------------------- a small elastic ring
+
+def _synthetic_cases(depths=(0.0, 0.004, 0.008, 0.012)):
+    """Elastic cases of a small synthetic ring (8 coordinates, 12 teeth, M = I) coupled to
+    the Raba lumped model: ring modes at 1.5-9 kHz, a crack softening the ring along one
+    shape in proportion to its depth, a foundation part of its stiffness."""
+    from hubvib.build.stages import lumped_parameters
+    from hubvib.design.presets import preset_design
+    from hubvib.elastic.cases import ElasticCase
+    from hubvib.elastic.content import mode_content, multiplicities
+    from hubvib.elastic.model import ElasticSpectrum
+    from hubvib.lumped.elastic_ring import RingOperators, coupled_modes
+
+    params = lumped_parameters(preset_design("raba118"))
+    rng = np.random.default_rng(3)
+    n, z, probe_points = 8, 12, 16
+    q, _ = np.linalg.qr(rng.standard_normal((n, n)))
+    omega = 2 * math.pi * np.linspace(1500.0, 9000.0, n)
+    body = q @ np.diag(omega ** 2) @ q.T
+    f = rng.standard_normal((n, 2))
+    foundation = 0.05 * omega[0] ** 2 * (f @ f.T) / n
+    crack = rng.standard_normal(n)
+    crack = np.outer(crack, crack) / (crack @ crack) * 0.15 * omega[3] ** 2
+    angles = 2 * math.pi * np.arange(z) / z
+    directions = np.column_stack([-np.sin(angles), np.cos(angles)])
+    contact = rng.standard_normal((n, z)) * 1e-1
+    probe = rng.standard_normal((2 * probe_points, n))
+    cases = []
+    for depth in depths:
+        K = body - depth / depths[-1] * crack + foundation
+        ops = RingOperators(0.5 * (K + K.T), np.eye(n), contact, np.ones(z), angles,
+                            directions, probe)
+        modes = coupled_modes(params, ops, 2, 2e9, max_hz=10e3)
+        content = tuple(mode_content(modes, j, 3) for j in range(modes.omega.size))
+        away = ElasticSpectrum(modes, content, multiplicities(modes.frequency_hz), 2, None)
+        cases.append(ElasticCase(depth, away, away, 2e9, (1e8, 1e6), n, 20.0, None, ops,
+                                 foundation, params))
+    return cases
+
+
+@pytest.fixture(scope="module")
+def small():
+    depths = (0.0, 0.004, 0.008, 0.012)
+    cases = _synthetic_cases(depths)
+    return cases, elastic_spectrum_model(depths, cases)
+
+
+def test_both_models_implement_the_protocol(small):
+    _, model = small
+    assert isinstance(model, SpectrumModel)
+    assert isinstance(as_spectrum_model(synthetic_model("direct")), RigidSpectrum)
+    with pytest.raises(TypeError, match="neither a CrackModel nor a SpectrumModel"):
+        as_spectrum_model(object())
+
+
+def test_rigid_protocol_reproduces_todays_reference():
+    """The rigid model through the protocol gives the reference the functions of
+    ``uncertainty`` gave before it, bit for bit (same draws, same solves)."""
+    model = synthetic_model("series")
+    ref = reference(model, OPTIONS, TIMING)
+    rng = np.random.default_rng(OPTIONS.seed + 1)
+    fraction, long = TIMING.engaged_fraction, TIMING.long_record(OPTIONS.record_length)
+    samples = chunked_frequencies(model, draw(model, OPTIONS, OPTIONS.samples, rng), fraction,
+                                  long)
+    nominal_hz = observed_frequencies(model, nominal(model), fraction, long)[0]
+    drift = drift_model(model.parameters(0), nominal_hz[0], OPTIONS, model.method)
+    assert np.array_equal(ref.frequency_hz, samples)
+    assert np.array_equal(ref.nominal_hz, nominal_hz)
+    assert np.array_equal(ref.drift_cov, drift.covariance())
+    assert np.array_equal(ref.sigma_hz, OPTIONS.sigma_hz(nominal_hz[0]))
+    assert ref.mesh_stiffness == model.mesh_stiffness() and ref.ring == "rigid"
+
+
+def test_rigid_synthetic_measurements_unchanged_through_the_protocol():
+    """``synthetic_measurements`` on the wrapper and on the CrackModel itself: identical."""
+    model = synthetic_model("series")
+    depths = np.array([0.0, 0.01, 0.02])
+    a = synthetic_measurements(model, OPTIONS, TIMING, depths, seed=4)
+    b = synthetic_measurements(RigidSpectrum(model), OPTIONS, TIMING, depths, seed=4)
+    at = model.at_depths(np.concatenate([[0.0], depths]))
+    rng = np.random.default_rng(4)
+    f = observed_frequencies(at, draw(at, OPTIONS, depths.size, rng),
+                             TIMING.engaged_fraction,
+                             TIMING.long_record(OPTIONS.record_length),
+                             depth_index=np.arange(1, 4))
+    assert np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1])
+    sigma = OPTIONS.sigma_hz(observed_frequencies(at, nominal(at), TIMING.engaged_fraction,
+                                                  True)[0, 0])
+    noise = rng.standard_normal(f.shape) * sigma
+    assert np.array_equal(a[1], f[:, 0] + noise[:, 0])
+
+
+def test_zero_scatter_gives_the_nominal_spectra(small):
+    """Every factor 1 and no FE error: the batched solve gives each case's own coupled
+    spectrum (``coupled_modes``, generalised eigh) to round-off (1e-9 relative)."""
+    cases, model = small
+    values = model.frequencies_of(unscattered(model, 3))
+    for k, case in enumerate(cases):
+        expected = case.away.frequency_hz[model.operators[k].slot]
+        assert np.allclose(values[:, k], expected, rtol=1e-9, atol=0), k
+
+
+def test_batched_solve_equals_coupled_modes_on_the_scattered_operators(small):
+    """A sample with scattered masses, springs, k_rest, foundation and ring mass equals
+    ``lumped.elastic_ring.coupled_modes`` of the same reducer built directly (the
+    parameters replaced, the ring's foundation and mass scaled) to 1e-9 relative."""
+    from hubvib.lumped.elastic_ring import coupled_modes
+
+    cases, model = small
+    case, op = cases[2], model.operators[2]
+    factors = {"m_s": 1.03, "m_c": 0.98, "m_p": 1.02, "mu_s": 0.97, "mu_c": 1.01,
+               "mu_p": 1.04}
+    springs = {"c_c": 1.1, "c_su": 0.9, "c_cu": 1.2, "c_p": 0.85, "c_sp": 1.15}
+    samples = ElasticSamples({k: np.array([v]) for k, v in factors.items()},
+                             np.array([0.97]),
+                             {**{k: np.array([v]) for k, v in springs.items()},
+                              "k_rest": np.array([0.92]), "foundation": np.array([1.3])},
+                             np.zeros(1))
+    mine = batched_hz(op, samples, model.masks)[0]
+    p = case.params.replace(**{name: getattr(case.params, name) * v
+                               for name, v in {**factors, **springs}.items()})
+    ops = case.operators
+    ring = replace(ops, K=ops.K + 0.3 * case.foundation_K, M=0.97 * ops.M)
+    direct = coupled_modes(p, ring, case.away.carrier_tooth, 0.92 * case.k_rest).frequency_hz
+    assert set(model.stiffness_names) == set(springs) | {"k_rest", "foundation"}
+    assert np.allclose(mine, direct, rtol=1e-9, atol=0)
+
+
+def test_pod_at_depth_zero_is_the_false_alarm_rate_and_rises_with_depth(small):
+    """Own intact record as baseline: at depth 0 every sampled reducer's shift is 0, so
+    the family POD is the Sidak family rate exactly; it does not fall as the synthetic
+    crack deepens and reaches 1 at the deepest."""
+    _, model = small
+    options = DetectionOptions(samples=300)
+    shifts = sampled_shifts(model, options)
+    sigma = options.sigma_hz(model.nominal_hz()[0])
+    watched = (3, 4, 5)
+    rate = options.per_mode_rate(len(watched))
+    pod = family_pod(shifts, sigma, watched, rate)
+    assert abs(pod[0] - options.false_alarm_rate) < 1e-9, pod
+    assert np.all(np.diff(pod) >= -1e-12) and pod[-1] > 0.99, pod
+
+
+def test_fe_error_scales_each_change_by_one_common_factor(small):
+    """The FE error: one z per sample, ``z FE_CHANGE_ERROR |change|`` on every mode."""
+    _, model = small
+    base = unscattered(model, 1)
+    moved = replace(base, z=np.array([2.0]))
+    change = model.frequencies_of(moved)[0] - model.frequencies_of(base)[0]
+    nominal = model.nominal_grid_hz - model.nominal_grid_hz[0]
+    assert np.allclose(change, 2.0 * model.fe_change_error * np.abs(nominal), atol=1e-9)
+
+
+def test_elastic_calibration_on_student_t_noise(small):
+    """Student-t errors (8 degrees of freedom, unit variance), a noise model the diagnosis
+    was not tuned on, on the small elastic ring: intervals over depths uniform on the
+    sweep hold the true depth at the nominal 90 % within 3 binomial standard errors, and
+    intact reducers are called cracked at about the 1 % false-alarm rate."""
+    from hubvib.detection.diagnosis import NO_CRACK
+
+    _, model = small
+    options = DetectionOptions(samples=400)
+    ref = reference(model, options, TIMING)
+    trials = 150
+    result = calibrate(model, options, TIMING, ref, [4, 5, 6], trials)
+    tolerance = 3 * math.sqrt(0.9 * 0.1 / trials)
+    assert abs(result.coverage - 0.9) <= tolerance, (
+        f"Student-t (dof 8) noise: coverage {result.coverage:.3f} against 0.9 +- "
+        f"{tolerance:.3f}")
+    assert result.intact.get("crack indicated", 0.0) <= 0.01 + 3 * math.sqrt(0.01 / trials), (
+        f"Student-t (dof 8) noise: intact reducers called cracked {result.intact}")
+    assert result.intact.get(NO_CRACK, 0.0) > 0.9
+
+
+def test_elastic_at_depths_interpolates_linearly(small):
+    """Between two sweep depths a sample's frequency is the linear interpolation."""
+    _, model = small
+    halfway = model.at_depths([0.0, 0.002, 0.004])
+    values = halfway.nominal_hz()
+    assert np.allclose(values[1], 0.5 * (model.nominal_grid_hz[0] + model.nominal_grid_hz[1]))
+    assert np.array_equal(values[2], model.nominal_grid_hz[1])
+    with pytest.raises(ValueError, match="within the sweep"):
+        model.at_depths([0.0, 0.02])
+
+
+# ------------------------------------------------------------------ the command
+
+def _csv(tmp_path, text="frequency_hz,baseline_hz\n4700,4710\n"):
+    path = tmp_path / "m.csv"
+    path.write_text(text)
+    return path
+
+
+def test_bad_ring_flag_is_one_line_and_exit_2(tmp_path, capsys):
+    code = main(["diagnose", "--scene", "raba118_crack", "--measured", str(_csv(tmp_path)),
+                 "--ring", "flexible"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and "--ring" in err[0] and "rigid, elastic" in err[0]
+
+
+def test_elastic_ring_with_records_is_refused(tmp_path, capsys):
+    a, b = tmp_path / "a.csv", tmp_path / "b.csv"
+    for p in (a, b):
+        p.write_text("time_s,acceleration_m_s2\n0,0\n")
+    code = main(["diagnose", "--scene", "raba118_crack", "--record", str(a),
+                 "--baseline-record", str(b), "--ring", "elastic"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and "--measured" in err[0]
+
+
+def test_scene_ring_chooses_the_models():
+    from types import SimpleNamespace
+
+    from hubvib.commands.diagnose import rings_of
+    from hubvib.elastic.options import ElasticScene
+
+    both = SimpleNamespace(tables={"elastic": ElasticScene(ring="both")})
+    rigid = SimpleNamespace(tables={})
+    assert rings_of(both, None) == ("rigid", "elastic")
+    assert rings_of(rigid, None) == ("rigid",)
+    assert rings_of(both, "elastic") == ("elastic",)
+    with pytest.raises(ValueError, match="--ring"):
+        rings_of(rigid, "both")
+
+
+@pytest.mark.slow
+def test_diagnose_on_the_elastic_ring_of_the_default_scene(tmp_path, capsys):
+    """The default scene runs both rings: a measured 18 Hz drop of the elastic ring's
+    intact n = 4 mode against its own baseline is a crack on the elastic ring; the JSON
+    gives both verdicts, the rigid ring's at the top level."""
+    import json
+
+    from hubvib.detection.diagnosis import scene_reference
+    from hubvib.studies.scene import load_scene
+
+    ref, _ = scene_reference(load_scene("raba118_crack"), False, ring="elastic")
+    i = int(np.argmin(np.abs(ref.nominal_hz[0] - 4715.6)))
+    f0 = ref.nominal_hz[0, i]
+    path = _csv(tmp_path, f"mode,frequency_hz,baseline_hz\n{i + 1},{f0 - 18:.3f},{f0:.3f}\n")
+    assert main(["diagnose", "--scene", "raba118_crack", "--measured", str(path),
+                 "--ring", "elastic", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["ring"] == "elastic" and out["verdict"] == "crack indicated", out
+    assert 0.001 < out["depth_m"] < 0.006
+    assert main(["diagnose", "--scene", "raba118_crack", "--measured", str(path),
+                 "--json"]) == 0
+    both = json.loads(capsys.readouterr().out)
+    assert both["elastic"]["verdict"] == "crack indicated"
+    assert "error" in both or both["ring"] == "rigid"
+
+
+@pytest.mark.slow
+def test_elastic_calibration_on_the_default_scene():
+    """``raba118_crack``'s elastic ring (its cached cases), its four watched modes,
+    Student-t identification errors (8 degrees of freedom, unit variance; the diagnosis
+    assumes normal ones): 90 % intervals over depths uniform on the sweep hold the true
+    depth within 3 binomial standard errors of 0.9, and intact reducers are called cracked
+    near the scene's 1 % false-alarm rate (within 3 binomial standard errors)."""
+    from hubvib.detection.carrier import mesh_timing
+    from hubvib.detection.diagnosis import elastic_scene_model
+    from hubvib.detection.options import detection_options
+    from hubvib.studies.scene import load_scene
+
+    scene = load_scene("raba118_crack")
+    options = detection_options(scene)
+    model = elastic_scene_model(scene)
+    timing = mesh_timing(scene.crack.reducer, options.carrier_speed)
+    ref = reference(model, options, timing)
+    labels = ref.labels
+    watched = [int(s.split()[1]) for s in labels if "n = 4" in s or "n = 3" in s][:2]
+    trials = 300
+    result = calibrate(model, options, timing, ref, watched, trials)
+    tolerance = 3 * math.sqrt(0.9 * 0.1 / trials)
+    assert abs(result.coverage - 0.9) <= tolerance, (
+        f"Student-t (dof 8) noise, modes {watched}: coverage {result.coverage:.3f} against "
+        f"0.9 +- {tolerance:.3f}")
+    rate = options.false_alarm_rate
+    assert result.intact.get("crack indicated", 0.0) <= rate + 3 * math.sqrt(
+        rate * (1 - rate) / trials), f"Student-t (dof 8) noise: intact {result.intact}"
+
+
+def test_sorted_order_keeps_the_nominal_identities_of_separated_modes(small):
+    """Naming a scattered reducer's modes by sorted order: for modes far from their
+    neighbours (relative gap > 10 %, more than the 2-10 % scatter moves them), the mode
+    in the nominal's sorted place is the nominal's mode there by subspace match in every
+    sample, intact and at the deepest crack."""
+    from hubvib.detection.elastic_uncertainty import draw_elastic, sorted_order_kept
+
+    cases, model = small
+    samples = draw_elastic(model, DetectionOptions(), 60, np.random.default_rng(1))
+    f = model.nominal_grid_hz
+    for k in (0, len(cases) - 1):
+        fk = np.sort(f[k])
+        gaps = np.array([min(abs(x - y) for y in fk if y != x) / x for x in f[k]])
+        separated = [i for i in range(f.shape[1]) if gaps[i] > 0.1 and f[k, i] > 100]
+        assert separated
+        kept = sorted_order_kept(model, cases, samples, k, separated)
+        assert np.all(kept == 1.0), (k, separated, kept)

@@ -1,0 +1,136 @@
+"""The plane ring by substructures: the pieces glue into one conforming ring, and the
+substructured solve gives the whole ring's solution on that same mesh."""
+import math
+
+import numpy as np
+import pytest
+
+pytest.importorskip("gmsh")
+
+from hubvib.build import raba118  # noqa: E402
+from hubvib.build.stages import gear_body  # noqa: E402
+from hubvib.design import preset_design  # noqa: E402
+from hubvib.fem.crack_level import ring_and_tooth  # noqa: E402
+from hubvib.fem.elasticity import supported  # noqa: E402
+from hubvib.fem.material import Material  # noqa: E402
+from hubvib.fem.ring_stiffness import ring_model  # noqa: E402
+from hubvib.fem.substructure import substructured  # noqa: E402
+from hubvib.meshing.crack import Crack  # noqa: E402
+from hubvib.meshing.levels import scaled_options  # noqa: E402
+from hubvib.meshing.ring_block import cut_radii  # noqa: E402
+from hubvib.meshing.ring_pieces import MARGIN, block_teeth, ring_pieces  # noqa: E402
+
+#: a coarse level: the identities hold on any mesh, and the whole-ring solve stays quick
+OPTIONS = scaled_options(3.0)
+
+
+@pytest.fixture(scope="module")
+def cracked():
+    ring = raba118.ring_gear()
+    crack = Crack(0, 0.012)
+    return ring, crack, ring_pieces(ring, crack, OPTIONS)
+
+
+def test_pieces_glue_into_one_conforming_ring(cracked):
+    """Every node is used, the held arcs span count x width (Supports) to 1e-12 rad, the
+    crack's faces come from the block, and every cut carries the nodes of cut_radii."""
+    ring, crack, pieces = cracked
+    mesh = pieces.mesh
+    assert len(np.unique(mesh.cells)) == len(mesh.points), "every node of the glued ring used"
+    ends = mesh.points[mesh.boundaries["supports"][:, :2]]
+    angles = np.arctan2(ends[..., 1], ends[..., 0])
+    span = np.abs((angles[:, 1] - angles[:, 0] + math.pi) % (2 * math.pi) - math.pi).sum()
+    assert abs(span - ring.supports.count * ring.supports.width) < 1e-12, (
+        f"held arc {span!r} rad against Supports' {ring.supports.count * ring.supports.width!r}")
+    assert len(pieces.pieces) == ring.teeth - pieces.block.count + 1
+    assert {"crack_a", "crack_b"} <= set(mesh.boundaries)
+    block = pieces.block.mesh
+    minus = np.unique(block.boundaries["cut_minus"][:, :2])
+    radii = np.sort(np.hypot(*block.points[minus].T))
+    np.testing.assert_allclose(radii, cut_radii(ring, OPTIONS), rtol=1e-12,
+                               err_msg="the block's cut vertices against cut_radii (1e-12)")
+
+
+def test_block_reaches_the_margin_around_the_crack():
+    """The block holds the crack's path with MARGIN pitches on either side."""
+    ring = raba118.ring_gear()
+    pitch = 2 * math.pi / ring.teeth
+    for crack in (Crack(0, 0.012), Crack(5, 0.006, angle=-1.2), Crack(63, 0.0)):
+        first, count = block_teeth(ring, crack)
+        path = crack.path(ring) if crack.depth else crack.mouth(ring)[None, :]
+        low = ring.tooth_angle(first) - pitch / 2
+        offsets = (np.arctan2(path[:, 1], path[:, 0]) - low) % (2 * math.pi)
+        assert offsets.min() >= MARGIN * pitch - 1e-12, f"{crack}: lower margin"
+        assert count * pitch - offsets.max() >= MARGIN * pitch - 1e-12, f"{crack}: upper margin"
+
+
+def test_substructured_solve_equals_the_whole_ring_solve(cracked):
+    """Static condensation is exact: the substructured displacements under arbitrary loads
+    equal PARDISO's solve of the glued ring's whole stiffness, to 1e-9 of the largest."""
+    ring, crack, pieces = cracked
+    model = ring_model(ring, pieces.mesh)
+    loads = np.random.default_rng(1).normal(size=(model.ndofs, 3))
+    whole = supported(model, ["supports"])
+    ours = substructured(pieces, model, Material(), ring.gear.face_width)
+    try:
+        expected, got = whole.solve(loads).u, ours.solve(loads).u
+    finally:
+        whole.release()
+        ours.release()
+    assert np.abs(got - expected).max() <= 1e-9 * np.abs(expected).max(), (
+        "substructured vs whole-ring solve on the same mesh (1e-9)")
+
+
+def test_crack_case_equals_the_whole_ring_on_the_same_mesh(cracked):
+    """Everything ring_and_tooth gives (root-land c_ru per carrier position and c_r, the
+    work-conjugate values with their rim and tooth parts, the cracked tooth's compliance
+    curve) from the pieces equals the whole glued ring's, to 1e-9."""
+    ring, crack, pieces = cracked
+    planet = gear_body(preset_design("raba118"), "planet")
+    ours, our_curve = ring_and_tooth(ring, planet, crack, pieces)
+    whole, whole_curve = ring_and_tooth(ring, planet, crack, pieces.mesh)
+    pairs = {"c_ru_positions": (ours.c_ru_positions, whole.c_ru_positions),
+             "c_r": (ours.c_r, whole.c_r),
+             "work.c_ru_positions": (ours.work.c_ru_positions, whole.work.c_ru_positions),
+             "work.c_ru_rim_positions": (ours.work.c_ru_rim_positions,
+                                         whole.work.c_ru_rim_positions),
+             "work.c_ru_tooth_positions": (ours.work.c_ru_tooth_positions,
+                                           whole.work.c_ru_tooth_positions),
+             "work.c_r": (ours.work.c_r, whole.work.c_r),
+             "work.c_r_rim": (ours.work.c_r_rim, whole.work.c_r_rim),
+             "tooth compliance": (our_curve.compliance, whole_curve.compliance)}
+    for name, (got, expected) in pairs.items():
+        np.testing.assert_allclose(got, expected, rtol=1e-9,
+                                   err_msg=f"{name}: pieces vs whole glued ring (1e-9)")
+    assert ours.dofs == whole.dofs
+
+
+def test_published_figures_move_within_their_error_bars():
+    """The committed comparison (docs/data/fe_substructure.json, python -m
+    hubvib.studies.fe_agreement) holds every depth of the published default scene
+    (docs/data/raba118_crack) with its old value; the ring body's c_ru and c_r by
+    substructures lie within the old error bars (fine against coarse level), the engaged
+    c_rp ratio within the larger of its old and new error estimates."""
+    import json
+    from pathlib import Path
+
+    data = Path(__file__).resolve().parents[2] / "docs" / "data"
+    rows = json.loads((data / "fe_substructure.json").read_text())["rows"]
+    published = json.loads((data / "raba118_crack" / "results.json").read_text())["stiffness"]
+    keys = {"c_ru_N_m": "fe_c_ru_N_m", "c_r_N_m": "fe_c_r_N_m",
+            "c_rp_engaged_ratio": "fe_c_rp_engaged_ratio"}
+    assert len(rows) == 3 * len(published), "three quantities per published depth"
+    old = {(r["depth_mm"], q): r[k] for r in published for q, k in keys.items()}
+    for row in rows:
+        where = f"{row['quantity']} at {row['depth_mm']:.4g} mm"
+        # the published run may be regenerated by the same code: equal to round-off
+        assert row["old"] == pytest.approx(old[(row["depth_mm"], row["quantity"])],
+                                           rel=1e-12), f"{where}: old value"
+        change = abs(row["new"] - row["old"])
+        if row["quantity"] == "c_rp_engaged_ratio":
+            assert change <= max(row["old_error"], row["new_error"]), (
+                f"{where}: new - old {change:.3g} against the error estimates")
+        else:
+            assert change <= row["old_error"], (
+                f"{where}: new - old {change:.3g} against the old error bar "
+                f"{row['old_error']:.3g} (docs/data/raba118_crack)")

@@ -1,0 +1,160 @@
+"""Off-screen renders of lumped and FE mode shapes and of the loaded FE ring: real images,
+distinct per mode, repeatable."""
+
+import numpy as np
+import pytest
+
+pv = pytest.importorskip("pyvista")
+imageio = pytest.importorskip("imageio")
+
+from hubvib.render.modes import render_mode  # noqa: E402
+from hubvib.build import lumped_preset  # noqa: E402
+from hubvib.lumped import natural_modes  # noqa: E402
+
+PARAMS = lumped_preset("raba118")
+SPECTRUM = natural_modes(PARAMS)
+
+
+def _image(path):
+    return np.asarray(imageio.v3.imread(path), dtype=float)
+
+
+def test_mode_renders_are_real_distinct_and_repeatable(tmp_path):
+    from hubvib.render.modes import plotter_for
+
+    first = render_mode(PARAMS, SPECTRUM, 0, tmp_path / "a")[0]  # on a plotter of its own
+    with plotter_for() as plotter:  # one plotter for both, as render_modes draws them
+        other = render_mode(PARAMS, SPECTRUM, 4, tmp_path / "a", plotter=plotter)[0]
+        again = render_mode(PARAMS, SPECTRUM, 0, tmp_path / "b", plotter=plotter)[0]
+    a, b, c = _image(first), _image(again), _image(other)
+    assert a.shape[:2] == (900, 900)
+    assert a.std() > 20  # not blank: bodies on a white background
+    # sign-fixed modes: the same picture twice, and nothing of mode 5 (actors, camera)
+    # left on the plotter drawn again
+    np.testing.assert_array_equal(a, b)
+    assert np.abs(a - c).mean() > 1.0  # a rotational and a translational mode differ
+
+
+@pytest.mark.slow
+def test_gif_and_multiblock_on_request(tmp_path):
+    files = render_mode(PARAMS, SPECTRUM, 2, tmp_path, gif=True, vtm=True)
+    assert [f.suffix for f in files] == [".png", ".gif", ".vtm"]
+    frames = imageio.v3.imread(files[1], index=None)
+    assert len(frames) == 24 and np.abs(frames[0] - frames[6]).mean() > 0.1  # it moves
+    blocks = pv.read(files[2])
+    assert {"sun", "ring", "carrier", "planet 1"} <= set(blocks.keys())
+    # the ring is translated by the mode (translational mode 3): its centre moved
+    assert np.hypot(*blocks["ring"].center[:2]) > 1e-4
+
+
+@pytest.fixture(scope="module")
+def cracked_ring_fields():
+    pytest.importorskip("gmsh")
+    pytest.importorskip("skfem")
+    from hubvib.render.fe import ring_fields
+    from hubvib.meshing.levels import scaled_options
+    from hubvib.build import raba118
+    from hubvib.meshing.crack import Crack
+
+    # scale 8 (was 4): every property checked below still shows with margin (near-tip
+    # stress 21x the intact ring's at 8, 33x at 4; softer; lower first mode)
+    return ring_fields(raba118.design(), Crack(0, 0.012), scaled_options(8.0), modes=2)
+
+
+def test_fe_renders_are_real_distinct_and_repeatable(tmp_path, cracked_ring_fields,
+                                                     monkeypatch):
+    import hubvib.render.fe as fe_render
+    from hubvib.render.fe import render_fe
+    from hubvib.render.modes import plotter_for
+
+    fields = cracked_ring_fields
+    files = render_fe(fields, tmp_path / "a", vtu=True)
+    assert [f.name for f in files] == ["fe_ring_loaded.png", "fe_crack_tip.png",
+                                       "fe_ring_mode_01.png", "fe_ring_mode_02.png",
+                                       "fe_ring.vtu"]
+    loaded, tip, mode1, mode2 = (_image(f) for f in files[:4])
+    for image in (loaded, tip, mode1, mode2):
+        assert image.shape[:2] == (900, 900) and image.std() > 20
+    assert np.abs(mode1 - mode2).mean() > 1.0 and np.abs(loaded - mode1).mean() > 1.0
+    # one plotter draws them all: each picture must be the one a plotter of its own draws
+    # (no camera, colour bar, label or length bar of the picture before may stay)
+    reused = fe_render._picture
+
+    def _picture_of_its_own(plotter, path, draw, centre=None):
+        with plotter_for() as own:
+            return reused(own, path, draw, centre)
+
+    monkeypatch.setattr(fe_render, "_picture", _picture_of_its_own)
+    alone = render_fe(fields, tmp_path / "b")
+    for shared, own in zip(files[:4], alone):
+        np.testing.assert_array_equal(_image(own), _image(shared), err_msg=shared.name)
+    # The close-up's title sits on a light box (it was black on dark
+    # navy: 0 % light pixels there) and a labelled length bar sits at the lower left
+    light, dark = tip[..., :3].min(axis=2) > 200, tip[..., :3].max(axis=2) < 60
+    assert light[:22, :470].mean() > 0.4 and dark[:22, :470].mean() > 0.03, \
+        "crack-tip title: light box with dark text expected in the upper-left strip"
+    assert light[785:840, 60:250].mean() > 0.03 and dark[785:840, 60:250].mean() > 0.01, \
+        "crack-tip length scale: white bar and labelled box expected at the lower left"
+    grid = pv.read(files[-1])
+    np.testing.assert_allclose(grid.point_data["von Mises [Pa]"], fields.von_mises)
+    assert grid.point_data["displacement [m]"].shape == (len(fields.points), 3)
+
+
+def test_fe_ring_fields_physics(cracked_ring_fields):
+    from hubvib.render.fe import ring_fields
+    from hubvib.meshing.levels import scaled_options
+    from hubvib.build import raba118
+
+    fields = cracked_ring_fields
+    intact = ring_fields(raba118.design(), None, scaled_options(8.0), modes=1)
+    # LEFM: the stress is singular at the crack tip; intact, the rim there is barely loaded
+    near = lambda f: f.von_mises[np.hypot(*(f.points - fields.crack_tip).T) < 3e-3].max()
+    assert near(fields) > 5 * near(intact)
+    # an open crack: the ring is softer, the same torque turns it further
+    assert np.abs(fields.displacement).max() > np.abs(intact.displacement).max()
+    assert fields.mode_hz[0] < intact.mode_hz[0]
+    assert np.isfinite(fields.von_mises).all() and fields.von_mises.min() >= 0
+    assert np.all(np.diff(fields.mode_hz) > 0) and fields.mode_hz[0] > 1e3
+
+
+def test_fe_modes_sign_fixed():
+    """Two solves of the same model return the same shapes, largest entry positive."""
+    pytest.importorskip("skfem")
+    from hubvib.fem.elasticity import plane_model
+    from hubvib.fem.modal import lowest_modes
+    from hubvib.meshing.annulus import annulus_mesh
+
+    model = plane_model(annulus_mesh(0.08, 0.1, 8e-3, 2), thickness=0.01)
+    a, b = (lowest_modes(model, 3, ["inner"]) for _ in range(2))
+    np.testing.assert_array_equal(a.shapes, b.shapes)
+    for shape in a.shapes.T:
+        assert shape[np.argmax(np.abs(shape))] > 0
+
+
+def test_fe_colour_bar_text_is_readable_and_clear_of_the_ticks(tmp_path, cracked_ring_fields,
+                                                               monkeypatch):
+    """Title and tick labels of every FE picture's colour bar: contrast of at least 4.5
+    (WCAG) against whatever is drawn behind them (the crack-tip close-up puts the bar over
+    dark blue mesh), and the title clear of the top tick label."""
+    from dataclasses import replace
+
+    import hubvib.render.fe as fe_render
+    from tests.helpers.figure_checks import bar_title_over_labels, scalar_bar_texts, unreadable_bar_text
+
+    fields = replace(cracked_ring_fields, mode_shapes=cracked_ring_fields.mode_shapes[:1],
+                     mode_hz=cracked_ring_fields.mode_hz[:1])
+    bars = []
+    save = fe_render.save_picture
+
+    def checked(plotter, path):
+        bars.append(scalar_bar_texts(plotter))
+        save(plotter, path)
+
+    monkeypatch.setattr(fe_render, "save_picture", checked)
+    files = fe_render.render_fe(fields, tmp_path)
+    assert [f.name for f in files] == ["fe_ring_loaded.png", "fe_crack_tip.png",
+                                       "fe_ring_mode_01.png"]
+    assert [len(found) for found in bars] == [1, 1, 1], "one colour bar per picture"
+    wrong = [f"{path.name}: {problem}" for path, found in zip(files, bars)
+             for problem in unreadable_bar_text(found) + bar_title_over_labels(found)]
+    assert not wrong, "\n".join(wrong)
