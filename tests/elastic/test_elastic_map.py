@@ -242,3 +242,42 @@ def test_reduced_ring_equals_full_rebuilds_on_the_thin_rim():
                                 max_hz=scene.options.band_hz).frequency_hz
         assert full.size == reduced.size, s
         assert np.max(np.abs(reduced / full - 1)) < 1e-5, s
+
+
+@pytest.mark.slow
+def test_rigid_equivalent_shares_the_static_stiffness_so_low_modes_agree(raba):
+    """The comparison model carries the ring's statically condensed contact compliance in
+    series with k_rest: its static stiffness is the elastic ring's, so modes far below the
+    lowest ring mode differ only by the ring's inertia beyond its rigid motions, of order
+    (f / f_ring)^2 times the ring's deformation share. Raba: the modes below a tenth of the
+    lowest ring mode agree to 1e-3 (they differ by 1.3 % against ``lumped_equivalent``,
+    whose ring-planet spring is k_rest alone). The local compliance is positive (the full
+    contact compliance exceeds its rigid-ring part, Rayleigh-Ritz) and, on a clamped ring
+    (no foundation sized to the design), scales as 1/E."""
+    from hubvib.elastic.model import (elastic_ring, elastic_spectrum, lowest_ring_mode,
+                                      lumped_equivalent)
+    from hubvib.elastic.validity import local_contact_compliance, rigid_equivalent
+    from hubvib.lumped import natural_modes
+    from hubvib.lumped.elastic_ring import engagement
+
+    design, scene, *_ = raba
+    er = elastic_ring(design, options=scene.options, carrier_teeth=(0,))
+    spectrum_hz = np.sort(natural_modes(rigid_equivalent(er, 0)).frequency_hz)
+    coupled_hz = elastic_spectrum(er, 0).frequency_hz
+    low = spectrum_hz < 0.1 * lowest_ring_mode(er)[0]
+    assert low.sum() >= 2
+    np.testing.assert_allclose(coupled_hz[:low.sum()], spectrum_hz[low], rtol=1e-3,
+                               err_msg="same static stiffness: low modes to 1e-3")
+    teeth = engagement(er.params, er.operators, 0).teeth
+    local = local_contact_compliance(er, teeth)
+    assert np.all(local > 0), local
+    c_rp = rigid_equivalent(er, 0).c_rp
+    assert c_rp < lumped_equivalent(er, 0).c_rp == pytest.approx(er.k_rest)
+
+    clamped = replace(scene.options, mounting="clamped")
+    er1 = elastic_ring(design, options=clamped, carrier_teeth=(0,), k_rest=er.k_rest)
+    stiff = replace(design, material=replace(design.material, E=design.material.E * 10))
+    er10 = elastic_ring(stiff, options=clamped, carrier_teeth=(0,), k_rest=er.k_rest)
+    np.testing.assert_allclose(local_contact_compliance(er10, teeth),
+                               local_contact_compliance(er1, teeth) / 10, rtol=1e-9,
+                               err_msg="clamped ring, linear elasticity: compliance ~ 1/E")
