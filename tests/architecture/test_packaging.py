@@ -29,6 +29,7 @@ def test_wheel_installs_only_hubvib_with_every_scene(tmp_path):
     assert "hubvib/scenes/raba118_crack.toml" in names and "hubvib/scenes/hub4_crack.toml" in names
 
 
+@pytest.mark.slow
 def test_shipped_scenes_run_by_name_from_any_folder(tmp_path, monkeypatch, capsys):
     from hubvib.cli import main
 

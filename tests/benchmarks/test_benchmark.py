@@ -44,6 +44,7 @@ def test_ring_levels_reach_past_the_default():
     assert scales_of("c_ru")[-3:] == REFERENCE_SCALES and max(REFERENCE_SCALES) < 1
 
 
+@pytest.mark.slow
 def test_previous_path_solves_the_same_problem():
     """The baseline (previous FE path: eager basis, triplet assembly, scikit-fem's facet
     bases, K[free][:, free]) gives the c_ru and c_r of today's path on the same mesh to

@@ -57,6 +57,7 @@ def test_unknown_preset_rejected(capsys):
     assert "invalid choice: 'nope'" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_validate_writes_report(capsys, tmp_path):
     assert main(["validate", "raba118", "--out", str(tmp_path), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)

@@ -97,6 +97,7 @@ def test_interrupt_in_process_is_one_line_and_keeps_the_folder(tmp_path, capsys,
     assert _visible(out) == before
 
 
+@pytest.mark.slow
 def test_sigint_to_a_real_run_exits_130_with_one_line(tmp_path):
     """SIGINT (what Ctrl-C sends) to a running ``hubvib run``: exit 130, stderr is
     the one line, no traceback, nothing left in the output folder."""
@@ -215,6 +216,7 @@ def test_help_into_a_closed_pipe_is_quiet():
     assert (run.wait(timeout=60), stderr) == (141, "")
 
 
+@pytest.mark.slow
 def test_json_error_into_a_closed_pipe_is_exit_2_and_one_line(tmp_path):
     """Bad input with --json and stdout closed: the error's JSON object cannot be written;
     the answer stays exit 2 with its one line on stderr, and the unwritten object is not
@@ -247,6 +249,7 @@ def test_stdout_closed_from_the_start_is_quiet(argv, code):
 
 # -- a full disk --------------------------------------------------------------------
 
+@pytest.mark.slow
 def test_full_disk_leaves_the_previous_set(tmp_path, capsys, monkeypatch):
     """ENOSPC while the third file is put in place: one line naming the file and
     what was discarded, exit 2, and the folder still holds the previous set byte for byte

@@ -45,6 +45,7 @@ def test_stiffness_reports_each_fe_part_on_stderr(monkeypatch, capsys):
     assert stiffness.stiffness_parts(1e-3, True) == 5
 
 
+@pytest.mark.slow
 def test_stability_reports_each_case_on_stderr(capsys):
     from hubvib.build import lumped_preset
     from hubvib.validation.stability import cases

@@ -334,6 +334,7 @@ def test_light_but_representable_masses_still_solve():
 @pytest.mark.parametrize("argv", [["spectrum", "--json"],
                                   ["shift", "--to", "c_ru", "1e5", "--json"],
                                   ["stability", "--repeats", "1", "--json"]])
+@pytest.mark.slow
 def test_json_output_is_standard(argv, capsys):
     """--json is RFC 8259 JSON (the stability table had NaN for the printed matrix:
     it is null now)."""
@@ -423,6 +424,7 @@ def test_line_progress_counts_and_estimates():
 
 # -- the output set ------------------------------------------------------------
 
+@pytest.mark.slow
 def test_output_files_are_0644_under_umask_022(tmp_path, capsys):
     """CSV, JSON, report and plots get the umask's mode, 0644 under 022, as the
     renders always did (mkstemp alone creates 0600)."""

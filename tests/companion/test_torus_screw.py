@@ -266,6 +266,7 @@ def test_bad_lift_table(capsys, tmp_path):
     assert "line 2: every cell must be a number" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_import_pulls_in_nothing_heavy():
     code = ("import sys, hubvib.companion.torus_screw, hubvib.companion.torus_screw_paper, "
             "hubvib.companion.torus_screw_sweep, hubvib.companion.torus_screw_report, "

@@ -28,6 +28,7 @@ def _json(capsys, argv):
     return json.loads(capsys.readouterr().out)
 
 
+@pytest.mark.slow
 def test_registered_preset_runs_in_design_check_spectrum_mesh_and_a_scene(
         copy_of_hub4, capsys, tmp_path):
     original = _json(capsys, ["design", "check", "hub4", "--json"])

@@ -191,6 +191,7 @@ def test_c_ru_at_scale_0_6():
 
 # -- one factorisation for c_ru, c_r and the cracked tooth ---------------
 
+@pytest.mark.slow
 def test_one_factorisation_gives_the_ring_and_the_cracked_tooth():
     """Ring loads and the cracked tooth's unit forces as columns of one solve: c_ru at every
     carrier position, c_r and the tooth compliance equal those of separate assemblies and
@@ -252,6 +253,7 @@ def test_crack_case_equals_separate_solves():
                                      "seconds_total"}
 
 
+@pytest.mark.slow
 def test_tooth_compliance_follows_the_tooth():
     """Measured on another tooth, the tooth compliance equals tooth 0's on a ring held all
     round (rotational symmetry; mesh noise 5e-3 at scale 4); on the Raba ring, held on six

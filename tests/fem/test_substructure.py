@@ -64,6 +64,7 @@ def test_block_reaches_the_margin_around_the_crack():
         assert count * pitch - offsets.max() >= MARGIN * pitch - 1e-12, f"{crack}: upper margin"
 
 
+@pytest.mark.slow
 def test_substructured_solve_equals_the_whole_ring_solve(cracked):
     """Static condensation is exact: the substructured displacements under arbitrary loads
     equal PARDISO's solve of the glued ring's whole stiffness, to 1e-9 of the largest."""
@@ -81,6 +82,7 @@ def test_substructured_solve_equals_the_whole_ring_solve(cracked):
         "substructured vs whole-ring solve on the same mesh (1e-9)")
 
 
+@pytest.mark.slow
 def test_crack_case_equals_the_whole_ring_on_the_same_mesh(cracked):
     """Everything ring_and_tooth gives (root-land c_ru per carrier position and c_r, the
     work-conjugate values with their rim and tooth parts, the cracked tooth's compliance

@@ -49,6 +49,7 @@ def test_simulated_record_has_the_exact_psd_of_its_mode():
     assert np.corrcoef(p[at], exact)[0, 1] > 0.95, "same shape"
 
 
+@pytest.mark.slow
 def test_identified_frequencies_scatter_as_the_bound_predicts():
     # Monte Carlo of 80 simulated records identified by the shipped method
     f, zeta, T, snr = 50.0, 0.02, 60.0, 100.0

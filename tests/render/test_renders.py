@@ -19,6 +19,7 @@ def _image(path):
     return np.asarray(imageio.v3.imread(path), dtype=float)
 
 
+@pytest.mark.slow
 def test_mode_renders_are_real_distinct_and_repeatable(tmp_path):
     from hubvib.render.modes import plotter_for
 
@@ -61,6 +62,7 @@ def cracked_ring_fields():
     return ring_fields(raba118.design(), Crack(0, 0.012), scaled_options(8.0), modes=2)
 
 
+@pytest.mark.slow
 def test_fe_renders_are_real_distinct_and_repeatable(tmp_path, cracked_ring_fields,
                                                      monkeypatch):
     import hubvib.render.fe as fe_render
@@ -100,6 +102,7 @@ def test_fe_renders_are_real_distinct_and_repeatable(tmp_path, cracked_ring_fiel
     assert grid.point_data["displacement [m]"].shape == (len(fields.points), 3)
 
 
+@pytest.mark.slow
 def test_fe_ring_fields_physics(cracked_ring_fields):
     from hubvib.render.fe import ring_fields
     from hubvib.meshing.levels import scaled_options
@@ -131,6 +134,7 @@ def test_fe_modes_sign_fixed():
         assert shape[np.argmax(np.abs(shape))] > 0
 
 
+@pytest.mark.slow
 def test_fe_colour_bar_text_is_readable_and_clear_of_the_ticks(tmp_path, cracked_ring_fields,
                                                                monkeypatch):
     """Title and tick labels of every FE picture's colour bar: contrast of at least 4.5

@@ -48,6 +48,7 @@ def signal_study():
     return small_signal_study()
 
 
+@pytest.mark.slow
 def test_indicators_each_on_a_scale_of_its_own(signal_study):
     from hubvib.signal.indicators import INDICATORS
     from hubvib.signal.report import _indicator_figure
@@ -75,6 +76,7 @@ def test_order_spectrum_panels_have_their_own_labels(signal_study):
     assert shared_colours(series(fig)) == []
 
 
+@pytest.mark.slow
 def test_tsa_shows_both_traces_and_their_difference(signal_study):
     from hubvib.signal.report import _tsa_figure
 
@@ -140,6 +142,7 @@ def _carrier(modes=12, engaged=0.14):
                                engaged_fraction=0.137))
 
 
+@pytest.mark.slow
 def test_carrier_position_shows_every_moving_mode_and_its_minimum():
     from hubvib.detection.plots import carrier_figure
 

@@ -294,6 +294,7 @@ def test_dask_scheduler_without_workers_fails_within_the_timeout():
     assert delivered == []
 
 
+@pytest.mark.slow
 def test_dask_local_cluster_killed_worker_and_failing_case(tmp_path):
     """Faults on a 2-worker LocalCluster, in one cluster start:
 

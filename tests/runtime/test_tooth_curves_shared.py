@@ -62,6 +62,7 @@ def test_a_damaged_entry_is_computed_again(parts, tmp_path):
     assert calls == [1] and out is curve, "a checksum mismatch recomputes the curve"
 
 
+@pytest.mark.slow
 def test_the_intact_case_measures_the_intact_ring_curve_to_the_last_digit(parts):
     """The intact crack case's own factorisation gives the ring's intact tooth curve
     (``crack_level(..., intact_tooth=...)``): the same floats as ``fe_curve`` on a mesh of

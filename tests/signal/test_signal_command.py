@@ -112,6 +112,7 @@ def test_bad_input_is_one_line_exit_2_and_nothing_written(tmp_path, capsys, fake
     assert not out.exists()
 
 
+@pytest.mark.slow
 def test_signal_command_writes_signal_spectrum_and_indicators(tmp_path, capsys, fake_fe):
     out = tmp_path / "out"
     assert main(["signal", str(_scene(tmp_path)), "--out", str(out), "--json"]) == 0
@@ -201,6 +202,7 @@ def test_shipped_signal_scene_has_a_monotone_indicator(tmp_path, capsys, shared_
     assert data["roc"]["indicators"]["fm4"]["pod"][1] == 1.0
 
 
+@pytest.mark.slow
 def test_several_sensors_relative_to_the_crack(tmp_path, capsys, fake_fe):
     """A sensor at 0 deg from the cracked tooth (tooth 0) is the study's own sensor at 0 deg:
     same numbers.  Intact, a sensor 120 deg on sees the same signal a third of a revolution

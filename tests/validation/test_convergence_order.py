@@ -79,6 +79,7 @@ def test_curved_p2_beats_p1_at_equal_dofs():
     assert math.isfinite(ratio)
 
 
+@pytest.mark.slow
 def test_convergence_table_leaves_the_orders_without_a_triple_empty(tmp_path, capsys):
     """The first two levels have no triple of levels ending at them, so no observed order:
     the printed table and the CSV leave that cell empty (no ``nan``), --json holds null,
