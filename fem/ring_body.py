@@ -146,13 +146,15 @@ def support_springs(model) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     return form("n"), form("t")
 
 
-def foundation_for(model, c_r: float, c_ru: float, base_radius: float) -> Foundation:
+def foundation_for(model, c_r: float, c_ru: float, base_radius: float,
+                   springs: tuple | None = None) -> Foundation:
     """The foundation whose rigid-ring totals are ``c_r`` (translation, mean of x and y)
-    [N/m] and ``c_ru`` (rotation, reduced to the base radius) [N/m]."""
+    [N/m] and ``c_ru`` (rotation, reduced to the base radius) [N/m]; ``springs``: the
+    model's ``support_springs`` when already assembled."""
     for name, value in (("c_r", c_r), ("c_ru", c_ru)):
         if not (math.isfinite(value) and value > 0):
             raise MountingError(f"{name} = {value!r} N/m: a foundation sized to it needs > 0")
-    normal, tangential = support_springs(model)
+    normal, tangential = support_springs(model) if springs is None else springs
     R = in_plane_modes(model)
     a_n, a_t = R.T @ (normal @ R), R.T @ (tangential @ R)
     # c_r = k_n tr_n + k_t tr_t ; c_ru r_b^2 = k_n rot_n + k_t rot_t
@@ -180,11 +182,12 @@ def ring_body(ring: RingGear, mesh: FEMesh, material: Material = Material(),
         raise MountingError("foundation: give one (or sized_to) exactly when mounting = "
                             "'foundation'")
     model = plane_model(mesh, material, thickness=ring.gear.face_width)
-    if mounting == "foundation" and foundation is None:
-        foundation = foundation_for(model, *sized_to, ring.gear.base_diameter / 2)
     K, M = model.K.tocsr(), mass_matrix(model)
     if mounting == "foundation":
         normal, tangential = support_springs(model)
+        if foundation is None:
+            foundation = foundation_for(model, *sized_to, ring.gear.base_diameter / 2,
+                                        springs=(normal, tangential))
         K = (K + foundation.k_n * normal + foundation.k_t * tangential).tocsr()
     forces = tooth_forces(model, range(ring.teeth))
     along = np.zeros((ring.teeth, 2, ring.teeth))

@@ -688,19 +688,23 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
     with ExitStack() as beside:
         pool = (beside.enter_context(worker_pool(workers))
                 if execution.engine == "local" and workers > 1 else None)
-        begun = {}
+        begun, elastic = {}, {}
 
         def after_fe():
+            # the elastic cases queue behind the FE cases (the lumped stage waits for those)
+            # and ahead of the renders, which run beside the plots
+            if not elastic:
+                elastic["cases"] = begin_elastic(scene, pool)
             begin_renders(scene, staged, pool, begun)
 
         def on_spectra(spectra):
             begin_renders(scene, staged, pool, begun, spectra[0])
 
         started = time.perf_counter()
-        elastic_cases = begin_elastic(scene, pool)
         with working("FE stage and lumped spectra"):
             result = run_crack_study(scene, pool=pool, after_fe=after_fe,
                                      on_spectra=on_spectra)
+        elastic_cases = elastic["cases"]
         stage(f"FE stage ({result.computed} of {len(result.fe)} cases computed) and lumped "
               "spectra", started)
         if elastic_cases is not None:
@@ -753,7 +757,7 @@ def begin_elastic(scene: Scene, pool):
                                lambda d: crack_of(sweep, d), elastic)
     if pool is None:
         return arguments
-    return [pool.submit(cached_case, *a) for a in arguments]
+    return [submit(pool, cached_case, *a) for a in arguments]
 
 
 def finish_elastic(scene: Scene, begun):
