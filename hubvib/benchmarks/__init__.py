@@ -92,7 +92,8 @@ def run_benchmark(quick: bool = False, progress=None, scene_3d: bool = True,
     if quick:
         out.update(main_job_fresh_seconds=None, main_job_cached_seconds=None,
                    main_job_stage_seconds=None, main_job_rigid_ring_seconds=None,
-                   elastic_ring_time_ratio=None, tests_seconds=None, main_job_skipped=skipped, tests_skipped=skipped)
+                   elastic_ring_time_ratio=None, elastic_ring_cpu_ratio=None,
+                   tests_seconds=None, main_job_skipped=skipped, tests_skipped=skipped)
     else:
         out.update(main_job(say))
         out.update(readme_test_command(say))

@@ -35,6 +35,7 @@ ROWS = (
      None),
     ("elastic_ring_time_ratio", "main job over the main job without the elastic ring", "x",
      None),
+    ("elastic_ring_cpu_ratio", "  the same in CPU seconds (run and its workers)", "x", None),
     ("tests_seconds", "default test command (python -m pytest)", "s", None),
 )
 

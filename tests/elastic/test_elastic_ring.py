@@ -253,3 +253,26 @@ def test_coupled_mode_renders_and_vtu(tmp_path):
         stored = grid.point_data[f"mode_{j + 1:02d}"]
         assert np.abs(stored[:, :2]).max() == pytest.approx(np.abs(u[j]).max(), rel=1e-6)
     np.testing.assert_allclose(grid.field_data["frequency_hz"], spectrum.frequency_hz)
+
+
+def test_rest_spring_from_the_fe_stages_store_is_the_same_float(tmp_path, monkeypatch):
+    """k_rest's FE planet tooth curve comes from the on-disk store the crack study's FE
+    stage fills (``runtime.tooth_curves``): the first process computes and stores it, the
+    next reads it back, and k_rest is the same float to the last digit (JSON keeps every
+    digit of a float)."""
+    from hubvib.fem import tooth_stiffness
+
+    monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path))
+    design = preset_design("raba118")
+    tooth_stiffness._intact_curve.cache_clear()  # as a fresh process
+    computed = rest_stiffness(design)
+    stored = list((tmp_path / "stiffness" / "tooth-curves").glob("*.json"))
+    assert len(stored) == 1, f"one planet curve stored, found {stored}"
+    tooth_stiffness._intact_curve.cache_clear()
+
+    def no_fe(*args, **kwargs):
+        raise AssertionError("the stored curve must be read, not computed again")
+
+    monkeypatch.setattr(tooth_stiffness, "fe_curve", no_fe)
+    assert rest_stiffness(design) == computed
+    assert 1e8 < computed < 1e11, computed
