@@ -70,6 +70,33 @@ def test_renders_are_submitted_only_when_the_render_cache_lacks_them(cache):
         f"the render cache holds both: nothing may be submitted, got {pool.submitted}"
 
 
+def test_elastic_cases_go_to_the_pool_with_one_blas_thread(cache, monkeypatch):
+    """Counter, not time: the default scene queues one elastic case per depth (the crack
+    through the rim left out), each submitted with one BLAS thread in the environment
+    (``runtime.engines.SINGLE_THREADED``), as the FE cases: a worker spawned by that submit
+    runs the same arithmetic as the others, and no idle BLAS thread spins beside it."""
+    import os
+
+    from hubvib.elastic import rest
+    from hubvib.runtime.engines import SINGLE_THREADED
+
+    monkeypatch.setattr(rest, "rest_stiffness", lambda design, method="fe": 2e9)
+    environments = []
+
+    class Recording(_CountingPool):
+        def submit(self, function, *args):
+            environments.append({key: os.environ.get(key) for key in SINGLE_THREADED})
+            return super().submit(function, *args)
+
+    scene = load_scene(None)
+    pool = Recording()
+    begun = crack_study.begin_elastic(scene, pool)
+    depths = crack_study.elastic_depths(scene.crack)
+    assert pool.submitted == ["cached_case"] * len(depths) == ["cached_case"] * len(begun)
+    assert len(depths) == len(scene.crack.depths) - 1
+    assert environments == [SINGLE_THREADED] * len(depths), environments
+
+
 def test_no_renders_no_pool_work(cache):
     """A scene without renders (or without a pool) submits nothing."""
     scene = replace(load_scene(None), renders=False)
