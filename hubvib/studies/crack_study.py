@@ -13,6 +13,7 @@ from __future__ import annotations
 import datetime
 import math
 import time
+from concurrent.futures import Future
 from contextlib import ExitStack
 from dataclasses import asdict, dataclass, field
 from importlib import metadata
@@ -35,7 +36,7 @@ from hubvib.render.captions import figure_lines
 from hubvib.render.html import write_html_reports
 from hubvib.render.fe import render_fe, ring_fields
 from hubvib.render.modes import render_modes
-from hubvib.runtime.engines import EngineError, Execution, submit
+from hubvib.runtime.engines import EngineError, Execution, run_cases, submit
 from hubvib.runtime.process_pool import worker_pool
 from hubvib.runtime.progress import stage, working
 from hubvib.runtime.stage_seconds import timed
@@ -691,11 +692,11 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
         begun, elastic = {}, {}
 
         def after_fe():
-            # the elastic cases queue behind the FE cases (the lumped stage waits for those)
-            # and ahead of the renders, which run beside the plots
+            begin_renders(scene, staged, pool, begun)
+            # the elastic cases queue behind the FE cases and the FE ring's render; this
+            # process, idle until the FE cases are done, computes those no worker starts
             if not elastic:
                 elastic["cases"] = begin_elastic(scene, pool)
-            begin_renders(scene, staged, pool, begun)
 
         def on_spectra(spectra):
             begin_renders(scene, staged, pool, begun, spectra[0])
@@ -745,19 +746,43 @@ def _elastic_scene(scene: Scene):
 
 
 def begin_elastic(scene: Scene, pool):
-    """The elastic ring's crack cases queued in ``pool`` (futures), or their arguments to
-    compute in this process (no pool); None when the scene runs the rigid ring only."""
+    """The elastic ring's crack cases as futures, or their arguments to compute in this
+    process (no pool); None when the scene runs the rigid ring only.
+
+    With a pool every case is queued there, behind what is queued already, and this
+    process takes back the cases no worker has started, the deepest first, and computes
+    them here (as a worker would: one BLAS thread) until the workers reach the rest: while
+    they run the FE cases ahead, it would only wait for them."""
     elastic = _elastic_scene(scene)
     if elastic is None:
         return None
     from hubvib.detection.elastic import cached_case, case_arguments
 
     sweep = scene.crack
-    arguments = case_arguments(sweep.reducer, elastic_depths(sweep),
-                               lambda d: crack_of(sweep, d), elastic)
+    depths = elastic_depths(sweep)
+    arguments = case_arguments(sweep.reducer, depths, lambda d: crack_of(sweep, d), elastic)
     if pool is None:
         return arguments
-    return [submit(pool, cached_case, *a) for a in arguments]
+    futures = [submit(pool, cached_case, *a) for a in arguments]
+    for k in reversed(range(len(futures))):
+        if not futures[k].cancel():  # a worker has it: the earlier ones are theirs too
+            break
+        futures[k] = _computed_here(cached_case, arguments[k],
+                                    f"elastic ring at {1e3 * depths[k]:g} mm")
+    return futures
+
+
+def _computed_here(function, arguments: tuple, label: str) -> Future:
+    """``function(*arguments)`` run in this process as on a pool worker
+    (``runtime.engines.run_cases`` with one worker), as a finished future (its failure as
+    the future's ``EngineError``)."""
+    done = Future()
+    try:
+        run_cases(lambda _: function(*arguments), [label],
+                  lambda _, result: done.set_result(result), Execution(), 1)
+    except EngineError as error:
+        done.set_exception(error)
+    return done
 
 
 def finish_elastic(scene: Scene, begun):

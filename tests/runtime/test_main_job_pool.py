@@ -70,31 +70,65 @@ def test_renders_are_submitted_only_when_the_render_cache_lacks_them(cache):
         f"the render cache holds both: nothing may be submitted, got {pool.submitted}"
 
 
-def test_elastic_cases_go_to_the_pool_with_one_blas_thread(cache, monkeypatch):
+class _StartedPool(_CountingPool):
+    """A ``_CountingPool`` whose workers have started the first ``started`` cases it is
+    given (their futures cannot be cancelled), the rest still queued; it records the BLAS
+    environment of each submit (what a worker spawned there would get)."""
+
+    def __init__(self, started):
+        super().__init__()
+        self.started, self.environments = started, []
+
+    def submit(self, function, *args):
+        import os
+        from concurrent.futures import Future
+
+        from hubvib.runtime.engines import SINGLE_THREADED
+
+        self.environments.append({key: os.environ.get(key) for key in SINGLE_THREADED})
+        super().submit(function, *args)
+        future = Future()
+        if len(self.submitted) <= self.started:
+            future.set_running_or_notify_cancel()
+        return future
+
+
+@pytest.mark.parametrize("started", [99, 5])
+def test_elastic_cases_the_workers_have_not_started_are_computed_here(cache, monkeypatch,
+                                                                      started):
     """Counter, not time: the default scene queues one elastic case per depth (the crack
     through the rim left out), each submitted with one BLAS thread in the environment
-    (``runtime.engines.SINGLE_THREADED``), as the FE cases: a worker spawned by that submit
-    runs the same arithmetic as the others, and no idle BLAS thread spins beside it."""
-    import os
-
+    (``runtime.engines.SINGLE_THREADED``), as the FE cases; the cases no worker has started
+    are taken back and computed in this process, the deepest first, with one BLAS thread
+    as on a worker (the same digits), and come back as finished futures in depth order."""
+    from hubvib.detection import elastic as detection_elastic
     from hubvib.elastic import rest
+    from hubvib.foundation.blas import blas_thread_counts
     from hubvib.runtime.engines import SINGLE_THREADED
 
     monkeypatch.setattr(rest, "rest_stiffness", lambda design, method="fe": 2e9)
-    environments = []
+    here = []
 
-    class Recording(_CountingPool):
-        def submit(self, function, *args):
-            environments.append({key: os.environ.get(key) for key in SINGLE_THREADED})
-            return super().submit(function, *args)
+    def case_here(design, crack, scene, k_rest):
+        here.append((0.0 if crack is None else crack.depth, set(blas_thread_counts())))
+        return ("case", here[-1][0])
 
+    monkeypatch.setattr(detection_elastic, "cached_case", case_here)
     scene = load_scene(None)
-    pool = Recording()
-    begun = crack_study.begin_elastic(scene, pool)
     depths = crack_study.elastic_depths(scene.crack)
-    assert pool.submitted == ["cached_case"] * len(depths) == ["cached_case"] * len(begun)
     assert len(depths) == len(scene.crack.depths) - 1
-    assert environments == [SINGLE_THREADED] * len(depths), environments
+    pool = _StartedPool(started)
+    begun = crack_study.begin_elastic(scene, pool)
+    assert pool.submitted == ["case_here"] * len(depths)
+    assert pool.environments == [SINGLE_THREADED] * len(depths), pool.environments
+    taken = max(len(depths) - started, 0)
+    assert [d for d, _ in here] == list(depths[::-1][:taken]), "the deepest first"
+    assert all(threads == {1} for _, threads in here), f"one BLAS thread, as a worker: {here}"
+    for k, future in enumerate(begun):
+        if k < len(depths) - taken:
+            assert future.running(), "a case a worker has started stays the worker's"
+        else:
+            assert future.result() == ("case", depths[k])
 
 
 def test_no_renders_no_pool_work(cache):
