@@ -752,24 +752,30 @@ def begin_elastic(scene: Scene, pool):
     With a pool every case is queued there, behind what is queued already, and this
     process takes back the cases no worker has started, the deepest first, and computes
     them here (as a worker would: one BLAS thread) until the workers reach the rest: while
-    they run the FE cases ahead, it would only wait for them."""
+    they run the FE cases ahead, it would only wait for them.  The validity band
+    (``elastic_band_and_map``) goes first the same way, into the result cache, where the
+    band's own call then finds it."""
     elastic = _elastic_scene(scene)
     if elastic is None:
         return None
     from hubvib.detection.elastic import cached_case, case_arguments
+    from hubvib.elastic.validity import cached_validity_band
 
     sweep = scene.crack
     depths = elastic_depths(sweep)
     arguments = case_arguments(sweep.reducer, depths, lambda d: crack_of(sweep, d), elastic)
     if pool is None:
         return arguments
-    futures = [submit(pool, cached_case, *a) for a in arguments]
+    work = [(cached_case, a, f"elastic ring at {1e3 * d:g} mm")
+            for a, d in zip(arguments, depths)]
+    work.append((cached_validity_band, _validity_band_arguments(scene),
+                 "the rigid-ring model's validity band"))
+    futures = [submit(pool, function, *a) for function, a, _ in work]
     for k in reversed(range(len(futures))):
         if not futures[k].cancel():  # a worker has it: the earlier ones are theirs too
             break
-        futures[k] = _computed_here(cached_case, arguments[k],
-                                    f"elastic ring at {1e3 * depths[k]:g} mm")
-    return futures
+        futures[k] = _computed_here(*work[k])
+    return futures[:len(arguments)]  # the band's result stays in the result cache
 
 
 def _computed_here(function, arguments: tuple, label: str) -> Future:
@@ -801,13 +807,11 @@ def elastic_band_and_map(scene: Scene, elastic) -> tuple:
     """The rigid-ring model's computed validity band on the scene's mounting (planet 1 where
     the detection's statistic has it) and, when ``[elastic] map`` asks, the elastic ring's
     detectability against the foundation scale; both through the result cache."""
-    from hubvib.elastic.cases import carrier_positions
     from hubvib.elastic.validity import cached_validity_band
 
     es = _elastic_scene(scene)
     sweep = scene.crack
-    away = carrier_positions(sweep.reducer, crack_of(sweep, sweep.depths[-1]).tooth)[0]
-    band = cached_validity_band(sweep.reducer, es.options, away)
+    band = cached_validity_band(*_validity_band_arguments(scene))
     if not es.map:
         return band, None
     from hubvib.detection.elastic import family_pod
@@ -817,6 +821,16 @@ def elastic_band_and_map(scene: Scene, elastic) -> tuple:
     emap = elastic_map(sweep.reducer, elastic_depths(sweep), lambda d: crack_of(sweep, d), es,
                        detection_options(scene), pod=family_pod, k_rest=elastic.k_rest)
     return band, emap
+
+
+def _validity_band_arguments(scene: Scene) -> tuple:
+    """The arguments of ``cached_validity_band`` for the scene: its design and elastic
+    options, planet 1 away from the cracked tooth."""
+    from hubvib.elastic.cases import carrier_positions
+
+    sweep = scene.crack
+    away = carrier_positions(sweep.reducer, crack_of(sweep, sweep.depths[-1]).tooth)[0]
+    return sweep.reducer, _elastic_scene(scene).options, away
 
 
 def elastic_depths(sweep) -> tuple:
