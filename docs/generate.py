@@ -116,7 +116,7 @@ def lumped_spectrum() -> str:
     """The energy-consistent spectrum of the Raba 118/76 preset, with the c_ru shift and
     the relative sensitivity of every mode."""
     from hubvib import lumped
-    from hubvib.build import lumped_preset
+    from hubvib.reducer import lumped_preset
 
     params = lumped_preset("raba118")
     spectrum = lumped.natural_modes(params)
@@ -132,7 +132,7 @@ def lumped_spectrum() -> str:
 
 def raba_validation() -> str:
     """Published spectrum against the printed (indefinite) matrix and the energy model."""
-    from hubvib.build import lumped_preset
+    from hubvib.reducer import lumped_preset
     from hubvib.validation.raba118 import validate
 
     rows = [[r["mode"], f"{r['published_rad_s']:.0f}",
@@ -153,7 +153,7 @@ def raba_claim() -> str:
 
 def raba_summary() -> str:
     """The headline figures of ``hubvib validate raba118``."""
-    from hubvib.build import lumped_preset
+    from hubvib.reducer import lumped_preset
     from hubvib.validation.raba118 import PUBLISHED_TOLERANCE, validate
 
     result = validate(lumped_preset("raba118"))
@@ -175,7 +175,7 @@ def raba_summary() -> str:
 def stability() -> str:
     """Error against the 50-digit mpmath reference per case and solver, and the time of
     the default solver, measured while the docs are built."""
-    from hubvib.build import lumped_preset
+    from hubvib.reducer import lumped_preset
     from hubvib.validation.stability import run
 
     rows = [r for r in run(lumped_preset("raba118"), repeats=5)
@@ -195,7 +195,7 @@ def stability() -> str:
 def batch() -> str:
     """The batched solve of the worked example in *Crack detection*."""
     from hubvib import lumped
-    from hubvib.build import lumped_preset
+    from hubvib.reducer import lumped_preset
     from hubvib.lumped.batch import batch_frequencies
 
     values = np.geomspace(1e5, 1e7, 10_000)
@@ -863,7 +863,7 @@ def diagnosis_figures() -> str:
     stiffness (``hubvib.detection.drift.drift_model`` on the preset)."""
     from types import SimpleNamespace
 
-    from hubvib.build import lumped_preset
+    from hubvib.reducer import lumped_preset
     from hubvib.detection.drift import drift_model
 
     run = json.loads((DATA / "raba118_crack" / "results.json").read_text())
@@ -1022,7 +1022,7 @@ CRACK_PATH_RUNS = (("worst position (single-contact point)", "tooth0"),
 def crack_path_default() -> str:
     """The LEFM path of the default scene's crack (Raba 118/76, tooth 0) under the worst
     load position and under the envelope over the mesh cycle (``hubvib crack-path``)."""
-    from hubvib.build.stages import ring_gear
+    from hubvib.reducer.stages import ring_gear
     from hubvib.design.presets import raba118
 
     root = ring_gear(raba118()).profile.root_radius

@@ -2,7 +2,7 @@
 
 From a short radial root crack at the critical fillet point of tooth ``tooth``, each step
 
-1. meshes the ring with the crack so far (``meshing.crack_path.path_ring_mesh``),
+1. meshes the ring with the crack so far (``meshing.polyline_crack.path_ring_mesh``),
 2. solves plane stress under the planet's mesh force ``force`` [N] on that tooth's load
    patch, along the line of action, with the supports clamped,
 3. takes K_I, K_II at the tip from the interaction integral (``fem.fracture``) over an
@@ -28,7 +28,7 @@ from typing import Callable
 
 import numpy as np
 
-from hubvib.meshing.crack_path import (Exit, PathCrack, initial_crack, path_ring_mesh,
+from hubvib.meshing.polyline_crack import (Exit, PathCrack, initial_crack, path_ring_mesh,
                                        ray_exit, surface_gap)
 from hubvib.meshing.gear import rotation
 from hubvib.meshing.ring_gear import RingGear

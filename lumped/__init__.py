@@ -2,7 +2,7 @@
 
 Only numpy and scipy are imported here; nothing of the FE stages.  The parameters of a
 registered design preset are built one layer up, from its design:
-``hubvib.build.lumped_preset("raba118")``.
+``hubvib.reducer.lumped_preset("raba118")``.
 """
 from .eigensolve import METHODS, IndefiniteStiffnessError
 from .energy import ModalEnergy, modal_energy

@@ -110,7 +110,7 @@ class Gears:
     """The built gears whose stiffnesses a study converges: the ring gear
     (``meshing.ring_gear.RingGear``) for c_ru, c_r and the sun and planet bodies
     (``meshing.gear_body.GearBody``) with it for c_sp, c_rp.  The layers above build them
-    from a design (``hubvib.build``); validation imports the stages only."""
+    from a design (``hubvib.reducer``); validation imports the stages only."""
 
     ring: object
     sun: object = None

@@ -3,7 +3,7 @@
 modes), explained.
 
 Run by ``hubvib validate raba118 [--out DIR]``.  The parameters are an argument (the
-layers above build them from the preset's design, ``hubvib.build.lumped_preset("raba118")``):
+layers above build them from the preset's design, ``hubvib.reducer.lumped_preset("raba118")``):
 validation imports the stages only.
 """
 from __future__ import annotations

@@ -64,7 +64,7 @@ class StabilityRow:
 def run(raba: PlanetaryParameters, repeats: int = 20, dps: int = 50,
         on_case=None) -> list[StabilityRow]:
     """Every case made from ``raba`` (the Raba 118/76 parameters; the layers above build
-    them, ``hubvib.build.lumped_preset("raba118")``) with every method, plus the paper's
+    them, ``hubvib.reducer.lumped_preset("raba118")``) with every method, plus the paper's
     printed (indefinite) matrix.  ``on_case(name)`` is called after each case (progress)."""
     rows = []
     for name, params in cases(raba).items():

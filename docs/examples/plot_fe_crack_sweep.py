@@ -11,7 +11,7 @@ coarse).
 import matplotlib.pyplot as plt
 import numpy as np
 
-from hubvib.build import raba118
+from hubvib.reducer import raba118
 from hubvib.fem.estimate import estimate_ring
 from hubvib.meshing.crack import Crack
 

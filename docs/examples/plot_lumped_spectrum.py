@@ -10,7 +10,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from hubvib import lumped
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 
 params = lumped_preset("raba118")                # the paper's table, SI units
 spectrum = lumped.natural_modes(params)          # energy-consistent model

@@ -16,7 +16,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from hubvib import lumped
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 
 params = lumped_preset("raba118")
 spectrum = lumped.natural_modes(params)

@@ -39,7 +39,7 @@ from hubvib.validation.convergence import NESTED_SCALES
 from hubvib.benchmarks.solid import solid_figures
 from hubvib.benchmarks.tables import solid_mesh_table
 from hubvib.benchmarks.tests_command import readme_test_command
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 from hubvib.design import preset_design
 from hubvib.lumped.batch import benchmark_batch
 from hubvib.signal.benchmark import benchmark_signal

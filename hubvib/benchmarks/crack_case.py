@@ -5,7 +5,7 @@ from __future__ import annotations
 import functools
 import time
 
-from hubvib.build import raba118
+from hubvib.reducer import raba118
 from hubvib.fem.estimate import estimate_crack_case, estimate_ring
 from hubvib.fem.tooth_stiffness import engaged_ring_mesh
 from hubvib.meshing.crack import Crack

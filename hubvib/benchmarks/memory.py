@@ -7,7 +7,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from hubvib.build import raba118
+from hubvib.reducer import raba118
 from hubvib.meshing.levels import SOLID_LEVELS, solid_options
 from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
 
@@ -44,7 +44,7 @@ def memory_figures(progress=None) -> dict:
                            ("previous", "previous_ring_fe(ring_gear(), mesh, [0], "
                                         "translation=False)")):
             code = ("from hubvib.meshing.fe_mesh import FEMesh; "
-                    "from hubvib.build.raba118 import ring_gear; "
+                    "from hubvib.reducer.raba118 import ring_gear; "
                     "from hubvib.benchmarks.solid import solid_race; "
                     "from hubvib.validation.previous_fe import previous_ring_fe; "
                     f"mesh = FEMesh.load({str(path)!r}); {call}")

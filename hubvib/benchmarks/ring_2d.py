@@ -7,7 +7,7 @@ import time
 
 import numpy as np
 
-from hubvib.build import raba118
+from hubvib.reducer import raba118
 from hubvib.fem.ring_stiffness import ring_stiffness
 from hubvib.meshing.levels import ring_options
 from hubvib.meshing.ring_mesh import ring_mesh

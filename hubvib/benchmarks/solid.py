@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hubvib.build import raba118
+from hubvib.reducer import raba118
 from hubvib.fem.elasticity import supported
 from hubvib.fem.ring_stiffness import mesh_force_load, planet_teeth, reduced_torsional_stiffness
 from hubvib.fem.solid import solid_model

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import time
 
-from hubvib.build import raba118
+from hubvib.reducer import raba118
 from hubvib.fem.estimate import estimate_crack_case
 from hubvib.meshing.ring_pieces import ring_pieces
 from hubvib.meshing.crack import Crack

@@ -6,7 +6,7 @@ from dataclasses import replace
 
 
 from hubvib.benchmarks.solid import solid_race
-from hubvib.build import raba118
+from hubvib.reducer import raba118
 from hubvib.fem.annulus import exact_k_theta, fe_k_theta
 from hubvib.fem.estimate import estimate_ring
 from hubvib.fem.material import Material

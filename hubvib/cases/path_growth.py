@@ -1,10 +1,10 @@
 """The LEFM growth of a ring-gear root crack for a design, without output (SI inside).
 
 The design gives the ring, its supports, the material and the planet's mesh force
-(``hubvib.build.stages.mesh_force``).  The load sits at the worst point of the mesh cycle
+(``hubvib.reducer.stages.mesh_force``).  The load sits at the worst point of the mesh cycle
 for the ring tooth's root (``single_contact_radius``) or, with ``load = "envelope"``, at
 the position of the mesh cycle that drives each step hardest (``mesh_cycle_positions``).
-``grow_path`` grows the crack (``fem.crack_propagation``); ``hubvib.studies.crack_path``
+``grow_path`` grows the crack (``fem.crack_propagation``); ``hubvib.studies.lefm_path``
 writes the files of ``hubvib crack-path``, and ``hubvib.cases.predicted_path`` caches the
 path a crack sweep follows.
 """
@@ -15,11 +15,11 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from hubvib.build.stages import gear_body, material, mesh_force, ring_gear
+from hubvib.reducer.stages import gear_body, material, mesh_force, ring_gear
 from hubvib.design.model import ReducerDesign
 from hubvib.fem.crack_propagation import CrackGrowth, GrowthOptions, LoadPosition, grow_crack
 from hubvib.fem.mesh_cycle import GearPair
-from hubvib.meshing.crack_path import backup_ratio, tooth_height
+from hubvib.meshing.polyline_crack import backup_ratio, tooth_height
 from hubvib.meshing.ring_gear import RingGear
 
 #: Lewicki & Ballarini 1997 (NASA TM-107229): backup ratios 3.3 and 1.0 gave tooth

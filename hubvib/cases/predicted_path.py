@@ -7,7 +7,7 @@ force) with its step refined to the sweep's depths: the largest of 0.5 mm / k
 is a crack the growth analysed (else 0.5 mm, and the depth ends inside a segment).  It
 is computed once per design, tooth and step, and cached like an FE case
 (``hubvib.runtime.fe_cache``, keyed on the source of every hubvib module this one
-imports too, ``cases.path_growth`` and the builders of ``hubvib.build`` among them).
+imports too, ``cases.path_growth`` and the builders of ``hubvib.reducer`` among them).
 The crack at depth d is the path's polyline up to arc length d (``truncated``).
 """
 from __future__ import annotations
@@ -21,7 +21,7 @@ import numpy as np
 from hubvib.fem.crack_propagation import GrowthOptions
 from hubvib.foundation.bounds import upper_bound
 from hubvib.meshing.cache import root_folder
-from hubvib.meshing.crack_path import PathCrack
+from hubvib.meshing.polyline_crack import PathCrack
 from hubvib.runtime.fe_cache import CacheEntryError, entry_key, read_entry, write_entry
 
 #: the crack-path command's default step [m]; a sweep refines it to 0.5 mm / k

@@ -27,13 +27,13 @@ import time
 from contextlib import ExitStack
 from dataclasses import asdict, dataclass
 
-from hubvib.build.stages import gear_body, material, ring_gear
+from hubvib.reducer.stages import gear_body, material, ring_gear
 from hubvib.fem.estimate import estimate_crack_case
 from hubvib.fem.mesh_cycle import GearPair
 from hubvib.fem.tooth_solid import SAMPLES, SolidToothLoad
 from hubvib.fem.tooth_stiffness import chebyshev_radii, contact_radii, set_intact_store
 from hubvib.meshing.cache import root_folder
-from hubvib.meshing.crack_path import PathCrack, path_ring_mesh
+from hubvib.meshing.polyline_crack import PathCrack, path_ring_mesh
 from hubvib.foundation.source_graph import source_key
 from hubvib.runtime.engines import Execution, check_reachable, run_cases
 from hubvib.runtime.fe_cache import (CacheEntryError, case_lock, entry_key, finite_positive,

@@ -39,8 +39,8 @@ def parameters(args):
                 raise ValueError(f"--preset {args.preset} and --params {args.params} (preset = "
                                  f"{named!r}) name different presets; give one of them")
         return load_parameters(args.preset or DEFAULT_PRESET, args.params, parse_set(args.set))
-    from hubvib.build.consistency import check_consistent
-    from hubvib.build.stages import lumped_parameters
+    from hubvib.reducer.consistency import check_consistent
+    from hubvib.reducer.stages import lumped_parameters
     from hubvib.runtime.params_input import apply_overrides
 
     from .design import design_from_argument
@@ -58,7 +58,7 @@ def stiffness_methods(args) -> dict[str, str]:
     check`` names it: the design's method (geometry, ISO 6336-1, bearings) or
     ``design.lumped``, then ``--params FILE`` and ``--set`` where they replace it.  A
     ``--params`` file that names its own preset takes that preset's design."""
-    from hubvib.build.stages import DESIGN_TABLE, derived_field_methods
+    from hubvib.reducer.stages import DESIGN_TABLE, derived_field_methods
     from hubvib.design.fields import STIFFNESS_FIELDS
     from .design import design_from_argument
 

@@ -25,7 +25,7 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from hubvib.build import raba118
+    from hubvib.reducer import raba118
     from hubvib.validation.convergence import GEAR_QUANTITIES, Gears, run_study, study_note
 
     # checked and locked before any level is computed; the study writes its own files

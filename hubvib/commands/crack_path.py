@@ -34,7 +34,7 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     from hubvib.fem.crack_propagation import GrowthOptions
     from hubvib.runtime.progress import progress
-    from hubvib.studies.crack_path import crack_path
+    from hubvib.studies.lefm_path import crack_path
 
     from .design import design_from_argument
 

@@ -20,7 +20,7 @@ def add_parser(sub) -> None:
 
 def design_from_argument(text: str):
     """A design file path, or the name of a preset design."""
-    from hubvib.build import load_design  # the FE stage's geometry: loaded when used
+    from hubvib.reducer import load_design  # the FE stage's geometry: loaded when used
 
     path = Path(text)
     if not path.exists() and text in PRESETS:
@@ -29,7 +29,7 @@ def design_from_argument(text: str):
 
 
 def run(args) -> int:
-    from hubvib.build import summary
+    from hubvib.reducer import summary
 
     info = summary(design_from_argument(args.file))
     if args.json:

@@ -41,12 +41,12 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from hubvib.companion import efficiency_report as report
-    from hubvib.companion.efficiency import Friction
-    from hubvib.companion.efficiency_design import gear_design
-    from hubvib.companion.efficiency_table import PAPER_RATIOS, paper_table
-    from hubvib.companion.track_geometry import check_alpha1, check_diameter
-    from hubvib.companion.efficiency_output import design_with_curve, write_efficiency_files
+    import hubvib.companion.efficiency.report as report
+    from hubvib.companion.efficiency.core import Friction
+    from hubvib.companion.efficiency.design import gear_design
+    from hubvib.companion.efficiency.table import PAPER_RATIOS, paper_table
+    from hubvib.companion.efficiency.track_geometry import check_alpha1, check_diameter
+    from hubvib.companion.efficiency.output import design_with_curve, write_efficiency_files
 
     friction = Friction(args.f1, args.f2, args.f3)
     satellites = {name: check_diameter(name, getattr(args, f"{name}_diameter_mm") * 1e-3)

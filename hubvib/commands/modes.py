@@ -76,7 +76,7 @@ def _design(args):
 
 
 def _rigid(args) -> int:
-    from hubvib.build.stages import lumped_parameters
+    from hubvib.reducer.stages import lumped_parameters
     from hubvib.lumped import natural_modes
 
     from . import spectrum

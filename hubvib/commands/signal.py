@@ -23,7 +23,7 @@ def run(args) -> int:
     from hubvib.studies.scene import load_scene
     from hubvib.signal.indicators import INDICATORS
     from hubvib.signal.report import write_signal_study
-    from hubvib.signal.study import run_signal_study
+    from hubvib.signal.signature_study import run_signal_study
 
     scene = load_scene(args.scene)
     folder = Path(args.out or scene.folder)

@@ -18,7 +18,7 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from hubvib.build import lumped_preset
+    from hubvib.reducer import lumped_preset
     from hubvib.runtime.progress import progress
     from hubvib.validation import stability
 

@@ -83,7 +83,7 @@ def run(args) -> int:
 
 def _method(key: str, r: dict) -> str:
     """How the row's value is obtained, as ``hubvib design check`` names it."""
-    from hubvib.build.stages import FE_MESH
+    from hubvib.reducer.stages import FE_MESH
     from hubvib.studies.stiffness import RING_METHODS
 
     if key in ("c_sp", "c_rp"):
@@ -95,7 +95,7 @@ def _method(key: str, r: dict) -> str:
 
 
 def _checks(key: str, r: dict) -> str:
-    from hubvib.build.stages import ISO_MESH, ISO_SINGLE
+    from hubvib.reducer.stages import ISO_MESH, ISO_SINGLE
 
     if key in ("c_sp", "c_rp"):
         return (f"eps {r['contact_ratio']:.3f}; analytical {r['analytic_N_m']:.4e} "

@@ -49,8 +49,8 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from hubvib.companion.torus_screw import TorusScrewGear
-    from hubvib.companion.torus_screw_run import run_torus_screw
+    from hubvib.companion.torus_screw.gear import TorusScrewGear
+    from hubvib.companion.torus_screw.run import run_torus_screw
 
     gear = TorusScrewGear(**{field: getattr(args, flag[2:].replace("-", "_"))
                              for flag, field, _, _ in _GEAR_OPTIONS})

@@ -16,7 +16,7 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from hubvib.build import lumped_preset
+    from hubvib.reducer import lumped_preset
     from hubvib.validation import raba118
 
     with output_set(args.out) as staged:  # checked and locked before the work

@@ -11,12 +11,12 @@ from typing import TYPE_CHECKING
 from hubvib.foundation.lazy import lazy_face
 
 if TYPE_CHECKING:
-    from .efficiency import Losses, Optimum, loss_curve, losses, optimum
+    from .efficiency.core import Losses, Optimum, loss_curve, losses, optimum
     from .harmonics import GearTrain, HarmonicAnalysis, analyse, kinematic_error
-    from .nx_scatter import ScatterInterval, scatter_interval
-    from .torus_screw import OperatingPoint, TorusScrewGear, roller_forces
-    from .torus_screw_run import TorusScrewRun, run_torus_screw
-    from .track_geometry import TrackGeometry
+    from .torus_screw.nx_scatter import ScatterInterval, scatter_interval
+    from .torus_screw.gear import OperatingPoint, TorusScrewGear, roller_forces
+    from .torus_screw.run import TorusScrewRun, run_torus_screw
+    from .efficiency.track_geometry import TrackGeometry
 
 __all__ = [
     "Losses", "losses", "loss_curve", "Optimum", "optimum",

@@ -4,7 +4,7 @@
 table (keys, types and ranges checked); ``preset_design(name)`` gives a registered
 design (``PRESETS``, ``register_preset``).  The assembly rules and everything built from
 a design (gears, bodies, materials, the lumped parameters) live one layer up, in
-``hubvib.build`` (``hubvib.build.load_design`` = read + assembly rules).
+``hubvib.reducer`` (``hubvib.reducer.load_design`` = read + assembly rules).
 """
 from .model import (BearingSpec, DesignError, GearSpec, MaterialSpec, ReducerDesign, RimSpec,
                     SupportSpec)

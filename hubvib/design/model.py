@@ -127,7 +127,7 @@ class ReducerDesign:
     lumped : tuple of (str, float)
         Lumped-model fields that the geometry does not give (``m_c``, ``c_ru`` ...) or
         that the design fixes by decision (a published table's value), SI; see
-        ``hubvib.build.stages.lumped_parameters``.
+        ``hubvib.reducer.stages.lumped_parameters``.
     notes : tuple of str
         Where each ASSUMED value comes from, printed by ``hubvib design check``.
     """

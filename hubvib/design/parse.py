@@ -125,7 +125,7 @@ def read_design(path: Path) -> ReducerDesign:
     """Read a design file (its ``[design]`` table), every key's type and range checked.
 
     The assembly rules need the stages' geometry and are checked one layer up
-    (``hubvib.build.load_design``)."""
+    (``hubvib.reducer.load_design``)."""
     path = Path(path)
     text = read_text(path, "design file", DesignError, kind="TOML", max_bytes=MAX_FILE_BYTES)
     try:
@@ -140,8 +140,8 @@ def read_design(path: Path) -> ReducerDesign:
 
 def table_design(table, default_name: str = "design") -> ReducerDesign:
     """A ``[design]`` table (dict) into a ``ReducerDesign``, every key's type and range
-    checked (``SCHEMAS``).  ``hubvib.build.parse_design`` adds the assembly rules
-    (``hubvib.build.assembly.check_assembly``).
+    checked (``SCHEMAS``).  ``hubvib.reducer.parse_design`` adds the assembly rules
+    (``hubvib.reducer.assembly.check_assembly``).
     """
     d = _parse(DESIGN, table)
     n = d["n_planets"]

@@ -4,7 +4,7 @@ Every Raba 118/76 constant lives here and nowhere else.  A new preset is one ent
 a function returning a ``ReducerDesign`` and a ``register_preset(name, factory)`` line
 (here or in any module imported before use).  The CLI's choices (``design check``,
 ``spectrum``, ``mesh``, ``stiffness``, ``shift``, ...), their help texts, scene validation
-(``preset = ...``) and the lumped presets (``hubvib.build.lumped_preset``) all read it.
+(``preset = ...``) and the lumped presets (``hubvib.reducer.lumped_preset``) all read it.
 """
 from __future__ import annotations
 

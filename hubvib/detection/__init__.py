@@ -24,7 +24,7 @@ if TYPE_CHECKING:
     from .options import DetectionOptions, parse_detection_table
     from .pod import PodResult, pod_study
     from .series import identify_mount, ring_support
-    from .study import DetectionStudy, detection_study
+    from .crack_detection import DetectionStudy, detection_study
 
 __all__ = [
     "DetectionOptions", "parse_detection_table", "CrackModel", "identify_mount",

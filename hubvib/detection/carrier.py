@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hubvib.build.stages import gear_body, ring_gear
+from hubvib.reducer.stages import gear_body, ring_gear
 from hubvib.fem.mesh_cycle import GearPair
 from hubvib.lumped import natural_modes
 

@@ -489,7 +489,7 @@ def elastic_scene_model(scene):
     """The elastic-ring spectrum model of ``scene``'s crack sweep (its ``[elastic]`` table,
     or the defaults), the ring's cases from the result cache or computed; a crack through
     the rim is left out (it opens the ring)."""
-    from hubvib.build.stages import ring_gear
+    from hubvib.reducer.stages import ring_gear
     from hubvib.elastic.cases import cached_case
     from hubvib.elastic.options import ElasticScene
     from hubvib.cases.sweep import crack_of
@@ -533,7 +533,7 @@ def scene_reference(scene, progress: bool = True, workers: int = 2, ring: str = 
     signal = scene.tables.get("signal")
     if getattr(signal, "mesh_stiffness", None) == C_RP_RATIO:
         # the scene's records come from its [signal] model, whose cracked mesh is the FE
-        # ratio on the preset's c_rp (hubvib.signal.study.curves_for): compare like with like
+        # ratio on the preset's c_rp (hubvib.signal.signature_study.curves_for): compare like with like
         model = model.with_c_rp_method(C_RP_RATIO)
     ref = reference(model, options, timing, workers=workers)
     return ref, options

@@ -185,7 +185,7 @@ def elastic_map(design, depths, crack_of, scene: ElasticScene, options: Detectio
     every depth when computed elsewhere (:func:`ring_arguments`); ``clamped``: add the
     ring clamped on its arcs as the stiff limit (scale ``inf``; one FE ring per depth
     more, rebuilt: the family's basis does not reach it)."""
-    from hubvib.build.stages import lumped_parameters
+    from hubvib.reducer.stages import lumped_parameters
     from hubvib.elastic.model import out_of_contact_tooth
     from hubvib.elastic.rest import rest_stiffness
     from hubvib.foundation.blas import blas_threads
@@ -290,7 +290,7 @@ def _clamped(design, depths, crack_of, scene, params, k_rest, tooth, mass):
 
 def _away_tooth(design, crack_of, depths, out_of_contact_tooth) -> int:
     """Planet 1's tooth half a planet pitch from the cracked tooth."""
-    from hubvib.build.stages import ring_gear
+    from hubvib.reducer.stages import ring_gear
 
     z = ring_gear(design).teeth
     crack = crack_of(next((d for d in depths if d > 0), 0.0))

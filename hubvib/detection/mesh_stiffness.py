@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hubvib.build.stages import gear_body, ring_gear, spur_gears
+from hubvib.reducer.stages import gear_body, ring_gear, spur_gears
 from hubvib.fem.iso6336 import iso_stiffness
 from hubvib.fem.mesh_cycle import GearPair
 

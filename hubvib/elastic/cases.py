@@ -36,7 +36,7 @@ class ElasticCase:
 
 def carrier_positions(design, tooth: int) -> tuple[int, int]:
     """Planet 1's ring tooth away from (half a planet pitch) and on the cracked tooth."""
-    from hubvib.build.stages import ring_gear
+    from hubvib.reducer.stages import ring_gear
 
     z = ring_gear(design).teeth
     return (tooth + out_of_contact_tooth(z, design.n_planets)) % z, tooth

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from hubvib.build.stages import lumped_parameters, material, ring_gear
+from hubvib.reducer.stages import lumped_parameters, material, ring_gear
 from hubvib.fem.ring_basis import RingBasis, ring_basis
 from hubvib.fem.ring_body import Foundation, RingBody, ring_body
 from hubvib.lumped.elastic_ring import CoupledModes, RingOperators, coupled_modes, engagement

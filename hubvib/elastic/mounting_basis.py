@@ -221,7 +221,7 @@ def family_ring(design, crack=None, options=None, foundation: tuple | None = Non
     reference ``foundation`` ``(k_n, k_t)`` [N/m^2] (None: sized to the design's lumped
     ``c_r``, ``c_ru`` on this ring), with contact responses for planet 1 on each of
     ``carrier_teeth``; ``options``: ``ElasticOptions`` (mesh, cut-off)."""
-    from hubvib.build.stages import lumped_parameters, material, ring_gear
+    from hubvib.reducer.stages import lumped_parameters, material, ring_gear
     from hubvib.fem.ring_body import Foundation, ring_body
     from hubvib.lumped.elastic_ring import RingOperators, engagement
     from hubvib.meshing.ring_mesh import ring_mesh

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from hubvib.build.stages import gear_body, material, ring_gear
+from hubvib.reducer.stages import gear_body, material, ring_gear
 from hubvib.fem.mesh_cycle import GearPair, mesh_cycle
 from hubvib.fem.tooth_beam import hertz_compliance
 from hubvib.fem.tooth_stiffness import beam_curve, contact_radii, intact_curve, set_intact_store

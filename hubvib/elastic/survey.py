@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hubvib.build.stages import lumped_parameters
+from hubvib.reducer.stages import lumped_parameters
 from hubvib.design.presets import preset_design
 from hubvib.lumped import natural_modes
 from hubvib.meshing.crack import Crack
@@ -61,7 +61,7 @@ def validity(design, options: ElasticOptions) -> dict:
 def depths(design) -> tuple:
     """The surveyed root-crack depths of ``design`` [m] (``DEPTH_FRACTIONS`` of the path
     through the rim, rounded to 0.1 mm)."""
-    from hubvib.build.stages import ring_gear
+    from hubvib.reducer.stages import ring_gear
 
     through = Crack(depth=1e-4).through_depth(ring_gear(design))
     return tuple(round(f * through, 4) for f in DEPTH_FRACTIONS)

@@ -9,7 +9,7 @@ from hubvib.foundation.lazy import lazy_face
 if TYPE_CHECKING:
     from .cache import cached_render
     from .captions import caption
-    from .crack_path import render_path
+    from .path_figure import render_path
     from .fe import RingFields, render_fe, ring_fields
     from .html import write_html_report
     from .modes import render_mode, render_modes

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hubvib.build.stages import material, mesh_force, ring_gear
+from hubvib.reducer.stages import material, mesh_force, ring_gear
 from hubvib.fem.elasticity import plane_model, solve
 from hubvib.fem.modal import lowest_modes
 from hubvib.fem.ring_stiffness import mesh_force_load, planet_teeth

@@ -4,7 +4,7 @@ Each entry is one JSON file named by a hash of its inputs and of its source key.
 source key (:func:`hubvib.foundation.source_graph.source_key`, the rule of every hubvib
 cache) hashes the source of every hubvib module the computation imports, named by its
 entry modules (``modules``, the caller's ``__name__``): an edit to any of them, in
-``fem/``, ``meshing/`` or ``hubvib/build/`` alike, invalidates the entries, and an edit
+``fem/``, ``meshing/`` or ``hubvib/reducer/`` alike, invalidates the entries, and an edit
 elsewhere leaves them.  An entry stores the inputs themselves, the result, the source key
 and a SHA-256 checksum of all of it.  It is used only when it parses, its checksum
 matches, its source key and inputs equal the case's and every value passes the caller's

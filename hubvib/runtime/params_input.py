@@ -19,7 +19,7 @@ import tomllib
 from pathlib import Path
 
 from hubvib.foundation.files import MAX_FILE_BYTES, read_text
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 from hubvib.design import PRESETS
 from hubvib.lumped import ParameterError, PlanetaryParameters, equally_spaced_angles, field_names
 
@@ -95,7 +95,7 @@ def load_parameters(preset_name: str = "raba118", params_file: Path | None = Non
 
 def preset_parameters(name: str) -> PlanetaryParameters:
     """The lumped parameters of a registered design preset (``hubvib.design.PRESETS``),
-    built from its design (``hubvib.build.lumped_preset``); an unknown name is a
+    built from its design (``hubvib.reducer.lumped_preset``); an unknown name is a
     ``ParameterError`` naming the presets."""
     if name not in PRESETS:
         raise ParameterError(f"unknown preset {name!r}; available: {sorted(PRESETS)}")

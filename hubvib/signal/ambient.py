@@ -21,7 +21,7 @@ each step exact.  The mesh-cycle variation of the stiffness is left out of the
 ambient part (its effect is the periodic part's lines).
 
 The sensor sees the ambient forces through the periodic part's transfer path
-(:mod:`hubvib.signal.sensor`): ``a = (1 / m_r) sum_i w(theta_i - theta_s) F_i``
+(:mod:`hubvib.signal.accelerometer`): ``a = (1 / m_r) sum_i w(theta_i - theta_s) F_i``
 with ``F_i = k_i g_i . q`` the ring-mesh force of planet ``i``.
 """
 from __future__ import annotations
@@ -33,7 +33,7 @@ from scipy.linalg import expm, solve_continuous_lyapunov
 
 from .mesh_curves import MeshCurves
 from .mesh_phase import MeshPhasing
-from .sensor import hann_window
+from .accelerometer import hann_window
 
 #: the forced coordinates: the nine central ones (lumped.network.CENTRAL_DOFS)
 FORCED = tuple(range(9))

@@ -30,7 +30,7 @@ from hubvib.signal.dynamics import excitation
 from hubvib.signal.mesh_curves import synthetic_curves
 from hubvib.signal.mesh_phase import design_phasing, design_teeth
 from hubvib.signal.options import SignalOptions
-from hubvib.signal.sensor import hann_window, sampled, sensor_signal
+from hubvib.signal.accelerometer import hann_window, sampled, sensor_signal
 from hubvib.signal.simulation import simulate
 from hubvib.signal.time_response import Excitation, integrate, periodic_start
 

@@ -14,7 +14,7 @@ state of the mean system, ``x = q - q0`` obeys
     M x'' + C x' + K(t) x = -sum_j dk_j(t) delta_j g_j + sum_j k_j(t) e_j(t) g_j,
 
 ``delta_j = g_j . q0`` the static mesh deflection, ``e_j`` an optional static
-transmission error plus the run-out errors of :mod:`hubvib.signal.errors`; pin-hole
+transmission error plus the run-out errors of :mod:`hubvib.signal.manufacturing`; pin-hole
 errors of the planets pre-deform their bearings and enter ``q0`` (the static load
 sharing).  Damping is modal: ``C = M Phi diag(2 zeta omega) Phi^T M``
 with the mass-normalised modes of the mean system.
@@ -29,7 +29,7 @@ import numpy as np
 from hubvib.lumped import PlanetaryParameters, natural_modes, spring_network
 from hubvib.lumped.network import mass_diagonal
 
-from .errors import StageErrors, error_load
+from .manufacturing import StageErrors, error_load
 from .mesh_curves import MeshCurves
 from .mesh_phase import MeshPhasing
 from .time_response import Excitation, LinearSystem

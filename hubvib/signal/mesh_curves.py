@@ -18,7 +18,7 @@ from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
-from hubvib.build.stages import gear_body, ring_gear
+from hubvib.reducer.stages import gear_body, ring_gear
 from hubvib.fem.material import Material
 from hubvib.fem.mesh_cycle import GearPair, mesh_cycle
 from hubvib.fem.tooth_beam import hertz_compliance
@@ -144,7 +144,7 @@ def fe_mesh_curves(depths, start: str, angle: float, scale: float, progress,
     if design is None:
         material = Material()
     else:
-        from hubvib.build.stages import material as design_material
+        from hubvib.reducer.stages import material as design_material
 
         material = design_material(design)
     options = scaled_options(scale)

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hubvib.build.stages import spur_gears
+from hubvib.reducer.stages import spur_gears
 from hubvib.meshing.gear import centre_distance, working_pressure_angle
 
 

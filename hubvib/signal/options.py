@@ -18,7 +18,7 @@ from hubvib.foundation.bounds import lower_bound
 from hubvib.foundation.schema import Field, Schema
 from hubvib.signal.mesh_phase import design_teeth
 
-from .errors import StageErrors
+from .manufacturing import StageErrors
 
 MESH_STIFFNESS = ("ratio", "direct")
 INTEGRATORS = ("newmark", "central")
@@ -76,7 +76,7 @@ class SignalOptions:
         (:mod:`hubvib.signal.contact`); ``"linear"``: the springs may pull.
     sensor_angles_from_crack_deg : tuple of float
         Further sensors, each at this angle from the cracked tooth [deg]
-        (:mod:`hubvib.signal.sensors`).
+        (:mod:`hubvib.signal.sensor_array`).
     roc_records : int
         Evaluation records per depth of the detection rates [-] (0: none;
         :mod:`hubvib.signal.roc`).

@@ -13,7 +13,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from .indicators import GearOrders, ensemble_variances, indicators
-from .sensor import add_noise
+from .accelerometer import add_noise
 from .spectral import angle_domain
 
 

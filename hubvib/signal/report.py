@@ -11,9 +11,9 @@ from hubvib.render.captions import figure_lines
 from hubvib.render.html import write_html_report
 
 from .indicators import INDICATORS
-from .sensor import write_signal_csv, write_wav
+from .accelerometer import write_signal_csv, write_wav
 from .spectral import angle_domain, record_spectrum, spectrogram
-from .study import SignalStudy
+from .signature_study import SignalStudy
 
 ZOOM = 10  # planet-pass orders on either side of the mesh order in the zoomed spectrum
 

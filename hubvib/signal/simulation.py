@@ -23,7 +23,7 @@ from hubvib.lumped import PlanetaryParameters
 from .contact import MAX_PASSES, force_ratio, in_contact, mesh_names
 from .dynamics import (MeshState, PlanetaryDynamics, excitation, mesh_forces, mesh_state,
                        planetary_dynamics, transmission_error_of)
-from .errors import planet_shift, runout_error
+from .manufacturing import planet_shift, runout_error
 from .mesh_curves import MeshCurves
 from .mesh_phase import MeshPhasing
 from .options import SignalOptions

@@ -11,11 +11,11 @@ from hubvib.foundation.lazy import lazy_face
 
 if TYPE_CHECKING:
     from .crack_growth import CrackGrowthResult, run_crack_growth
-    from .crack_path import CrackPathResult
+    from .lefm_path import CrackPathResult
     from .crack_study import CrackStudyResult, run_crack_study
     from .scene import load_scene, parse_scene, shipped_scenes
     from .stiffness import stiffness_table
-    from .study import Scene, Study, register_study, select_study
+    from .kind_registry import Scene, Study, register_study, select_study
     from .sweep import StudyResult, run_study
 
 __all__ = [

@@ -29,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hubvib.build.stages import gear_body, material, ring_gear
+from hubvib.reducer.stages import gear_body, material, ring_gear
 from hubvib.design.presets import raba118
 from hubvib.fem.engaged_solid import solid_engaged_mesh
 from hubvib.detection.numbers import percent
@@ -47,7 +47,7 @@ from hubvib.cases.results import PlaneCase, SolidCase, typed_case
 from hubvib.cases.runner import case_label, crack_cases
 from hubvib.cases.sweep import ACCURACY, CrackSweep
 from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
-from hubvib.studies.study import Scene, Study
+from hubvib.studies.kind_registry import Scene, Study
 
 #: slices of the face width in the slice method
 SLICES = 512

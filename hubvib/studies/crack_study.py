@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hubvib.build.stages import ring_gear
+from hubvib.reducer.stages import ring_gear
 from hubvib.detection import report as sections
 from hubvib.detection.mesh_stiffness import family_depths, iso_c_rp, mesh_stiffness_section
 from hubvib.detection.mode_names import mode_names, tracked, tracked_order
@@ -44,7 +44,7 @@ from hubvib.cases.results import PlaneCase, typed_case
 from hubvib.cases.runner import crack_cases
 from hubvib.cases.sweep import ACCURACY, CrackSweep, crack_of
 from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
-from hubvib.studies.study import Scene, Study
+from hubvib.studies.kind_registry import Scene, Study
 from hubvib.studies.validation_status import lumped_model_status
 
 #: a mode "follows" a stiffness when its relative sensitivity exceeds this
@@ -221,7 +221,7 @@ def _detection(scene: Scene, model: CrackModel, detection: bool, timing, workers
     if detection or model.c_rp_differs:
         from hubvib.detection.carrier import mesh_timing
         from hubvib.detection.options import detection_options
-        from hubvib.detection.study import cached_compare_methods, cached_detection_study
+        from hubvib.detection.crack_detection import cached_compare_methods, cached_detection_study
 
         options = detection_options(scene)
         timing = timing or mesh_timing(scene.crack.reducer, options.carrier_speed)
@@ -357,7 +357,7 @@ def _elastic_csv(elastic) -> list[dict]:
 def _plots(scene: Scene, result: CrackStudyResult, study, folder: Path) -> list[Path]:
     """The study's PNG figures (each from the result cache when drawn before)."""
     from hubvib.detection import plots as figures
-    from hubvib.detection.study import cached_plot
+    from hubvib.detection.crack_detection import cached_plot
 
     name = scene.name
     plots = [cached_plot(folder / "frequency_vs_depth.png", figures.relative_shift_figure,
@@ -718,7 +718,7 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
         started = time.perf_counter()
         if "signal" in scene.tables:  # the vibration signature beside the frequency study
             from hubvib.signal.report import write_signal_study
-            from hubvib.signal.study import run_signal_study
+            from hubvib.signal.signature_study import run_signal_study
 
             with working("signals"):
                 study = run_signal_study(scene)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-from hubvib.build.stages import ring_gear
+from hubvib.reducer.stages import ring_gear
 from hubvib.foundation.bounds import upper_bound
 from hubvib.foundation.errors import SceneError
 from hubvib.foundation.schema import Field, Schema

@@ -22,7 +22,7 @@ def agreement_rows(published: dict, design=None) -> list[dict]:
     """One row per depth of ``published`` (a crack scene's results) and quantity: depth
     [mm], quantity, old, new, the old and the new error estimate, and |new - old| over the
     old error (None where the old error is 0: the intact ratio, 1 by definition)."""
-    from hubvib.build.stages import gear_body, material, ring_gear
+    from hubvib.reducer.stages import gear_body, material, ring_gear
     from hubvib.design import preset_design
     from hubvib.fem.estimate import estimate_crack_case
     from hubvib.meshing.crack import Crack

@@ -1,4 +1,4 @@
-"""The shipped study kinds, registered (``hubvib.studies.study.STUDIES``): the lumped sweep,
+"""The shipped study kinds, registered (``hubvib.studies.kind_registry.STUDIES``): the lumped sweep,
 the plane crack study and the solid crack growth.  A new study kind is its module (tables,
 parse, run, outputs, report, summary) and one ``register_study`` line here, or a call
 wherever it is defined."""
@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from hubvib.studies.crack_growth import CRACK_GROWTH
 from hubvib.studies.crack_study import CRACK_STUDY
-from hubvib.studies.study import STUDIES, Study, register_study, study_of
+from hubvib.studies.kind_registry import STUDIES, Study, register_study, study_of
 from hubvib.studies.sweep import SWEEP
 
 for _study in (SWEEP, CRACK_STUDY, CRACK_GROWTH):

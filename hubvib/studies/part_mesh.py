@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hubvib.build import gear_body, ring_gear
+from hubvib.reducer import gear_body, ring_gear
 from hubvib.foundation.bounds import lower_bound
 from hubvib.foundation.output import output_set
 from hubvib.meshing import measure

@@ -55,7 +55,7 @@ A scene is TOML with these tables (all keys shown; SI units)::
                                   # lumped mode, the FE ring's fields as .vtu
 
 Which study a scene runs is the one registered study kind its tables select
-(``hubvib.studies.study.select_study``): no study table, the lumped sweep of ``[study]``
+(``hubvib.studies.kind_registry.select_study``): no study table, the lumped sweep of ``[study]``
 ``parameter``/``values``; ``[crack]``, the plane crack study (model = "plane") or the solid
 crack growth (model = "solid"), and ``[study]`` needs no ``parameter``/``values``.  Each
 kind parses its own tables (``Scene.study``); this module checks the common ones.
@@ -67,9 +67,9 @@ import tomllib
 from importlib import resources
 from pathlib import Path
 
-from hubvib.build import load_design, parse_design
-from hubvib.build.consistency import check_consistent
-from hubvib.build.stages import lumped_parameters
+from hubvib.reducer import load_design, parse_design
+from hubvib.reducer.consistency import check_consistent
+from hubvib.reducer.stages import lumped_parameters
 from hubvib.design import DesignError, PRESETS, preset_design
 from hubvib.detection.budget import check_scene as check_detection_budget
 from hubvib.detection.options import parse_detection_table
@@ -81,7 +81,7 @@ from hubvib.runtime.engines import parse_execution_table
 from hubvib.runtime.params_input import apply_overrides, load_parameters, read_text_file
 from hubvib.signal.options import parse_signal_table
 from hubvib.studies.kinds import STUDIES
-from hubvib.studies.study import Scene, check_keys, select_study, study_tables
+from hubvib.studies.kind_registry import Scene, check_keys, select_study, study_tables
 
 __all__ = ["DEFAULT_SCENE", "Scene", "SceneError", "STUDIES", "default_scene_text",
            "load_scene", "parse_scene", "shipped_scene_text", "shipped_scenes"]
@@ -182,7 +182,7 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
     """Parse and check a scene's text; ``base`` is the folder of relative paths in it.
 
     The common tables are checked here; the registry says which study kind the scene's
-    tables select (``hubvib.studies.study.select_study``) and that kind parses its own."""
+    tables select (``hubvib.studies.kind_registry.select_study``) and that kind parses its own."""
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

@@ -8,8 +8,8 @@ from __future__ import annotations
 import math
 import time
 
-from hubvib.build import bearing_stiffness, gear_body, material, ring_gear
-from hubvib.build.stages import FE_MESH, FE_RING, ISO_MESH, ISO_SINGLE, labelled
+from hubvib.reducer import bearing_stiffness, gear_body, material, ring_gear
+from hubvib.reducer.stages import FE_MESH, FE_RING, ISO_MESH, ISO_SINGLE, labelled
 from hubvib.fem.estimate import RingEstimate, estimate_mesh, estimate_ring
 from hubvib.meshing.crack import Crack
 
@@ -85,7 +85,7 @@ RING_METHODS = {"": FE_RING, " 3D": f"{FE_RING}, solid"}
 
 def named_values(rows: dict) -> dict[str, float]:
     """Every value of one case of ``stiffness_table`` by ``key (method)`` [N/m]: the names
-    ``hubvib design check`` gives its values (``hubvib.build.stages.labelled``), so one
+    ``hubvib design check`` gives its values (``hubvib.reducer.stages.labelled``), so one
     name holds one value wherever it is printed."""
     out = {}
     for key, row in rows.items():

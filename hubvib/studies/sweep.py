@@ -17,7 +17,7 @@ from hubvib.foundation.output import save_figure, write_csv, write_json, write_t
 from hubvib.render.captions import figure_lines
 from hubvib.render.html import write_html_reports
 from hubvib.runtime.progress import stage, working
-from hubvib.studies.study import Scene, Study, string_key
+from hubvib.studies.kind_registry import Scene, Study, string_key
 from hubvib.studies.validation_status import lumped_model_status
 
 

@@ -10,7 +10,7 @@ from functools import lru_cache
 def raba_claim() -> str:
     """What the comparison with the published Raba 118/76 spectrum shows, with its numbers
     (computed now from the preset)."""
-    from hubvib.build import lumped_preset
+    from hubvib.reducer import lumped_preset
     from hubvib.validation.raba118 import validate
 
     return validate(lumped_preset("raba118")).claim()

@@ -64,12 +64,12 @@ def test_validation_contract_refuses_a_build_import(house, tmp_path):
     (as ``validation/convergence.py`` did) breaks it."""
     probe = tmp_path / "house"
     shutil.copytree(house, probe)
-    (probe / "hubvib" / "validation" / "probe.py").write_text("import hubvib.build\n")
+    (probe / "hubvib" / "validation" / "probe.py").write_text("import hubvib.reducer\n")
     code = ("import sys\nfrom importlinter.cli import lint_imports\n"
             "sys.exit(lint_imports(config_filename=sys.argv[1], no_cache=True))")
     run = _in_house(probe, code, str(ROOT / "pyproject.toml"))
     assert run.returncode != 0 and "validation imports the stages only" in run.stdout
-    assert "hubvib.validation.probe -> hubvib.build" in run.stdout, run.stdout
+    assert "hubvib.validation.probe -> hubvib.reducer" in run.stdout, run.stdout
 
 
 def test_app_layers_are_directed(house, tmp_path):
@@ -158,7 +158,7 @@ def test_cycle_finder_finds_a_cycle():
 
 def test_validation_takes_the_built_gears_as_an_argument():
     """No silent Raba default below the build layer: a reducer quantity without its gears is
-    refused, naming what is missing (the command passes hubvib.build's Raba gears)."""
+    refused, naming what is missing (the command passes hubvib.reducer's Raba gears)."""
     from hubvib.validation.convergence import Gears, compute_level
 
     with pytest.raises(ValueError, match=r"quantity 'c_ru' needs the built gears \(Gears\)"):

@@ -51,7 +51,7 @@ def test_previous_path_solves_the_same_problem():
     1e-10: the timings compare the same computation."""
     pytest.importorskip("gmsh")
     from hubvib.fem.ring_stiffness import ring_stiffness
-    from hubvib.build import raba118
+    from hubvib.reducer import raba118
     from hubvib.meshing.levels import scaled_options
     from hubvib.meshing.ring_mesh import ring_mesh
     from hubvib.validation.previous_fe import previous_ring_fe

@@ -260,7 +260,7 @@ def test_signal_record_holds_one_whole_revolution_less_than_asked(revolutions, w
 
     import numpy as np
 
-    from hubvib.signal.sensor import sampled
+    from hubvib.signal.accelerometer import sampled
     from hubvib.signal.spectral import angle_domain
 
     revolution = np.sin(3 * 2 * math.pi * np.arange(64) / 64)
@@ -324,7 +324,7 @@ def test_tip_interference_names_the_design_keys(tmp_path, capsys):
 def test_missing_bearing_suggests_keys_that_exist():
     """The message suggested planet_bearing / carrier_bearing, which are not
     design-file keys; the keys are [design.bearings] planet / carrier."""
-    from hubvib.build import lumped_parameters
+    from hubvib.reducer import lumped_parameters
     from hubvib.design import DesignError, read_design
 
     with pytest.raises(DesignError) as info:

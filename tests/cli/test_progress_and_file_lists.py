@@ -47,7 +47,7 @@ def test_stiffness_reports_each_fe_part_on_stderr(monkeypatch, capsys):
 
 @pytest.mark.slow
 def test_stability_reports_each_case_on_stderr(capsys):
-    from hubvib.build import lumped_preset
+    from hubvib.reducer import lumped_preset
     from hubvib.validation.stability import cases
 
     assert main(["stability", "--repeats", "1", "--json"]) == 0
@@ -78,7 +78,7 @@ def test_crack_path_reports_each_step_and_counts_its_meshes(monkeypatch, capsys,
             seen.append((time.perf_counter(), capsys.readouterr().err))
         return real_grow(*args, on_step=step, **kwargs)
 
-    from hubvib.studies import crack_path as study
+    import hubvib.studies.lefm_path as study
     monkeypatch.setattr(study, "grow_crack", grow)
     out = tmp_path / "path"
     assert main(["crack-path", "--steps", "4", "--out", str(out)]) == 0

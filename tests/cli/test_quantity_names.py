@@ -6,8 +6,8 @@ import tomllib
 
 import pytest
 
-from hubvib.build import parse_design
-from hubvib.build.stages import DESIGN_TABLE, ISO_MESH, ISO_SINGLE
+from hubvib.reducer import parse_design
+from hubvib.reducer.stages import DESIGN_TABLE, ISO_MESH, ISO_SINGLE
 from hubvib.cli import main
 
 from tests.helpers.design_demo import DEMO_TOML

@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from hubvib import lumped
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 from hubvib.cli import main
 from hubvib.lumped.parameters import ANGLE_TOLERANCE, MAX_PLANETS
 

@@ -6,7 +6,7 @@ import re
 
 import pytest
 
-from hubvib.build import parse_design
+from hubvib.reducer import parse_design
 from hubvib.design import DesignError
 from hubvib.foundation.bounds import lower_bound, lower_bound_fixed, upper_bound
 

@@ -12,10 +12,10 @@ import sys
 import pytest
 
 from hubvib.cli import main
-from hubvib.companion.efficiency import Friction, losses, optimum
-from hubvib.companion.efficiency_design import gear_design
-from hubvib.companion.efficiency_table import PUBLISHED, paper_table
-from hubvib.companion.track_geometry import fixed_track_lift_angle, track_geometry
+from hubvib.companion.efficiency.core import Friction, losses, optimum
+from hubvib.companion.efficiency.design import gear_design
+from hubvib.companion.efficiency.table import PUBLISHED, paper_table
+from hubvib.companion.efficiency.track_geometry import fixed_track_lift_angle, track_geometry
 
 RATIOS = (5, 10, 15, 20, 25, 30)
 # The paper's Table, typed from the seed text (angles deg, lengths mm).
@@ -230,7 +230,7 @@ def test_cli_writes_plots(capsys, tmp_path):
 def test_efficiency_figure_has_one_curve_per_ratio():
     import matplotlib.pyplot as plt
 
-    from hubvib.companion.efficiency_plot import efficiency_figure
+    from hubvib.companion.efficiency.plot import efficiency_figure
 
     fig = efficiency_figure((5, 30), Friction())
     psi_axis, eta_axis = fig.axes
@@ -262,9 +262,9 @@ def test_bad_input(capsys, tmp_path, argv, message):
 
 
 def test_import_pulls_in_nothing_heavy():
-    code = ("import sys, hubvib.companion.efficiency, hubvib.companion.efficiency_design, "
-            "hubvib.companion.efficiency_table, hubvib.companion.efficiency_report, "
-            "hubvib.companion.efficiency_plot, hubvib.commands.efficiency; "
+    code = ("import sys, hubvib.companion.efficiency.core, hubvib.companion.efficiency.design, "
+            "hubvib.companion.efficiency.table, hubvib.companion.efficiency.report, "
+            "hubvib.companion.efficiency.plot, hubvib.commands.efficiency; "
             "print([m for m in ('gmsh', 'skfem', 'pyvista', 'matplotlib') if m in sys.modules])")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]", "import must not load gmsh, skfem, pyvista, matplotlib"

@@ -14,11 +14,11 @@ import pytest
 from scipy.optimize import brentq
 
 from hubvib.cli import main
-from hubvib.companion.nx_scatter import (PAPER_NX, interval_from_bounds, scatter_interval,
+from hubvib.companion.torus_screw.nx_scatter import (PAPER_NX, interval_from_bounds, scatter_interval,
                                          screen)
-from hubvib.companion.torus_screw import (OperatingPoint, TorusScrewGear, force_system,
+from hubvib.companion.torus_screw.gear import (OperatingPoint, TorusScrewGear, force_system,
                                           roller_forces)
-from hubvib.companion.torus_screw_paper import claims, compare
+from hubvib.companion.torus_screw.paper import claims, compare
 
 GEAR = TorusScrewGear()
 POINT = OperatingPoint()  # a1 = 6.804, a3 = 81.945, phi2 = 54 deg, M_U = Phi4 = 0
@@ -268,9 +268,9 @@ def test_bad_lift_table(capsys, tmp_path):
 
 @pytest.mark.slow
 def test_import_pulls_in_nothing_heavy():
-    code = ("import sys, hubvib.companion.torus_screw, hubvib.companion.torus_screw_paper, "
-            "hubvib.companion.torus_screw_sweep, hubvib.companion.torus_screw_report, "
-            "hubvib.companion.nx_scatter, hubvib.commands.torus_screw; "
+    code = ("import sys, hubvib.companion.torus_screw.gear, hubvib.companion.torus_screw.paper, "
+            "hubvib.companion.torus_screw.sweep, hubvib.companion.torus_screw.report, "
+            "hubvib.companion.torus_screw.nx_scatter, hubvib.commands.torus_screw; "
             "print([m for m in ('gmsh', 'skfem', 'pyvista', 'matplotlib') if m in sys.modules])")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]", "import must not load gmsh, skfem, pyvista, matplotlib"

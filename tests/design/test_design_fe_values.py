@@ -5,7 +5,7 @@ pytest.importorskip("skfem")
 pytest.importorskip("gmsh")
 
 from hubvib.design import preset_design  # noqa: E402
-from hubvib.build.stages import gear_body, material, ring_gear  # noqa: E402
+from hubvib.reducer.stages import gear_body, material, ring_gear  # noqa: E402
 
 pytestmark = pytest.mark.slow
 
@@ -68,7 +68,7 @@ def test_stiffness_command_from_a_design_file(tmp_path, capsys):
     assert main(["mesh", "ring", "--design", str(path), "--order", "1", "--size", "4e-3",
                  "--out", str(tmp_path / "mesh"), "--json"]) == 0
     info = json.loads(capsys.readouterr().out)
-    from hubvib.build import load_design
-    from hubvib.build.stages import mass_properties
+    from hubvib.reducer import load_design
+    from hubvib.reducer.stages import mass_properties
 
     assert info["mass_kg"] == pytest.approx(mass_properties(load_design(path))["m_r"], rel=2e-4)

@@ -5,9 +5,9 @@ import math
 import pytest
 
 from hubvib.cli import main
-from hubvib.build import parse_design
+from hubvib.reducer import parse_design
 from hubvib.design import DesignError, preset_design
-from hubvib.build.stages import centre_distances, derived_lumped_fields, lumped_parameters
+from hubvib.reducer.stages import centre_distances, derived_lumped_fields, lumped_parameters
 from tests.helpers.design_demo import DEMO_TOML, demo
 
 def test_demo_assembles_with_iso_21771_geometry():
@@ -53,7 +53,7 @@ def test_each_assembly_rule_refuses_a_design_that_breaks_only_it(changes, messag
 
 def test_contact_ratio_rule():
     """A long-addendum-free, low-tooth stage: tip shortened until the contact ratio < 1."""
-    from hubvib.build import assembly
+    from hubvib.reducer import assembly
 
     design = parse_design(demo())
     # the rule itself: the demo's ratios are > 1, so it passes; a forged ratio below 1 fails
@@ -141,7 +141,7 @@ def test_spectrum_from_a_design_needs_the_mountings(tmp_path, capsys):
 
 
 def test_hub4_preset_is_the_lumped_preset_and_has_four_planets():
-    from hubvib.build import lumped_preset
+    from hubvib.reducer import lumped_preset
     from hubvib.lumped import natural_modes
 
     params = lumped_preset("hub4")

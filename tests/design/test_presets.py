@@ -7,7 +7,7 @@ import json
 import numpy as np
 import pytest
 
-from hubvib.build import bearing_stiffness, lumped_preset, mass_properties
+from hubvib.reducer import bearing_stiffness, lumped_preset, mass_properties
 from hubvib.cli import main
 from hubvib.design import PRESETS, DesignError, preset_design, register_preset
 from hubvib.design.presets import hub4

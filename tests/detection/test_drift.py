@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from hubvib.detection.drift import compensate, drift_model, family_pod, references
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 from hubvib.detection.options import DetectionOptions
 from hubvib.lumped import natural_modes
 from hubvib.lumped.parameters import STIFFNESS_FIELDS

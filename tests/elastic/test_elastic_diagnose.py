@@ -30,7 +30,7 @@ def _synthetic_cases(depths=(0.0, 0.004, 0.008, 0.012)):
     """Elastic cases of a small synthetic ring (8 coordinates, 12 teeth, M = I) coupled to
     the Raba lumped model: ring modes at 1.5-9 kHz, a crack softening the ring along one
     shape in proportion to its depth, a foundation part of its stiffness."""
-    from hubvib.build.stages import lumped_parameters
+    from hubvib.reducer.stages import lumped_parameters
     from hubvib.design.presets import preset_design
     from hubvib.elastic.cases import ElasticCase
     from hubvib.elastic.content import mode_content, multiplicities

@@ -78,7 +78,7 @@ def test_map_lines_name_every_scale_and_the_gaps():
 
 @pytest.fixture(scope="module")
 def raba():
-    from hubvib.build.stages import lumped_parameters, ring_gear
+    from hubvib.reducer.stages import lumped_parameters, ring_gear
     from hubvib.design.presets import preset_design
     from hubvib.elastic.model import out_of_contact_tooth
     from hubvib.elastic.rest import rest_stiffness
@@ -222,7 +222,7 @@ def test_reduced_ring_equals_full_rebuilds_on_the_thin_rim():
     """hub4 (thin rim, eight support arcs, a foundation six times Raba's): the intact
     coupled frequencies below the band's top of the reduced ring against full rebuilds at
     the map's ends, to 1e-5 relative."""
-    from hubvib.build.stages import lumped_parameters, ring_gear
+    from hubvib.reducer.stages import lumped_parameters, ring_gear
     from hubvib.design.presets import preset_design
     from hubvib.elastic.model import elastic_ring, elastic_spectrum, out_of_contact_tooth
     from hubvib.elastic.mounting_basis import family_ring, ring_operators_at

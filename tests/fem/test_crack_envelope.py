@@ -9,14 +9,14 @@ import math
 import numpy as np
 import pytest
 
-from hubvib.build.stages import gear_body, mesh_force, ring_gear
+from hubvib.reducer.stages import gear_body, mesh_force, ring_gear
 from hubvib.cli import main
 from hubvib.design.presets import raba118
 from hubvib.fem.crack_propagation import GrowthOptions
 from hubvib.fem.fracture import hoop_stress, mts_angle, mts_driving_force
 from hubvib.fem.mesh_cycle import GearPair
 from hubvib.meshing.ring_mesh import MeshOptions
-from hubvib.studies.crack_path import crack_path, mesh_cycle_positions, single_contact_radius
+from hubvib.studies.lefm_path import crack_path, mesh_cycle_positions, single_contact_radius
 
 RABA = raba118()
 COARSE = MeshOptions(size=3e-3, tooth_size=0.8e-3, load_size=0.3e-3)

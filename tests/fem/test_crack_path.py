@@ -9,15 +9,15 @@ import numpy as np
 import pytest
 
 from hubvib.cli import main
-from hubvib.studies.crack_path import (LEWICKI_RIM, LEWICKI_TOOTH, crack_path, cracked_tooth,
+from hubvib.studies.lefm_path import (LEWICKI_RIM, LEWICKI_TOOTH, crack_path, cracked_tooth,
                                loaded_ring, single_contact_radius)
-from hubvib.build.stages import gear_body, ring_gear
+from hubvib.reducer.stages import gear_body, ring_gear
 from hubvib.design.model import RimSpec
 from hubvib.design.presets import raba118
 from hubvib.fem.crack_propagation import GrowthError, GrowthOptions
 from hubvib.fem.mesh_cycle import GearPair
 from hubvib.meshing.crack import Crack
-from hubvib.meshing.crack_path import (PathCrack, backup_ratio, initial_crack, path_ring_mesh,
+from hubvib.meshing.polyline_crack import (PathCrack, backup_ratio, initial_crack, path_ring_mesh,
                                        ray_exit, tooth_height, tooth_outline)
 from hubvib.meshing.gear import GearGeometryError, rotation
 from hubvib.meshing.ring_mesh import MeshOptions
@@ -188,7 +188,7 @@ def test_ring_sif_independent_of_domain_and_mesh():
     interaction integral over annuli of outer radius 0.1, 0.2 and 0.3 mm, on the growth's
     coarse mesh and on a mesh twice as fine at the tip and 1.5 x finer elsewhere, agree
     within 1 % of |K| (K_I) and 2 % of |K| (K_II); the kink angles within 1 deg."""
-    from hubvib.build.stages import material, mesh_force
+    from hubvib.reducer.stages import material, mesh_force
     from hubvib.fem.elasticity import plane_model, solve
     from hubvib.fem.fracture import interaction_integral
     from hubvib.fem.ring_stiffness import mesh_force_load
@@ -273,7 +273,7 @@ def test_predicted_path_shows_in_c_rp_not_in_c_ru():
     """docs/crack_path.md: the default scene's tooth (0), grown 6 mm along its predicted
     path, against the radial crack of the same length (fem.crack_level, coarse sizes): the
     predicted crack lowers the cracked tooth's mean c_rp more, and moves c_ru and c_r less."""
-    from hubvib.build.stages import material
+    from hubvib.reducer.stages import material
     from hubvib.fem.crack_level import crack_level
     from hubvib.meshing.ring_mesh import ring_mesh
 

@@ -14,7 +14,7 @@ def test_c_ru_rises_only_where_a_planet_loads_the_cracked_tooth():
     work-conjugate to the flank loads, so no energy theorem forbids a small rise elsewhere:
     measured, at most +1.0 % (tooth 5), while the mean over positions falls."""
     from hubvib.fem.ring_stiffness import planet_teeth, ring_stiffness
-    from hubvib.build import raba118
+    from hubvib.reducer import raba118
     from hubvib.meshing.crack import Crack
     from hubvib.meshing.levels import scaled_options
     from hubvib.meshing.ring_mesh import ring_mesh

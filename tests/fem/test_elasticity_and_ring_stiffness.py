@@ -11,7 +11,7 @@ from hubvib.fem.annulus import fe_k_theta  # noqa: E402
 from hubvib.fem.elasticity import SingularSystemError, plane_model, solve  # noqa: E402
 from hubvib.fem.material import Material, MaterialError  # noqa: E402
 from hubvib.fem.ring_stiffness import ring_stiffness  # noqa: E402
-from hubvib.build import raba118  # noqa: E402
+from hubvib.reducer import raba118  # noqa: E402
 from hubvib.meshing.annulus import annulus_mesh  # noqa: E402
 from hubvib.meshing.crack import Crack  # noqa: E402
 from hubvib.meshing.ring_gear import Supports  # noqa: E402
@@ -182,7 +182,7 @@ def test_c_ru_at_scale_0_6():
     """The ring at element scale 0.6 (the tooth-load facet basis failed);
     c_ru lies between the values at scales 0.71 and 0.5 within their spread (1.66337e10,
     1.66364e10 N/m, convergence study)."""
-    from hubvib.build import raba118
+    from hubvib.reducer import raba118
     from hubvib.validation.convergence import _ring_level
 
     value = _ring_level(0.6, "c_ru", raba118.ring_gear())["value"]

@@ -15,7 +15,7 @@ import importlib.util
 import numpy as np
 import pytest
 
-from hubvib.build.stages import ring_gear
+from hubvib.reducer.stages import ring_gear
 from hubvib.design.presets import raba118
 from hubvib.fem.ring_stiffness import ring_stiffness
 from hubvib.fem.tooth_solid import SolidToothLoad

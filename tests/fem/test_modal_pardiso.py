@@ -18,8 +18,8 @@ EIGENVALUE_RTOL = {"clamped": 1e-10, "free-free": 1e-9}
 
 @pytest.fixture(scope="module")
 def ring_model():
-    from hubvib.build import raba118
-    from hubvib.build.stages import material, ring_gear
+    from hubvib.reducer import raba118
+    from hubvib.reducer.stages import material, ring_gear
     from hubvib.fem.elasticity import plane_model
     from hubvib.meshing.crack import Crack
     from hubvib.meshing.levels import scaled_options

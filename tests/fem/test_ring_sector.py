@@ -9,7 +9,7 @@ import pytest
 
 pytest.importorskip("gmsh")
 
-from hubvib.build import raba118  # noqa: E402
+from hubvib.reducer import raba118  # noqa: E402
 from hubvib.fem.ring_sector import cyclic_block_solve, sector_ring_work  # noqa: E402
 from hubvib.fem.ring_stiffness import ring_stiffness  # noqa: E402
 from hubvib.meshing.ring_sector import ring_from_sector, sector_mesh  # noqa: E402

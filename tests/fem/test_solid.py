@@ -94,7 +94,7 @@ def test_solver_choice_by_size_and_name():
 @pytest.fixture(scope="module")
 def coarse_solid_ring():
     pytest.importorskip("gmsh")
-    from hubvib.build import raba118
+    from hubvib.reducer import raba118
     from hubvib.meshing.ring_mesh_3d import ring_mesh_3d
     from hubvib.meshing.levels import solid_options
 
@@ -106,7 +106,7 @@ def test_solid_c_ru_between_plane_stress_and_plane_strain(coarse_solid_ring):
     """A 40 mm wide ring in 3D is stiffer than in plane stress and softer than in plane
     strain, whose bending stiffness is 1 / (1 - nu^2) = 1.099 times higher."""
     from hubvib.fem.ring_stiffness import ring_stiffness
-    from hubvib.build import raba118
+    from hubvib.reducer import raba118
     from hubvib.meshing.ring_mesh import ring_mesh
 
     ring = raba118.ring_gear()
@@ -323,7 +323,7 @@ def test_rim_split_works_on_the_solid_model(coarse_solid_ring):
     in-plane rigid displacement is that motion (1e-9); the rim parts are stiffer than the
     whole work-conjugate values; and like the root-land readings they lie between plane
     stress and plane strain (factor 1 / (1 - nu^2) = 1.099) against the plane rim parts."""
-    from hubvib.build import raba118
+    from hubvib.reducer import raba118
     from hubvib.fem.ring_stiffness import ring_model, ring_stiffness, root_lands
     from hubvib.fem.ring_work import land_rigid_motions
     from hubvib.meshing.ring_mesh import ring_mesh

@@ -7,8 +7,8 @@ import pytest
 
 pytest.importorskip("gmsh")
 
-from hubvib.build import raba118  # noqa: E402
-from hubvib.build.stages import gear_body  # noqa: E402
+from hubvib.reducer import raba118  # noqa: E402
+from hubvib.reducer.stages import gear_body  # noqa: E402
 from hubvib.design import preset_design  # noqa: E402
 from hubvib.fem.crack_level import ring_and_tooth  # noqa: E402
 from hubvib.fem.elasticity import supported  # noqa: E402

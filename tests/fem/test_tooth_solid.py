@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from hubvib.build.stages import gear_body, material, ring_gear
+from hubvib.reducer.stages import gear_body, material, ring_gear
 from hubvib.design import preset_design
 from hubvib.fem.elasticity import plane_model, rigid_body_modes, solve
 from hubvib.fem.engaged_solid import solid_engaged_mesh

@@ -20,7 +20,7 @@ from hubvib.fem.modal import lowest_modes  # noqa: E402
 from hubvib.fem.tooth_beam import beam_compliance, hertz_compliance  # noqa: E402
 from hubvib.fem.tooth_fe import fe_tooth_compliance  # noqa: E402
 from hubvib.fem.tooth_stiffness import reducer_mesh_stiffness  # noqa: E402
-from hubvib.build import raba118  # noqa: E402
+from hubvib.reducer import raba118  # noqa: E402
 from hubvib.meshing.annulus import annulus_mesh  # noqa: E402
 from hubvib.meshing.crack import Crack  # noqa: E402
 from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh  # noqa: E402

@@ -9,7 +9,7 @@ import pytest
 
 pytest.importorskip("gmsh")
 
-from hubvib.build import raba118  # noqa: E402
+from hubvib.reducer import raba118  # noqa: E402
 from hubvib.fem.elasticity import rigid_body_modes, solve  # noqa: E402
 from hubvib.fem.ring_stiffness import (default_carrier_teeth, ring_loads, ring_model,  # noqa: E402
                                        ring_response, ring_stiffness, root_lands)

@@ -98,7 +98,7 @@ def test_an_entry_without_a_source_file_is_refused(tmp_path):
 
 def test_the_key_does_not_depend_on_file_times(tmp_path, edit_source):
     before = source_key("hubvib.cases.runner")
-    copy = edit_source("hubvib.build.stages", line="")
+    copy = edit_source("hubvib.reducer.stages", line="")
     os.utime(copy, (0, 0))
     assert source_key("hubvib.cases.runner") == before
 
@@ -107,10 +107,10 @@ def test_every_process_computes_the_same_key(tmp_path):
     """Another interpreter started elsewhere (another working folder, another hash seed)
     computes the same key: a worker and its client agree."""
     code = ("from hubvib.foundation.source_graph import source_key; "
-            "print(source_key('hubvib.cases.runner', 'hubvib.detection.study'))")
+            "print(source_key('hubvib.cases.runner', 'hubvib.detection.crack_detection'))")
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          cwd=tmp_path, env=dict(os.environ, PYTHONHASHSEED="123"), check=True)
-    assert run.stdout.strip() == source_key("hubvib.detection.study",
+    assert run.stdout.strip() == source_key("hubvib.detection.crack_detection",
                                             "hubvib.cases.runner")
 
 
@@ -136,13 +136,13 @@ def test_find_module_gives_the_installed_source():
 
 
 #: each cache's entry modules, and whether the computation imports the build layer's
-#: stage builders (``hubvib.build.stages``) and the mode pictures (``hubvib.render.modes``)
+#: stage builders (``hubvib.reducer.stages``) and the mode pictures (``hubvib.render.modes``)
 CACHES = {
     "FE crack case": ("hubvib.cases.runner", True, False),
     "intact tooth curve": ("hubvib.runtime.tooth_curves", False, False),
     "signal tooth curve": ("hubvib.signal.mesh_curves", True, False),
     "predicted crack path": ("hubvib.cases.predicted_path", True, False),
-    "detection study": ("hubvib.detection.study", True, False),
+    "detection study": ("hubvib.detection.crack_detection", True, False),
     "FE ring render": ("hubvib.render.fe", True, True),
     "mode render": ("hubvib.render.modes", False, True),
 }
@@ -152,7 +152,7 @@ CACHES = {
 def test_each_cache_is_keyed_on_its_import_graph(cache, edit_source):
     entry, builds, renders = CACHES[cache]
     before = source_key(entry)
-    edit_source("hubvib.build.stages")
+    edit_source("hubvib.reducer.stages")
     after_build = source_key(entry)
     edit_source("hubvib.render.modes")
     after_render = source_key(entry)
@@ -161,7 +161,7 @@ def test_each_cache_is_keyed_on_its_import_graph(cache, edit_source):
 
 
 def test_the_caches_name_those_entry_modules():
-    from hubvib.detection import study
+    import hubvib.detection.crack_detection as study
     from hubvib.runtime import tooth_curves
     from hubvib.signal import mesh_curves
     from hubvib.cases import predicted_path

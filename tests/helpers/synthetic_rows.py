@@ -6,7 +6,7 @@ import math
 import numpy as np
 
 from hubvib.cases.sweep import CrackSweep
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 from hubvib.detection.carrier import MeshTiming
 from hubvib.detection.model import CrackModel
 

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from hubvib.lumped import ParameterError, natural_modes
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 from hubvib.lumped.batch import (batch_frequencies, benchmark_batch, blas_thread_counts,
                                  blas_threads)
 from hubvib.lumped.parameters import MASS_FIELDS, STIFFNESS_FIELDS

@@ -3,7 +3,7 @@ import math
 import pytest
 
 from hubvib import lumped
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 from hubvib.runtime.params_input import preset_parameters
 from hubvib.lumped import ParameterError
 

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from hubvib import lumped
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 
 
 def _central_difference(params, parameter, h=1e-5):

@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 
 from hubvib import lumped
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 from hubvib.lumped.eigensolve import solve_assembled
 from hubvib.lumped.network import mass_diagonal
 from hubvib.validation.raba118 import PUBLISHED_RAD_S

@@ -8,7 +8,7 @@ import pytest
 
 from hubvib import lumped
 from tests.helpers.energy_reference import mp_frequencies
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 from hubvib.validation import stability
 
 CASES = stability.cases(lumped_preset("raba118"))

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from hubvib import lumped
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 from tests.helpers.energy_reference import stiffness_by_polarisation
 
 

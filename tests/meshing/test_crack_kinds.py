@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from hubvib.build.stages import ring_gear
+from hubvib.reducer.stages import ring_gear
 from hubvib.design.presets import raba118
 from hubvib.foundation.errors import SceneError
 from hubvib.meshing.crack import FRONT_SHAPES, STARTS, Crack, CrackFront

@@ -3,7 +3,7 @@ import math
 import numpy as np
 import pytest
 
-from hubvib.build import raba118
+from hubvib.reducer import raba118
 from hubvib.meshing.gear import (GearGeometryError, SpurGear, centre_distance, involute,
                           inverse_involute, working_pressure_angle)
 

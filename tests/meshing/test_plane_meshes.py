@@ -5,7 +5,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from hubvib.build import raba118
+from hubvib.reducer import raba118
 
 from hubvib.meshing import measure
 from hubvib.meshing.crack import Crack

@@ -8,7 +8,7 @@ pv = pytest.importorskip("pyvista")
 imageio = pytest.importorskip("imageio")
 
 from hubvib.render.modes import render_mode  # noqa: E402
-from hubvib.build import lumped_preset  # noqa: E402
+from hubvib.reducer import lumped_preset  # noqa: E402
 from hubvib.lumped import natural_modes  # noqa: E402
 
 PARAMS = lumped_preset("raba118")
@@ -54,7 +54,7 @@ def cracked_ring_fields():
     pytest.importorskip("skfem")
     from hubvib.render.fe import ring_fields
     from hubvib.meshing.levels import scaled_options
-    from hubvib.build import raba118
+    from hubvib.reducer import raba118
     from hubvib.meshing.crack import Crack
 
     # scale 8 (was 4): every property checked below still shows with margin (near-tip
@@ -106,7 +106,7 @@ def test_fe_renders_are_real_distinct_and_repeatable(tmp_path, cracked_ring_fiel
 def test_fe_ring_fields_physics(cracked_ring_fields):
     from hubvib.render.fe import ring_fields
     from hubvib.meshing.levels import scaled_options
-    from hubvib.build import raba118
+    from hubvib.reducer import raba118
 
     fields = cracked_ring_fields
     intact = ring_fields(raba118.design(), None, scaled_options(8.0), modes=1)

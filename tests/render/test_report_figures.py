@@ -27,7 +27,7 @@ def assert_readable(fig):
 def small_signal_study():
     """A small signal study on synthetic mesh curves (no FE): three depths, two seeds."""
     from hubvib.design import preset_design
-    from hubvib.signal import study as signal_study
+    import hubvib.signal.signature_study as signal_study
     from hubvib.signal.mesh_curves import synthetic_curves
     from hubvib.studies.scene import parse_scene
 
@@ -166,8 +166,8 @@ def test_carrier_position_shows_every_moving_mode_and_its_minimum():
 def test_crack_path_axes_in_the_units_of_its_text(tmp_path):
     """The title and the report give steps and depths in mm; so do the axes."""
     from hubvib.design import preset_design
-    from hubvib.render import crack_path as path_picture
-    from hubvib.studies.crack_path import cracked_tooth, loaded_ring
+    import hubvib.render.path_figure as path_picture
+    from hubvib.studies.lefm_path import cracked_tooth, loaded_ring
 
     ring = loaded_ring(preset_design("raba118"))
     tooth = cracked_tooth(ring)

@@ -283,15 +283,15 @@ def test_a_worker_of_another_source_refuses_the_case(fake, edit_source):
     sweep = make_sweep()
     case = crack_sweep._Case(sweep, source_key(*crack_sweep.SOURCE))
     assert case(0.002) == synthetic(0.002)
-    edit_source("hubvib.build.stages")
+    edit_source("hubvib.reducer.stages")
     with pytest.raises(RuntimeError, match="install the same hubvib on every worker"):
         case(0.002)
     assert fake == [0.002]
 
 
 #: modules an FE case imports, in each stage it runs through (the ring, gear bodies and
-#: material are built by ``hubvib.build.stages``)
-IMPORTED = ["hubvib.build.stages", "hubvib.build", "hubvib.fem.ring_stiffness",
+#: material are built by ``hubvib.reducer.stages``)
+IMPORTED = ["hubvib.reducer.stages", "hubvib.reducer", "hubvib.fem.ring_stiffness",
             "hubvib.meshing.ring_mesh", "hubvib.design.model", "hubvib.cases.runner"]
 #: modules an FE case does not import
 UNRELATED = ["hubvib.render.modes", "hubvib.render.fe", "hubvib.detection.pod",
@@ -342,7 +342,7 @@ print(crack_sweep.run_fe_cases(sweep, progress=False)[1])
 def test_an_edited_build_module_of_an_installed_copy_recomputes_the_case(installed_copy,
                                                                          tmp_path):
     """The installed layout, each run a new process, the file itself edited: a comment
-    appended to ``hubvib/build/stages.py`` (which builds the ring, the gear bodies and the
+    appended to ``hubvib/reducer/stages.py`` (which builds the ring, the gear bodies and the
     material of every case) is a cache miss; one appended to a render module is not."""
     results = json.dumps({str(d): synthetic(d) for d in DEPTHS})
     env = dict(os.environ, PYTHONPATH=str(installed_copy), HUBVIB_CACHE=str(tmp_path / "c"))
@@ -361,7 +361,7 @@ def test_an_edited_build_module_of_an_installed_copy_recomputes_the_case(install
     assert computed() == 0
     append("hubvib/render/modes.py")
     assert computed() == 0, "a render module is not imported by an FE case"
-    append("hubvib/build/stages.py")
+    append("hubvib/reducer/stages.py")
     assert computed() == 3, "an edit to the build layer must not leave stale c_ru and c_rp"
 
 

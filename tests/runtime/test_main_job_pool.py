@@ -47,7 +47,7 @@ def test_renders_are_submitted_only_when_the_render_cache_lacks_them(cache):
     """Counter, not time: the default scene submits the FE ring's render and the modes'
     render once each on an empty render cache, and nothing once the cache holds them (a
     cached rerun computes no picture and starts no worker)."""
-    from hubvib.build import lumped_preset
+    from hubvib.reducer import lumped_preset
     from hubvib.lumped import natural_modes
 
     scene = load_scene(None)
@@ -215,7 +215,7 @@ def test_mode_renders_in_a_worker_equal_this_process(tmp_path, monkeypatch):
     """The lumped mode pictures rendered on a pool worker are byte-identical to those
     rendered here (each from an empty render cache)."""
     pytest.importorskip("pyvista")
-    from hubvib.build import lumped_preset
+    from hubvib.reducer import lumped_preset
     from hubvib.lumped import natural_modes
     from hubvib.runtime.engines import submit
 

@@ -9,7 +9,7 @@ import pytest
 from hubvib.runtime.result_cache import cached_figure, cached_result
 
 #: the entry module of the probes below
-SOURCE = ("hubvib.detection.study",)
+SOURCE = ("hubvib.detection.crack_detection",)
 
 
 @pytest.fixture
@@ -40,7 +40,7 @@ def test_second_call_loads_the_same_result_without_computing(cache):
 
 
 @pytest.mark.parametrize("module, recomputed", [
-    ("hubvib.detection.study", True), ("hubvib.detection.pod", True),
+    ("hubvib.detection.crack_detection", True), ("hubvib.detection.pod", True),
     ("hubvib.lumped.eigensolve", True), ("hubvib.render.modes", False),
     ("hubvib.signal.mesh_curves", False)])
 def test_an_edit_in_the_import_graph_is_another_entry(cache, edit_source, module, recomputed):

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from hubvib.build.stages import gear_body, material, ring_gear
+from hubvib.reducer.stages import gear_body, material, ring_gear
 from hubvib.design import preset_design
 from hubvib.fem.tooth_stiffness import ToothCurve
 from hubvib.meshing.levels import scaled_options

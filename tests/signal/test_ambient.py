@@ -12,7 +12,7 @@ from hubvib.signal.ambient import FORCED, AmbientForcing, ambient_record, engage
 from hubvib.signal.dynamics import planetary_dynamics
 from hubvib.signal.mesh_curves import synthetic_curves
 from hubvib.signal.mesh_phase import design_phasing
-from hubvib.signal.sensor import hann_window
+from hubvib.signal.accelerometer import hann_window
 from hubvib.studies.scene import load_scene
 
 FS = 20000.0

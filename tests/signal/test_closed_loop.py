@@ -26,7 +26,7 @@ import pytest
 from hubvib.cli import main
 from hubvib.signal.frequency_route import observed_hz
 from hubvib.signal.mesh_phase import design_phasing
-from hubvib.signal.study import curves_for
+from hubvib.signal.signature_study import curves_for
 from hubvib.studies.scene import load_scene, shipped_scene_text
 
 TRUE_DEPTH = 0.012

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from hubvib.lumped import natural_modes
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 from hubvib.lumped.network import mass_diagonal, spring_network
 from hubvib.signal.dynamics import planetary_dynamics
 from hubvib.signal.mesh_curves import synthetic_curves
@@ -15,7 +15,7 @@ from hubvib.signal.mesh_phase import design_phasing
 
 from hubvib.signal.options import SignalOptions
 from hubvib.signal.simulation import simulate
-from hubvib.signal.study import step_halving_change
+from hubvib.signal.signature_study import step_halving_change
 from hubvib.signal.time_response import (Excitation, LinearSystem, integrate,
                                          periodic_start)
 

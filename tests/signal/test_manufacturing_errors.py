@@ -6,14 +6,14 @@ import numpy as np
 import pytest
 
 from hubvib.design import preset_design
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 from hubvib.signal.dynamics import planetary_dynamics
 from hubvib.signal.contact import force_ratio, in_contact
-from hubvib.signal.errors import StageErrors, load_sharing, rigid_centre_sharing
+from hubvib.signal.manufacturing import StageErrors, load_sharing, rigid_centre_sharing
 from hubvib.signal.mesh_curves import synthetic_curves
 from hubvib.signal.mesh_phase import design_phasing
 from hubvib.signal.options import SignalOptions, parse_signal_table
-from hubvib.signal.sensor import sensor_signal
+from hubvib.signal.accelerometer import sensor_signal
 from hubvib.signal.simulation import simulate
 from hubvib.signal.spectral import non_multiple_fraction, order_spectrum
 from hubvib.studies.scene import SceneError

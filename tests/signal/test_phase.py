@@ -3,15 +3,15 @@ import math
 
 import numpy as np
 
-from hubvib.build import raba118 as geometry
-from hubvib.build import lumped_preset
+from hubvib.reducer import raba118 as geometry
+from hubvib.reducer import lumped_preset
 from hubvib.meshing.gear import centre_distance, rotation
 from hubvib.signal.mesh_curves import synthetic_curves
 from hubvib.design import preset_design
 from hubvib.signal.mesh_phase import design_phasing
 
 from hubvib.signal.options import SignalOptions
-from hubvib.signal.sensor import sensor_signal
+from hubvib.signal.accelerometer import sensor_signal
 from hubvib.signal.simulation import simulate
 from hubvib.signal.spectral import order_spectrum
 

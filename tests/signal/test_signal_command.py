@@ -8,7 +8,7 @@ import pytest
 
 from hubvib.cli import main
 from hubvib.studies.scene import SceneError
-from hubvib.signal import study as signal_study
+import hubvib.signal.signature_study as signal_study
 from hubvib.signal.mesh_curves import synthetic_curves
 from hubvib.signal.options import SignalOptions, parse_signal_table
 from hubvib.design import preset_design

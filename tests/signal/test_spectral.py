@@ -5,10 +5,10 @@ import numpy as np
 import pytest
 
 from hubvib.signal.indicators import GearOrders, indicators, residual
-from hubvib.signal.sensor import hann_window, sampled
+from hubvib.signal.accelerometer import hann_window, sampled
 from hubvib.signal.spectral import (angle_domain, label_order, order_spectrum, record_spectrum,
                                     spectrogram)
-from hubvib.signal.study import harmonic_rules
+from hubvib.signal.signature_study import harmonic_rules
 from hubvib.design import preset_design
 
 RABA = preset_design("raba118")  # the reference case (hubvib.design.presets)

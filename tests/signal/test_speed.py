@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from hubvib.signal.records import synchronous_average
-from hubvib.signal.sensor import sampled
+from hubvib.signal.accelerometer import sampled
 from hubvib.signal.speed import SpeedProfile, angle_from_tacho
 
 P = 4096

@@ -123,7 +123,7 @@ def test_a_solid_scene_without_a_crack_is_refused():
 
 def test_a_semi_elliptic_crack_through_the_rim_is_refused():
     from hubvib.cases.sweep import crack_of
-    from hubvib.build.stages import ring_gear
+    from hubvib.reducer.stages import ring_gear
 
     sweep = parse_scene(SOLID_SCENE, "solid").crack
     through = crack_of(sweep, 0.0).through_depth(ring_gear(sweep.reducer))
@@ -190,7 +190,7 @@ def test_poor_cells_do_not_move_c_ru():
     change per case: halving is the worse direction, and it stays within a quarter of
     the change.  Deepest and longest crack of the shipped scene, on the half-width meshes
     the crack cases solve (``fe_case``)."""
-    from hubvib.build.stages import ring_gear
+    from hubvib.reducer.stages import ring_gear
     from hubvib.design.presets import raba118
     from hubvib.fem.estimate import USABLE_QUALITY
     from hubvib.fem.ring_stiffness import default_carrier_teeth, ring_stiffness

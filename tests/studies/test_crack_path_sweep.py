@@ -9,14 +9,14 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from hubvib.build.stages import gear_body, material, ring_gear
+from hubvib.reducer.stages import gear_body, material, ring_gear
 from hubvib.cli import main
 from hubvib.design.model import RimSpec
 from hubvib.design.presets import raba118
 from hubvib.fem.crack_level import crack_level
 from hubvib.fem.ring_stiffness import ring_stiffness
 from hubvib.meshing.crack import Crack
-from hubvib.meshing.crack_path import path_ring_mesh, tooth_height
+from hubvib.meshing.polyline_crack import path_ring_mesh, tooth_height
 from hubvib.meshing.levels import scaled_options
 from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
 from hubvib.studies.crack_study import crack_study_from_fe
@@ -131,7 +131,7 @@ def test_fe_render_takes_a_path_crack():
     ``ring_mesh``): a polyline crack meshes there too, its tip node on the path's tip
     (1e-12 m), as ``path_ring_mesh`` meshes it (``hubvib run raba118_crack_path`` failed
     with "'PathCrack' object has no attribute 'path'")."""
-    from hubvib.meshing.crack_path import initial_crack
+    from hubvib.meshing.polyline_crack import initial_crack
     from hubvib.render.fe import ring_fields
 
     ring = ring_gear(RABA)

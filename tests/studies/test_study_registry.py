@@ -12,13 +12,13 @@ from pathlib import Path
 import pytest
 
 from hubvib.cli import main
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 from hubvib.foundation.errors import SceneError
 from hubvib.foundation.output import write_csv, write_text
 from hubvib.lumped import natural_modes
 from hubvib.studies.kinds import STUDIES, study_of
 from hubvib.studies.scene import load_scene, parse_scene
-from hubvib.studies.study import Study, check_keys, register_study, string_key
+from hubvib.studies.kind_registry import Study, check_keys, register_study, string_key
 
 KIND = "lumped_spectrum"
 

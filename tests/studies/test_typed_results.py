@@ -8,7 +8,7 @@ import math
 import pytest
 
 from hubvib.design import preset_design
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 from hubvib.detection.model import CrackModel
 from hubvib.fem.estimate import CrackCaseEstimate, RingEstimate
 from hubvib.studies.crack_growth import CrackGrowthResult, solid_rows

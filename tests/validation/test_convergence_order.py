@@ -37,7 +37,7 @@ def test_work_conjugate_c_ru_converges_at_a_stable_order_in_the_theoretical_band
     and lie in [1, 4] (theory: 2p = 4 on smooth solutions, 1 from the clamped-free support
     ends; convergence.EXPECTED_ORDER), so the reference is the Richardson limit."""
     pytest.importorskip("gmsh")
-    from hubvib.build import raba118
+    from hubvib.reducer import raba118
     from hubvib.validation.convergence import NESTED_SCALES, Gears, compute_level
 
     gears = Gears(raba118.ring_gear())
@@ -58,7 +58,7 @@ def test_curved_p2_beats_p1_at_equal_dofs():
     pytest.importorskip("gmsh")
     from dataclasses import replace
 
-    from hubvib.build import raba118
+    from hubvib.reducer import raba118
     from hubvib.fem.ring_stiffness import ring_stiffness
     from hubvib.meshing.ring_mesh import ring_mesh
     from hubvib.validation.convergence import NESTED_BASE

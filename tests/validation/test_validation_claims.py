@@ -5,7 +5,7 @@ translational modes; the numbers come from the same comparison."""
 import re
 from pathlib import Path
 
-from hubvib.build import lumped_preset
+from hubvib.reducer import lumped_preset
 from hubvib.studies.validation_status import lumped_model_status
 from hubvib.validation.raba118 import validate
 

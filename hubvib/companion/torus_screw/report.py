@@ -3,10 +3,10 @@ from __future__ import annotations
 
 import math
 
-from .nx_scatter import PAPER_NX, interval_from_bounds
-from .torus_screw import RollerForces, TorusScrewGear, OperatingPoint
-from .torus_screw_paper import TOLERANCE, Claim, PaperCell
-from .torus_screw_sweep import SweepRow
+from hubvib.companion.torus_screw.nx_scatter import PAPER_NX, interval_from_bounds
+from hubvib.companion.torus_screw.gear import RollerForces, TorusScrewGear, OperatingPoint
+from hubvib.companion.torus_screw.paper import TOLERANCE, Claim, PaperCell
+from hubvib.companion.torus_screw.sweep import SweepRow
 
 SOURCE = ("Prudnikov & Bodunova 2021, Distribution of forces between units of planetary torus "
           "screw gear (seed 002)")

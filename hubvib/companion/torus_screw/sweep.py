@@ -15,7 +15,7 @@ from pathlib import Path
 
 from hubvib.foundation.files import read_text
 
-from .torus_screw import (PAPER_FINGER_SPACING_M, OperatingPoint, RollerForces, TorusScrewGear,
+from hubvib.companion.torus_screw.gear import (PAPER_FINGER_SPACING_M, OperatingPoint, RollerForces, TorusScrewGear,
                           roller_forces)
 
 LIFT_TABLE_COLUMNS = ("phi2_deg", "alpha1_deg", "alpha3_deg")

@@ -4,7 +4,7 @@ The study's own sensor sits at ``sensor_angle_deg`` from planet 1's position at
 t = 0.  Each angle of ``[signal] sensor_angles_from_crack_deg`` places one more
 sensor at that angle from the cracked tooth's centre line (``2 pi k / z_r`` for
 tooth k), in the sense of the planet angle.  Every sensor records the same
-simulation through its own planet-position window (:mod:`hubvib.signal.sensor`),
+simulation through its own planet-position window (:mod:`hubvib.signal.accelerometer`),
 with the same noise RMS [m/s^2] as the study's sensor, and gets its own
 time-synchronous averages, indicators and non-multiple energy share.
 """
@@ -12,10 +12,10 @@ from __future__ import annotations
 
 import math
 
-from .indicators import INDICATORS, GearOrders
-from .records import indicator_run, summarise
-from .sensor import sampled, sensor_signal
-from .spectral import non_multiple_fraction, order_spectrum
+from hubvib.signal.indicators import INDICATORS, GearOrders
+from hubvib.signal.records import indicator_run, summarise
+from hubvib.signal.accelerometer import sampled, sensor_signal
+from hubvib.signal.spectral import non_multiple_fraction, order_spectrum
 
 
 def sensor_angle(offset_from_crack_deg: float, crack_tooth: int, ring_teeth: int) -> float:

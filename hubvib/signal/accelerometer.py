@@ -34,7 +34,7 @@ from scipy.io import wavfile
 
 from hubvib.foundation.output import atomic_path, write_text
 
-from .simulation import Simulation
+from hubvib.signal.simulation import Simulation
 
 
 def hann_window(angle, n_planets: int) -> np.ndarray:

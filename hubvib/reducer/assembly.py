@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 import re
 
-from hubvib.build import stages as build
+from hubvib.reducer import stages as build
 from hubvib.design.model import DesignError, ReducerDesign
 from hubvib.fem.mesh_cycle import GearPair
 from hubvib.foundation.bounds import upper_bound

@@ -20,21 +20,21 @@ from hubvib.lumped import natural_modes
 from hubvib.signal.mesh_curves import fe_mesh_curves
 from hubvib.cases.sweep import ACCURACY
 
-from .ambient import AmbientForcing, ambient_record
-from .contact import force_ratio, mesh_names
-from .errors import load_sharing
-from .frequency_route import frequency_route
-from .indicators import INDICATORS, GearOrders
-from .mesh_curves import MeshCurves
-from .mesh_phase import design_phasing, design_teeth
-from .options import SignalOptions
-from .records import indicator_run, summarise
-from .roc import detection_rates
-from .sensor import sampled, sensor_signal
-from .sensors import sensor_rows
-from .simulation import Simulation, carrier_speed, simulate, steps_per_revolution
-from .speed import SpeedProfile, angle_from_tacho
-from .spectral import (HarmonicRule, OrderSpectrum, PlanetErrorRule, SidebandRule,
+from hubvib.signal.ambient import AmbientForcing, ambient_record
+from hubvib.signal.contact import force_ratio, mesh_names
+from hubvib.signal.manufacturing import load_sharing
+from hubvib.signal.frequency_route import frequency_route
+from hubvib.signal.indicators import INDICATORS, GearOrders
+from hubvib.signal.mesh_curves import MeshCurves
+from hubvib.signal.mesh_phase import design_phasing, design_teeth
+from hubvib.signal.options import SignalOptions
+from hubvib.signal.records import indicator_run, summarise
+from hubvib.signal.roc import detection_rates
+from hubvib.signal.accelerometer import sampled, sensor_signal
+from hubvib.signal.sensor_array import sensor_rows
+from hubvib.signal.simulation import Simulation, carrier_speed, simulate, steps_per_revolution
+from hubvib.signal.speed import SpeedProfile, angle_from_tacho
+from hubvib.signal.spectral import (HarmonicRule, OrderSpectrum, PlanetErrorRule, SidebandRule,
                        non_multiple_fraction, order_spectrum, top_harmonics)
 
 #: labelled lines listed per depth

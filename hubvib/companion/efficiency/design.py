@@ -1,7 +1,7 @@
 """One ratio's efficiency-optimal design of a ball/roller planetary gear (seed 001).
 
-Chains :mod:`hubvib.companion.efficiency` (losses, optimal lift angle) and
-:mod:`hubvib.companion.track_geometry` (alpha2, R, A): the row of the paper's table for one
+Chains :mod:`hubvib.companion.efficiency.core` (losses, optimal lift angle) and
+:mod:`hubvib.companion.efficiency.track_geometry` (alpha2, R, A): the row of the paper's table for one
 ratio, plus the link losses in W at a stated input power.
 """
 from __future__ import annotations
@@ -9,9 +9,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .efficiency import (PAPER_INPUT_POWER_W, Friction, LinkPower, Losses, Optimum, check_ratio,
+from hubvib.companion.efficiency.core import (PAPER_INPUT_POWER_W, Friction, LinkPower, Losses, Optimum, check_ratio,
                          losses, optimum)
-from .track_geometry import SATELLITE_DIAMETER_M, TrackGeometry, track_geometry
+from hubvib.companion.efficiency.track_geometry import SATELLITE_DIAMETER_M, TrackGeometry, track_geometry
 
 
 @dataclass(frozen=True)

@@ -4,7 +4,7 @@ It sits above the stages (``hubvib.meshing``, ``hubvib.fem``, ``hubvib.lumped``)
 validation and the app, so that neither a design nor a stage imports the other's
 builder.  ``load_design`` and ``parse_design`` are the checked entry points: the
 design's keys and ranges (``hubvib.design.parse``), then the assembly rules
-(``hubvib.build.assembly``), which need the gear geometry of the meshing stage and the
+(``hubvib.reducer.assembly``), which need the gear geometry of the meshing stage and the
 path of contact of the FE stage.  ``lumped_preset(name)`` is the lumped model of a
 registered design preset.
 """
@@ -13,8 +13,8 @@ from __future__ import annotations
 from functools import lru_cache
 from pathlib import Path
 
-from hubvib.build.assembly import check_assembly, summary
-from hubvib.build.stages import (MOUNTING_FIELDS, bearing_stiffness, centre_distances,
+from hubvib.reducer.assembly import check_assembly, summary
+from hubvib.reducer.stages import (MOUNTING_FIELDS, bearing_stiffness, centre_distances,
                                  derived_lumped_fields, gear_body, lumped_parameters,
                                  mass_properties, material, mesh_force, ring_gear, spur_gears,
                                  working_angles)
@@ -31,7 +31,7 @@ def load_design(path: Path) -> ReducerDesign:
 
 def parse_design(table, default_name: str = "design") -> ReducerDesign:
     """A ``[design]`` table (dict) into a checked ``ReducerDesign`` (keys, ranges, then the
-    assembly rules of ``hubvib.build.assembly``)."""
+    assembly rules of ``hubvib.reducer.assembly``)."""
     design = table_design(table, default_name)
     check_assembly(design)
     return design

@@ -1,7 +1,7 @@
 """The path a ring-gear root crack takes, predicted by LEFM for a design (SI inside).
 
 The design gives the ring, its supports, the material and the planet's mesh force
-(``hubvib.build.stages.mesh_force``).  The load sits at the worst point of the mesh cycle for the
+(``hubvib.reducer.stages.mesh_force``).  The load sits at the worst point of the mesh cycle for the
 ring tooth's root: the highest point of single tooth contact on the ring, the single-pair
 contact nearest the ring's tip (largest bending arm), from the planet-ring path of contact
 (``fem.mesh_cycle.GearPair``).  The cracked tooth is the one midway between two support
@@ -30,7 +30,7 @@ from hubvib.design.model import ReducerDesign
 from hubvib.fem.crack_propagation import GrowthOptions, grow_crack
 from hubvib.foundation.output import json_text, output_set, write_text
 from hubvib.meshing.export import write_vtu
-from hubvib.render.crack_path import render_path
+from hubvib.render.path_figure import render_path
 
 __all__ = ["crack_path", "CrackPathResult", "LOADS", "ENVELOPE_POSITIONS", "LEWICKI_TOOTH",
            "LEWICKI_RIM", "LEWICKI_MIXED", "cracked_tooth", "loaded_ring",

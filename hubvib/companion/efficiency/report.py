@@ -3,9 +3,9 @@ from __future__ import annotations
 
 import math
 
-from .efficiency import CURVE_DEGREES, loss_curve
-from .efficiency_design import GearDesign, alpha1_label
-from .efficiency_table import PaperTable
+from hubvib.companion.efficiency.core import CURVE_DEGREES, loss_curve
+from hubvib.companion.efficiency.design import GearDesign, alpha1_label
+from hubvib.companion.efficiency.table import PaperTable
 
 SOURCE = ("Kapitonov 2024, Improving the efficiency of ball and roller gears by optimizing "
           "geometrics of engagement parts, Transport Engineering 3:20-30 (seed 001)")

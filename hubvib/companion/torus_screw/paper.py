@@ -14,8 +14,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .nx_scatter import PAPER_NX, rounds_to
-from .torus_screw import (FINGER_KINDS, PAPER_FINGER_SPACING_M, OperatingPoint, RollerForces,
+from hubvib.companion.torus_screw.nx_scatter import PAPER_NX, rounds_to
+from hubvib.companion.torus_screw.gear import (FINGER_KINDS, PAPER_FINGER_SPACING_M, OperatingPoint, RollerForces,
                           TorusScrewGear, roller_forces)
 
 #: Printed results (text after eq. 20): forces [N], moments [N m], eta [-].

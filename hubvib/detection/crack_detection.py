@@ -10,11 +10,11 @@ import numpy as np
 from hubvib.foundation.blas import blas_threads
 from hubvib.runtime.result_cache import cached_figure, cached_result
 
-from .carrier import CarrierStudy, MeshTiming, carrier_study
-from .mesh_stiffness import MethodComparison, compare_methods
-from .detectability import DetectabilityMap, detectability_map
-from .options import DetectionOptions
-from .pod import PodResult, pod_study
+from hubvib.detection.carrier import CarrierStudy, MeshTiming, carrier_study
+from hubvib.detection.mesh_stiffness import MethodComparison, compare_methods
+from hubvib.detection.detectability import DetectabilityMap, detectability_map
+from hubvib.detection.options import DetectionOptions
+from hubvib.detection.pod import PodResult, pod_study
 
 
 @dataclass(frozen=True)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-from hubvib.build import stages
+from hubvib.reducer import stages
 from hubvib.design.presets import preset_design
 
 

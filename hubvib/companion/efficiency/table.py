@@ -11,9 +11,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .efficiency import Friction
-from .efficiency_design import GearDesign, gear_design
-from .track_geometry import SATELLITE_DIAMETER_M
+from hubvib.companion.efficiency.core import Friction
+from hubvib.companion.efficiency.design import GearDesign, gear_design
+from hubvib.companion.efficiency.track_geometry import SATELLITE_DIAMETER_M
 
 #: Ratios of the paper's table and Figs. 7-9.
 PAPER_RATIOS = (5, 10, 15, 20, 25, 30)

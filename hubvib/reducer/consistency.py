@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 
-from hubvib.build.stages import derived_lumped_fields
+from hubvib.reducer.stages import derived_lumped_fields
 from hubvib.foundation.errors import InputError
 from hubvib.lumped import field_names
 

@@ -8,13 +8,13 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from hubvib.companion import torus_screw_report as report
-from hubvib.companion.nx_scatter import PAPER_NX
-from hubvib.companion.torus_screw import (FINGER_KINDS, OperatingPoint, PAPER_ALPHA1_DEG,
+import hubvib.companion.torus_screw.report as report
+from hubvib.companion.torus_screw.nx_scatter import PAPER_NX
+from hubvib.companion.torus_screw.gear import (FINGER_KINDS, OperatingPoint, PAPER_ALPHA1_DEG,
                                           PAPER_ALPHA3_DEG, PAPER_PHI2_DEG, TorusScrewGear,
                                           finger_angle, roller_forces)
-from hubvib.companion.torus_screw_paper import claims, compare, is_paper_input, paper_forces
-from hubvib.companion.torus_screw_sweep import eta_figure, read_lift_table, sweep
+from hubvib.companion.torus_screw.paper import claims, compare, is_paper_input, paper_forces
+from hubvib.companion.torus_screw.sweep import eta_figure, read_lift_table, sweep
 from hubvib.foundation.output import save_figure, write_csv, written_line
 
 

@@ -18,15 +18,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .crack import Crack
-from .crack_kinds import START_KINDS
-from .fe_mesh import FEMesh
-from .gear import GearGeometryError
-from .ring_gear import RingGear
-from .ring_mesh import MeshOptions, RingBuilder, check_load_patch, run_builder, with_info
-from .ring_outline import (Exit, boundary_segments, distance_to_segments,  # noqa: F401
+from hubvib.meshing.crack import Crack
+from hubvib.meshing.crack_kinds import START_KINDS
+from hubvib.meshing.fe_mesh import FEMesh
+from hubvib.meshing.gear import GearGeometryError
+from hubvib.meshing.ring_gear import RingGear
+from hubvib.meshing.ring_mesh import MeshOptions, RingBuilder, check_load_patch, run_builder, with_info
+from hubvib.meshing.ring_outline import (Exit, boundary_segments, distance_to_segments,  # noqa: F401
                            ray_exit, surface_gap, tooth_outline)  # (re-exported)
-from .session import gmsh_model
+from hubvib.meshing.session import gmsh_model
 
 #: the two ways a root crack can sever the ring
 FRACTURES = ("tooth", "rim")

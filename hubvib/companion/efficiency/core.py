@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 from scipy.optimize import minimize_scalar
 
-from .track_geometry import check_alpha1, fixed_track_lift_angle
+from hubvib.companion.efficiency.track_geometry import check_alpha1, fixed_track_lift_angle
 
 #: Input power of the paper's loss plots, W1 = 1500 W [W].
 PAPER_INPUT_POWER_W = 1500.0

@@ -6,8 +6,8 @@ from pathlib import Path
 
 from hubvib.foundation.output import save_figure, write_csv
 
-from .efficiency import CURVE_DEGREES, loss_curve
-from .efficiency_plot import efficiency_figure, link_loss_figure
+from hubvib.companion.efficiency.core import CURVE_DEGREES, loss_curve
+from hubvib.companion.efficiency.plot import efficiency_figure, link_loss_figure
 
 
 def design_with_curve(design) -> dict:

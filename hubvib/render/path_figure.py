@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from hubvib.foundation.output import save_figure
-from hubvib.meshing.crack_path import tooth_outline
+from hubvib.meshing.polyline_crack import tooth_outline
 from hubvib.meshing.ring_gear import RingGear
 
 #: the picture's unit: mm, as the step sizes and depths its title and the report state

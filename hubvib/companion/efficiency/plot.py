@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 
-from .efficiency import CURVE_DEGREES, Friction, loss_curve
+from hubvib.companion.efficiency.core import CURVE_DEGREES, Friction, loss_curve
 
 
 def link_loss_figure(ratio: int, friction: Friction, input_power_w: float,

@@ -1,0 +1,1 @@
+"""Efficiency of the torus-screw / roller reducer (seed companion analysis)."""

@@ -1,0 +1,1 @@
+"""The torus-screw gear companion analysis (seed paper)."""
