@@ -146,7 +146,7 @@ def raba_validation() -> str:
 def raba_claim() -> str:
     """What the comparison with the published Raba 118/76 spectrum shows, in words with its
     numbers (the study reports' validation-status sentence)."""
-    from hubvib.studies.validation_status import lumped_model_status
+    from hubvib.reports.validation_status import lumped_model_status
 
     return lumped_model_status() + "."
 

@@ -40,8 +40,9 @@ from hubvib.render.captions import figure_lines
 from hubvib.render.html import write_html_reports
 from hubvib.runtime.engines import Execution
 from hubvib.runtime.progress import stage, working
-from hubvib.studies.crack_study import (CrackStudyResult, crack_study_from_fe, json_safe,
-                                        provenance, write_crack_study)
+from hubvib.reports.crack_files import write_crack_study
+from hubvib.reports.provenance import json_safe, provenance
+from hubvib.studies.crack_study import CrackStudyResult, crack_study_from_fe
 from hubvib.meshing.levels import scaled_options
 from hubvib.cases.results import PlaneCase, SolidCase, typed_case
 from hubvib.cases.runner import case_label, crack_cases

@@ -18,7 +18,7 @@ from hubvib.render.captions import figure_lines
 from hubvib.render.html import write_html_reports
 from hubvib.runtime.progress import stage, working
 from hubvib.studies.kind_registry import Scene, Study, string_key
-from hubvib.studies.validation_status import lumped_model_status
+from hubvib.reports.validation_status import lumped_model_status
 
 
 @dataclass(frozen=True)

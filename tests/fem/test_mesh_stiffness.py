@@ -19,7 +19,8 @@ from hubvib.design.presets import raba118
 from hubvib.fem.estimate import engaged_intact
 from hubvib.fem.mesh_cycle import MeshCycle
 from hubvib.fem.tooth_stiffness import EngagedMesh
-from hubvib.studies.crack_study import crack_study_from_fe, write_crack_study
+from hubvib.reports.crack_files import write_crack_study
+from hubvib.studies.crack_study import crack_study_from_fe
 from hubvib.studies.scene import load_scene, parse_scene
 
 #: the FE intact c_rp of Raba 118/76 (1.48e9 N/m) and the FE cracked/intact

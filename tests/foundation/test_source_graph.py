@@ -166,11 +166,11 @@ def test_the_caches_name_those_entry_modules():
     from hubvib.signal import mesh_curves
     from hubvib.cases import predicted_path
     from hubvib.cases import runner as crack_sweep
-    from hubvib.studies import crack_study
+    from hubvib.render import schedule
 
     named = {crack_sweep.SOURCE, tooth_curves.SOURCE, mesh_curves.SOURCE,
-             predicted_path.SOURCE, study.SOURCE, crack_study.FE_SOURCE,
-             crack_study.MODES_SOURCE}
+             predicted_path.SOURCE, study.SOURCE, schedule.FE_SOURCE,
+             schedule.MODES_SOURCE}
     assert named == {(entry,) for entry, _, _ in CACHES.values()}
 
 

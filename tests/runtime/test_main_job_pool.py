@@ -11,7 +11,8 @@ from hubvib.benchmarks.main_job import STAGES, stage_breakdown
 from hubvib.render.cache import cached_render
 from hubvib.runtime import stage_seconds
 from hubvib.runtime.process_pool import worker_pool
-from hubvib.studies import crack_study
+from hubvib.render import schedule
+from hubvib.studies import elastic_stage
 from hubvib.studies.scene import load_scene
 
 
@@ -40,7 +41,7 @@ def _fill_render_cache(kind, inputs, tmp_path):
         return [target / "picture.png"]
 
     cached_render(kind, inputs, tmp_path / "first", render,
-                  crack_study.FE_SOURCE if kind == "fe-ring" else crack_study.MODES_SOURCE)
+                  schedule.FE_SOURCE if kind == "fe-ring" else schedule.MODES_SOURCE)
 
 
 def test_renders_are_submitted_only_when_the_render_cache_lacks_them(cache):
@@ -53,19 +54,19 @@ def test_renders_are_submitted_only_when_the_render_cache_lacks_them(cache):
     scene = load_scene(None)
     spectrum = natural_modes(lumped_preset("raba118"), scene.method)
     pool, begun = _CountingPool(), {}
-    crack_study.begin_renders(scene, cache / "out", pool, begun)
-    crack_study.begin_renders(scene, cache / "out", pool, begun)  # queued, then FE done
-    crack_study.begin_renders(scene, cache / "out", pool, begun, spectrum)
+    schedule.begin_renders(scene, cache / "out", pool, begun)
+    schedule.begin_renders(scene, cache / "out", pool, begun)  # queued, then FE done
+    schedule.begin_renders(scene, cache / "out", pool, begun, spectrum)
     assert pool.submitted == ["render_fe_ring", "render_mode_shapes"], \
         f"an empty render cache: both renders go to the pool once, got {pool.submitted}"
     assert set(begun) == {"fe", "modes"}
-    _fill_render_cache("fe-ring", crack_study._fe_render_case(scene.crack, scene.vtm)[2],
+    _fill_render_cache("fe-ring", schedule._fe_render_case(scene.crack, scene.vtm)[2],
                        cache)
-    _fill_render_cache("modes", crack_study._mode_render_inputs(
+    _fill_render_cache("modes", schedule._mode_render_inputs(
         scene.params, spectrum, scene.gif, scene.vtm), cache)
     pool, begun = _CountingPool(), {}
-    crack_study.begin_renders(scene, cache / "out", pool, begun)
-    crack_study.begin_renders(scene, cache / "out", pool, begun, spectrum)
+    schedule.begin_renders(scene, cache / "out", pool, begun)
+    schedule.begin_renders(scene, cache / "out", pool, begun, spectrum)
     assert pool.submitted == [] and begun == {}, \
         f"the render cache holds both: nothing may be submitted, got {pool.submitted}"
 
@@ -120,10 +121,10 @@ def test_elastic_cases_the_workers_have_not_started_are_computed_here(cache, mon
     monkeypatch.setattr(detection_elastic, "cached_case", case_here)
     monkeypatch.setattr(validity, "cached_validity_band", band_here)
     scene = load_scene(None)
-    depths = crack_study.elastic_depths(scene.crack)
+    depths = elastic_stage.elastic_depths(scene.crack)
     assert len(depths) == len(scene.crack.depths) - 1
     pool = _StartedPool(started)
-    begun = crack_study.begin_elastic(scene, pool)
+    begun = elastic_stage.begin_elastic(scene, pool)
     assert pool.submitted == ["case_here"] * len(depths) + ["band_here"]
     assert pool.environments == [SINGLE_THREADED] * (len(depths) + 1), pool.environments
     taken = max(len(depths) - started, 0)
@@ -142,8 +143,8 @@ def test_no_renders_no_pool_work(cache):
     """A scene without renders (or without a pool) submits nothing."""
     scene = replace(load_scene(None), renders=False)
     pool, begun = _CountingPool(), {}
-    crack_study.begin_renders(scene, cache / "out", pool, begun)
-    crack_study.begin_renders(load_scene(None), cache / "out", None, begun)
+    schedule.begin_renders(scene, cache / "out", pool, begun)
+    schedule.begin_renders(load_scene(None), cache / "out", None, begun)
     assert pool.submitted == [] and begun == {}
 
 
@@ -223,10 +224,10 @@ def test_mode_renders_in_a_worker_equal_this_process(tmp_path, monkeypatch):
     spectrum = natural_modes(params, "jacobi")
     monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path / "cache-worker"))
     with worker_pool(1) as pool:
-        there = submit(pool, crack_study.render_mode_shapes, params, spectrum, False, False,
+        there = submit(pool, schedule.render_mode_shapes, params, spectrum, False, False,
                        tmp_path / "worker").result()
     monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path / "cache-here"))
-    here = crack_study.render_mode_shapes(params, spectrum, False, False, tmp_path / "here")
+    here = schedule.render_mode_shapes(params, spectrum, False, False, tmp_path / "here")
     assert [p.name for p in there] == [p.name for p in here] and len(here) >= 10
     for a, b in zip(there, here):
         assert a.read_bytes() == b.read_bytes(), f"{a.name}: worker and here differ"
@@ -240,7 +241,7 @@ def test_a_render_whose_worker_died_is_one_engine_error():
     from concurrent.futures.process import BrokenProcessPool
 
     from hubvib.runtime.engines import EngineError
-    from hubvib.studies.crack_study import _rendered
+    from hubvib.render.schedule import _rendered
 
     done = Future()
     done.set_result(["a.png"])

@@ -18,7 +18,9 @@ from tests.helpers.crack_scenes import fast_crack_scene, synthetic_scene
 from tests.helpers.synthetic_rows import TIMING, synthetic_fe_rows
 
 from hubvib.cli import main
-from hubvib.studies.crack_study import crack_report, crack_study_from_fe, write_crack_study
+from hubvib.reports.crack_files import write_crack_study
+from hubvib.reports.crack_report import crack_report
+from hubvib.studies.crack_study import crack_study_from_fe
 from hubvib.lumped import natural_modes
 from hubvib.lumped.tracking import match
 from hubvib.studies.scene import load_scene

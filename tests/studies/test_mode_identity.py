@@ -11,7 +11,8 @@ from tests.helpers.crack_scenes import synthetic_scene
 from tests.helpers.synthetic_rows import TIMING, synthetic_fe_rows
 
 from hubvib.detection.numbers import shift_hz
-from hubvib.studies.crack_study import crack_study_from_fe, write_crack_study
+from hubvib.reports.crack_files import write_crack_study
+from hubvib.studies.crack_study import crack_study_from_fe
 
 
 @pytest.fixture(scope="module")

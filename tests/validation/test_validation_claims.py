@@ -6,7 +6,7 @@ import re
 from pathlib import Path
 
 from hubvib.reducer import lumped_preset
-from hubvib.studies.validation_status import lumped_model_status
+from hubvib.reports.validation_status import lumped_model_status
 from hubvib.validation.raba118 import validate
 
 ROOT = Path(__file__).parents[2]

@@ -1,0 +1,128 @@
+"""When the crack study's pictures are drawn: in a pool worker beside the detection stage,
+or here, each through the render cache.
+
+The lumped modes' pictures (``render.modes``) need only the intact spectrum, the FE ring's
+(``render.fe``) only the crack sweep: both can be queued behind the FE cases.  The scene is
+passed in (``params``, ``crack``, ``renders``, ``gif``, ``vtm``); lengths in metres.
+"""
+from __future__ import annotations
+
+from dataclasses import asdict
+from pathlib import Path
+
+from hubvib.cases.sweep import ACCURACY, CrackSweep, crack_of
+from hubvib.meshing.levels import scaled_options
+from hubvib.reducer.stages import ring_gear
+from hubvib.render.cache import array_digest, cached_render, is_cached
+from hubvib.render.fe import render_fe, ring_fields
+from hubvib.render.modes import render_modes
+from hubvib.runtime.engines import EngineError, submit
+
+__all__ = ["FE_SOURCE", "MODES_SOURCE", "begin_renders", "render_fe_ring",
+           "render_mode_shapes", "rendered_depth", "study_renders"]
+
+#: the entry modules of the two renders (their cache entries are keyed on the source of
+#: every hubvib module these import: the FE ring's includes the FE stage it solves)
+MODES_SOURCE = (render_modes.__module__,)
+FE_SOURCE = (render_fe.__module__,)
+
+
+def rendered_depth(sweep) -> float:
+    """The deepest crack of the sweep that still has a tip (not through the rim) [m]."""
+    ring = ring_gear(sweep.reducer)
+    open_ended = [d for d in sweep.depths if d > 0 and not crack_of(sweep, d).is_through(ring)]
+    return max(open_ended, default=max(sweep.depths))
+
+
+def _render_modes(scene, spectrum, folder: Path) -> list[Path]:
+    """Every elastic lumped mode (``render.render_modes``), from the render cache when the
+    same spectrum was rendered before."""
+    return render_mode_shapes(scene.params, spectrum, scene.gif, scene.vtm, folder)
+
+
+def _mode_render_inputs(params, spectrum, gif: bool, vtm: bool) -> dict:
+    """The render cache's inputs of the lumped mode pictures."""
+    return {"params": params.to_dict(), "omega": array_digest(spectrum.omega),
+            "shapes": array_digest(spectrum.shapes), "kind": list(spectrum.kind),
+            "gif": gif, "vtm": vtm}
+
+
+def render_mode_shapes(params, spectrum, gif: bool, vtm: bool, folder: Path) -> list[Path]:
+    """``_render_modes`` from picklable arguments (it may run in a worker)."""
+    def render(target):
+        return render_modes(params, spectrum, target, gif=gif, vtm=vtm)
+
+    return cached_render("modes", _mode_render_inputs(params, spectrum, gif, vtm), folder,
+                         render, MODES_SOURCE)
+
+
+def _render_fe(scene, folder: Path) -> list[Path]:
+    """The FE ring at the rendered depth (``fe_render``), from the render cache when the
+    same design, crack and mesh were rendered by this FE stage before."""
+    return render_fe_ring(scene.crack, scene.vtm, folder)
+
+
+def _fe_render_case(sweep: CrackSweep, vtm: bool) -> tuple:
+    """The crack and mesh options the FE ring is rendered with, and the render cache's
+    inputs (everything that decides the pictures)."""
+    depth = rendered_depth(sweep)
+    crack = crack_of(sweep, depth) if depth > 0 else None
+    options = scaled_options(ACCURACY[sweep.accuracy])
+    inputs = {"design": sweep.reducer.fingerprint(),
+              "crack": None if crack is None else asdict(crack), "options": asdict(options),
+              "vtu": vtm}
+    return crack, options, inputs
+
+
+def render_fe_ring(sweep: CrackSweep, vtm: bool, folder: Path) -> list[Path]:
+    """``_render_fe`` from the sweep alone (picklable arguments: it may run in a worker,
+    ``fe_render_beside``)."""
+    crack, options, inputs = _fe_render_case(sweep, vtm)
+
+    def render(target):
+        return render_fe(ring_fields(sweep.reducer, crack, options), target, vtu=vtm)
+
+    return cached_render("fe-ring", inputs, folder, render, FE_SOURCE)
+
+
+def _rendered(future, what: str) -> list[Path]:
+    """The files of a render run on a pool worker; a worker that died or failed there is
+    one line naming the render, as a failed FE case is (``EngineError``)."""
+    try:
+        return future.result()
+    except Exception as exc:  # noqa: BLE001 - the worker's error, reported as the case's
+        raise EngineError(f"the {what} render failed on a pool worker: "
+                          f"{type(exc).__name__}: {exc}") from None
+
+
+def begin_renders(scene, folder: Path, pool, begun: dict, spectrum=None) -> None:
+    """Submit to ``pool`` (a ``worker_pool``) the renders that the render cache does not
+    hold: the FE ring's (``spectrum`` None: it needs only the scene) or the lumped modes'
+    (of ``spectrum``, the intact one), into ``folder / "renders"``; ``begun`` gets their
+    futures (``study_renders``; one already begun is not submitted again).  Queued
+    behind the FE cases, they run on the pool's workers as the cases leave them idle,
+    beside this process's detection stage and plots."""
+    kind = "fe" if spectrum is None else "modes"
+    if not scene.renders or pool is None or kind in begun:
+        return
+    target = Path(folder) / "renders"
+    if spectrum is not None:
+        inputs = _mode_render_inputs(scene.params, spectrum, scene.gif, scene.vtm)
+        if not is_cached("modes", inputs, MODES_SOURCE):
+            begun["modes"] = submit(pool, render_mode_shapes, scene.params, spectrum,
+                                    scene.gif, scene.vtm, target)
+    elif scene.crack.model == "plane" and not is_cached(
+            "fe-ring", _fe_render_case(scene.crack, scene.vtm)[2], FE_SOURCE):
+        begun["fe"] = submit(pool, render_fe_ring, scene.crack, scene.vtm, target)
+
+
+def study_renders(scene, spectrum, folder: Path, begun: dict) -> tuple[list, list]:
+    """The mode shapes of ``spectrum`` and the FE ring's pictures in ``folder / "renders"``:
+    those ``begin_renders`` began (``begun``) from their workers, the rest drawn here."""
+    modes = (_rendered(begun["modes"], "mode shapes") if "modes" in begun else
+             _render_modes(scene, spectrum, folder / "renders"))
+    # the FE render is of the plane ring; a solid study's crack is part-width
+    fe = ([] if scene.crack.model != "plane"
+          else _rendered(begun["fe"], "FE ring") if "fe" in begun
+          else _render_fe(scene, folder / "renders"))
+    return modes, fe
