@@ -6,7 +6,9 @@ spectrum is the one at the instant planet 1 meshes with the cracked tooth: its
 ring mesh gets the FE ratio of c_rp over that engagement (the other planets keep
 the preset c_rp), so the crack breaks the cyclic symmetry and splits the
 repeated frequencies.  The detection part (POD from physics, the map against
-the mounting stiffness, the carrier position) is :mod:`hubvib.detection`.
+the mounting stiffness, the carrier position) is :mod:`hubvib.detection`; the tables,
+figures and report :mod:`hubvib.reports`, the renders' scheduling
+:mod:`hubvib.render.schedule`.
 """
 from __future__ import annotations
 

@@ -15,7 +15,8 @@ from hubvib.foundation.lazy import face_imports, lazy_face
 #: the packages whose ``__init__.py`` declares a face (lumped and signal have eager ones);
 #: foundation first: every other face imports its ``lazy``
 FACES = ["hubvib.foundation", "hubvib.commands", "hubvib.companion", "hubvib.detection",
-         "hubvib.identification", "hubvib.render", "hubvib.runtime", "hubvib.studies",
+         "hubvib.identification", "hubvib.render", "hubvib.reports", "hubvib.runtime",
+         "hubvib.studies",
          "hubvib.meshing", "hubvib.fem", "hubvib.validation"]
 #: what no package import and no face may load (the lazy heavy dependencies)
 HEAVY = ["gmsh", "skfem", "pyvista", "matplotlib", "dask", "distributed"]
