@@ -7,8 +7,8 @@ for Monte Carlo), ``carrier`` (when the cracked tooth is in mesh, what a record
 sees), ``pod`` (probability of detection), ``detectability`` (smallest detectable
 depth against the mounting stiffness), ``study`` (the three together),
 ``measured`` (a CSV of identified frequencies), ``diagnosis`` (crack depth from
-measured frequencies), ``numbers`` (round-off prints as 0), ``report`` and
-``plots``.  Nothing heavy is imported here; matplotlib only in ``plots``.  Every name
+measured frequencies), ``numbers`` (round-off prints as 0) and ``plots`` (the
+report sections: :mod:`hubvib.reports`).  Nothing heavy is imported here; matplotlib only in ``plots``.  Every name
 below is imported on first use (PEP 562).
 """
 from typing import TYPE_CHECKING

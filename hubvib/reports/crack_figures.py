@@ -28,7 +28,7 @@ def crack_plots(scene, result, study, folder: Path) -> list[Path]:
             cached_plot(folder / "carrier_position.png", figures.carrier_figure, name,
                         study.carrier, result.kind)]
     if result.elastic_map is not None:
-        from hubvib.detection.elastic_map_report import map_figure
+        from hubvib.reports.elastic_map_sections import map_figure
 
         plots.append(cached_plot(folder / "elastic_map.png", map_figure, name,
                                  result.elastic_map))

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from hubvib.detection import report as sections
+from hubvib.reports import detection_sections as sections
 from hubvib.detection.mesh_stiffness import iso_c_rp, mesh_stiffness_section
 from hubvib.detection.numbers import depth_mm, percent, sensitivity, shift_hz
 from hubvib.render.captions import figure_lines
@@ -47,7 +47,7 @@ def crack_report(result, plots: list[str], renders: list[str], fe_renders: list[
     if study is not None:
         lines += sections.short_answer(scene.name, model, study, sources)
     if result.elastic is not None:
-        from hubvib.detection.elastic_report import side_by_side
+        from hubvib.reports.elastic_sections import side_by_side
 
         lines += ([] if study is not None else ["## Short answer", ""])
         lines += side_by_side(study, result.elastic)
@@ -67,11 +67,11 @@ def crack_report(result, plots: list[str], renders: list[str], fe_renders: list[
     else:
         lines += [sections.mounting_sentence(model, sources), ""]
     if result.elastic is not None:
-        from hubvib.detection.elastic_report import elastic_section
+        from hubvib.reports.elastic_sections import elastic_section
 
         lines += elastic_section(result.elastic, result.elastic_validity)
     if result.elastic_map is not None:
-        from hubvib.detection.elastic_map_report import map_section
+        from hubvib.reports.elastic_map_sections import map_section
 
         lines += map_section(result.elastic_map) + _image("elastic_map.png", plots)
     watched = (list(study.watched_modes()) if study is not None

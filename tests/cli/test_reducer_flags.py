@@ -75,7 +75,7 @@ def _scene(text):
      "the scene's [reducer.parameters]", "the raba118 preset's table"),
 ], ids=["design", "preset", "override"])
 def test_ring_support_sentence_names_where_c_ru_comes_from(text, c_ru, c_r):
-    from hubvib.detection.report import mounting_sentence
+    from hubvib.reports.detection_sections import mounting_sentence
 
     scene = _scene(text)
     sources = {key: scene.lumped_source(key) for key in ("c_ru", "c_r")}

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from hubvib.detection.elastic import ElasticDetection, family_pod
-from hubvib.detection.elastic_report import elastic_section, side_by_side
+from hubvib.reports.elastic_sections import elastic_section, side_by_side
 from hubvib.elastic.options import ElasticScene, parse_elastic_table
 from hubvib.foundation.errors import SceneError
 

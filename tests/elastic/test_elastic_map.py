@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from hubvib.detection.elastic_map import SCALES, ElasticMap, elastic_map
-from hubvib.detection.elastic_map_report import map_section, map_table
+from hubvib.reports.elastic_map_sections import map_section, map_table
 from hubvib.elastic.mounting_basis import _arcs
 from hubvib.elastic.options import ElasticScene, parse_elastic_table
 from hubvib.foundation.errors import SceneError

@@ -1,11 +1,11 @@
 """The report's words and figure for the elastic ring's detectability against its
-mounting (:mod:`.elastic_map`): Markdown lines and a matplotlib figure (imported only
+mounting (:mod:`hubvib.detection.elastic_map`): Markdown lines and a matplotlib figure (imported only
 when drawn)."""
 from __future__ import annotations
 
 import numpy as np
 
-from .elastic_map import ElasticMap
+from hubvib.detection.elastic_map import ElasticMap
 
 __all__ = ["map_summary", "map_table", "map_section", "map_figure"]
 
@@ -106,7 +106,7 @@ def map_figure(name: str, emap: ElasticMap):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from .plots import style
+    from hubvib.detection.plots import style
 
     fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5))
     deepest = max(emap.depths)

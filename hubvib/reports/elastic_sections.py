@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from .elastic import ElasticDetection
+from hubvib.detection.elastic import ElasticDetection
 
 
 def _mm(depth: float | None) -> str:

@@ -5,9 +5,9 @@ import math
 
 import numpy as np
 
-from .mode_names import mode_names
-from .numbers import depth_mm, number, percent, shift_hz
-from .series import DIRECT, RATIO
+from hubvib.detection.mode_names import mode_names
+from hubvib.detection.numbers import depth_mm, number, percent, shift_hz
+from hubvib.detection.series import DIRECT, RATIO
 
 
 def mounting_sentence(model, sources: dict | None = None) -> str:
