@@ -1,11 +1,11 @@
 """The study reports apart from their computation: ``report.md`` assembled once from a
 study's typed result (``crack_report.crack_report``), its tables (``crack_tables``:
 ``results.json`` and the CSV files, with ``provenance.provenance``), its figures
-(``crack_figures``) and console lines (``crack_summary``), the detection study's and the
-elastic ring's report sections (``detection_sections``, ``elastic_sections``,
-``elastic_map_sections``), and the folder written once (``crack_files``).  SI inside;
-millimetres and hertz only in the written text.  Every name below is imported on first
-use (PEP 562)."""
+(``crack_figures``) and console lines (``crack_summary``), the report sections of the
+detection study, the elastic ring and the mesh stiffness (``detection_sections``,
+``elastic_sections``, ``elastic_map_sections``, ``mesh_stiffness_section``), and the
+folder written once (``crack_files``).  SI inside; millimetres and hertz only in the
+written text.  Every name below is imported on first use (PEP 562)."""
 from typing import TYPE_CHECKING
 
 from hubvib.foundation.lazy import lazy_face

@@ -9,10 +9,11 @@ import math
 import numpy as np
 
 from hubvib.reports import detection_sections as sections
-from hubvib.detection.mesh_stiffness import iso_c_rp, mesh_stiffness_section
+from hubvib.detection.mesh_stiffness import iso_c_rp
 from hubvib.detection.numbers import depth_mm, percent, sensitivity, shift_hz
 from hubvib.render.captions import figure_lines
 from hubvib.render.schedule import rendered_depth
+from hubvib.reports.mesh_stiffness_section import mesh_stiffness_section
 from hubvib.reports.provenance import provenance
 from hubvib.reports.validation_status import lumped_model_status
 
