@@ -1,6 +1,7 @@
 """What a scene or a command runs: the study kinds (``study``: what a kind is, the registry
 and the scene, a tagged union of the kinds; ``kinds`` registers the shipped ones), the
-lumped sweep (``sweep``), the plane crack study (``crack_study``), the solid crack growth
+lumped sweep (``sweep``), the plane crack study (``crack_study``; its result type
+``crack_result``, the elastic ring beside it ``elastic_stage``), the solid crack growth
 (``crack_growth``), the ``[crack]`` table both crack kinds own (``crack_table``; the FE
 crack cases they share are ``hubvib.cases``), the scene file (``scene``: the common tables),
 and a design's stiffness table (``stiffness``, what ``hubvib stiffness`` prints).  Every
