@@ -1249,20 +1249,12 @@ def elastic_ring_changes() -> str:
 
 
 def elastic_ring_validity() -> str:
-    """The lowest elastic ring mode on the mounting and the band where the rigid-ring
-    model holds, per design."""
+    """The lowest elastic ring mode on the mounting and the computed band where the
+    rigid-ring model holds, per design."""
+    from hubvib.elastic.validity import validity_table
+
     data = _elastic()
-    rows = []
-    for name, d in data["designs"].items():
-        v = d["validity"]
-        rows.append([name, f"{v['lowest_ring_mode_hz']:.1f}", v["lowest_ring_mode_n"],
-                     f"{v['lumped_top_hz']:.1f}", f"{v['rigid_ring_holds_below_hz']:.0f}"])
-    return markdown_table(["design", "lowest ring mode [Hz]", "n", "top 9+3N mode [Hz]",
-                           "rigid ring holds below [Hz]"], rows, "lrrrr") + (
-        "\n\nThe rigid-ring model has no mode of the ring's own: it can hold only below the "
-        "lowest elastic ring mode on the mounting, and only well below it (the band given is "
-        "half that frequency). Where the top 9+3N mode lies above it, the report's watched "
-        "modes share their band with ring modes the rigid model does not have.") + \
+    return validity_table({name: d["validity"] for name, d in data["designs"].items()}) + \
         provenance("elastic_ring.json", data["measured"])
 
 

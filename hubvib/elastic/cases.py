@@ -18,7 +18,9 @@ class ElasticCase:
     ``operators``: the reduced ring (``lumped.elastic_ring.RingOperators``, dense, M = I);
     ``foundation_K``: the mounting's part of its reduced stiffness [N/m] (zeros unless on
     a foundation), so that the mounting can be varied apart from the ring body;
-    ``params``: the lumped model the ring is coupled to.
+    ``params``: the lumped model the ring is coupled to; ``validity``: for the intact
+    ring, the rigid-ring model's band (``validity.validity_band``, planet 1 away from the
+    tooth) from the same ring.
     """
 
     depth: float
@@ -32,6 +34,7 @@ class ElasticCase:
     operators: object = None
     foundation_K: np.ndarray | None = None
     params: object = None
+    validity: object = None
 
 
 def carrier_positions(design, tooth: int) -> tuple[int, int]:
@@ -65,15 +68,21 @@ def elastic_case(design, crack, scene: ElasticScene, k_rest: float) -> ElasticCa
 
     tooth = 0 if crack is None else crack.tooth
     away, on = carrier_positions(design, tooth)
-    er = elastic_ring(design, crack if crack is not None and crack.depth > 0 else None, False,
-                      scene.options, (away, on), k_rest=k_rest)
+    intact = crack is None or crack.depth == 0
+    er = elastic_ring(design, None if intact else crack, False, scene.options, (away, on),
+                      k_rest=k_rest)
+    validity = None
+    if intact and scene.options.mounting != "free":
+        from .validity import validity_band
+
+        validity = validity_band(design, scene.options, carrier_tooth=away, er=er)
     return ElasticCase(
         0.0 if crack is None else float(crack.depth),
         replace(elastic_spectrum(er, away), ring=None),
         replace(elastic_spectrum(er, on), ring=None), er.k_rest,
         None if er.foundation is None else (er.foundation.k_n, er.foundation.k_t),
         er.body.ndofs, float(er.body.rigid_mass()[0, 0]), lowest_ring_mode(er),
-        er.operators, reduced_foundation(er), er.params)
+        er.operators, reduced_foundation(er), er.params, validity)
 
 
 def cached_case(design, crack, scene: ElasticScene, k_rest: float) -> ElasticCase:

@@ -125,7 +125,8 @@ def test_elastic_ring_answer_quotes_the_committed_default_scene_run():
     """The README's elastic-ring answer is that of ``docs/data/raba118_crack/results.json``
     (``elastic_ring``): the first detectable depth per record length, the best watched
     coupled mode's frequency, nodal diameters, change at the shallowest crack and 10 s
-    scatter, and the ring's lowest elastic mode of its own."""
+    scatter, the ring's lowest elastic mode of its own, the computed validity band and the
+    Monte Carlo's size."""
     import json
 
     run = json.loads((ROOT / "docs/data/raba118_crack/results.json").read_text())
@@ -139,7 +140,9 @@ def test_elastic_ring_answer_quotes_the_committed_default_scene_run():
         f"{best['shift_open_hz'][1]:.1f} Hz at {elastic['depths_mm'][1]:g} mm against a 10 s "
         f"scatter of {best['sigma_hz']['10']:.2f} Hz",
         f"lowest elastic mode of its own at {lowest['frequency_hz']:.0f} Hz "
-        f"(n = {lowest['nodal_diameter']})"]
+        f"(n = {lowest['nodal_diameter']})",
+        f"9 + 3N model holds only below {elastic['validity']['band_top_hz']:.0f} Hz",
+        f"POD over {elastic['monte_carlo_samples']} reducers"]
     text = " ".join(README.split())
     for phrase in expected:
         assert phrase in text, f"README against docs/data/raba118_crack: {phrase!r}"
