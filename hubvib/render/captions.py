@@ -30,6 +30,10 @@ CAPTIONS = {
                "required POD, dotted: the false-alarm rate.",
     "detectability_map.png": "Smallest detectable crack depth [mm] against the mounting "
                              "stiffness swept [N/m] (log axis).",
+    "elastic_map.png": "Elastic ring: smallest detectable crack depth [mm] against the "
+                       "foundation scale s (log axis; the watched family and each followed "
+                       "mode alone), and beside it the intact frequencies [Hz] of the followed "
+                       "modes and the ring's lowest mode of its own.",
     "carrier_position.png": "Size of the frequency change [%] of each mode that moves while "
                             "planet 1 meshes the cracked tooth (deepest crack), one row per "
                             "mode on a log axis: dot at the FE mean mesh ratio over the "
