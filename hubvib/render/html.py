@@ -55,13 +55,14 @@ document.querySelectorAll("table").forEach(function (table) {
 """
 
 
-def write_html_report(folder: Path) -> Path:
-    """Write ``folder/report.html`` from ``folder/report.md`` and the figures it shows;
-    returns its path."""
+def write_html_report(folder: Path, text: str | None = None) -> Path:
+    """Write ``folder/report.html`` from ``text``, the ``report.md`` written there (read
+    from the file when None), and the figures it shows; returns its path."""
     import markdown
 
     folder = Path(folder)
-    text = (folder / "report.md").read_text(encoding="utf-8")
+    if text is None:
+        text = (folder / "report.md").read_text(encoding="utf-8")
     body = markdown.markdown(text, extensions=["tables", "fenced_code"])
     body = re.sub(r'<img alt="([^"]*)" src="([^"]+)"',
                   lambda m: f'<img alt="{m.group(1)}" src="{_data_uri(folder, m.group(2))}"',
@@ -75,10 +76,13 @@ def write_html_report(folder: Path) -> Path:
     return write_text(folder / "report.html", page)
 
 
-def write_html_reports(folder: Path) -> list[Path]:
+def write_html_reports(folder: Path, texts: dict | None = None) -> list[Path]:
     """``report.html`` beside every ``report.md`` under ``folder`` (a study with
-    per-half-length or signal reports links to theirs)."""
-    return [write_html_report(md.parent) for md in sorted(Path(folder).rglob("report.md"))]
+    per-half-length or signal reports links to theirs); ``texts``: a ``report.md`` path ->
+    the text written there, for the reports assembled in this process."""
+    texts = texts or {}
+    return [write_html_report(md.parent, texts.get(md))
+            for md in sorted(Path(folder).rglob("report.md"))]
 
 
 def _data_uri(folder: Path, source: str) -> str:

@@ -16,7 +16,8 @@ __all__ = ["write_crack_study"]
 def write_crack_study(result, folder: Path, begun: dict | None = None,
                       signal: bool = False):
     """Tables (CSV, JSON), plots, renders and ``report.md`` of ``result`` (a
-    ``studies.crack_study.CrackStudyResult``, returned with its ``files``) in ``folder``;
+    ``studies.crack_study.CrackStudyResult``, returned with its ``files`` and ``report``,
+    the text) in ``folder``;
     ``begun``: the renders begun in workers (``render.schedule.begin_renders``);
     ``signal``: the report links the signal study's (in ``folder / "signal"``)."""
     begun = begun or {}
@@ -36,7 +37,8 @@ def write_crack_study(result, folder: Path, begun: dict | None = None,
     def pictures(paths):
         return [p.relative_to(folder).as_posix() for p in paths if p.suffix == ".png"]
 
-    files.append(write_text(folder / "report.md", crack_report(
-        result, [p.name for p in plots], pictures(renders), pictures(fe_renders), signal)))
+    result.report = crack_report(result, [p.name for p in plots], pictures(renders),
+                                 pictures(fe_renders), signal)
+    files.append(write_text(folder / "report.md", result.report))
     result.files = files
     return result

@@ -43,6 +43,7 @@ class CrackStudyResult:
     omega: np.ndarray
     computed: int
     files: list[Path] = field(default_factory=list)
+    report: str = ""  # the report.md text, once written
     model: CrackModel | None = None
     detection: object = None
     c_rp_comparison: object = None

@@ -158,7 +158,8 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
     with timed("write"):
         if "signal" in scene.tables:
             result.files += [staged / "signal" / f for f in signal_files]
-        result.files += [p for p in write_html_reports(staged) if p not in result.files]
+        pages = write_html_reports(staged, {staged / "report.md": result.report})
+        result.files += [p for p in pages if p not in result.files]
     stage("tables, plots, renders and report", started)
     return result
 

@@ -53,3 +53,15 @@ def test_mode_sensitivities_are_solved_once(result, monkeypatch):
     first = fresh.mode_rows()
     assert fresh.mode_rows() == first
     assert calls == list(crack_result.STIFFNESSES)
+
+
+def test_report_text_is_kept_and_its_page_written_from_it(result, tmp_path):
+    """The text ``report.md`` gets is on the result, and ``report.html`` can be written
+    from it without reading the file back."""
+    from hubvib.render.html import write_html_report
+
+    write_crack_study(result, tmp_path / "study")
+    assert (tmp_path / "study" / "report.md").read_text(encoding="utf-8") == result.report
+    page = write_html_report(tmp_path, result.report)  # no report.md in tmp_path
+    assert f"<title>{result.scene.name}: ring-crack sensitivity study</title>" in \
+        page.read_text(encoding="utf-8")
