@@ -45,7 +45,7 @@ MIN_MATCH = 0.8
 RTOL = 0.01
 
 __all__ = ["PairedMode", "ValidityBand", "validity_band", "compare_spectra", "rigid_equivalent",
-           "local_contact_compliance", "cached_validity_band",
+           "local_contact_compliance",
            "RING_DOMINATED", "MIN_MATCH", "RTOL"]
 
 
@@ -279,17 +279,6 @@ def validity_band(design, options: ElasticOptions = ElasticOptions(), rtol: floa
         None if lowest is None else lowest[1], float(er.options.band_hz), er.options.mounting,
         None if er.foundation is None else (er.foundation.k_n, er.foundation.k_t),
         int(carrier_tooth))
-
-
-def cached_validity_band(design, options: ElasticOptions, carrier_tooth: int,
-                         rtol: float = RTOL) -> ValidityBand:
-    """``validity_band`` through the result cache (inputs and this computation's source)."""
-    from hubvib.runtime.result_cache import cached_result
-
-    inputs = (design.fingerprint(), options, int(carrier_tooth), float(rtol))
-    return cached_result("elastic-validity", inputs, (__name__,),
-                         lambda: validity_band(design, options, rtol, carrier_tooth),
-                         ValidityBand)
 
 
 # ------------------------------------------------------------------ words for report and docs

@@ -37,7 +37,7 @@ def mesh_stiffness_section(model, iso: float, comparison: MethodComparison | Non
             "the FE compliance (1/ratio - 1)/c_rp_FE (c_rp_FE: the intact mean over the "
             "contact window, the ratio's denominator) in series with it (method `series`, "
             "primary). Multiplying the given c_rp by the FE ratio instead (method `ratio`, "
-            "used before issue 22) treats all of it as the tooth pair's: an upper bound of "
+            "the earlier method) treats all of it as the tooth pair's: an upper bound of "
             "the crack's effect.")
     lines.append("")
     if comparison is None:

@@ -331,7 +331,7 @@ def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str])
         "- Solid ring: curved quadratic tetrahedra, supports clamped, every planet's mesh "
         "force spread over its tooth's load surface across the face; c_ru is the mean over "
         "every carrier position of one planet pitch, c_ru and c_r the work-conjugate rim "
-        "parts as in the plane study (issue 25; the root-land readings in "
+        "parts as in the plane study (the root-land readings in "
         "`c_ru_root_land_N_m`, `c_r_root_land_N_m`); error estimate: the default solid level against the one before it "
         "(`hubvib.meshing.levels.SOLID_LEVELS`).",
         "- c_rp of the cracked tooth (used by the lumped and detection stages): from the "

@@ -34,7 +34,7 @@ from hubvib.runtime.progress import stage, working
 from hubvib.runtime.stage_seconds import timed
 from hubvib.studies.crack_result import CrackStudyResult
 from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
-from hubvib.studies.elastic_stage import begin_elastic, elastic_band_and_map, finish_elastic
+from hubvib.studies.elastic_stage import begin_elastic, elastic_map_of, finish_elastic
 from hubvib.studies.kind_registry import Scene, Study
 
 __all__ = ["CRACK_STUDY", "CrackStudyResult", "crack_study_from_fe", "run_crack_study"]
@@ -137,9 +137,9 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
         if elastic_cases is not None:
             started = time.perf_counter()
             with working("elastic ring"), timed("elastic"):
-                result.elastic = finish_elastic(scene, elastic_cases)
-                result.elastic_validity, result.elastic_map = elastic_band_and_map(
-                    scene, result.elastic)
+                result.elastic, result.elastic_validity = finish_elastic(scene,
+                                                                         elastic_cases)
+                result.elastic_map = elastic_map_of(scene, result.elastic)
             stage(f"elastic ring ({len(result.elastic.depths)} depths)", started)
         started = time.perf_counter()
         if "signal" in scene.tables:  # the vibration signature beside the frequency study

@@ -98,13 +98,13 @@ class _StartedPool(_CountingPool):
 def test_elastic_cases_the_workers_have_not_started_are_computed_here(cache, monkeypatch,
                                                                       started):
     """Counter, not time: the default scene queues one elastic case per depth (the crack
-    through the rim left out), then the validity band, each submitted with one BLAS thread
-    in the environment (``runtime.engines.SINGLE_THREADED``), as the FE cases; what no
-    worker has started is taken back and computed in this process, the band first, then
-    the deepest cases, with one BLAS thread as on a worker (the same digits); the cases
-    come back as finished futures in depth order."""
+    through the rim left out), each submitted with one BLAS thread in the environment
+    (``runtime.engines.SINGLE_THREADED``), as the FE cases; what no worker has started is
+    taken back and computed in this process, the deepest cases first, with one BLAS thread
+    as on a worker (the same digits); the cases come back as finished futures in depth
+    order."""
     from hubvib.detection import elastic as detection_elastic
-    from hubvib.elastic import rest, validity
+    from hubvib.elastic import rest
     from hubvib.foundation.blas import blas_thread_counts
     from hubvib.runtime.engines import SINGLE_THREADED
 
@@ -115,21 +115,16 @@ def test_elastic_cases_the_workers_have_not_started_are_computed_here(cache, mon
         here.append((0.0 if crack is None else crack.depth, set(blas_thread_counts())))
         return ("case", here[-1][0])
 
-    def band_here(design, options, carrier_tooth):
-        here.append(("band", set(blas_thread_counts())))
-
     monkeypatch.setattr(detection_elastic, "cached_case", case_here)
-    monkeypatch.setattr(validity, "cached_validity_band", band_here)
     scene = load_scene(None)
     depths = elastic_stage.elastic_depths(scene.crack)
     assert len(depths) == len(scene.crack.depths) - 1
     pool = _StartedPool(started)
     begun = elastic_stage.begin_elastic(scene, pool)
-    assert pool.submitted == ["case_here"] * len(depths) + ["band_here"]
-    assert pool.environments == [SINGLE_THREADED] * (len(depths) + 1), pool.environments
+    assert pool.submitted == ["case_here"] * len(depths)
+    assert pool.environments == [SINGLE_THREADED] * len(depths), pool.environments
     taken = max(len(depths) - started, 0)
-    assert [d for d, _ in here] == (["band"] if started <= len(depths) else []) + list(
-        depths[::-1][:taken]), "the band, then the deepest cases first"
+    assert [d for d, _ in here] == list(depths[::-1][:taken]), "the deepest cases first"
     assert len(begun) == len(depths)
     assert all(threads == {1} for _, threads in here), f"one BLAS thread, as a worker: {here}"
     for k, future in enumerate(begun):
