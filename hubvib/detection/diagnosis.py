@@ -55,7 +55,7 @@ from hubvib.detection.carrier import mesh_timing
 from hubvib.detection.model import C_RP_RATIO, CrackModel
 from hubvib.detection.options import detection_options
 from hubvib.identification.law import fisher_sigma_hz
-from hubvib.cases.runner import run_fe_cases
+from hubvib.cases.runner import crack_cases
 
 from .measured import Measured, MeasuredError
 from .options import DetectionOptions
@@ -527,7 +527,7 @@ def scene_reference(scene, progress: bool = True, workers: int = 2, ring: str = 
     timing = mesh_timing(scene.crack.reducer, options.carrier_speed)
     if ring == "elastic":
         return reference(elastic_scene_model(scene), options, timing, workers=workers), options
-    fe, _ = run_fe_cases(scene.crack, progress)
+    fe, _ = crack_cases(scene.crack, progress)
     model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
                                c_rp_given=scene.c_rp_given)
     signal = scene.tables.get("signal")

@@ -12,7 +12,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from hubvib.cases.runner import run_fe_cases
+from hubvib.cases.runner import crack_cases
 from hubvib.detection.calibration import calibrate
 from hubvib.detection.carrier import mesh_timing
 from hubvib.detection.diagnosis import elastic_scene_model, reference
@@ -34,7 +34,7 @@ def main(argv=None) -> int:
     if args.ring == "elastic":
         model = elastic_scene_model(scene)
     else:
-        fe, _ = run_fe_cases(scene.crack, False)
+        fe, _ = crack_cases(scene.crack, False)
         model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
                                    c_rp_given=scene.c_rp_given)
     timing = mesh_timing(scene.crack.reducer, options.carrier_speed)

@@ -5,7 +5,7 @@ import re
 
 import numpy as np
 import pytest
-from tests.helpers.synthetic_rows import TIMING, synthetic_fe_rows, synthetic_model
+from tests.helpers.synthetic_rows import TIMING, synthetic_fe_cases, synthetic_model
 
 from hubvib.cli import main
 from hubvib.detection.diagnosis import (CRACK, NO_CRACK, NOT_EXPLAINED, NOT_IDENTIFIABLE,
@@ -177,13 +177,11 @@ plots = false
 def cli(tmp_path, monkeypatch):
     """A scene whose FE rows are synthetic (no FE stage) and a CSV writer."""
     import hubvib.detection.diagnosis
-    import hubvib.cases.runner
 
-    def fe_rows(sweep, progress=True):
-        return synthetic_fe_rows(sweep.depths), 0
+    def fe_cases(sweep, progress=True):
+        return synthetic_fe_cases(sweep.depths), 0
 
-    monkeypatch.setattr(hubvib.cases.runner, "run_fe_cases", fe_rows)
-    monkeypatch.setattr(hubvib.detection.diagnosis, "run_fe_cases", fe_rows)
+    monkeypatch.setattr(hubvib.detection.diagnosis, "crack_cases", fe_cases)
     scene = tmp_path / "scene.toml"
     scene.write_text(SCENE)
 

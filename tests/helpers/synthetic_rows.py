@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 
+from hubvib.cases.results import PlaneCase
 from hubvib.cases.sweep import CrackSweep
 from hubvib.reducer import lumped_preset
 from hubvib.detection.carrier import MeshTiming
@@ -48,6 +49,11 @@ def synthetic_fe_rows(depths=None, c_ru_drop=0.058, c_r_drop=0.05, c_rp_drop=0.1
              "dofs": 1, "solver": "synthetic",
              "seconds_mesh": 0.0, "seconds_fe": 0.0, "seconds_total": 0.0}
             for d, t in zip(depths, x)]
+
+
+def synthetic_fe_cases(depths=None, **rows) -> list[PlaneCase]:
+    """``synthetic_fe_rows`` typed, as ``cases.runner.crack_cases`` gives its cases."""
+    return [PlaneCase.from_dict(row) for row in synthetic_fe_rows(depths, **rows)]
 
 
 def synthetic_model(apply="series", c_ru_mount=None, c_r_mount=None, **rows) -> CrackModel:

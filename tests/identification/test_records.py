@@ -142,18 +142,16 @@ def test_diagnose_from_two_records_end_to_end(tmp_path, monkeypatch, capsys):
     import json
 
     import hubvib.detection.diagnosis
-    import hubvib.cases.runner
-    from tests.helpers.synthetic_rows import synthetic_fe_rows
+    from tests.helpers.synthetic_rows import synthetic_fe_cases
 
     from hubvib.detection.diagnosis import reference
     from hubvib.detection.options import DetectionOptions
     from tests.helpers.synthetic_rows import TIMING, synthetic_model
 
-    def fe_rows(sweep, progress=True):
-        return synthetic_fe_rows(sweep.depths), 0
+    def fe_cases(sweep, progress=True):
+        return synthetic_fe_cases(sweep.depths), 0
 
-    monkeypatch.setattr(hubvib.cases.runner, "run_fe_cases", fe_rows)
-    monkeypatch.setattr(hubvib.detection.diagnosis, "run_fe_cases", fe_rows)
+    monkeypatch.setattr(hubvib.detection.diagnosis, "crack_cases", fe_cases)
     scene = tmp_path / "scene.toml"
     scene.write_text(SCENE)
     f0 = reference(synthetic_model("direct"), DetectionOptions(samples=100),
@@ -231,14 +229,12 @@ def test_identified_modes_lie_in_their_band_with_bounded_damping():
 def _synthetic_fe(monkeypatch):
     """The diagnosis's FE cases replaced by the synthetic crack model's rows."""
     import hubvib.detection.diagnosis
-    import hubvib.cases.runner
-    from tests.helpers.synthetic_rows import synthetic_fe_rows
+    from tests.helpers.synthetic_rows import synthetic_fe_cases
 
-    def fe_rows(sweep, progress=True):
-        return synthetic_fe_rows(sweep.depths), 0
+    def fe_cases(sweep, progress=True):
+        return synthetic_fe_cases(sweep.depths), 0
 
-    monkeypatch.setattr(hubvib.cases.runner, "run_fe_cases", fe_rows)
-    monkeypatch.setattr(hubvib.detection.diagnosis, "run_fe_cases", fe_rows)
+    monkeypatch.setattr(hubvib.detection.diagnosis, "crack_cases", fe_cases)
 
 
 def test_records_without_an_identifiable_mode_get_a_verdict_not_an_error(
