@@ -9,11 +9,11 @@ tooth's compliance under a line load across the face width at the plane tooth
 curve's flank radii (``fem.tooth_solid``); its ratio to the intact tooth's
 scales the plane intact curve, and the pair and mesh-cycle machinery of the
 plane study gives the c_rp ratio over the cracked tooth's engagement
-(``fem.engaged_solid``): the rows' ``c_rp_engaged_*`` keys.  For comparison the
+(``fem.engaged_solid``): the ``c_rp`` of the rows (``SolidRow``).  For comparison the
 slice method (the face width cut into independent slices in parallel, each
 with the plane c_rp ratio at its local depth ``a(z)``; Z. Chen, Y. Shao,
 Engineering Failure Analysis 18 (2011) 2149-2164) carries the plane cases of
-the same depths over to the part-width crack (keys ``c_rp_slice_*``).  Slices
+the same depths over to the part-width crack (the rows' ``sliced``).  Slices
 that do not hold each other up are softer than the solid tooth, so the slice
 ratio overstates the crack's effect on c_rp.
 
@@ -33,7 +33,7 @@ from hubvib.reducer.stages import gear_body, material, ring_gear
 from hubvib.design.presets import raba118
 from hubvib.fem.engaged_solid import solid_engaged_mesh
 from hubvib.detection.numbers import percent
-from hubvib.fem.estimate import USABLE_QUALITY
+from hubvib.fem.estimate import USABLE_QUALITY, CrackCaseEstimate, RingEstimate
 from hubvib.foundation.errors import SceneError
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
 from hubvib.render.captions import figure_lines
@@ -44,7 +44,7 @@ from hubvib.reports.crack_files import write_crack_study
 from hubvib.reports.provenance import json_safe, provenance
 from hubvib.studies.crack_study import CrackStudyResult, crack_study_from_fe
 from hubvib.meshing.levels import scaled_options
-from hubvib.cases.results import PlaneCase, SolidCase, typed_case
+from hubvib.cases.results import PlaneCase, SolidCase
 from hubvib.cases.runner import case_label, crack_cases
 from hubvib.cases.sweep import ACCURACY, CrackSweep
 from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
@@ -84,64 +84,125 @@ def slice_ratio(depth: float, half_length: float, face_width: float, plane_depth
     return float(1 - 2 * half_length / face_width * (1 - inside))
 
 
-def solid_c_rp(sweep, solid: list[SolidCase]) -> list[dict]:
+@dataclass(frozen=True)
+class CrpRatios:
+    """The cracked tooth pair's c_rp against the intact pair's [-]: the mean over the cracked
+    tooth's engagement, the lowest over it, and the mean's error estimate."""
+
+    mean: float
+    min: float
+    error: float
+
+
+#: the intact tooth's ratios
+INTACT_RATIOS = CrpRatios(1.0, 1.0, 0.0)
+
+
+@dataclass(frozen=True)
+class StiffnessChange:
+    """The change of a ring body stiffness against the intact ring [-]: its value (fine
+    level), its error (fine against coarse level) and how far it moves with the poorly
+    shaped cells at half stiffness."""
+
+    value: float
+    error: float
+    poor_cells: float
+
+
+@dataclass(frozen=True)
+class SolidRow:
+    """One solid case with the c_rp the lumped stages use (``c_rp``: the 3D ratios or the
+    slice method's), the slice method's (``sliced``), the intact tooth pair's engaged c_rp
+    [N/m] of the plane study (mean, lowest, over the contact window) and the changes of c_ru
+    and c_r against the intact ring."""
+
+    case: SolidCase
+    c_rp: CrpRatios
+    sliced: CrpRatios
+    c_rp_intact: float
+    c_rp_intact_min: float
+    c_rp_intact_window: float
+    c_ru_change: StiffnessChange
+    c_r_change: StiffnessChange
+
+    def plane_case(self) -> PlaneCase:
+        """The row read as a plane study's case: the solid ring's c_ru and c_r (their
+        root-land readings too) with the c_rp carried over; the case's wall time."""
+        e, seconds = self.case.estimate, float(self.case.seconds_total)
+        estimate = CrackCaseEstimate(
+            c_ru=float(e.c_ru), c_ru_error=float(e.c_ru_error), c_ru_min=float(e.c_ru_min),
+            c_ru_max=float(e.c_ru_max), c_r=float(e.c_r), c_r_error=float(e.c_r_error),
+            c_rp_engaged_ratio=float(self.c_rp.mean),
+            c_rp_engaged_ratio_error=float(self.c_rp.error),
+            c_rp_engaged_min_ratio=float(self.c_rp.min),
+            c_rp_engaged_intact=float(self.c_rp_intact),
+            c_rp_engaged_intact_min=float(self.c_rp_intact_min),
+            c_rp_engaged_intact_window=float(self.c_rp_intact_window),
+            dofs=e.dofs, solver=e.solver, seconds_mesh=float(e.seconds_mesh),
+            seconds_fe=float(e.seconds_fe), seconds_total=seconds,
+            c_ru_root_land=float(e.c_ru_root_land),
+            c_ru_root_land_error=float(e.c_ru_root_land_error),
+            c_r_root_land=float(e.c_r_root_land), c_r_root_land_error=float(e.c_r_root_land_error))
+        return PlaneCase(estimate, float(self.case.depth), seconds)
+
+
+def solid_c_rp(sweep, solid: list[SolidCase]) -> list[CrpRatios]:
     """The 3D c_rp ratios of the solid cases (``sweep.cases`` order, the intact first) [-]:
-    ``c_rp_engaged_ratio`` and ``c_rp_engaged_min_ratio`` on the fine level, the error the
-    fine level's ratio against the coarse level's (``fem.engaged_solid``)."""
+    on the fine level, the error the fine level's mean ratio against the coarse level's
+    (``fem.engaged_solid``)."""
     design = sweep.reducer
     ring, planet, steel = ring_gear(design), gear_body(design, "planet"), material(design)
     options = scaled_options(ACCURACY[sweep.accuracy])
     intact = solid[0].estimate
-    out = [dict(c_rp_engaged_ratio=1.0, c_rp_engaged_min_ratio=1.0, c_rp_engaged_ratio_error=0.0)]
+    out = [INTACT_RATIOS]
     for case in solid[1:]:
         e = case.estimate
         fine, coarse = (solid_engaged_mesh(planet, ring, e.tooth_radii, getattr(e, name),
                                            getattr(intact, name), options, steel, sweep.tooth)
                         for name in ("tooth_compliance", "tooth_compliance_coarse"))
-        out.append(dict(c_rp_engaged_ratio=fine.mean_ratio, c_rp_engaged_min_ratio=fine.min_ratio,
-                        c_rp_engaged_ratio_error=abs(fine.mean_ratio - coarse.mean_ratio)))
+        out.append(CrpRatios(fine.mean_ratio, fine.min_ratio,
+                             abs(fine.mean_ratio - coarse.mean_ratio)))
     return out
 
 
-def solid_rows(sweep, solid: list[dict], plane: list[dict], three_d: list[dict] | None = None
-               ) -> list[dict]:
-    """The solid cases (``sweep.cases`` order) with the c_rp keys of the plane study's rows
-    and the change of c_ru and c_r against the intact ring [-]: its error (fine against
-    coarse level) and how far it moves with the poorly shaped cells at half stiffness.
+def _change(case: RingEstimate, intact: RingEstimate, name: str) -> StiffnessChange:
+    """The change of ``name`` (``c_ru`` or ``c_r``) of ``case`` against ``intact`` [-]."""
+    value = getattr(intact, name)
+    fine = getattr(case, name) - value
+    coarse = getattr(case, f"{name}_coarse") - getattr(intact, f"{name}_coarse")
+    halved = getattr(case, f"{name}_poor_half") - getattr(intact, f"{name}_poor_half")
+    return StiffnessChange(fine / value, abs(fine - coarse) / value, (halved - fine) / value)
 
-    ``c_rp_slice_ratio``, ``c_rp_slice_min_ratio`` and ``c_rp_slice_ratio_error`` are the
-    slice method's; ``c_rp_engaged_*`` are ``three_d``'s (``solid_c_rp``), or the slice
-    method's when ``three_d`` is None."""
+
+def solid_rows(sweep, solid: list[SolidCase], plane: list[PlaneCase],
+               three_d: list[CrpRatios] | None = None) -> list[SolidRow]:
+    """The solid cases (``sweep.cases`` order) with the c_rp of the plane study's cases and
+    the change of c_ru and c_r against the intact ring [-]: its error (fine against coarse
+    level) and how far it moves with the poorly shaped cells at half stiffness.
+
+    ``sliced`` is the slice method's c_rp; ``c_rp`` is ``three_d``'s (``solid_c_rp``), or
+    the slice method's when ``three_d`` is None."""
     width = sweep.reducer.face_width
-    depths = [row["depth_m"] for row in plane]
-    column = {key: [row[key] for row in plane] for key in
-              ("c_rp_engaged_ratio", "c_rp_engaged_min_ratio", "c_rp_engaged_ratio_error")}
-    intact = solid[0]
+    depths = [case.depth for case in plane]
+    ratios = [case.estimate.c_rp_engaged_ratio for case in plane]
+    minima = [case.estimate.c_rp_engaged_min_ratio for case in plane]
+    errors = [case.estimate.c_rp_engaged_ratio_error for case in plane]
+    intact = solid[0].estimate
     # the intact tooth pair's engaged c_rp [N/m] does not depend on the crack: the plane
     # study's intact case gives it to every solid case
-    tooth = {key: plane[0][key] for key in
-             ("c_rp_engaged_intact_N_m", "c_rp_engaged_intact_min_N_m",
-              "c_rp_engaged_intact_window_N_m")}
+    tooth = plane[0].estimate
     rows = []
-    for i, row in enumerate(solid):
-        depth, half = row["depth_m"], row["half_length_m"]
-        ratio = slice_ratio(depth, half, width, depths, column["c_rp_engaged_ratio"])
-        minimum = slice_ratio(depth, half, width, depths, column["c_rp_engaged_min_ratio"])
-        error = 1 - slice_ratio(depth, half, width, depths,
-                                1 - np.asarray(column["c_rp_engaged_ratio_error"]))
-        sliced = dict(c_rp_slice_ratio=ratio, c_rp_slice_min_ratio=minimum,
-                      c_rp_slice_ratio_error=error)
-        used = (dict(c_rp_engaged_ratio=ratio, c_rp_engaged_min_ratio=minimum,
-                     c_rp_engaged_ratio_error=error) if three_d is None else three_d[i])
-        changes = {}
-        for name in ("c_ru", "c_r"):
-            fine = row[f"{name}_N_m"] - intact[f"{name}_N_m"]
-            coarse = row[f"{name}_coarse_N_m"] - intact[f"{name}_coarse_N_m"]
-            halved = row[f"{name}_poor_half_N_m"] - intact[f"{name}_poor_half_N_m"]
-            changes[f"{name}_change"] = fine / intact[f"{name}_N_m"]
-            changes[f"{name}_change_error"] = abs(fine - coarse) / intact[f"{name}_N_m"]
-            changes[f"{name}_change_poor_cells"] = (halved - fine) / intact[f"{name}_N_m"]
-        rows.append(dict(row, **used, **sliced, **tooth, **changes))
+    for i, case in enumerate(solid):
+        depth, half = case.depth, case.half_length
+        sliced = CrpRatios(
+            slice_ratio(depth, half, width, depths, ratios),
+            slice_ratio(depth, half, width, depths, minima),
+            1 - slice_ratio(depth, half, width, depths, 1 - np.asarray(errors)))
+        rows.append(SolidRow(case, sliced if three_d is None else three_d[i], sliced,
+                             tooth.c_rp_engaged_intact, tooth.c_rp_engaged_intact_min,
+                             tooth.c_rp_engaged_intact_window,
+                             _change(case.estimate, intact, "c_ru"),
+                             _change(case.estimate, intact, "c_r")))
     return rows
 
 
@@ -151,38 +212,41 @@ class CrackGrowthResult:
     (``plane``), and per half-length [m] the study of the plane report (``studies``)."""
 
     scene: Scene
-    rows: list[dict]
+    rows: list[SolidRow]
     plane: list[PlaneCase]
     studies: dict[float, CrackStudyResult]
     computed: int
     files: list[Path] = field(default_factory=list)
 
+    def through(self, row: SolidRow) -> tuple[CrackCaseEstimate, CrackCaseEstimate]:
+        """The plane cases through the face width at ``row``'s depth and intact."""
+        plane = {case.depth: case.estimate for case in self.plane}
+        return plane[row.case.depth], plane[0.0]
+
     def grid_rows(self) -> list[dict]:
-        plane = {case.depth: case.estimate for case in map(typed_case, self.plane)}
-        intact = plane[0.0]
+        """The rows of ``stiffness_3d.csv`` and of the ``grid`` of ``results.json``."""
         out = []
-        for r in self.rows:
-            solid = SolidCase.from_dict(r)
-            through = plane[solid.depth]
-            e = solid.estimate
+        for row in self.rows:
+            through, intact = self.through(row)
+            solid, e = row.case, row.case.estimate
             out.append({
                 "depth_mm": 1e3 * solid.depth, "half_length_mm": 1e3 * solid.half_length,
                 "c_ru_N_m": e.c_ru, "c_ru_error_N_m": e.c_ru_error,
-                "c_ru_change_percent": 100 * r["c_ru_change"],
-                "c_ru_change_error_percent": 100 * r["c_ru_change_error"],
-                "c_ru_change_poor_cells_percent": 100 * r["c_ru_change_poor_cells"],
+                "c_ru_change_percent": 100 * row.c_ru_change.value,
+                "c_ru_change_error_percent": 100 * row.c_ru_change.error,
+                "c_ru_change_poor_cells_percent": 100 * row.c_ru_change.poor_cells,
                 "c_ru_min_N_m": e.c_ru_min, "c_ru_max_N_m": e.c_ru_max,
                 "c_r_N_m": e.c_r, "c_r_error_N_m": e.c_r_error,
-                "c_r_change_percent": 100 * r["c_r_change"],
-                "c_r_change_error_percent": 100 * r["c_r_change_error"],
-                "c_r_change_poor_cells_percent": 100 * r["c_r_change_poor_cells"],
+                "c_r_change_percent": 100 * row.c_r_change.value,
+                "c_r_change_error_percent": 100 * row.c_r_change.error,
+                "c_r_change_poor_cells_percent": 100 * row.c_r_change.poor_cells,
                 "plane_through_c_ru_change_percent":
                     100 * (through.c_ru / intact.c_ru - 1),
-                "c_rp_3d_ratio": r["c_rp_engaged_ratio"],
-                "c_rp_3d_ratio_error": r["c_rp_engaged_ratio_error"],
-                "c_rp_3d_min_ratio": r["c_rp_engaged_min_ratio"],
-                "c_rp_slice_ratio": r["c_rp_slice_ratio"],
-                "c_rp_slice_ratio_error": r["c_rp_slice_ratio_error"],
+                "c_rp_3d_ratio": row.c_rp.mean,
+                "c_rp_3d_ratio_error": row.c_rp.error,
+                "c_rp_3d_min_ratio": row.c_rp.min,
+                "c_rp_slice_ratio": row.sliced.mean,
+                "c_rp_slice_ratio_error": row.sliced.error,
                 "plane_through_c_rp_ratio": through.c_rp_engaged_ratio,
                 "min_sicn": e.min_quality, "poor_cells": e.poor_cells,
                 "dofs": e.dofs, "fe_seconds": solid.seconds_total})
@@ -198,13 +262,12 @@ def run_crack_growth(scene: Scene, progress: bool = True, detection: bool = True
     plane, computed_plane = crack_cases(replace(sweep, model="plane", half_lengths=()),
                                         progress, execution)
     solid, computed_solid = crack_cases(sweep, progress, execution)
-    rows = solid_rows(sweep, [case.to_dict() for case in solid],
-                      [case.to_dict() for case in plane], solid_c_rp(sweep, solid))
+    rows = solid_rows(sweep, solid, plane, solid_c_rp(sweep, solid))
     studies = {}
     for half in sweep.half_lengths:
         # each half-length's study: the solid ring's c_ru and c_r with the c_rp carried
         # over, read as the plane study's cases
-        fe = [PlaneCase.from_dict(row) for row, case in zip(rows, solid)
+        fe = [row.plane_case() for row, case in zip(rows, solid)
               if case is solid[0] or case.half_length == half]
         studies[half] = crack_study_from_fe(scene, fe, detection=detection, workers=workers,
                                             half_length=half)
@@ -235,7 +298,7 @@ def write_crack_growth(result: CrackGrowthResult, folder: Path) -> CrackGrowthRe
     if scene.plots:
         plots.append(save_figure(change_figure(scene.name, grid), folder / "c_ru_change.png"))
     files += plots
-    files.append(write_text(folder / "report.md", growth_report(result, grid,
+    files.append(write_text(folder / "report.md", growth_report(result,
                                                                 [p.name for p in plots])))
     result.files = files
     return result
@@ -273,11 +336,12 @@ def _is_raba(design) -> bool:
     return design.fingerprint() == raba118().fingerprint()
 
 
-def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str]) -> str:
+def growth_report(result: CrackGrowthResult, plots: list[str]) -> str:
     scene, sweep = result.scene, result.scene.crack
     info = provenance()
     width = sweep.reducer.face_width
-    worst = min(grid, key=lambda r: r["min_sicn"])
+    worst = min(result.rows, key=lambda r: r.case.estimate.min_quality)
+    intact = result.rows[0].case.estimate
     lines = [
         f"# {scene.name}: 3D ring-crack growth study", "",
         f"hubvib {info['hubvib_version']}, {info['date']}. Semi-elliptic root cracks in ring "
@@ -314,17 +378,20 @@ def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str])
               "ratio | min SICN | cells < 0.1 | DOFs | time [s] |",
               "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
               "---:|---:|"]
-    for r in grid:
+    for row in result.rows:
+        case, e = row.case, row.case.estimate
+        through, plane_intact = result.through(row)
         lines.append(
-            f"| {r['depth_mm']:.3g} | {r['half_length_mm']:.3g} | {r['c_ru_N_m']:.5e} | "
-            f"{r['c_ru_change_percent']:+.3f} | {r['c_ru_change_error_percent']:.3f} | "
-            f"{r['c_ru_change_poor_cells_percent']:+.3f} | "
-            f"{r['plane_through_c_ru_change_percent']:+.3f} | {r['c_r_change_percent']:+.3f} | "
-            f"{r['c_r_change_error_percent']:.3f} | {r['c_r_change_poor_cells_percent']:+.3f} | "
-            f"{r['c_rp_3d_ratio']:.4f} | {r['c_rp_3d_ratio_error']:.4f} | "
-            f"{r['c_rp_slice_ratio']:.4f} | "
-            f"{r['plane_through_c_rp_ratio']:.4f} | {r['min_sicn']:.3g} | "
-            f"{r['poor_cells']} | {r['dofs']} | {r['fe_seconds']:.0f} |")
+            f"| {1e3 * case.depth:.3g} | {1e3 * case.half_length:.3g} | {e.c_ru:.5e} | "
+            f"{100 * row.c_ru_change.value:+.3f} | {100 * row.c_ru_change.error:.3f} | "
+            f"{100 * row.c_ru_change.poor_cells:+.3f} | "
+            f"{100 * (through.c_ru / plane_intact.c_ru - 1):+.3f} | "
+            f"{100 * row.c_r_change.value:+.3f} | "
+            f"{100 * row.c_r_change.error:.3f} | {100 * row.c_r_change.poor_cells:+.3f} | "
+            f"{row.c_rp.mean:.4f} | {row.c_rp.error:.4f} | "
+            f"{row.sliced.mean:.4f} | "
+            f"{through.c_rp_engaged_ratio:.4f} | {e.min_quality:.3g} | "
+            f"{e.poor_cells} | {e.dofs} | {case.seconds_total:.0f} |")
     lines += [""] + [x for p in plots for x in figure_lines(p)]
     lines += [
         "## Assumptions", "",
@@ -352,10 +419,11 @@ def growth_report(result: CrackGrowthResult, grid: list[dict], plots: list[str])
         "c_rp; the plane column is the crack through the width (plane stress).",
         "- The crack is not moved: the mean over carrier positions includes the positions "
         "where a planet loads the cracked tooth.",
-        f"- Mesh quality: the worst cell of the sweep has min SICN {worst['min_sicn']:.3g} "
-        f"({case_label((worst['depth_mm'] / 1e3, worst['half_length_mm'] / 1e3))}). The intact "
-        f"ring's mesh has {grid[0]['poor_cells']} cells below {USABLE_QUALITY:g} too (min "
-        f"{grid[0]['min_sicn']:.3g}): they come with root lands and fillets narrower than the "
+        f"- Mesh quality: the worst cell of the sweep has min SICN "
+        f"{worst.case.estimate.min_quality:.3g} "
+        f"({case_label((worst.case.depth, worst.case.half_length))}). The intact "
+        f"ring's mesh has {intact.poor_cells} cells below {USABLE_QUALITY:g} too (min "
+        f"{intact.min_quality:.3g}): they come with root lands and fillets narrower than the "
         "elements, and a finer mesh there costs several times the DOFs. They sit where c_ru "
         "is read (the root lands), so every case is solved once more with them at half "
         "stiffness: the *½ poor* columns." + (RABA_POOR_CELLS if _is_raba(sweep.reducer) else ""),

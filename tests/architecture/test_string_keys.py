@@ -19,14 +19,10 @@ FE_KEYS = frozenset(RING_KEYS.get(f.name, f.name)
                     for kind in (CrackCaseEstimate, RingEstimate) for f in fields(kind)
                     if f.name.startswith(("c_", "tooth_")))
 
-#: (file, function) where the dict form may be read: the 3D growth's solid rows and the
-#: grid of ``stiffness_3d.csv`` built from them (the tests give both as dict rows), and the
-#: report's markdown copy of that CSV grid
-EDGES = {
-    ("hubvib/studies/crack_growth.py", "solid_rows"),
-    ("hubvib/studies/crack_growth.py", "CrackGrowthResult.grid_rows"),
-    ("hubvib/studies/crack_growth.py", "growth_report"),
-}
+#: (file, function) where the dict form may be read by literal key: a JSON / CSV / cache
+#: edge that cannot read a typed case (the dict forms' ``from_dict`` read through the field
+#: names); empty while every reader reads the typed cases
+EDGES: set[tuple[str, str]] = set()
 
 
 def _unit_suffixes() -> frozenset[str]:

@@ -11,11 +11,12 @@ import numpy as np
 import pytest
 
 from hubvib.design import preset_design
-from hubvib.studies.crack_growth import slice_ratio, solid_rows
+from hubvib.studies.crack_growth import CrpRatios, slice_ratio, solid_rows
 from hubvib.cases.runner import case_inputs, check_case
 from hubvib.cases.sweep import CrackSweep
 from hubvib.runtime.fe_cache import CacheEntryError
 from hubvib.studies.scene import SceneError, parse_scene
+from tests.helpers.typed_cases import plane_case, solid_case
 
 WIDTH = 0.04
 
@@ -144,39 +145,33 @@ def test_solid_rows_change_and_its_error():
                        design=preset_design("raba118"))
 
     def row(depth, half, fine, coarse):
-        return {"depth_m": depth, "half_length_m": half, "c_ru_N_m": fine,
-                "c_ru_coarse_N_m": coarse, "c_r_N_m": 2 * fine, "c_r_coarse_N_m": 2 * coarse,
-                "c_ru_poor_half_N_m": fine - 1 - 100 * depth,
-                "c_r_poor_half_N_m": 2 * fine}
+        return solid_case(depth, half, fine, c_ru_coarse=coarse, c_r=2 * fine,
+                          c_r_coarse=2 * coarse, c_ru_poor_half=fine - 1 - 100 * depth,
+                          c_r_poor_half=2 * fine)
 
-    plane = [{"depth_m": d, "c_rp_engaged_ratio": r, "c_rp_engaged_min_ratio": r,
-              "c_rp_engaged_ratio_error": e, "c_rp_engaged_intact_N_m": 1.5e9,
-              "c_rp_engaged_intact_min_N_m": 1.2e9, "c_rp_engaged_intact_window_N_m": 1.57e9}
-             for d, r, e in ((0.0, 1.0, 0.0),
-                                                              (0.003, 0.9, 0.01))]
+    plane = [plane_case(d, 1e9, r, c_rp_engaged_min_ratio=r, c_rp_engaged_ratio_error=e,
+                        c_rp_engaged_intact=1.5e9, c_rp_engaged_intact_min=1.2e9,
+                        c_rp_engaged_intact_window=1.57e9)
+             for d, r, e in ((0.0, 1.0, 0.0), (0.003, 0.9, 0.01))]
     rows = solid_rows(sweep, [row(0, 0, 100.0, 110.0), row(0.003, 0.004, 99.0, 108.5)], plane)
-    assert rows[1]["c_ru_change"] == pytest.approx(-0.01)
-    assert rows[1]["c_ru_change_error"] == pytest.approx(0.005)
-    assert rows[1]["c_ru_change_poor_cells"] == pytest.approx(-0.003)  # -0.3 / 100
-    assert rows[1]["c_r_change_poor_cells"] == 0
-    assert rows[0]["c_rp_slice_ratio"] == 1.0
+    assert rows[1].c_ru_change.value == pytest.approx(-0.01)
+    assert rows[1].c_ru_change.error == pytest.approx(0.005)
+    assert rows[1].c_ru_change.poor_cells == pytest.approx(-0.003)  # -0.3 / 100
+    assert rows[1].c_r_change.poor_cells == 0
+    assert rows[0].sliced.mean == 1.0
     # the intact tooth pair's c_rp is the plane study's, for every solid case
-    assert [r["c_rp_engaged_intact_N_m"] for r in rows] == [1.5e9, 1.5e9]
-    assert [r["c_rp_engaged_intact_window_N_m"] for r in rows] == [1.57e9, 1.57e9]
+    assert [r.c_rp_intact for r in rows] == [1.5e9, 1.5e9]
+    assert [r.c_rp_intact_window for r in rows] == [1.57e9, 1.57e9]
     expected = 1 - 2 * 0.004 / WIDTH * 0.1 * math.pi / 4
-    assert rows[1]["c_rp_slice_ratio"] == pytest.approx(expected, rel=1e-5)
-    assert rows[1]["c_rp_slice_ratio_error"] == pytest.approx(
-        2 * 0.004 / WIDTH * 0.01 * math.pi / 4, rel=1e-5)
+    assert rows[1].sliced.mean == pytest.approx(expected, rel=1e-5)
+    assert rows[1].sliced.error == pytest.approx(2 * 0.004 / WIDTH * 0.01 * math.pi / 4, rel=1e-5)
     # without the 3D ratios the rows' c_rp is the slice method's; with them, theirs
-    assert rows[1]["c_rp_engaged_ratio"] == rows[1]["c_rp_slice_ratio"]
-    three_d = [dict(c_rp_engaged_ratio=1.0, c_rp_engaged_min_ratio=1.0,
-                    c_rp_engaged_ratio_error=0.0),
-               dict(c_rp_engaged_ratio=0.99, c_rp_engaged_min_ratio=0.98,
-                    c_rp_engaged_ratio_error=0.001)]
+    assert rows[1].c_rp == rows[1].sliced
+    three_d = [CrpRatios(1.0, 1.0, 0.0), CrpRatios(0.99, 0.98, 0.001)]
     used = solid_rows(sweep, [row(0, 0, 100.0, 110.0), row(0.003, 0.004, 99.0, 108.5)], plane,
                       three_d)
-    assert used[1]["c_rp_engaged_ratio"] == 0.99 and used[1]["c_rp_engaged_min_ratio"] == 0.98
-    assert used[1]["c_rp_slice_ratio"] == pytest.approx(expected, rel=1e-5)
+    assert used[1].c_rp.mean == 0.99 and used[1].c_rp.min == 0.98
+    assert used[1].sliced.mean == pytest.approx(expected, rel=1e-5)
 
 
 @pytest.mark.slow

@@ -10,42 +10,22 @@ import pytest
 from hubvib.design import preset_design
 from hubvib.reducer import lumped_preset
 from hubvib.detection.model import CrackModel
-from hubvib.fem.estimate import CrackCaseEstimate, RingEstimate
 from hubvib.studies.crack_growth import CrackGrowthResult, solid_rows
-from hubvib.cases.results import PlaneCase, SolidCase
+from hubvib.cases.results import PlaneCase
 from hubvib.cases.sweep import CrackSweep
 from hubvib.studies.stiffness import _ring_rows
-
-
-def _plane(depth: float, c_ru: float, ratio: float) -> PlaneCase:
-    estimate = CrackCaseEstimate(
-        c_ru=c_ru, c_ru_error=0.01 * c_ru, c_ru_min=0.9 * c_ru, c_ru_max=1.1 * c_ru,
-        c_r=2 * c_ru, c_r_error=0.02 * c_ru, c_rp_engaged_ratio=ratio,
-        c_rp_engaged_ratio_error=1e-3, c_rp_engaged_min_ratio=ratio - 0.05,
-        c_rp_engaged_intact=1.5e9, c_rp_engaged_intact_min=1.2e9,
-        c_rp_engaged_intact_window=1.5e9, dofs=1000, solver="splu",
-        seconds_mesh=0.1, seconds_fe=0.2, seconds_total=0.3)
-    return PlaneCase(estimate, depth, 0.4)
-
-
-def _solid(depth: float, half: float, c_ru: float) -> SolidCase:
-    estimate = RingEstimate(
-        c_ru=c_ru, c_ru_error=0.01 * c_ru, c_ru_min=0.9 * c_ru, c_ru_max=1.1 * c_ru, c_r=2 * c_ru,
-        c_r_error=0.02 * c_ru, dofs=5000, solver="pardiso", seconds_mesh=1.0, seconds_fe=2.0,
-        seconds_total=3.0, c_ru_coarse=1.01 * c_ru, c_r_coarse=2.02 * c_ru, min_quality=0.3,
-        poor_cells=2, c_ru_poor_half=0.999 * c_ru, c_r_poor_half=2 * c_ru)
-    return SolidCase(estimate, depth, half, 4.0)
+from tests.helpers.typed_cases import plane_case, solid_case
 
 
 def test_crack_growth_grid_reads_the_typed_cases():
     sweep = CrackSweep((0.0, 0.003), model="solid", half_lengths=(0.004,),
                        design=preset_design("raba118"))
-    plane = [_plane(0.0, 1e9, 1.0).to_dict(), _plane(0.003, 0.95e9, 0.9).to_dict()]
-    solid = [_solid(0.0, 0.0, 1e9).to_dict(), _solid(0.003, 0.004, 0.99e9).to_dict()]
+    plane = [plane_case(0.0, 1e9, 1.0), plane_case(0.003, 0.95e9, 0.9)]
+    solid = [solid_case(0.0, 0.0, 1e9), solid_case(0.003, 0.004, 0.99e9)]
     result = CrackGrowthResult(None, solid_rows(sweep, solid, plane), plane, {}, 0)
     grid = result.grid_rows()
     row = grid[1]
-    typed = SolidCase.from_dict(solid[1])
+    typed = solid[1]
     assert (row["depth_mm"], row["half_length_mm"]) == (3.0, 4.0)
     assert row["c_ru_N_m"] == typed.estimate.c_ru
     assert row["c_r_error_N_m"] == typed.estimate.c_r_error
@@ -57,8 +37,24 @@ def test_crack_growth_grid_reads_the_typed_cases():
     assert row["c_ru_change_percent"] == pytest.approx(-1.0, rel=1e-12)
 
 
+def test_solid_row_read_as_a_plane_case():
+    """A half-length's study reads each solid row as a plane case: the solid ring's
+    estimate with the c_rp carried over and the whole case's wall time."""
+    sweep = CrackSweep((0.0, 0.003), model="solid", half_lengths=(0.004,),
+                       design=preset_design("raba118"))
+    plane = [plane_case(0.0, 1e9, 1.0), plane_case(0.003, 0.95e9, 0.9)]
+    solid = [solid_case(0.0, 0.0, 1e9), solid_case(0.003, 0.004, 0.99e9, c_r_root_land=3e9)]
+    row = solid_rows(sweep, solid, plane)[1]
+    case = row.plane_case()
+    assert (case.depth, case.seconds_total, case.estimate.seconds_total) == (0.003, 4.0, 4.0)
+    assert case.estimate.c_ru == 0.99e9 and case.estimate.c_r_error == solid[1].estimate.c_r_error
+    assert case.estimate.c_r_root_land == 3e9 and case.estimate.dofs == 5000
+    assert case.estimate.c_rp_engaged_ratio == row.sliced.mean < 1
+    assert case.estimate.c_rp_engaged_intact_window == plane[0].estimate.c_rp_engaged_intact_window
+
+
 def test_crack_model_from_typed_cases_equals_from_their_dict_form():
-    cases = [_plane(0.0, 1e9, 1.0), _plane(0.003, 0.95e9, 0.9)]
+    cases = [plane_case(0.0, 1e9, 1.0), plane_case(0.003, 0.95e9, 0.9)]
     sweep = CrackSweep((0.0, 0.003), apply="direct")
     typed = CrackModel.from_fe(lumped_preset("raba118"), sweep, [c.estimate for c in cases])
     from_dicts = CrackModel.from_fe(lumped_preset("raba118"), sweep, [c.to_dict() for c in cases])
@@ -68,14 +64,14 @@ def test_crack_model_from_typed_cases_equals_from_their_dict_form():
 
 
 def test_plane_case_round_trip_and_stiffness_rows():
-    case = _plane(0.003, 0.95e9, 0.9)
+    case = plane_case(0.003, 0.95e9, 0.9)
     # the dict form is a fixed point; it holds one seconds_total (the whole case's wall
     # time, which the estimate's own fine+coarse time gives way to: one JSON key)
     back = PlaneCase.from_dict(case.to_dict())
     assert back.to_dict() == case.to_dict() and back.estimate.c_ru == case.estimate.c_ru
     assert back.seconds_total == case.seconds_total == 0.4
     assert case.to_dict()["c_ru_N_m"] == 0.95e9, "JSON keys keep their units"
-    ring = _solid(0.0, 0.0, 1e9).estimate
+    ring = solid_case(0.0, 0.0, 1e9).estimate
     rows = _ring_rows(ring, " 3D")
     assert rows["c_ru 3D"]["value_N_m"] == ring.to_dict()["c_ru_N_m"] == 1e9
     assert rows["c_r 3D"]["error_N_m"] == ring.c_r_error
