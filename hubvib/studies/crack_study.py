@@ -110,6 +110,7 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
     the scene, the modes' the intact spectrum): they run on its warm workers beside the
     detection stage and the plots here."""
     execution = scene.execution
+    with_signal = scene.given("signal") is not None
     workers = execution.workers or scene.crack.workers
     with ExitStack() as beside:
         pool = (beside.enter_context(worker_pool(workers))
@@ -141,7 +142,7 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
                 result.elastic_map = elastic_map_of(scene, result.elastic)
             stage(f"elastic ring ({len(result.elastic.depths)} depths)", started)
         started = time.perf_counter()
-        if scene.given("signal") is not None:  # the vibration signature beside the frequency study
+        if with_signal:  # the vibration signature beside the frequency study
             from hubvib.signal.report import write_signal_study
             from hubvib.signal.signature_study import run_signal_study
 
@@ -153,9 +154,9 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
                                                   plots=scene.plots)["files"]
             started = time.perf_counter()
         with working("tables, plots, renders and report"), timed("write"):
-            write_crack_study(result, staged, begun, signal=scene.given("signal") is not None)
+            write_crack_study(result, staged, begun, signal=with_signal)
     with timed("write"):
-        if scene.given("signal") is not None:
+        if with_signal:
             result.files += [staged / "signal" / f for f in signal_files]
         pages = write_html_reports(staged, {staged / "report.md": result.report})
         result.files += [p for p in pages if p not in result.files]

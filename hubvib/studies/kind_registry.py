@@ -1,12 +1,13 @@
 """What a study kind is, the registry of kinds, and the scene that carries one.
 
 A scene is a tagged union: the common part (reducer and design, ``[study]`` threshold and
-eigensolver, ``[output]``, the optional sections ``[detection]``/``[signal]``/``[execution]``/
-``[elastic]`` of ``hubvib.studies.sections``) and exactly one study kind, named by ``Scene.kind``, whose parsed tables are
-``Scene.study``.  Each kind declares the scene tables that select it and parses them
-itself; ``select_study`` asks the registry which kind a scene's tables select.  A new study
-kind is its module and one ``register_study`` call (``hubvib.studies.kinds`` registers the
-shipped ones).  Library code: nothing here prints.
+eigensolver, ``[output]``, the optional sections of ``hubvib.studies.sections``:
+``[detection]``, ``[signal]``, ``[execution]``, ``[elastic]``) and exactly one study kind,
+named by ``Scene.kind``, whose parsed tables are ``Scene.study``.  Each kind declares the
+scene tables that select it and parses them itself; ``select_study`` asks the registry which
+kind a scene's tables select.  A new study kind is its module and one ``register_study``
+call (``hubvib.studies.kinds`` registers the shipped ones).  Library code: nothing here
+prints.
 """
 from __future__ import annotations
 
