@@ -481,8 +481,7 @@ def synthetic_measurements(model, options, timing, depths: np.ndarray, seed: int
 
 def scene_ring(scene) -> str:
     """The ring model(s) the scene's ``[elastic] ring`` asks for: rigid, elastic or both."""
-    table = scene.tables.get("elastic")
-    return "rigid" if table is None else table.ring
+    return scene.elastic.ring
 
 
 def elastic_scene_model(scene):
@@ -491,13 +490,12 @@ def elastic_scene_model(scene):
     the rim is left out (it opens the ring)."""
     from hubvib.reducer.stages import ring_gear
     from hubvib.elastic.cases import cached_case
-    from hubvib.elastic.options import ElasticScene
     from hubvib.cases.sweep import crack_of
 
     from .elastic import case_arguments
     from .elastic_uncertainty import elastic_spectrum_model
 
-    table = scene.tables.get("elastic") or ElasticScene()
+    table = scene.elastic
     sweep = scene.crack
     ring = ring_gear(sweep.reducer)
     depths = tuple(d for d in sweep.depths
@@ -530,8 +528,8 @@ def scene_reference(scene, progress: bool = True, workers: int = 2, ring: str = 
     fe, _ = crack_cases(scene.crack, progress)
     model = CrackModel.from_fe(scene.params, scene.crack, fe, scene.method,
                                c_rp_given=scene.c_rp_given)
-    signal = scene.tables.get("signal")
-    if getattr(signal, "mesh_stiffness", None) == C_RP_RATIO:
+    signal = scene.given("signal")  # absent: the records are not simulated by the scene
+    if signal is not None and signal.mesh_stiffness == C_RP_RATIO:
         # the scene's records come from its [signal] model, whose cracked mesh is the FE
         # ratio on the preset's c_rp (hubvib.signal.signature_study.curves_for): compare like with like
         model = model.with_c_rp_method(C_RP_RATIO)

@@ -226,4 +226,4 @@ def parse_detection_table(table: dict) -> DetectionOptions:
 
 def detection_options(scene) -> DetectionOptions:
     """The scene's ``[detection]`` options, or the documented defaults."""
-    return scene.tables.get("detection") or DetectionOptions()
+    return scene.detection

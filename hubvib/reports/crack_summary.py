@@ -5,7 +5,6 @@ import math
 from pathlib import Path
 
 from hubvib.detection.numbers import percent
-from hubvib.detection.options import DetectionOptions
 
 __all__ = ["crack_lines"]
 
@@ -19,7 +18,7 @@ def crack_lines(scene, result, folder: Path) -> list[str]:
     rows = result.mode_rows()
     physical = "detectable_depth_mm" in rows[0]
     if physical:
-        pod = scene.tables.get("detection", DetectionOptions()).detection_probability
+        pod = scene.detection.detection_probability
         last = f"detectable from (POD >= {pod:g}), via"
     else:
         last = f"smallest crack shifting >= {scene.threshold_percent:g} %"

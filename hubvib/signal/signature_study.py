@@ -191,7 +191,7 @@ def run_signal_study(scene, curves: list[MeshCurves] | None = None,
     Nothing is written here; every input error is raised before any output exists.
     """
     check_crack_model(scene)
-    options = options or scene.tables.get("signal") or SignalOptions()
+    options = options or scene.signal
     params = scene.params
     teeth = design_teeth(scene.design)
     if options.mesh_stiffness == "ratio":  # the mean system is known: check h before any FE

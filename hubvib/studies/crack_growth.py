@@ -38,7 +38,6 @@ from hubvib.foundation.errors import SceneError
 from hubvib.foundation.output import save_figure, write_csv, write_json, write_text
 from hubvib.render.captions import figure_lines
 from hubvib.render.html import write_html_reports
-from hubvib.runtime.engines import Execution
 from hubvib.runtime.progress import stage, working
 from hubvib.reports.crack_files import write_crack_study
 from hubvib.reports.provenance import json_safe, provenance
@@ -258,7 +257,7 @@ def run_crack_growth(scene: Scene, progress: bool = True, detection: bool = True
     """Plane cases of the sweep's depths, then the solid cases (both cached, on the scene's
     engine), then the lumped and detection stages per half-length."""
     sweep = scene.crack
-    execution = scene.tables.get("execution", Execution())
+    execution = scene.execution
     plane, computed_plane = crack_cases(replace(sweep, model="plane", half_lengths=()),
                                         progress, execution)
     solid, computed_solid = crack_cases(sweep, progress, execution)

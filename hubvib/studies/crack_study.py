@@ -28,7 +28,6 @@ from hubvib.render.html import write_html_reports
 from hubvib.render.schedule import begin_renders
 from hubvib.reports.crack_files import write_crack_study
 from hubvib.reports.crack_summary import crack_lines
-from hubvib.runtime.engines import Execution
 from hubvib.runtime.process_pool import worker_pool
 from hubvib.runtime.progress import stage, working
 from hubvib.runtime.stage_seconds import timed
@@ -49,7 +48,7 @@ def run_crack_study(scene: Scene, progress: bool = True, detection: bool = True,
     ``crack_study_from_fe``."""
     with timed("fe"):
         fe, computed = crack_cases(scene.crack, progress,
-                                   scene.tables.get("execution", Execution()), pool, after_fe)
+                                   scene.execution, pool, after_fe)
     if after_fe is not None:
         after_fe()
     return crack_study_from_fe(scene, fe, computed, detection=detection, workers=workers,
@@ -110,7 +109,8 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
     one worker, one pool serves the FE cases and then the renders (the FE ring's needs only
     the scene, the modes' the intact spectrum): they run on its warm workers beside the
     detection stage and the plots here."""
-    execution = scene.tables.get("execution", Execution())
+    execution = scene.execution
+    with_signal = scene.given("signal") is not None
     workers = execution.workers or scene.crack.workers
     with ExitStack() as beside:
         pool = (beside.enter_context(worker_pool(workers))
@@ -142,7 +142,7 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
                 result.elastic_map = elastic_map_of(scene, result.elastic)
             stage(f"elastic ring ({len(result.elastic.depths)} depths)", started)
         started = time.perf_counter()
-        if "signal" in scene.tables:  # the vibration signature beside the frequency study
+        if with_signal:  # the vibration signature beside the frequency study
             from hubvib.signal.report import write_signal_study
             from hubvib.signal.signature_study import run_signal_study
 
@@ -154,9 +154,9 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
                                                   plots=scene.plots)["files"]
             started = time.perf_counter()
         with working("tables, plots, renders and report"), timed("write"):
-            write_crack_study(result, staged, begun, signal="signal" in scene.tables)
+            write_crack_study(result, staged, begun, signal=with_signal)
     with timed("write"):
-        if "signal" in scene.tables:
+        if with_signal:
             result.files += [staged / "signal" / f for f in signal_files]
         pages = write_html_reports(staged, {staged / "report.md": result.report})
         result.files += [p for p in pages if p not in result.files]

@@ -14,9 +14,8 @@ __all__ = ["begin_elastic", "elastic_depths", "elastic_map_of", "finish_elastic"
 
 
 def _elastic_scene(scene: Scene):
-    table = scene.tables.get("elastic")
-    return table if table is not None and table.elastic and scene.crack.model == "plane" \
-        else None
+    table = scene.elastic
+    return table if table.elastic and scene.crack.model == "plane" else None
 
 
 def begin_elastic(scene: Scene, pool):

@@ -1,12 +1,13 @@
 """What a study kind is, the registry of kinds, and the scene that carries one.
 
 A scene is a tagged union: the common part (reducer and design, ``[study]`` threshold and
-eigensolver, ``[output]``, the optional ``[detection]``/``[signal]``/``[execution]``
-tables) and exactly one study kind, named by ``Scene.kind``, whose parsed tables are
-``Scene.study``.  Each kind declares the scene tables that select it and parses them
-itself; ``select_study`` asks the registry which kind a scene's tables select.  A new study
-kind is its module and one ``register_study`` call (``hubvib.studies.kinds`` registers the
-shipped ones).  Library code: nothing here prints.
+eigensolver, ``[output]``, the optional sections of ``hubvib.studies.sections``:
+``[detection]``, ``[signal]``, ``[execution]``, ``[elastic]``) and exactly one study kind,
+named by ``Scene.kind``, whose parsed tables are ``Scene.study``.  Each kind declares the
+scene tables that select it and parses them itself; ``select_study`` asks the registry which
+kind a scene's tables select.  A new study kind is its module and one ``register_study``
+call (``hubvib.studies.kinds`` registers the shipped ones).  Library code: nothing here
+prints.
 """
 from __future__ import annotations
 
@@ -17,6 +18,7 @@ from typing import Any, Callable
 from hubvib.foundation.errors import SceneError
 from hubvib.lumped import PlanetaryParameters
 from hubvib.cases.sweep import CrackSweep
+from hubvib.studies.sections import section_of
 
 
 def _always(data: dict) -> bool:
@@ -115,6 +117,40 @@ class Scene:
     vtm: bool = False
     design: object = None
     tables: dict = field(default_factory=dict, compare=False)
+
+    def section(self, name: str):
+        """The scene's parsed ``[name]`` section, or that section's default when the scene
+        has no such table (``hubvib.studies.sections``); an unknown name is refused
+        (``ValueError``)."""
+        default = section_of(name).default
+        value = self.tables.get(name)
+        return default if value is None else value
+
+    def given(self, name: str):
+        """The scene's parsed ``[name]`` section, or ``None`` when the scene has no such
+        table (for what runs only on a given table)."""
+        section_of(name)
+        return self.tables.get(name)
+
+    @property
+    def detection(self):
+        """The ``[detection]`` options (``hubvib.detection.options.DetectionOptions``)."""
+        return self.section("detection")
+
+    @property
+    def execution(self):
+        """The ``[execution]`` options (``hubvib.runtime.engines.Execution``)."""
+        return self.section("execution")
+
+    @property
+    def signal(self):
+        """The ``[signal]`` options (``hubvib.signal.options.SignalOptions``)."""
+        return self.section("signal")
+
+    @property
+    def elastic(self):
+        """The ``[elastic]`` options (``hubvib.elastic.options.ElasticScene``)."""
+        return self.section("elastic")
 
     @property
     def crack(self) -> CrackSweep | None:

@@ -72,32 +72,22 @@ from hubvib.reducer.consistency import check_consistent
 from hubvib.reducer.stages import lumped_parameters
 from hubvib.design import DesignError, PRESETS, preset_design
 from hubvib.detection.budget import check_scene as check_detection_budget
-from hubvib.detection.options import parse_detection_table
-from hubvib.elastic.options import parse_elastic_table
 from hubvib.foundation.errors import SceneError
 from hubvib.foundation.schema import Field, Schema
 from hubvib.lumped import METHODS, ParameterError, field_names
-from hubvib.runtime.engines import parse_execution_table
 from hubvib.runtime.params_input import apply_overrides, load_parameters, read_text_file
-from hubvib.signal.options import parse_signal_table
 from hubvib.studies.kinds import STUDIES
 from hubvib.studies.kind_registry import Scene, check_keys, select_study, study_tables
+from hubvib.studies.sections import SECTIONS
 
 __all__ = ["DEFAULT_SCENE", "Scene", "SceneError", "STUDIES", "default_scene_text",
            "load_scene", "parse_scene", "shipped_scene_text", "shipped_scenes"]
 
 PARAMETER_NAMES = field_names()
 
-#: optional tables parsed by the module that uses them: table -> parser.  The parser
-#: takes the table (a dict) and returns a frozen options object, raising SceneError that
-#: names the key and the allowed range; the object is in ``Scene.tables[name]``.  A new
-#: table = its parser + one line here.
-EXTENSION_TABLES = {
-    "signal": parse_signal_table,
-    "detection": parse_detection_table,
-    "execution": parse_execution_table,
-    "elastic": parse_elastic_table,
-}
+#: optional tables parsed by the module that uses them (``hubvib.studies.sections``):
+#: table -> parser; the parsed object is ``Scene.section(name)``
+EXTENSION_TABLES = {name: section.parse for name, section in SECTIONS.items()}
 
 #: the common tables (each study kind checks its own tables); a new key = one entry
 _BUT = "{label} = {value}, but it must be {allowed}"
@@ -223,10 +213,12 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
     for table in tables.values():  # checks that need the design (e.g. its mesh frequency)
         if hasattr(table, "check_design"):
             table.check_design(design)
-    # memory of the Monte Carlo, from the study's depths, before any FE
-    check_detection_budget(tables.get("detection"), options, params)
-    return Scene(name, params, threshold, method, folder, plots, kind.kind, options,
-                 data, **flags, design=design, tables=tables)
+    scene = Scene(name, params, threshold, method, folder, plots, kind.kind, options,
+                  data, **flags, design=design, tables=tables)
+    # memory of the Monte Carlo of a given [detection] table, from the study's depths,
+    # before any FE
+    check_detection_budget(scene.given("detection"), options, params)
+    return scene
 
 
 def _design(data, reducer, base: Path | None):

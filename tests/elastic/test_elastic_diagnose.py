@@ -240,8 +240,8 @@ def test_scene_ring_chooses_the_models():
     from hubvib.commands.diagnose import rings_of
     from hubvib.elastic.options import ElasticScene
 
-    both = SimpleNamespace(tables={"elastic": ElasticScene(ring="both")})
-    rigid = SimpleNamespace(tables={})
+    both = SimpleNamespace(elastic=ElasticScene(ring="both"))
+    rigid = SimpleNamespace(elastic=ElasticScene())
     assert rings_of(both, None) == ("rigid", "elastic")
     assert rings_of(rigid, None) == ("rigid",)
     assert rings_of(both, "elastic") == ("elastic",)
