@@ -33,6 +33,7 @@ import numpy as np
 from hubvib.elastic.cases import cached_case
 from hubvib.elastic.options import ElasticScene
 from hubvib.elastic.tracking import track_modes
+from hubvib.foundation.output import finite_or_none
 
 from .elastic_uncertainty import FE_CHANGE_ERROR, MIN_MATCH, elastic_spectrum_model
 from .options import DetectionOptions
@@ -138,16 +139,12 @@ class ElasticDetection:
                 "harmonic_index": self.harmonic_index[i], "ring_share": self.ring_share[i],
                 "visibility": float(self.visibility[i]), "watched": i in self.watched,
                 "sigma_hz": {f"{t:g}": float(s[i]) for t, s in self.sigma_hz.items()},
-                "shift_open_hz": [_finite(x) for x in shifts],
-                "shift_in_contact_hz": [_finite(x) for x in self.in_contact_shift_hz[:, i]],
-                "shift_bilinear_hz": [_finite(x) for x in self.bilinear_hz[:, i] - f],
+                "shift_open_hz": [finite_or_none(x) for x in shifts],
+                "shift_in_contact_hz": [finite_or_none(x) for x in self.in_contact_shift_hz[:, i]],
+                "shift_bilinear_hz": [finite_or_none(x) for x in self.bilinear_hz[:, i] - f],
                 "split_pair": [bool(x) for x in self.split_pair[:, i]],
             })
         return out
-
-
-def _finite(x) -> float | None:
-    return float(x) if np.isfinite(x) else None
 
 
 def sensor_visibility(spectrum, sensor_angle: float) -> np.ndarray:

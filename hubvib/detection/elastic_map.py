@@ -30,6 +30,7 @@ import numpy as np
 from hubvib.elastic.mounting_basis import cached_family_ring, ring_operators_at
 from hubvib.elastic.options import ElasticScene
 from hubvib.elastic.tracking import track_modes
+from hubvib.foundation.output import finite_or_none
 
 from .elastic import MIN_MATCH, VISIBLE, family_pod, sensor_visibility
 from .options import DetectionOptions
@@ -105,19 +106,15 @@ class ElasticMap:
                 "k_n_N_m2": None if clamped else s * self.foundation[0],
                 "k_t_N_m2": None if clamped else s * self.foundation[1],
                 "smallest_detectable_depth_mm": _mm(self.family_depth[k]),
-                "lowest_ring_mode_hz": _finite(self.lowest_ring_mode_hz[k]),
+                "lowest_ring_mode_hz": finite_or_none(self.lowest_ring_mode_hz[k]),
                 "lowest_ring_mode_n": self.lowest_ring_mode_n[k],
                 "watched_hz": list(self.watched[k]),
-                "modes": [{"frequency_hz": _finite(self.modes_hz[k, j]),
+                "modes": [{"frequency_hz": finite_or_none(self.modes_hz[k, j]),
                            "smallest_detectable_depth_mm": _mm(self.mode_depth[k, j]),
-                           "largest_drop_hz": _finite(self.mode_drop_hz[k, j])}
+                           "largest_drop_hz": finite_or_none(self.mode_drop_hz[k, j])}
                           for j in range(self.modes_hz.shape[1])],
                 "family_pod": [float(p) for p in self.family_pod[k]]})
         return out
-
-
-def _finite(x) -> float | None:
-    return float(x) if np.isfinite(x) else None
 
 
 def _mm(depth) -> float | None:

@@ -32,6 +32,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
+from hubvib.foundation.output import finite_or_none
+
 from .content import PAIR_RTOL, diameter_content, frequency_groups
 from .model import elastic_ring, elastic_spectrum, lowest_ring_mode, lumped_equivalent
 from .options import ElasticOptions
@@ -131,16 +133,13 @@ class ValidityBand:
 
     def rows(self) -> list[dict]:
         """One dict per rigid-model mode (JSON-ready; NaN as None)."""
-        return [{"mode": p.mode, "rigid_hz": p.rigid_hz, "elastic_hz": _finite(p.elastic_hz),
-                 "relative_difference": _finite(p.relative_difference), "match": p.match,
-                 "ring_share": _finite(p.ring_share),
-                 "deformation_share": _finite(p.deformation_share),
+        return [{"mode": p.mode, "rigid_hz": p.rigid_hz,
+                 "elastic_hz": finite_or_none(p.elastic_hz),
+                 "relative_difference": finite_or_none(p.relative_difference), "match": p.match,
+                 "ring_share": finite_or_none(p.ring_share),
+                 "deformation_share": finite_or_none(p.deformation_share),
                  "nodal_diameter": p.nodal_diameter,
                  "inside_band": bool(p.rigid_hz < self.band_top_hz)} for p in self.paired]
-
-
-def _finite(x: float) -> float | None:
-    return float(x) if math.isfinite(x) else None
 
 
 def rigid_fit(er) -> np.ndarray:
@@ -309,7 +308,7 @@ def _reason(band: ValidityBand) -> str:
 def validity_record(band: ValidityBand) -> dict:
     """The band as JSON (``survey`` data; NaN and inf as None).  ``rigid_ring_holds_below_hz``
     keeps the key the docs' table reads."""
-    top = _finite(band.band_top_hz)
+    top = finite_or_none(band.band_top_hz)
     return {"lowest_ring_mode_hz": band.lowest_ring_mode_hz,
             "lowest_ring_mode_n": band.lowest_ring_mode_n,
             "rigid_top_hz": band.rigid_top_hz, "band_top_hz": top,

@@ -184,6 +184,12 @@ def write_text(path: Path, text: str) -> Path:
     return Path(path)
 
 
+def finite_or_none(x) -> float | None:
+    """``x`` as a float for JSON, None where it is NaN or infinite."""
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
 def json_text(data, indent: int | None = 2) -> str:
     """Standard JSON (no NaN or Infinity); a non-finite number is a ``ValueError`` naming it."""
     try:
