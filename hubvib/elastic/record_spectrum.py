@@ -39,6 +39,9 @@ exactly at its natural frequency (the velocity response is the one without the
 the acceleration peak: a modal fit of a one-state record returns ``f_j``), and every
 component rises below ``f_j`` and falls above it, so all peaks of ``P`` lie in
 ``[f_min, f_max]``.
+The mixture is the limit ``r -> infinity``: at finite ``r`` each state's line is broadened
+by its finite duration ``w_j / f_pp``, which pulls a smaller peak towards a larger one by
+``O(gamma / r)``.
 
 *Swing well inside the bandwidth* (``S = f_max - f_min << B``): near the peak each
 component is a Lorentzian of half-width ``gamma = zeta fbar``; expanding ``P'`` in the
@@ -48,13 +51,16 @@ deviations ``d_j = f_j - fbar`` puts the peak at the dwell-weighted mean,
 ``f_peak - fbar ~= -2 mu_3 / gamma^2 - 5 sigma^2 / (2 fbar)`` with ``sigma^2 = sum w d^2``
 [Hz^2] and ``mu_3 = sum w d^3`` [Hz^3]: the skew of the dwell distribution pulls the peak
 towards the state that holds most of the time (dominant when ``zeta`` is small), and the
-states' widths ``zeta f_j`` and heights ``~ 1 / f_j^2`` favour the lower ones.  Both are ``<< gamma``
-while ``S << B``.  This module does not use the expansion: it finds the peaks of ``P``
-numerically, which holds at any swing.
+states' widths ``zeta f_j`` and heights ``~ 1 / f_j^2`` favour the lower ones.  Both are
+``<< gamma`` while ``sigma << gamma``; as the swing approaches ``gamma`` the top of ``P``
+flattens and the shift outgrows the expansion (two equal states ``gamma`` apart: four
+times it).  This
+module does not use the expansion: it finds the peaks of ``P`` numerically, at any swing.
 
 *Beyond the bandwidth* the peaks of ``P`` are found on a grid over
 ``[f_min - gamma / 4, f_max + gamma / 4]`` no coarser than ``gamma / 16``, then refined by a
-safeguarded Newton iteration on ``dP/dg = 0`` (to machine precision).  A local maximum is a
+safeguarded Newton iteration on ``dP/dg = 0`` (to machine precision; the grid has at most
+4097 points, coarser only for swings beyond 256 ``gamma``).  A local maximum is a
 peak when its topographic prominence is at least ``PROMINENCE`` (5 %) of the highest value
 of ``P``: a shallower dip is lost in the scatter of an averaged PSD estimate (relative
 standard deviation ``1 / sqrt(segments)``, 5 % for 400 segments).  Peaks closer than the
@@ -84,10 +90,13 @@ average ``fbar`` is the one the switching oscillator's Floquet exponent follows 
 
 Neither limit is exact near ``r ~ 1``; both put a swing inside the bandwidth at ``fbar``.
 
-``frequency_hz`` is the frequency an identification of the record returns: the highest
-peak of the mixture (quasi-static) or the central line (fast).  ``peaks_hz`` lists every
-peak; ``sidebands_hz`` the planet-pass sidebands ``fbar + (-2, -1, 1, 2) f_pp``, where a
-record with resolved sidebands shows lines that are not modes.
+``frequency_hz`` is the frequency an identification of the record returns, by this rule:
+the highest peak of the mixture (quasi-static) or the central line (fast).  A peak-picking
+identification returns it; a single-mode fit over a skewed hump lands between the peak
+and ``fbar`` (in the ``"averaged"`` regime the two agree within the resolution).
+``peaks_hz`` lists every peak; ``sidebands_hz`` the planet-pass sidebands
+``fbar + (-2, -1, 1, 2) f_pp``, where a record with resolved sidebands shows lines that are
+not modes.
 
 Untracked positions (NaN) are left out of that mode, its dwell renormalised over the
 rest; a mode with no tracked position of positive dwell has NaN results and regime

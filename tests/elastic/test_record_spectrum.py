@@ -401,3 +401,11 @@ def test_long_records_mixture(seed):
     found = curve_peaks(fun, 47.5, 52.5)
     assert found.size == 1 and abs(found[0] - r.frequency_hz[0]) < 0.06, (
         f"simulated {found} vs predicted {r.frequency_hz[0]:.4f} Hz (mean {r.mean_hz[0]})")
+
+
+def test_one_dimensional_input_is_one_mode():
+    one = record_spectrum([100.0, 104.0, 101.0], [1.0, 2.0, 1.0], ZETA, 0.1)
+    two = record_spectrum([[100.0], [104.0], [101.0]], [1.0, 2.0, 1.0], ZETA, 0.1)
+    assert one.regime == two.regime and one.frequency_hz.shape == (1,)
+    assert one.frequency_hz[0] == two.frequency_hz[0]
+    assert one.mean_hz[0] == pytest.approx((100.0 + 2 * 104.0 + 101.0) / 4, rel=1e-15)
