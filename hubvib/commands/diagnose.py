@@ -10,6 +10,8 @@ from pathlib import Path
 
 #: width the explanations are wrapped to
 WIDTH = 96
+#: the ring models ``--ring`` chooses from
+RINGS = ("rigid", "elastic")
 
 
 def _say(text: str) -> None:
@@ -31,14 +33,11 @@ def add_parser(sub) -> None:
                    "CSV time_s,acceleration_m_s2, WAV or UFF 58 (instead of --measured)")
     p.add_argument("--baseline-record", type=Path,
                    help="record of the same reducer intact (with --record)")
-    p.add_argument("--ring", help="ring model: rigid (the 9 + 3N model) or elastic (the FE "
+    p.add_argument("--ring", metavar="{" + ",".join(RINGS) + "}", help="ring model: rigid (the 9 + 3N model) or elastic (the FE "
                    "ring coupled to the lumped bodies); default: the scene's [elastic] ring "
                    "(both: both verdicts, the rigid ring's first)")
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
-
-
-RINGS = ("rigid", "elastic")
 
 
 def rings_of(scene, flag: str | None) -> tuple[str, ...]:
@@ -188,17 +187,15 @@ def _print_answer(scene, measured, result, ref, found) -> None:
         _say(f"verdict: {result.verdict} (fit statistic {result.fit_statistic:.3g}, p = "
               f"{result.fit_p_value:.2g} < {ref.fit_false_alarm_rate:g}): "
               f"{result.explanation()}")
-    elif result.depth is None:
+    elif result.depth_high is None:
         _say(f"verdict: {result.verdict} (no measured mode tells the deepest crack of the "
               f"sweep, {1e3 * ref.depths[-1]:.3g} mm, from an intact reducer)")
     elif result.verdict == "crack indicated":
-        _say(f"verdict: {result.verdict}: depth {1e3 * result.depth:.3g} mm (posterior "
-              f"median), {100 * result.confidence:g} % interval {1e3 * result.depth_low:.3g} "
-              f".. {1e3 * result.depth_high:.3g} mm (it holds the depth with probability "
-              f"{result.confidence:g} under the model)")
+        _say(f"verdict: {result.verdict}: {result.words} (it holds the depth with probability "
+              f"{result.confidence:g} under the model; depths computed: "
+              f"{', '.join(f'{1e3 * d:.3g}' for d in ref.depths)} mm)")
     else:
-        _say(f"verdict: {result.verdict}: depth below {1e3 * result.depth_high:.3g} mm "
-              f"at {100 * result.confidence:g} %")
+        _say(f"verdict: {result.verdict}: depth {result.words}")
 
 
 def explain(result, ref) -> list[str]:
