@@ -2,7 +2,7 @@
 
 The reference is a Monte Carlo of the study's spectrum model
 (:mod:`.spectrum_model`: the rigid-ring lumped model through :mod:`.uncertainty`, or
-the elastic ring through :mod:`.elastic_uncertainty`): at every depth of the sweep,
+the elastic ring through :mod:`.elastic_model`): at every depth of the sweep,
 the distribution of each mode's frequency as a record sees it.  For the measured modes the statistic is the shift against the
 baseline (the reducer's own intact frequencies when the CSV gives
 ``baseline_hz``, else the model's nominal intact spectrum).  Its mean and
@@ -130,7 +130,7 @@ def reference(model, options, timing, seed: int | None = None, workers: int = 1)
     model = as_spectrum_model(model)
     rng = np.random.default_rng(options.seed + 1 if seed is None else seed)
     samples = model.sampled_hz(options, timing, options.samples, rng, workers)
-    nominal_hz = model.nominal_hz(timing, options)
+    nominal_hz = model.nominal_hz(options, timing)
     drift = model.drift(nominal_hz[0], options)
     return Reference(np.array(model.depths), samples, nominal_hz,
                      options.sigma_hz(nominal_hz[0]), options.false_alarm_rate,
@@ -517,7 +517,7 @@ def synthetic_measurements(model, options, timing, depths: np.ndarray, seed: int
     at = as_spectrum_model(model).at_depths(np.concatenate([[0.0], depths]))
     f = at.sampled_hz(options, timing, depths.size, rng, workers,
                       depth_index=np.arange(1, depths.size + 1))
-    intact = at.nominal_hz(timing, options, long_record=True)[0]
+    intact = at.nominal_hz(options, timing, long_record=True)[0]
     sigma = options.sigma_hz(intact)
     draw_errors = errors or (lambda generator, shape: generator.standard_normal(shape))
     noise = draw_errors(rng, f.shape) * sigma
@@ -538,8 +538,8 @@ def elastic_scene_model(scene):
     from hubvib.elastic.cases import cached_case
     from hubvib.cases.sweep import crack_of
 
-    from .elastic import case_arguments
-    from .elastic_uncertainty import elastic_spectrum_model
+    from .elastic_model import case_arguments
+    from .elastic_model import elastic_spectrum_model
 
     table = scene.elastic
     sweep = scene.crack

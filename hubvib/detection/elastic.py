@@ -15,7 +15,7 @@ The rule is the rigid-ring study's with the reducer's own intact record as basel
 mode alarms when its change plus the difference of two identification errors,
 ``N(0, 2 sigma^2)``, falls below ``-z(1 - alpha_m) sqrt(2) sigma``; the family alarms on
 any watched mode (Sidak ``alpha_m``).  The POD is the mean of that probability over the
-Monte Carlo reducers of :mod:`.elastic_uncertainty` (parameter scatter and FE error, as
+Monte Carlo reducers of :mod:`.elastic_model` (parameter scatter and FE error, as
 the rigid-ring POD), the identification noise integrated exactly; the nominal reducer's
 POD (identification noise only) is kept beside it.  Watched: the modes the sensor sees
 (radial ring motion at the sensor at least ``VISIBLE`` of the largest among the band's
@@ -30,19 +30,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hubvib.elastic.cases import cached_case
 from hubvib.elastic.options import ElasticScene
-from hubvib.elastic.tracking import track_modes
 from hubvib.foundation.output import finite_or_none
 
-from .elastic_uncertainty import FE_CHANGE_ERROR, MIN_MATCH, elastic_spectrum_model
+from .elastic_model import (FE_CHANGE_ERROR, MIN_MATCH, VISIBLE, assignment, padded,
+                            tracked_to, cached_case, case_arguments, elastic_spectrum_model,
+                            record_frequencies,
+                            sensor_visibility)
 from .options import DetectionOptions
+from .pod import family_pod
 
-#: radial amplitude at the sensor, relative to the largest of the band's modes there, for
-#: a mode to count as seen (mass-normalised shapes)
-VISIBLE = 0.1
 RECORD_LENGTHS = (10.0, 60.0, 600.0)
-#: MIN_MATCH (from .elastic_uncertainty): subspace match below which a cracked mode is not
+#: MIN_MATCH (from .elastic_model): subspace match below which a cracked mode is not
 #: taken to continue an intact one (a crack through the rim opens the ring: its modes are
 #: no longer the intact ring's)
 
@@ -147,61 +146,6 @@ class ElasticDetection:
         return out
 
 
-def sensor_visibility(spectrum, sensor_angle: float) -> np.ndarray:
-    """Radial ring displacement at the sensor angle of each mode, over the largest [-]."""
-    probe = spectrum.modes.probe
-    points = probe.shape[0] // 2
-    index = int(round(sensor_angle % (2 * math.pi) / (2 * math.pi) * points)) % points
-    radial = np.abs(probe[index])
-    top = radial.max()
-    return radial / top if top > 0 else radial
-
-
-def _tracked(intact, cracked, mass, index=None) -> tuple[np.ndarray, np.ndarray]:
-    """Each intact mode's frequency in ``cracked`` (NaN where no mode continues it with a
-    match of at least ``MIN_MATCH``) and whether it is a member of a split pair;
-    ``index``: the intact modes' positions in the reported order (default the same)."""
-    tracked = track_modes(intact, cracked, mass)
-    n = intact.frequency_hz.size if index is None else int(np.max(index)) + 1
-    f = np.full(n, np.nan)
-    split = np.zeros(n, dtype=bool)
-    for j, (ref, match) in enumerate(zip(tracked.reference, tracked.match)):
-        if ref >= 0 and match >= MIN_MATCH:
-            at = ref if index is None else index[ref]
-            if at >= 0:
-                f[at] = cracked.frequency_hz[j]
-                split[at] = tracked.split_pair[j]
-    return f, split
-
-
-def _assignment(reference, other, mass):
-    tracked = track_modes(reference, other, mass)
-    return tracked.reference, tracked.match
-
-
-def _pad(values: np.ndarray, n: int) -> np.ndarray:
-    out = np.full(n, np.nan)
-    out[:min(n, values.size)] = values[:n]
-    return out
-
-
-def family_pod(shift_hz: np.ndarray, sigma_hz: np.ndarray, watched, rate: float) -> np.ndarray:
-    """Probability that some watched mode alarms, per depth [-]: ``shift_hz`` (depths,
-    modes) of one reducer, or (samples, depths, modes) of Monte Carlo reducers (their mean
-    probability).  A NaN shift (the mode is not tracked) counts as no change."""
-    from scipy.stats import norm
-
-    z = norm.ppf(1.0 - rate)
-    shift_hz = np.asarray(shift_hz, dtype=float)
-    miss = np.ones(shift_hz.shape[:-1])
-    for i in watched:
-        d = np.nan_to_num(shift_hz[..., i], nan=0.0)
-        scale = math.sqrt(2.0) * sigma_hz[i]
-        miss *= norm.cdf((d + z * scale) / scale)
-    pod = 1.0 - miss
-    return pod if pod.ndim == 1 else pod.mean(axis=0)
-
-
 def sampled_shifts(model, options: DetectionOptions, seed: int | None = None) -> np.ndarray:
     """Changes of every mode of ``options.samples`` Monte Carlo reducers against their own
     intact spectrum [Hz], (samples, depths, modes); NaN where the nominal continuation is
@@ -211,14 +155,6 @@ def sampled_shifts(model, options: DetectionOptions, seed: int | None = None) ->
     shift = f - f[:, :1]
     shift[:, ~model.tracked] = np.nan
     return shift
-
-
-def case_arguments(design, depths, crack_of, scene: ElasticScene) -> list[tuple]:
-    """The arguments of ``cached_case`` for every depth (the first 0: intact)."""
-    from hubvib.elastic.rest import rest_stiffness
-
-    k_rest = rest_stiffness(design, scene.options.rest)
-    return [(design, crack_of(d), scene, k_rest) for d in depths]
 
 
 def elastic_detection(design, depths, crack_of, scene: ElasticScene,
@@ -238,16 +174,17 @@ def elastic_detection(design, depths, crack_of, scene: ElasticScene,
     # the on-tooth spectra are tracked to the intact on-tooth spectrum, then reported in
     # the order of the intact modes away from the tooth
     away_of_on = np.full(intact.on.frequency_hz.size, -1)
-    for j, (ref, match) in enumerate(zip(*_assignment(intact_away, intact.on, mass))):
+    for j, (ref, match) in enumerate(zip(*assignment(intact_away, intact.on, mass))):
         if ref >= 0 and match >= MIN_MATCH:
             away_of_on[j] = ref
     open_hz[0] = intact_away.frequency_hz
     if (away_of_on >= 0).any():
-        on_hz[0] = _pad(_tracked(intact.on, intact.on, mass, away_of_on)[0], n)
+        on_hz[0] = padded(tracked_to(intact.on, intact.on, mass, away_of_on)[0], n)
     for k, case in enumerate(cases[1:], start=1):
-        open_hz[k], split[k] = _tracked(intact_away, case.away, mass)
+        seen = record_frequencies(intact, case)
+        open_hz[k], split[k] = seen.record_hz, seen.split_pair
         if (away_of_on >= 0).any():
-            on_hz[k] = _pad(_tracked(intact.on, case.on, mass, away_of_on)[0], n)
+            on_hz[k] = padded(tracked_to(intact.on, case.on, mass, away_of_on)[0], n)
     lengths = tuple(sorted({*RECORD_LENGTHS, options.record_length}))
     sigma = {t: options.sigma_hz(intact_away.frequency_hz, t) for t in lengths}
     visibility = sensor_visibility(intact_away, scene.sensor_angle)

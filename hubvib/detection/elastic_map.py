@@ -32,8 +32,9 @@ from hubvib.elastic.options import ElasticScene
 from hubvib.elastic.tracking import track_modes
 from hubvib.foundation.output import finite_or_none
 
-from .elastic import MIN_MATCH, VISIBLE, family_pod, sensor_visibility
+from .elastic_model import MIN_MATCH, VISIBLE, sensor_visibility
 from .options import DetectionOptions
+from .pod import family_pod
 
 #: foundation scales of the map (both stiffnesses x s); s = 1 is the reference
 SCALES = tuple(float(s) for s in np.geomspace(0.1, 100.0, 13))

@@ -352,6 +352,24 @@ def pod_study(model, options, timing, samples: int | None = None, model_baseline
                      drift, refs, drifting, compensated)
 
 
+def family_pod(shift_hz: np.ndarray, sigma_hz: np.ndarray, watched, rate: float) -> np.ndarray:
+    """Probability that some watched mode alarms against the reducer's own intact record
+    (the rule of this module's docstring, any spectrum model), per depth [-]: ``shift_hz`` (depths,
+    modes) of one reducer, or (samples, depths, modes) of Monte Carlo reducers (their mean
+    probability).  A NaN shift (the mode is not tracked) counts as no change."""
+    from scipy.stats import norm
+
+    z = norm.ppf(1.0 - rate)
+    shift_hz = np.asarray(shift_hz, dtype=float)
+    miss = np.ones(shift_hz.shape[:-1])
+    for i in watched:
+        d = np.nan_to_num(shift_hz[..., i], nan=0.0)
+        scale = math.sqrt(2.0) * sigma_hz[i]
+        miss *= norm.cdf((d + z * scale) / scale)
+    pod = 1.0 - miss
+    return pod if pod.ndim == 1 else pod.mean(axis=0)
+
+
 def _quantile_threshold(offsets: np.ndarray, sigma: float, alpha: float) -> float:
     """t with mean(P(offset + e < -t)) = alpha, e normal with standard deviation sigma."""
     from scipy.stats import norm

@@ -6,7 +6,8 @@ sees [Hz]: the nominal reducer's and those of reducers drawn from its uncertaint
 the modes in one fixed order (mode ``i`` is the same mode at every depth).  The rigid-ring
 lumped model (:class:`RigidSpectrum`, a wrapper of ``CrackModel`` and
 :mod:`.uncertainty`) and the elastic ring
-(:class:`hubvib.detection.elastic_uncertainty.ElasticSpectrum`) implement it.
+(:class:`hubvib.detection.elastic_model.ElasticSpectrum`) implement it, with one
+argument order: ``(options, timing, ...)``.
 """
 from __future__ import annotations
 
@@ -34,7 +35,7 @@ class SpectrumModel(Protocol):
     depths: tuple
     ring: str
 
-    def nominal_hz(self, timing, options, long_record: bool | None = None) -> np.ndarray:
+    def nominal_hz(self, options, timing, long_record: bool | None = None) -> np.ndarray:
         """Observed frequencies of the nominal reducer [Hz], (depths, modes).
         ``long_record``: the record spans more than one engagement of the cracked tooth
         (default: from ``options.record_length``)."""
@@ -74,7 +75,7 @@ class RigidSpectrum:
     def _long(self, timing, options, long_record):
         return timing.long_record(options.record_length) if long_record is None else long_record
 
-    def nominal_hz(self, timing, options, long_record: bool | None = None) -> np.ndarray:
+    def nominal_hz(self, options, timing, long_record: bool | None = None) -> np.ndarray:
         return observed_frequencies(self.crack, nominal(self.crack), timing.engaged_fraction,
                                     self._long(timing, options, long_record))[0]
 

@@ -30,7 +30,7 @@ def begin_elastic(scene: Scene, pool):
     elastic = _elastic_scene(scene)
     if elastic is None:
         return None
-    from hubvib.detection.elastic import cached_case, case_arguments
+    from hubvib.detection.elastic_model import cached_case, case_arguments
 
     sweep = scene.crack
     depths = elastic_depths(sweep)
@@ -81,7 +81,7 @@ def elastic_map_of(scene: Scene, elastic):
     es = _elastic_scene(scene)
     if not es.map:
         return None
-    from hubvib.detection.elastic import family_pod
+    from hubvib.detection.pod import family_pod
     from hubvib.detection.elastic_map import elastic_map
     from hubvib.detection.options import detection_options
 

@@ -15,7 +15,7 @@ from hubvib.detection.calibration import calibrate, student_errors
 from hubvib.detection.diagnosis import reference, synthetic_measurements
 from hubvib.detection.drift import drift_model
 from hubvib.detection.elastic import family_pod, sampled_shifts
-from hubvib.detection.elastic_uncertainty import (ElasticSamples, batched_hz,
+from hubvib.detection.elastic_model import (ElasticSamples, batched_hz,
                                                   elastic_spectrum_model, unscattered)
 from hubvib.detection.options import DetectionOptions
 from hubvib.detection.spectrum_model import RigidSpectrum, SpectrumModel, as_spectrum_model
@@ -159,7 +159,7 @@ def test_pod_at_depth_zero_is_the_false_alarm_rate_and_rises_with_depth(small):
     _, model = small
     options = DetectionOptions(samples=300)
     shifts = sampled_shifts(model, options)
-    sigma = options.sigma_hz(model.nominal_hz()[0])
+    sigma = options.sigma_hz(model.nominal_hz(None, None)[0])
     watched = (3, 4, 5)
     rate = options.per_mode_rate(len(watched))
     pod = family_pod(shifts, sigma, watched, rate)
@@ -202,7 +202,7 @@ def test_elastic_at_depths_interpolates_linearly(small):
     """Between two sweep depths a sample's frequency is the linear interpolation."""
     _, model = small
     halfway = model.at_depths([0.0, 0.002, 0.004])
-    values = halfway.nominal_hz()
+    values = halfway.nominal_hz(None, None)
     assert np.allclose(values[1], 0.5 * (model.nominal_grid_hz[0] + model.nominal_grid_hz[1]))
     assert np.array_equal(values[2], model.nominal_grid_hz[1])
     with pytest.raises(ValueError, match="within the sweep"):
@@ -310,7 +310,7 @@ def test_sorted_order_keeps_the_nominal_identities_of_separated_modes(small):
     neighbours (relative gap > 10 %, more than the 2-10 % scatter moves them), the mode
     in the nominal's sorted place is the nominal's mode there by subspace match in every
     sample, intact and at the deepest crack."""
-    from hubvib.detection.elastic_uncertainty import draw_elastic, sorted_order_kept
+    from hubvib.detection.elastic_model import draw_elastic, sorted_order_kept
 
     cases, model = small
     samples = draw_elastic(model, DetectionOptions(), 60, np.random.default_rng(1))

@@ -1,4 +1,9 @@
-"""Monte Carlo of the elastic-ring spectrum: parameter scatter and FE error (SI).
+"""The elastic ring as a spectrum model (``spectrum_model.SpectrumModel``): per-depth
+frequencies a record sees, and their Monte Carlo over parameter scatter and FE error (SI).
+
+Per crack depth the design's FE ring is meshed with the crack, coupled to the lumped
+bodies (``hubvib.elastic``), and every coupled mode is tracked to the intact mode it
+continues (:func:`record_frequencies`: the one place a depth's frequencies come from).
 
 Each sample is one reducer as built, scattered like the rigid-ring model's
 (:mod:`.uncertainty`): every lumped mass and the ring's mass by ``scatter_masses``, every
@@ -28,6 +33,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from hubvib.elastic.cases import cached_case
 from hubvib.elastic.tracking import track_modes
 from hubvib.lumped.elastic_ring import RING_DOFS, coupled_matrices
 from hubvib.lumped.network import mass_diagonal, spring_network
@@ -36,8 +42,10 @@ from hubvib.lumped.parameters import MASS_FIELDS
 from .drift import Drift
 from .uncertainty import lognormal
 
-__all__ = ["FE_CHANGE_ERROR", "ElasticSpectrum", "ElasticSamples", "elastic_spectrum_model",
-           "draw_elastic", "batched_hz", "depth_operators", "sorted_order_kept"]
+__all__ = ["FE_CHANGE_ERROR", "MIN_MATCH", "VISIBLE", "ElasticSpectrum", "ElasticSamples",
+           "RecordFrequencies", "elastic_spectrum_model", "record_frequencies",
+           "draw_elastic", "batched_hz", "depth_operators", "sorted_order_kept",
+           "sensor_visibility", "case_arguments", "cached_case"]
 
 #: relative error of a crack's change of a coupled mode from the ring's discretisation:
 #: the crack study's ring mesh gives changes within 1 Hz of the modal mesh's at 9 mm on
@@ -48,6 +56,9 @@ FE_CHANGE_ERROR = 0.01
 MIN_MATCH = 0.5
 #: relative step of the mesh stiffnesses for the load drift's sensitivity
 LOAD_STEP = 1e-4
+#: radial amplitude at the sensor, relative to the largest of the band's modes there, for
+#: a mode to count as seen (mass-normalised shapes)
+VISIBLE = 0.1
 
 
 @dataclass(frozen=True, eq=False)
@@ -237,7 +248,14 @@ class ElasticSpectrum:
     ring body: it acts at every carrier position) at the sweep's depths ``grid``, linearly
     interpolated in depth to ``depths``.
 
-    ``labels``: one name per intact mode; ``k_rest`` [N/m]; ``fe_change_error`` [-].
+    ``labels``: one name per intact mode; ``k_rest`` [N/m]; ``fe_change_error`` [-];
+    ``nominal_grid_hz`` (grid, modes): what a record of the nominal reducer sees
+    (:func:`record_frequencies`); ``record_ratio`` (grid, modes) or None: per depth and
+    mode, the nominal record change over the change at the reference position (planet 1
+    half a pitch away, faces open), by which every sampled reducer's change, solved at the
+    reference position, is scaled (None: they are the same, no scaling).  A shortcut: the
+    Monte Carlo reducers share the nominal reducer's ratio of what the load cycle does to
+    the crack's change.
     """
 
     grid: tuple
@@ -251,6 +269,7 @@ class ElasticSpectrum:
     depths: tuple = ()
     ring: str = "elastic"
     mesh: dict = field(default_factory=dict)
+    record_ratio: np.ndarray | None = None
 
     def __post_init__(self):
         if not self.depths:
@@ -280,6 +299,8 @@ class ElasticSpectrum:
         out = np.empty((samples.n, len(self.grid), self.nominal_grid_hz.shape[1]))
         for k, op in enumerate(self.operators):
             out[:, k] = batched_hz(op, samples, self.masks)[:, op.slot]
+        if self.record_ratio is not None:
+            out = out[:, :1] + self.record_ratio[None] * (out - out[:, :1])
         return out + samples.z[:, None, None] * self.fe_error_hz()[None]
 
     def _interpolated(self, values: np.ndarray, depths) -> np.ndarray:
@@ -298,7 +319,7 @@ class ElasticSpectrum:
         out[exact] = low[exact]
         return out
 
-    def nominal_hz(self, timing=None, options=None, long_record=None) -> np.ndarray:
+    def nominal_hz(self, options=None, timing=None, long_record=None) -> np.ndarray:
         values = self.nominal_grid_hz[None]
         return self._interpolated(values, self.depths)[0]
 
@@ -372,4 +393,97 @@ def elastic_spectrum_model(depths, cases, fe_change_error: float = FE_CHANGE_ERR
     # of a cracked spectrum no longer holds
     solved = np.array([batched_hz(op, unscattered(model), masks)[0, op.slot]
                        for op in operators])
-    return replace(model, nominal_grid_hz=np.where(np.isfinite(nominal), nominal, solved))
+    reference = np.where(np.isfinite(nominal), nominal, solved)
+    records = [record_frequencies(intact, case) for case in cases]
+    if all(r.record_hz is r.reference_hz for r in records):  # today: the reference itself
+        return replace(model, nominal_grid_hz=reference)
+    record = np.array([padded(r.record_hz, reference.shape[1]) for r in records])
+    record = np.where(np.isfinite(record), record, reference)
+    change, moved = reference - reference[0], record - record[0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(np.abs(change) > 0, moved / change, 1.0)
+    return replace(model, nominal_grid_hz=record, record_ratio=ratio)
+
+
+@dataclass(frozen=True)
+class RecordFrequencies:
+    """What a record sees of one crack depth, per intact mode (the intact case's "away"
+    order) [Hz]: ``record_hz`` (NaN: no mode continues it), ``reference_hz`` (planet 1
+    half a planet pitch from the cracked tooth, faces open: where the Monte Carlo reducers
+    are solved) and ``split_pair`` (bool)."""
+
+    record_hz: np.ndarray
+    reference_hz: np.ndarray
+    split_pair: np.ndarray
+
+
+#: the share of the working torque a record's crack is loaded by; None: the faces open
+#: (the record sees the reference spectrum).  The loaded crack (``hubvib.elastic.loaded``)
+#: is used where a case carries it and this is set.
+RECORD_TORQUE_FRACTION = None
+
+
+def record_frequencies(intact, case, torque_fraction: float | None = RECORD_TORQUE_FRACTION
+                       ) -> RecordFrequencies:
+    """The one place the elastic ring's per-depth nominal frequencies come from: ``case``
+    (an ``ElasticCase``) as a record sees it, its modes tracked to ``intact``'s (subspace
+    match at least ``MIN_MATCH``).
+
+    Without a loaded crack: the "away" spectrum (planet 1 half a pitch from the crack,
+    faces open), the record's and the reference's the same array.  With
+    ``torque_fraction`` and a case holding its loaded crack, the record track of
+    :func:`hubvib.elastic.loaded.record_track` (the faces opening and closing as the
+    planets pass) is what the record sees."""
+    reference, split = tracked_to(intact.away, case.away, intact.ring_mass)
+    if torque_fraction is None or not hasattr(case, "loaded"):
+        return RecordFrequencies(reference, reference, split)
+    from hubvib.elastic.loaded import record_track  # the loaded crack's API
+
+    track = record_track(intact, case, torque_fraction=torque_fraction)
+    return RecordFrequencies(np.asarray(track.record_hz, dtype=float), reference, split)
+
+
+def sensor_visibility(spectrum, sensor_angle: float) -> np.ndarray:
+    """Radial ring displacement at the sensor angle of each mode, over the largest [-]."""
+    probe = spectrum.modes.probe
+    points = probe.shape[0] // 2
+    index = int(round(sensor_angle % (2 * math.pi) / (2 * math.pi) * points)) % points
+    radial = np.abs(probe[index])
+    top = radial.max()
+    return radial / top if top > 0 else radial
+
+
+def tracked_to(intact, cracked, mass, index=None) -> tuple[np.ndarray, np.ndarray]:
+    """Each intact mode's frequency in ``cracked`` (NaN where no mode continues it with a
+    match of at least ``MIN_MATCH``) and whether it is a member of a split pair;
+    ``index``: the intact modes' positions in the reported order (default the same)."""
+    tracked = track_modes(intact, cracked, mass)
+    n = intact.frequency_hz.size if index is None else int(np.max(index)) + 1
+    f = np.full(n, np.nan)
+    split = np.zeros(n, dtype=bool)
+    for j, (ref, match) in enumerate(zip(tracked.reference, tracked.match)):
+        if ref >= 0 and match >= MIN_MATCH:
+            at = ref if index is None else index[ref]
+            if at >= 0:
+                f[at] = cracked.frequency_hz[j]
+                split[at] = tracked.split_pair[j]
+    return f, split
+
+
+def assignment(reference, other, mass):
+    tracked = track_modes(reference, other, mass)
+    return tracked.reference, tracked.match
+
+
+def padded(values: np.ndarray, n: int) -> np.ndarray:
+    out = np.full(n, np.nan)
+    out[:min(n, values.size)] = values[:n]
+    return out
+
+
+def case_arguments(design, depths, crack_of, scene: ElasticScene) -> list[tuple]:
+    """The arguments of ``cached_case`` for every depth (the first 0: intact)."""
+    from hubvib.elastic.rest import rest_stiffness
+
+    k_rest = rest_stiffness(design, scene.options.rest)
+    return [(design, crack_of(d), scene, k_rest) for d in depths]
