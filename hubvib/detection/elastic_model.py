@@ -35,14 +35,18 @@ import numpy as np
 
 from hubvib.elastic.cases import cached_case
 from hubvib.elastic.tracking import track_modes
+from hubvib.foundation.output import finite_or_none
 from hubvib.lumped.elastic_ring import RING_DOFS, coupled_matrices
 from hubvib.lumped.network import mass_diagonal, spring_network
 from hubvib.lumped.parameters import MASS_FIELDS
 
 from .drift import Drift
+from .pod import RECORD_LENGTHS, family_pod, monte_carlo_shifts, watched_by_drop
+from .result import DetectionResult, elastic_label
 from .uncertainty import lognormal
 
-__all__ = ["FE_CHANGE_ERROR", "MIN_MATCH", "VISIBLE", "ElasticSpectrum", "ElasticSamples",
+__all__ = ["ElasticDetail", "elastic_result", "bilinear_hz", "elastic_mode_rows",
+           "FE_CHANGE_ERROR", "MIN_MATCH", "VISIBLE", "ElasticSpectrum", "ElasticSamples",
            "RecordFrequencies", "elastic_spectrum_model", "record_frequencies",
            "draw_elastic", "batched_hz", "depth_operators", "sorted_order_kept",
            "sensor_visibility", "case_arguments", "cached_case"]
@@ -370,11 +374,6 @@ class ElasticSpectrum:
         return replace(self, depths=tuple(float(d) for d in depths))
 
 
-def mode_label(i: int, content) -> str:
-    """``mode 16 (rotational, n = 3)``."""
-    return f"mode {i + 1} ({content.kind}, n = {content.nodal_diameter})"
-
-
 def elastic_spectrum_model(depths, cases, fe_change_error: float = FE_CHANGE_ERROR
                            ) -> ElasticSpectrum:
     """The elastic spectrum model of ``cases`` (``ElasticCase`` per depth of ``depths``
@@ -386,8 +385,8 @@ def elastic_spectrum_model(depths, cases, fe_change_error: float = FE_CHANGE_ERR
                         case.away.frequency_hz.size else np.full(op.slot.size, np.nan)
                         for case, op in zip(cases, operators)])
     model = ElasticSpectrum(tuple(float(d) for d in depths), operators, masks, nominal,
-                            tuple(mode_label(i, c) for i, c in
-                                  enumerate(intact.away.content)),
+                            tuple(elastic_label(c, f) for c, f in
+                                  zip(intact.away.content, intact.away.frequency_hz)),
                             float(intact.k_rest), intact.foundation, fe_change_error)
     # the nominal reducer as the batched solve gives it: every mode, also those the band
     # of a cracked spectrum no longer holds
@@ -487,3 +486,140 @@ def case_arguments(design, depths, crack_of, scene: ElasticScene) -> list[tuple]
 
     k_rest = rest_stiffness(design, scene.options.rest)
     return [(design, crack_of(d), scene, k_rest) for d in depths]
+
+
+# ------------------------------------------------------------------ the detection answer
+
+@dataclass(frozen=True)
+class ElasticDetail:
+    """What only the elastic ring's answer has (``DetectionResult.detail``).
+
+    Attributes
+    ----------
+    kind, nodal_diameter, harmonic_index, ring_share : tuple
+        Each intact mode's content.
+    in_contact_hz : ndarray (depths, modes)
+        The tracked frequency with planet 1 on the cracked tooth [Hz] (NaN: not tracked).
+    split_pair : ndarray (depths, modes) of bool
+    visibility : ndarray (modes,)
+        Radial amplitude at the sensor relative to the largest among the modes [-].
+    k_rest, foundation, ring_dofs, sensor_angle, lowest_ring_mode
+        [N/m], (k_n, k_t) [N/m^2] or None, [-], [rad], (Hz, n) or None.
+    scatter : tuple
+        Relative scatter (masses, stiffnesses, mounting) [-] and the FE error of a
+        crack's change [-].
+    """
+
+    kind: tuple
+    nodal_diameter: tuple
+    harmonic_index: tuple
+    ring_share: tuple
+    in_contact_hz: np.ndarray
+    split_pair: np.ndarray
+    visibility: np.ndarray
+    k_rest: float
+    foundation: tuple | None
+    ring_dofs: int
+    sensor_angle: float
+    lowest_ring_mode: tuple | None = None
+    scatter: tuple = ()
+
+    @property
+    def in_contact_shift_hz(self) -> np.ndarray:
+        """Change with planet 1 on the cracked tooth, against the intact ring there [Hz]."""
+        return self.in_contact_hz - self.in_contact_hz[0]
+
+
+def bilinear_hz(result: DetectionResult) -> np.ndarray:
+    """Breathing crack: open half a cycle, closed (= intact) the other [Hz], (depths,
+    modes): ``2 f_open f_intact / (f_open + f_intact)``."""
+    f, f0 = result.frequency_hz, result.intact_hz
+    return 2 * f * f0 / (f + f0)
+
+
+def elastic_mode_rows(result: DetectionResult) -> list[dict]:
+    """One dict per intact mode of the elastic ring's answer (JSON-ready; NaN as None)."""
+    detail = result.detail
+    out = []
+    for i, f in enumerate(result.intact_hz):
+        out.append({
+            "mode": i + 1, "label": result.labels[i], "frequency_hz": float(f),
+            "class": detail.kind[i], "nodal_diameter": detail.nodal_diameter[i],
+            "harmonic_index": detail.harmonic_index[i], "ring_share": detail.ring_share[i],
+            "visibility": float(detail.visibility[i]), "watched": i in result.watched,
+            "sigma_hz": {f"{t:g}": float(s[i]) for t, s in result.sigma_hz.items()},
+            "shift_open_hz": [finite_or_none(x) for x in result.shift_hz[:, i]],
+            "shift_in_contact_hz": [finite_or_none(x)
+                                    for x in detail.in_contact_shift_hz[:, i]],
+            "shift_bilinear_hz": [finite_or_none(x) for x in bilinear_hz(result)[:, i] - f],
+            "split_pair": [bool(x) for x in detail.split_pair[:, i]]})
+    return out
+
+
+def elastic_result(design, depths, crack_of, scene, options, cases: list | None = None,
+                   added: tuple = (), refinement: str = "",
+                   left_out: tuple = ()) -> DetectionResult:
+    """The elastic ring's detection answer over ``depths`` [m] (the first 0).
+
+    ``crack_of(depth)`` gives the ``Crack`` of a depth; ``cases``: the ``ElasticCase`` of
+    every depth when computed elsewhere (a worker pool), else computed here; ``added``,
+    ``refinement``, ``left_out``: as :class:`.result.DetectionResult`.
+
+    Per depth the frequencies a record sees (:func:`record_frequencies`), each coupled
+    mode tracked to the intact mode it continues; the change with planet 1 on the cracked
+    tooth beside it (``detail.in_contact_hz``).  The rule is the rigid-ring study's with
+    the reducer's own intact record as baseline (:func:`.pod.family_pod`), over the Monte
+    Carlo reducers of :class:`ElasticSpectrum` (parameter scatter and FE error); the
+    nominal reducer's POD beside it.  Watched: the modes the sensor sees (radial ring motion
+    at the sensor at least ``VISIBLE`` of the largest), ranked by their largest drop over
+    the sweep against the scatter (:func:`.pod.watched_by_drop`).  Closed faces give the
+    intact ring within the mesh's discretisation error, so the bilinear (breathing)
+    estimate is :func:`bilinear_hz`; the detection uses the open crack, the upper bound."""
+    if cases is None:
+        cases = [cached_case(*a) for a in case_arguments(design, depths, crack_of, scene)]
+    intact = cases[0]
+    intact_away = intact.away
+    mass = intact.ring_mass
+    n = intact_away.frequency_hz.size
+    open_hz = np.full((len(depths), n), np.nan)
+    on_hz = np.full((len(depths), n), np.nan)
+    split = np.zeros((len(depths), n), dtype=bool)
+    # the on-tooth spectra are tracked to the intact on-tooth spectrum, then reported in
+    # the order of the intact modes away from the tooth
+    away_of_on = np.full(intact.on.frequency_hz.size, -1)
+    for j, (ref, match) in enumerate(zip(*assignment(intact_away, intact.on, mass))):
+        if ref >= 0 and match >= MIN_MATCH:
+            away_of_on[j] = ref
+    open_hz[0] = intact_away.frequency_hz
+    if (away_of_on >= 0).any():
+        on_hz[0] = padded(tracked_to(intact.on, intact.on, mass, away_of_on)[0], n)
+    for k, case in enumerate(cases[1:], start=1):
+        seen = record_frequencies(intact, case)
+        open_hz[k], split[k] = seen.record_hz, seen.split_pair
+        if (away_of_on >= 0).any():
+            on_hz[k] = padded(tracked_to(intact.on, case.on, mass, away_of_on)[0], n)
+    lengths = tuple(sorted({*RECORD_LENGTHS, options.record_length}))
+    sigma = {t: options.sigma_hz(intact_away.frequency_hz, t) for t in lengths}
+    visibility = sensor_visibility(intact_away, scene.sensor_angle)
+    shift = open_hz - intact_away.frequency_hz
+    watched = watched_by_drop(shift, sigma[options.record_length],
+                              np.flatnonzero(visibility >= VISIBLE), options.watched_modes)
+    rate = options.per_mode_rate(len(watched)) if watched else options.false_alarm_rate
+    pod_nominal = {t: family_pod(shift, sigma[t], watched, rate) for t in lengths}
+    pod, samples = pod_nominal, 0
+    if intact.operators is not None and options.samples > 0:
+        sampled = monte_carlo_shifts(elastic_spectrum_model(depths, cases), options)
+        pod = {t: family_pod(sampled, sigma[t], watched, rate) for t in lengths}
+        samples = options.samples
+    c = intact_away.content
+    detail = ElasticDetail(
+        tuple(x.kind for x in c), tuple(x.nodal_diameter for x in c),
+        tuple(x.harmonic_index for x in c), tuple(x.ring_share for x in c), on_hz, split,
+        visibility, intact.k_rest, intact.foundation, intact.ring_dofs, scene.sensor_angle,
+        intact.lowest_ring_mode, (options.scatter_masses, options.scatter_stiffnesses,
+                                  options.scatter_mounting, FE_CHANGE_ERROR))
+    labels = tuple(elastic_label(x, f) for x, f in zip(c, intact_away.frequency_hz))
+    return DetectionResult(
+        "elastic", tuple(float(d) for d in depths), open_hz, labels, sigma, watched, pod,
+        pod_nominal, options.detection_probability, options.false_alarm_rate,
+        options.record_length, samples, tuple(added), refinement, tuple(left_out), detail)

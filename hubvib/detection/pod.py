@@ -370,6 +370,30 @@ def family_pod(shift_hz: np.ndarray, sigma_hz: np.ndarray, watched, rate: float)
     return pod if pod.ndim == 1 else pod.mean(axis=0)
 
 
+def monte_carlo_shifts(model, options, timing=None, seed: int | None = None) -> np.ndarray:
+    """Changes of every mode of ``options.samples`` Monte Carlo reducers of ``model`` (a
+    ``SpectrumModel``) against their own intact spectrum [Hz], (samples, depths, modes);
+    NaN where the model's nominal continuation of a mode is not tracked (its ``tracked``,
+    (depths, modes), when it has one)."""
+    rng = np.random.default_rng(options.seed + 3 if seed is None else seed)
+    f = model.sampled_hz(options, timing, options.samples, rng)
+    shift = f - f[:, :1]
+    tracked = getattr(model, "tracked", None)
+    if tracked is not None:
+        shift[:, ~np.asarray(tracked)] = np.nan
+    return shift
+
+
+def watched_by_drop(shift_hz: np.ndarray, sigma_hz: np.ndarray, seen, count: int) -> tuple:
+    """The ``count`` modes among ``seen`` (0-based) whose largest drop over the sweep
+    (``shift_hz`` (depths, modes) [Hz], NaN: not tracked) is largest against their
+    identification scatter ``sigma_hz`` [Hz], best first."""
+    drop = np.nan_to_num(np.clip(-shift_hz, 0.0, None), nan=0.0).max(axis=0)
+    seen = np.asarray(seen, dtype=int)
+    order = seen[np.argsort(-drop[seen] / sigma_hz[seen], kind="stable")]
+    return tuple(int(i) for i in order[:count])
+
+
 def _quantile_threshold(offsets: np.ndarray, sigma: float, alpha: float) -> float:
     """t with mean(P(offset + e < -t)) = alpha, e normal with standard deviation sigma."""
     from scipy.stats import norm

@@ -59,6 +59,11 @@ class SpectrumModel(Protocol):
     def at_depths(self, depths) -> "SpectrumModel":
         """The same model at other depths [m] (the first 0, within the sweep)."""
 
+    @property
+    def tracked(self):
+        """(depths, modes) of bool: whether the nominal continuation of each mode is
+        tracked (a sampled change of an untracked one counts as none); None: all are."""
+
 
 @dataclass(frozen=True)
 class RigidSpectrum:
@@ -89,8 +94,19 @@ class RigidSpectrum:
                                     depth_index=depth_index)
 
     def mode_labels(self) -> tuple:
-        count = self.crack.params.n_dof
-        return tuple(f"mode {i + 1}" for i in range(count))
+        """``rigid 13 (rotational, 4548.5 Hz)`` per mode (:func:`.result.rigid_label`)."""
+        from hubvib.lumped import natural_modes
+
+        from .result import rigid_label
+
+        spectrum = natural_modes(self.crack.parameters(0), self.crack.method)
+        f = spectrum.omega / (2 * np.pi)
+        return tuple(rigid_label(i, kind, f[i]) for i, kind in enumerate(spectrum.kind))
+
+    @property
+    def tracked(self):
+        """Every mode of the lumped model is tracked at every depth (None: no mask)."""
+        return None
 
     def drift(self, intact_hz, options) -> Drift:
         return drift_model(self.crack.parameters(0), intact_hz, options, self.crack.method)

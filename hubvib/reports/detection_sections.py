@@ -6,6 +6,7 @@ import math
 import numpy as np
 
 from hubvib.detection.mode_names import mode_names
+from hubvib.detection.result import rigid_label
 from hubvib.detection.numbers import depth_mm, number, percent, shift_hz
 from hubvib.detection.series import DIRECT, RATIO
 
@@ -69,18 +70,21 @@ def _sigma_range(pod, watched) -> str:
             else f"{sigma.min():.3g}-{sigma.max():.3g} Hz")
 
 
-def _family_sentence(pod) -> str:
-    """The short answer proper: depth detectable by the watched family per record length."""
+def _family_sentence(pod, bold: bool = True) -> str:
+    """The rigid ring's answer: depth detectable by the watched family per record length
+    (``bold``: the short answer's lead)."""
     parts = []
     for T in sorted(pod.family_pod):
         depth = pod.family_detectable_depth(T)
         parts.append(f"{T:g} s: " + ("no crack of the sweep" if math.isnan(depth)
                                       else f"from {depth_mm(depth)} mm"))
-    modes = ", ".join(str(i + 1) for i in pod.watched)
-    return (f"**Watching modes {modes} together (alarm when any of them drops below its "
+    f0 = pod.nominal.frequency_hz[0]
+    modes = ", ".join(rigid_label(i, pod.kind[i], f0[i]) for i in pod.watched)
+    mark = "**" if bold else ""
+    return (f"{mark}Watching modes {modes} together (alarm when any of them drops below its "
             f"threshold; family-wise false-alarm rate {pod.false_alarm_rate:g}), a crack is "
             f"detected with POD >= {pod.detection_probability:g} with records of "
-            + "; ".join(parts) + ".** Records of the same reducer intact and now, identified "
+            + "; ".join(parts) + f".{mark} Records of the same reducer intact and now, identified "
             "by the same method, without drift between them; with the scene's temperature "
             "and load drift: " + "; ".join(
                 f"{T:g} s: " + ("none" if math.isnan(d) else f"from {depth_mm(d)} mm")
@@ -143,8 +147,11 @@ def _modulation_sentence(study, watched) -> str:
             f"sidebands {study.timing.pass_frequency:.3g} Hz apart as much as a shifted line.")
 
 
-def short_answer(name: str, model, study, sources: dict | None = None) -> list[str]:
-    """The report's opening: modes to watch, shift per depth, detectable depth, mounting."""
+def short_answer(name: str, model, study, sources: dict | None = None,
+                 lead: list[str] = ()) -> list[str]:
+    """The report's opening: ``lead`` (the answer of the model that holds,
+    :mod:`hubvib.reports.answer`), then the rigid ring's modes to watch, shift per depth,
+    detectable depth, mounting."""
     pod, options = study.pod, study.options
     watched = study.watched_modes()
     depth = pod.detectable_depth()
@@ -155,11 +162,11 @@ def short_answer(name: str, model, study, sources: dict | None = None) -> list[s
             f"(ASSUMED unless the scene sets it), modal SNR {options.snr:g}, so one identified "
             f"frequency scatters by {_sigma_range(pod, watched)}; compared with the same "
             "reducer's intact spectrum")
-    modes = ", ".join(f"{i + 1} ({f0[i]:.1f} Hz, signal in {pod.nominal.carried_by[-1, i]})"
-                      for i in watched)
+    modes = ", ".join(f"{rigid_label(i, pod.kind[i], f0[i])} (signal in "
+                      f"{pod.nominal.carried_by[-1, i]})" for i in watched)
     found = ~np.isnan(depth[watched])
-    lines = ["## Short answer", "", mounting_sentence(model, sources), "",
-             _family_sentence(pod), ""]
+    lines = ["## Short answer", "", *lead, mounting_sentence(model, sources), "",
+             _family_sentence(pod, bold=not lead), ""]
     if found.any():
         first = np.nanmin(depth[watched])
         shallowest = pod.depths[1]
@@ -175,7 +182,8 @@ def short_answer(name: str, model, study, sources: dict | None = None) -> list[s
     lines += ["", "Time-averaged shift a record sees [Hz] and the mode's POD per depth (nr: "
               "smaller than the FE error of the stiffness carrying it, not resolved):", ""]
     names = mode_names(f0)
-    head = "| depth [mm] | " + " | ".join(f"mode {names[i]} [Hz] | [%] | POD" for i in watched)
+    head = "| depth [mm] | " + " | ".join(f"rigid mode {names[i]} [Hz] | [%] | POD"
+                                         for i in watched)
     lines += [head + " |", "|---:|" + "---:|---:|---:|" * len(watched)]
     for k, d in enumerate(pod.depths):
         cells = []

@@ -14,7 +14,7 @@ from hubvib.detection.budget import chunked_frequencies
 from hubvib.detection.calibration import calibrate, student_errors
 from hubvib.detection.diagnosis import reference, synthetic_measurements
 from hubvib.detection.drift import drift_model
-from hubvib.detection.elastic import family_pod, sampled_shifts
+from hubvib.detection.pod import family_pod, monte_carlo_shifts as sampled_shifts
 from hubvib.detection.elastic_model import (ElasticSamples, batched_hz,
                                                   elastic_spectrum_model, unscattered)
 from hubvib.detection.options import DetectionOptions
@@ -293,7 +293,7 @@ def test_elastic_calibration_on_the_default_scene():
     timing = mesh_timing(scene.crack.reducer, options.carrier_speed)
     ref = reference(model, options, timing)
     labels = ref.labels
-    watched = [int(s.split()[1]) for s in labels if "n = 4" in s or "n = 3" in s][:2]
+    watched = [i + 1 for i, s in enumerate(labels) if "n=4 " in s or "n=3 " in s][:2]
     trials = 300
     result = calibrate(model, options, timing, ref, watched, trials)
     tolerance = 3 * math.sqrt(0.9 * 0.1 / trials)

@@ -185,13 +185,13 @@ def test_validity_band_below_the_ring_mode_and_above_the_watched_band_when_stiff
 
 @pytest.mark.slow
 def test_map_at_the_reference_scale_is_the_elastic_detection(raba, families):
-    """At s = 1 the map's rule is ``elastic_detection``'s on the same rings: the same
+    """At s = 1 the map's rule is ``elastic_result``'s on the same rings: the same
     watched modes (frequencies to 0.5 Hz: the map keeps the intact ring's foundation for
     every depth, the detection sizes each depth's own) and the same smallest depth. The
     clamped ring closes the map as its stiff limit: clamping the arcs is the foundation's
     infinite limit, so the ring's lowest mode of its own lies above every finite scale's
     (Courant-Fischer; 8053 Hz clamped on the finer mesh, docs/elastic_ring.md)."""
-    from hubvib.detection.elastic import elastic_detection
+    from hubvib.detection.elastic_model import elastic_result as elastic_detection
     from hubvib.detection.options import DetectionOptions
     from hubvib.meshing.crack import Crack
 
