@@ -6,7 +6,9 @@ On those common lumped coordinates each coupled mode's lumped part is compared w
 rigid-ring mode shape by the mass-weighted modal assurance criterion
 ``MAC = (a^T M b)^2 / ((a^T M a)(b^T M b))``; the best rigid mode and its MAC name the
 pair.  A MAC near 1 means the same motion of the lumped bodies, near 0 a mode of the ring
-the rigid model does not have.
+the rigid model does not have.  A repeated rigid frequency (cyclic symmetry) has no
+preferred basis: it is one candidate, its MAC the share of the elastic mode's lumped part
+in the pair's span (``rigid 13/14``).
 """
 from __future__ import annotations
 
@@ -50,20 +52,35 @@ def mode_map(rigid_spectrum, rigid_labels, elastic_modes, elastic_labels,
     if mass.size != keep.size:
         raise ValueError(f"the elastic modes have {mass.size} lumped coordinates, the rigid "
                          f"model {keep.size} besides the ring's: they must be the same bodies")
+    from .mode_names import repeated_groups
+
     rigid = np.asarray(rigid_spectrum.shapes)[keep]
     elastic = np.asarray(elastic_modes.lumped)
-    cross = elastic.T @ (mass[:, None] * rigid)
-    own_e = np.einsum("im,i,im->m", elastic, mass, elastic)
-    own_r = np.einsum("im,i,im->m", rigid, mass, rigid)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        mac = np.where(own_e[:, None] > 0, cross ** 2 / (own_e[:, None] * own_r[None]), 0.0)
-    best = mac.argmax(axis=1)
     f_rigid = np.asarray(rigid_spectrum.omega) / (2 * np.pi)
     f_elastic = np.asarray(elastic_modes.frequency_hz)
+    own = np.einsum("im,i,im->m", elastic, mass, elastic)
+    groups = repeated_groups(rigid_spectrum.omega)
+    mac = np.zeros((elastic.shape[1], len(groups)))
+    for g, members in enumerate(groups):
+        B = rigid[:, members]
+        gram = B.T @ (mass[:, None] * B)
+        cross = elastic.T @ (mass[:, None] * B)  # (elastic modes, members)
+        projected = np.einsum("em,mn,en->e", cross, np.linalg.pinv(gram), cross)
+        mac[:, g] = np.where(own > 0, projected / np.where(own > 0, own, 1.0), 0.0)
+    best = mac.argmax(axis=1)
+
+    def label(members) -> str:
+        if len(members) == 1:
+            return str(rigid_labels[members[0]])
+        first = str(rigid_labels[members[0]])
+        head, rest = first.split(" (", 1) if " (" in first else (first, "")
+        numbers = "/".join(str(i + 1) for i in members)
+        return f"rigid {numbers} ({rest}" if rest else f"rigid {numbers}"
+
     # a coupled mode is mass-normalised over ring and lumped bodies: its lumped part's
     # kinetic energy share is a^T M a
-    share = np.clip(own_e, 0.0, 1.0)
+    share = np.clip(own, 0.0, 1.0)
     return tuple(ModePair(str(elastic_labels[j]), float(f_elastic[j]),
-                          str(rigid_labels[best[j]]), float(f_rigid[best[j]]),
-                          float(mac[j, best[j]]), float(share[j]))
+                          label(groups[best[j]]), float(f_rigid[groups[best[j]][0]]),
+                          float(np.clip(mac[j, best[j]], 0.0, 1.0)), float(share[j]))
                  for j in range(min(len(elastic_labels), elastic.shape[1])))

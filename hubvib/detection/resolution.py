@@ -93,4 +93,5 @@ def next_depth(b: Bracket) -> float | None:
         return None
     middle = 0.5 * (b.low + b.high)
     depth = max(middle, FLOOR)
+    depth = round(depth, 7)  # to 0.1 um: a plain number in the case cache and the tables
     return None if math.isclose(depth, b.high) or depth >= b.high else float(depth)
