@@ -254,11 +254,14 @@ class Diagnosis:
         return (f"depth {1e3 * self.depth:.3g} mm (posterior median), {c} interval {low} .. "
                 f"{1e3 * self.depth_high:.3g} mm")
 
-    def explanation(self) -> str | None:
-        """The nearest other explanation when the crack model does not fit."""
+    def explanation(self, labels=()) -> str | None:
+        """The nearest other explanation when the crack model does not fit (``labels``: the
+        model's mode names, 0-based; default ``mode 7``)."""
         if self.verdict != NOT_EXPLAINED:
             return None
-        text = (f"mode {self.worst_mode} misfits most ({self.worst_z:+.1f} standard "
+        worst = (labels[self.worst_mode - 1] if len(labels) >= self.worst_mode
+                 else f"mode {self.worst_mode}")
+        text = (f"{worst} misfits most ({self.worst_z:+.1f} standard "
                 f"deviations {'above' if self.worst_z > 0 else 'below'} the best ring-crack "
                 f"fit)")
         if len(self.modes) == 1:
@@ -288,6 +291,11 @@ class Diagnosis:
                 "uniform_shift_p_value": self.uniform_p_value,
                 "below_m": self.below, "answer": self.words,
                 "explanation": self.explanation()}
+
+    def labelled(self, labels) -> dict:
+        """:meth:`to_dict` with each mode's name (``labels``: the model's, 0-based)."""
+        return {**self.to_dict(), "mode_labels": [labels[m - 1] for m in self.modes],
+                "explanation": self.explanation(labels)}
 
 
 class Posterior:
