@@ -42,7 +42,8 @@ from hubvib.lumped.parameters import MASS_FIELDS
 
 from .drift import Drift
 from .pod import RECORD_LENGTHS, family_pod, monte_carlo_shifts, watched_by_drop
-from .result import DetectionResult, elastic_label
+from .mode_names import elastic_label
+from .result import DetectionResult
 from .uncertainty import lognormal
 
 __all__ = ["ElasticDetail", "elastic_result", "bilinear_hz", "elastic_mode_rows",

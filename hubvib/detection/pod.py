@@ -46,7 +46,7 @@ from hubvib.lumped import natural_modes
 from .budget import chunked_frequencies
 from .drift import Drift, drift_model, references
 from .drift import family_pod as family_pod_mc
-from .mode_names import mode_names
+from .mode_names import mode_names, rigid_label
 from .numbers import ROUND_OFF
 from .uncertainty import draw, nominal, observed_frequencies_of
 
@@ -256,6 +256,7 @@ class PodResult:
             for i, kind in enumerate(self.kind):
                 rows.append({
                     "depth_mm": 1e3 * depth, "mode": i + 1, "mode_name": names[i],
+                    "mode_label": rigid_label(i, kind, nominal.frequency_hz[0, i]),
                     "kind": kind,
                     "frequency_intact_hz": float(nominal.frequency_hz[0, i]),
                     "shift_hz": float(nominal.shift_hz[k, i]),

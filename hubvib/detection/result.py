@@ -17,21 +17,11 @@ import numpy as np
 
 from hubvib.foundation.output import finite_or_none
 
+from .mode_names import rigid_label
 from .pod import RECORD_LENGTHS, family_pod
 from .resolution import Bracket, bracket
 
-__all__ = ["DetectionResult", "rigid_result", "rigid_label", "elastic_label"]
-
-
-def rigid_label(i: int, kind: str, frequency_hz: float) -> str:
-    """``rigid 13 (rotational, 4548.5 Hz)``: mode ``i`` (0-based) of the 9 + 3N model."""
-    return f"rigid {i + 1} ({kind}, {frequency_hz:.1f} Hz)"
-
-
-def elastic_label(content, frequency_hz: float) -> str:
-    """``elastic n=4 (translational, 4715.6 Hz)``: a coupled mode of the elastic ring by its
-    dominant nodal diameters, class and intact frequency."""
-    return f"elastic n={content.nodal_diameter} ({content.kind}, {frequency_hz:.1f} Hz)"
+__all__ = ["DetectionResult", "rigid_result"]
 
 
 @dataclass(frozen=True)
@@ -47,7 +37,8 @@ class DetectionResult:
     frequency_hz : ndarray (depths, modes)
         What a record of the nominal reducer sees [Hz] (NaN: no mode continues it).
     labels : tuple of str
-        Each mode's identity (:func:`rigid_label`, :func:`elastic_label`).
+        Each mode's identity (:func:`.mode_names.rigid_label`,
+        :func:`.mode_names.elastic_label`).
     sigma_hz : dict
         Record length [s] -> identification scatter of each mode [Hz].
     watched : tuple of int

@@ -97,7 +97,7 @@ class RigidSpectrum:
         """``rigid 13 (rotational, 4548.5 Hz)`` per mode (:func:`.result.rigid_label`)."""
         from hubvib.lumped import natural_modes
 
-        from .result import rigid_label
+        from .mode_names import rigid_label
 
         spectrum = natural_modes(self.crack.parameters(0), self.crack.method)
         f = spectrum.omega / (2 * np.pi)

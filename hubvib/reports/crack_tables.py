@@ -29,6 +29,10 @@ def write_crack_tables(result, folder: Path) -> list[Path]:
              write_csv(folder / "modes.csv", result.mode_rows())]
     if result.mode_map:
         files.append(write_csv(folder / "mode_map.csv", [p.row() for p in result.mode_map]))
+    answers = [r for r in (result.rigid, result.elastic) if r is not None]
+    if answers:
+        files.append(write_csv(folder / "detection.csv",
+                               [row for r in answers for row in r.rows()]))
     which = lead(result.rigid, result.elastic, result.elastic_validity)
     if study is not None:
         files += [write_csv(folder / "pod.csv", study.pod.rows()),

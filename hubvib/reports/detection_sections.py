@@ -6,7 +6,7 @@ import math
 import numpy as np
 
 from hubvib.detection.mode_names import mode_names
-from hubvib.detection.result import rigid_label
+from hubvib.detection.mode_names import rigid_label
 from hubvib.detection.numbers import depth_mm, number, percent, shift_hz
 from hubvib.detection.series import DIRECT, RATIO
 

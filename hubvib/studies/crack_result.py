@@ -71,7 +71,7 @@ class CrackStudyResult:
     @property
     def labels(self) -> list[str]:
         """Per rigid-ring mode its identity: ``rigid 13 (rotational, 4548.5 Hz)``."""
-        from hubvib.detection.result import rigid_label
+        from hubvib.detection.mode_names import rigid_label
 
         f = self.omega[0] / (2 * math.pi)
         return [rigid_label(i, kind, f[i]) for i, kind in enumerate(self.kind)]

@@ -7,7 +7,8 @@ import pytest
 
 from hubvib.detection.mode_map import mode_map
 from hubvib.detection.resolution import FLOOR, RESOLUTION, bracket, next_depth
-from hubvib.detection.result import DetectionResult, rigid_label
+from hubvib.detection.mode_names import rigid_label
+from hubvib.detection.result import DetectionResult
 from hubvib.lumped import natural_modes
 from hubvib.reports.answer import answer_line, lead, lead_lines
 

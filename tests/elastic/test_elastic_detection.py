@@ -130,7 +130,8 @@ renders = false
     assert elastic["added_depths_mm"] and min(elastic["added_depths_mm"]) >= 0.5
     assert results["detection"]["family_pod"]["10"][1] < 0.9
     watched = [elastic["modes"][i - 1] for i in elastic["watched_modes"]]
-    assert min(m["shift_open_hz"][1] for m in watched) < -30
+    at_6mm = elastic["depths_mm"].index(6.0)
+    assert min(m["shift_open_hz"][at_6mm] for m in watched) < -30
     report = (tmp_path / "out" / "report.md").read_text()
     assert report.count("## Short answer") == 1 and "## Elastic ring" in report
     assert f"| 10 s | not within the sweep (up to 6 mm) | {crossing['words']} |" in report
