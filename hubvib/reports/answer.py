@@ -69,8 +69,7 @@ def lead_lines(which: Lead) -> list[str]:
              f"(family POD >= {leader.detection_probability:g}) is, with records of "
              f"{_answers(leader)}.** Watched: {watched}."]
     if which.other is not None:
-        lines += ["", f"Comparison, {NAMES[which.other.ring]} ({which.reason}): "
-                  f"{_answers(which.other)}."]
+        lines += ["", f"Comparison ({which.reason}): {_answers(which.other)}."]
     return lines + [""]
 
 

@@ -7,6 +7,7 @@ import numpy as np
 
 from hubvib.detection.mode_names import mode_names
 from hubvib.detection.mode_names import rigid_label
+from hubvib.detection.resolution import bracket
 from hubvib.detection.numbers import depth_mm, number, percent, shift_hz
 from hubvib.detection.series import DIRECT, RATIO
 
@@ -70,30 +71,31 @@ def _sigma_range(pod, watched) -> str:
             else f"{sigma.min():.3g}-{sigma.max():.3g} Hz")
 
 
+def _crossing(pod, T, which: str = "") -> str:
+    """Where the family POD with records of ``T`` [s] crosses the required probability
+    (``which``: ``""``, ``"drift"``, ``"compensated"``), as :mod:`hubvib.detection.resolution`
+    words it: ``below 3 mm`` means at or below the shallowest crack computed."""
+    table = getattr(pod, f"family_pod_{which}" if which else "family_pod")
+    return bracket(pod.depths, table[T], pod.detection_probability).words()
+
+
 def _family_sentence(pod, bold: bool = True) -> str:
-    """The rigid ring's answer: depth detectable by the watched family per record length
-    (``bold``: the short answer's lead)."""
-    parts = []
-    for T in sorted(pod.family_pod):
-        depth = pod.family_detectable_depth(T)
-        parts.append(f"{T:g} s: " + ("no crack of the sweep" if math.isnan(depth)
-                                      else f"from {depth_mm(depth)} mm"))
+    """The rigid ring's answer: where the watched family's POD crosses the required
+    probability per record length (``bold``: the short answer's lead)."""
+    parts = [f"{T:g} s: {_crossing(pod, T)}" for T in sorted(pod.family_pod)]
     f0 = pod.nominal.frequency_hz[0]
     modes = ", ".join(rigid_label(i, pod.kind[i], f0[i]) for i in pod.watched)
     mark = "**" if bold else ""
     return (f"{mark}Watching modes {modes} together (alarm when any of them drops below its "
-            f"threshold; family-wise false-alarm rate {pod.false_alarm_rate:g}), a crack is "
-            f"detected with POD >= {pod.detection_probability:g} with records of "
-            + "; ".join(parts) + f".{mark} Records of the same reducer intact and now, identified "
-            "by the same method, without drift between them; with the scene's temperature "
-            "and load drift: " + "; ".join(
-                f"{T:g} s: " + ("none" if math.isnan(d) else f"from {depth_mm(d)} mm")
-                for T in sorted(pod.family_pod_drift)
-                for d in [pod.family_detectable_depth(T, "drift")])
+            f"threshold; family-wise false-alarm rate {pod.false_alarm_rate:g}), the depth "
+            f"from which a crack is detected with POD >= {pod.detection_probability:g} is, "
+            "with records of " + "; ".join(parts) + f".{mark} Records of the same reducer "
+            "intact and now, identified by the same method, without drift between them; with "
+            "the scene's temperature and load drift: " + "; ".join(
+                f"{T:g} s: {_crossing(pod, T, 'drift')}" for T in sorted(pod.family_pod_drift))
             + " (compensated by reference modes: " + "; ".join(
-                f"{T:g} s: " + ("none" if math.isnan(d) else f"from {depth_mm(d)} mm")
-                for T in sorted(pod.family_pod_compensated)
-                for d in [pod.family_detectable_depth(T, "compensated")]) + ").")
+                f"{T:g} s: {_crossing(pod, T, 'compensated')}"
+                for T in sorted(pod.family_pod_compensated)) + ").")
 
 
 def drift_lines(pod, options) -> list[str]:
