@@ -257,10 +257,11 @@ class ElasticSpectrum:
     ``nominal_grid_hz`` (grid, modes): what a record of the nominal reducer sees
     (:func:`record_frequencies`); ``record_ratio`` (grid, modes) or None: per depth and
     mode, the nominal record change over the change at the reference position (planet 1
-    half a pitch away, faces open), by which every sampled reducer's change, solved at the
-    reference position, is scaled (None: they are the same, no scaling).  A shortcut: the
-    Monte Carlo reducers share the nominal reducer's ratio of what the load cycle does to
-    the crack's change.
+    half a pitch away, faces open; ``reference_grid_hz``), by which every sampled reducer's
+    change, solved at the reference position, is scaled, its intact frequency moved by the
+    nominal record's offset from the reference (None: the record is the reference).  A
+    shortcut: the Monte Carlo reducers share the nominal reducer's ratio of what the load
+    cycle does to the crack's change (zero scatter gives the nominal record exactly).
     """
 
     grid: tuple
@@ -275,6 +276,7 @@ class ElasticSpectrum:
     ring: str = "elastic"
     mesh: dict = field(default_factory=dict)
     record_ratio: np.ndarray | None = None
+    reference_grid_hz: np.ndarray | None = None
 
     def __post_init__(self):
         if not self.depths:
@@ -304,8 +306,9 @@ class ElasticSpectrum:
         out = np.empty((samples.n, len(self.grid), self.nominal_grid_hz.shape[1]))
         for k, op in enumerate(self.operators):
             out[:, k] = batched_hz(op, samples, self.masks)[:, op.slot]
-        if self.record_ratio is not None:
-            out = out[:, :1] + self.record_ratio[None] * (out - out[:, :1])
+        if self.record_ratio is not None:  # the record, not the reference position
+            offset = self.nominal_grid_hz[0] - self.reference_grid_hz[0]
+            out = out[:, :1] + offset + self.record_ratio[None] * (out - out[:, :1])
         return out + samples.z[:, None, None] * self.fe_error_hz()[None]
 
     def _interpolated(self, values: np.ndarray, depths) -> np.ndarray:
@@ -402,7 +405,8 @@ def elastic_spectrum_model(depths, cases, fe_change_error: float = FE_CHANGE_ERR
     change, moved = reference - reference[0], record - record[0]
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(np.abs(change) > 0, moved / change, 1.0)
-    return replace(model, nominal_grid_hz=record, record_ratio=ratio)
+    return replace(model, nominal_grid_hz=record, record_ratio=ratio,
+                   reference_grid_hz=reference)
 
 
 @dataclass(frozen=True)
@@ -423,7 +427,7 @@ class RecordFrequencies:
 RECORD_TORQUE_FRACTION = None
 
 
-def record_frequencies(intact, case, torque_fraction: float | None = RECORD_TORQUE_FRACTION
+def record_frequencies(intact, case, torque_fraction: float | None = None
                        ) -> RecordFrequencies:
     """The one place the elastic ring's per-depth nominal frequencies come from: ``case``
     (an ``ElasticCase``) as a record sees it, its modes tracked to ``intact``'s (subspace
@@ -431,10 +435,13 @@ def record_frequencies(intact, case, torque_fraction: float | None = RECORD_TORQ
 
     Without a loaded crack: the "away" spectrum (planet 1 half a pitch from the crack,
     faces open), the record's and the reference's the same array.  With
-    ``torque_fraction`` and a case holding its loaded crack, the record track of
+    ``torque_fraction`` (default ``RECORD_TORQUE_FRACTION``: setting it to the working
+    load, 1.0, is the swap) and a case holding its loaded crack, the record track of
     :func:`hubvib.elastic.loaded.record_track` (the faces opening and closing as the
     planets pass) is what the record sees."""
     reference, split = tracked_to(intact.away, case.away, intact.ring_mass)
+    if torque_fraction is None:
+        torque_fraction = RECORD_TORQUE_FRACTION
     if torque_fraction is None or not hasattr(case, "loaded"):
         return RecordFrequencies(reference, reference, split)
     from hubvib.elastic.loaded import record_track  # the loaded crack's API
@@ -591,7 +598,9 @@ def elastic_result(design, depths, crack_of, scene, options, cases: list | None 
     for j, (ref, match) in enumerate(zip(*assignment(intact_away, intact.on, mass))):
         if ref >= 0 and match >= MIN_MATCH:
             away_of_on[j] = ref
-    open_hz[0] = intact_away.frequency_hz
+    own = record_frequencies(intact, intact)
+    open_hz[0] = (intact_away.frequency_hz if own.record_hz is own.reference_hz
+                  else padded(own.record_hz, n))
     if (away_of_on >= 0).any():
         on_hz[0] = padded(tracked_to(intact.on, intact.on, mass, away_of_on)[0], n)
     for k, case in enumerate(cases[1:], start=1):

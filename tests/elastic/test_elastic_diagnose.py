@@ -384,3 +384,46 @@ def test_default_scene_elastic_one_mode_alone_and_a_small_pattern():
     assert lonely.verdict == NOT_EXPLAINED, (lonely.verdict, lonely.fit_p_value)
     small_crack = diagnose(_pattern(ref, modes, 0.4 * first[modes]), ref, options)
     assert small_crack.verdict == CRACK and small_crack.below == 0.003, small_crack.words
+
+
+def test_the_loaded_record_swaps_in_through_one_seam(small, monkeypatch):
+    """The seam for the loaded crack: with a record track (``hubvib.elastic.loaded``, faked
+    here: the record sees 0.6 of each reference change and an intact offset of +0.5 Hz)
+    and cases that carry their loaded crack, the nominal spectrum is the record's, the
+    Monte Carlo reducers at zero scatter give it exactly, and each sampled change is the
+    reference one times the nominal ratio 0.6 (the documented shortcut)."""
+    import sys
+    import types
+    from types import SimpleNamespace
+
+    from hubvib.detection import elastic_model
+
+    cases, reference_model = small
+    fake = types.ModuleType("hubvib.elastic.loaded")
+
+    def record_track(intact, case, torque_fraction=1.0, closure_gap_m=0.0):
+        seen = elastic_model.tracked_to(intact.away, case.away, intact.ring_mass)[0]
+        f0 = intact.away.frequency_hz
+        return SimpleNamespace(record_hz=f0 + 0.5 + 0.6 * (seen - f0),
+                               intact_record_hz=f0 + 0.5)
+
+    fake.record_track = record_track
+    monkeypatch.setitem(sys.modules, "hubvib.elastic.loaded", fake)
+    monkeypatch.setattr(elastic_model, "RECORD_TORQUE_FRACTION", 1.0)
+    loaded = [SimpleNamespace(**{k: getattr(c, k) for k in c.__dataclass_fields__},
+                              loaded=True) for c in cases]
+    model = elastic_model.elastic_spectrum_model(reference_model.grid, loaded)
+    base = reference_model.nominal_grid_hz
+    expected = base[0] + 0.5 + 0.6 * (base - base[0])
+    tracked = np.array([op.tracked for op in model.operators])
+    assert np.allclose(model.nominal_grid_hz[tracked], expected[tracked], rtol=0, atol=1e-9)
+    zero = unscattered(model, 1)
+    assert np.allclose(model.frequencies_of(zero)[0][tracked], expected[tracked], atol=1e-9)
+    drawn = ElasticSamples({k: np.full(1, 1.02) for k in model.mass_fields},
+                           np.full(1, 0.99), {k: np.full(1, 1.05)
+                                              for k in model.stiffness_names}, np.zeros(1))
+    change = model.frequencies_of(drawn)[0] - model.frequencies_of(drawn)[0][0]
+    plain = reference_model.frequencies_of(drawn)[0]
+    moved = (np.abs(base - base[0]) > 1e-6) & tracked  # untracked: the record is the reference
+    assert np.allclose(change[moved], 0.6 * (plain - plain[0])[moved], rtol=1e-9), \
+        "each sampled change scaled by the nominal ratio"
