@@ -38,7 +38,7 @@ def write_crack_tables(result, folder: Path) -> list[Path]:
         files += [write_csv(folder / "pod.csv", study.pod.rows()),
                   write_csv(folder / "pod_family.csv", study.pod.family_rows()),
                   write_csv(folder / "detectability_map.csv", study.map.rows())]
-    files.append(write_json(folder / "results.json", json_safe({
+    files.append(write_json(folder / "results.json", json_safe(_reasons_for_nulls({
         "scene": scene.name, **provenance(), "parameters": result.model.params.to_dict(),
         "crack": {k: v for k, v in asdict(scene.crack).items() if k != "design"},
         "mounting": {"apply": result.model.apply, "c_ru_mount_N_m": result.model.c_ru_mount,
@@ -60,7 +60,7 @@ def write_crack_tables(result, folder: Path) -> list[Path]:
         "short_answer": None if which.leader is None else {
             "ring": which.leader.ring, "line": answer_line(which),
             "comparison": None if which.other is None else which.other.ring,
-            "comparison_reason": which.reason or None},
+            "comparison_why": which.reason or None},
         "stiffness": result.stiffness_rows(), "modes": result.mode_rows(),
         "frequencies": result.frequency_rows(),
         "mesh_stiffness": dict(result.model.mesh_stiffness(),
@@ -84,10 +84,21 @@ def write_crack_tables(result, folder: Path) -> list[Path]:
         "elastic_map": None if result.elastic_map is None else result.elastic_map.rows(),
         "elastic_map_reason": (None if result.elastic_map is not None else
                                "the elastic ring did not run" if result.elastic is None else
-                               "the scene's [elastic] map is false")})))
+                               "the scene's [elastic] map is false")}))))
     if result.elastic is not None:
         files.append(write_csv(folder / "elastic_ring.csv", _elastic_csv(result.elastic)))
     return files
+
+
+def _reasons_for_nulls(payload: dict) -> dict:
+    """``payload`` with each ``<key>_reason`` kept only beside a null ``<key>`` (and in
+    the nested dicts one level down, as the elastic ring's)."""
+    out = {}
+    for key, value in payload.items():
+        if key.endswith("_reason") and payload.get(key[:-len("_reason")], 0) is not None:
+            continue
+        out[key] = (_reasons_for_nulls(value) if isinstance(value, dict) else value)
+    return out
 
 
 def _validity_record(band) -> dict:
