@@ -9,8 +9,8 @@ reduced ring equals full rebuilds over the scales served (``tests/elastic/test_e
 The reference foundation is the intact ring's, for every depth (the crack does not touch
 the support arcs).
 
-The detection rule is :mod:`.elastic`'s, at each scale: planet 1 half a planet pitch
-from the cracked tooth, the cracked modes tracked to the intact ones (subspace match of
+The detection rule is :func:`.elastic_model.elastic_result`'s, at each scale: planet 1
+half a pitch from the cracked tooth, the cracked modes tracked to the intact ones (subspace match of
 at least ``MIN_MATCH``), the faces open; the reducer's own intact record is the baseline;
 watched: the modes the sensor sees (``VISIBLE``), ranked by their largest drop against
 the identification scatter (``DetectionOptions.sigma_hz``), Sidak per-mode rate.  The
@@ -177,7 +177,7 @@ def elastic_map(design, depths, crack_of, scene: ElasticScene, options: Detectio
     """The elastic ring's detectability against the foundation scale (module docstring).
 
     ``depths`` [m] (the first 0), ``crack_of(depth)`` the ``Crack`` of a depth (as
-    :func:`.elastic.elastic_detection`); ``scales`` must hold 1 (the reference
+    :func:`.elastic_model.elastic_result`); ``scales`` must hold 1 (the reference
     foundation, ``scene.options``'s: given or sized); ``pod(shift_hz (depths, modes),
     sigma_hz (modes,), watched, rate) -> (depths,)``; ``rings``: the ``ScaledRing`` of
     every depth when computed elsewhere (:func:`ring_arguments`); ``clamped``: add the
