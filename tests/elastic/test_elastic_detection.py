@@ -160,3 +160,50 @@ def test_monte_carlo_fields_have_defaults_and_reach_the_report():
     text = "\n".join(side_by_side(None, det))
     assert "2000 Monte Carlo reducers" in text
     assert "nominal reducer" in "\n".join(side_by_side(None, _synthetic()))
+
+
+@pytest.mark.slow
+def test_the_elastic_sweep_adds_depths_until_the_crossing_is_resolved(monkeypatch):
+    """``studies.elastic_stage.refine_elastic`` on the small synthetic elastic ring (a
+    crack softening it in proportion to depth, 4-12 mm computed): depths are added by
+    bisection, none below 0.5 mm, at most 4 per record length, until each record length's
+    POD crossing is resolved (within 0.5 mm, or below 0.5 mm); the POD at the sweep's own
+    depths is unchanged by them (the same Monte Carlo reducers), and every added depth's
+    case came through the case cache."""
+    from dataclasses import replace
+
+    from tests.elastic.test_elastic_diagnose import _synthetic_cases
+
+    from hubvib.detection import elastic_model
+    from hubvib.detection.resolution import FLOOR, MAX_ADDED, RESOLUTION
+    from hubvib.studies import elastic_stage
+    from hubvib.studies.scene import load_scene
+
+    deepest = 0.012
+    asked = []
+
+    def case_at(design, crack, scene, k_rest):
+        asked.append(crack.depth)
+        return _synthetic_cases((0.0, crack.depth, deepest))[1]
+
+    monkeypatch.setattr(elastic_model, "cached_case", case_at)
+    from hubvib.detection import options as detection_options
+
+    scene = load_scene(None)
+    options = replace(detection_options.detection_options(scene), samples=100)
+    monkeypatch.setattr(detection_options, "detection_options", lambda s: options)
+    es = parse_elastic_table({"ring": "both"})
+    monkeypatch.setattr(elastic_stage, "_elastic_scene", lambda s: es)
+    depths = (0.0, 0.004, 0.008, deepest)
+    cases = _synthetic_cases(depths)
+    first = elastic_model.elastic_result(None, depths, lambda d: None, es, options, cases)
+    refined = elastic_stage.refine_elastic(scene, first, cases)
+    assert sorted(asked) == sorted(refined.added_depths) and refined.added_depths
+    assert all(d >= FLOOR for d in refined.added_depths)
+    assert len(refined.added_depths) <= MAX_ADDED * len(refined.lengths)
+    for t in refined.lengths:
+        b = refined.bracket(t)
+        assert b.resolved, (t, b)
+        assert b.high is None or b.high - b.low <= RESOLUTION + 1e-12 or b.high <= FLOOR, b
+        kept = [refined.depths.index(d) for d in depths]
+        assert np.array_equal(refined.pod[t][kept], first.pod[t]), t
