@@ -236,7 +236,8 @@ class PodResult:
 
     def family_rows(self) -> list[dict]:
         """Family POD per depth and record length (``pod_family.csv``)."""
-        modes = " ".join(str(int(i) + 1) for i in self.watched)
+        f0 = self.nominal.frequency_hz[0]
+        modes = "; ".join(rigid_label(int(i), self.kind[i], f0[i]) for i in self.watched)
         def at(table, T, k):
             return float(table[T][k]) if T in table else None
 

@@ -105,9 +105,10 @@ def drift_lines(pod, options) -> list[str]:
         return []
     w = pod.watched
     f0 = pod.nominal.frequency_hz[0]
-    per_k = ", ".join(f"mode {i + 1} {drift.per_kelvin_hz[i]:+.3g} Hz" for i in w)
-    per_load = ", ".join(f"mode {i + 1} {1e-3 * drift.per_load_hz[i]:+.3g} Hz" for i in w)
-    refs = ", ".join(f"{i + 1} by {r + 1} ({f0[r]:.1f} Hz)" if r >= 0 else f"{i + 1}: none"
+    per_k = ", ".join(f"rigid {i + 1} {drift.per_kelvin_hz[i]:+.3g} Hz" for i in w)
+    per_load = ", ".join(f"rigid {i + 1} {1e-3 * drift.per_load_hz[i]:+.3g} Hz" for i in w)
+    refs = ", ".join(f"rigid {i + 1} by {rigid_label(r, pod.kind[r], f0[r])}" if r >= 0
+                     else f"rigid {i + 1}: none"
                      for i, r in zip(w, pod.references))
     lengths = sorted(pod.family_pod_drift)
 
@@ -143,7 +144,7 @@ def _modulation_sentence(study, watched) -> str:
     split = [(i, int(np.argmax(index[:, i] > 1))) for i in watched if (index[:, i] > 1).any()]
     if not split:
         return ""
-    parts = ", ".join(f"mode {i + 1} from {depth_mm(study.pod.depths[k])} mm" for i, k in split)
+    parts = ", ".join(f"rigid {i + 1} from {depth_mm(study.pod.depths[k])} mm" for i, k in split)
     return (f" Caution: each pass of a planet over the cracked tooth modulates the phase of "
             f"{parts} by more than 1 rad (see Carrier position): there the crack shows as "
             f"sidebands {study.timing.pass_frequency:.3g} Hz apart as much as a shifted line.")
@@ -252,7 +253,8 @@ def map_table(dmap) -> list[str]:
                 cells += ["not detectable", "-"]
             else:
                 i = int(np.nanargmin(own))
-                cells += [depth_mm(own[i]), f"{i + 1} ({dmap.frequency_hz[swept][m, i]:.1f} Hz)"]
+                cells += [depth_mm(own[i]), rigid_label(i, dmap.kind[i],
+                                                        dmap.frequency_hz[swept][m, i])]
             cells.append("not detectable" if np.isnan(depth).all()
                          else f"{depth_mm(np.nanmin(depth))} "
                               f"({dmap.carried_by[swept][m, int(np.nanargmin(depth))]})")
