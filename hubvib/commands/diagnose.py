@@ -10,6 +10,8 @@ from pathlib import Path
 
 #: width the explanations are wrapped to
 WIDTH = 96
+#: the ring models ``--ring`` chooses from
+RINGS = ("rigid", "elastic")
 
 
 def _say(text: str) -> None:
@@ -31,14 +33,11 @@ def add_parser(sub) -> None:
                    "CSV time_s,acceleration_m_s2, WAV or UFF 58 (instead of --measured)")
     p.add_argument("--baseline-record", type=Path,
                    help="record of the same reducer intact (with --record)")
-    p.add_argument("--ring", help="ring model: rigid (the 9 + 3N model) or elastic (the FE "
+    p.add_argument("--ring", metavar="{" + ",".join(RINGS) + "}", help="ring model: rigid (the 9 + 3N model) or elastic (the FE "
                    "ring coupled to the lumped bodies); default: the scene's [elastic] ring "
                    "(both: both verdicts, the rigid ring's first)")
     p.add_argument("--json", action="store_true")
     p.set_defaults(handler=run)
-
-
-RINGS = ("rigid", "elastic")
 
 
 def rings_of(scene, flag: str | None) -> tuple[str, ...]:
@@ -141,7 +140,7 @@ def _report(scene, measured, answers, found, as_json: bool) -> int:
         payload = None
         for ring, result, ref in answers:
             body = ({"error": result} if ref is None else
-                    {"ring": ring, **result.to_dict(), **ref.mesh_stiffness})
+                    {"ring": ring, **result.labelled(ref.labels), **ref.mesh_stiffness})
             if payload is None:
                 payload = {"scene": scene.name, **body}
                 if found is not None:
@@ -175,30 +174,31 @@ def _print_answer(scene, measured, result, ref, found) -> None:
     nominal = ref.nominal_hz[0]
     print(f"scene {scene.name!r}: {len(result.modes)} measured mode(s), baseline: "
           f"{'the measured intact frequencies' if result.baseline == 'measured' else 'the model intact spectrum'}")
-    print(f"{'mode':>4} {'model intact [Hz]':>17} {'measured [Hz]':>13} {'shift [Hz]':>10} "
-          f"{'sigma [Hz]':>10}  informative")
-    for mode, f, shift, sigma, useful in zip(result.modes, measured.frequency_hz,
-                                             result.shift_hz, result.sigma_hz,
-                                             result.informative):
-        print(f"{mode:>4} {nominal[mode - 1]:>17.3f} {f:>13.3f} {shift:>+10.3f} {sigma:>10.3f}  "
-              f"{'yes' if useful else 'no'}")
+    names = [ref.labels[m - 1] if len(ref.labels) >= m else f"{ref.ring} {m}"
+             for m in result.modes]
+    width = max(len("mode"), *(len(n) for n in names))
+    print(f"{'mode':<{width}} {'model intact [Hz]':>17} {'measured [Hz]':>13} "
+          f"{'shift [Hz]':>10} {'sigma [Hz]':>10}  informative")
+    for name, mode, f, shift, sigma, useful in zip(names, result.modes, measured.frequency_hz,
+                                                   result.shift_hz, result.sigma_hz,
+                                                   result.informative):
+        print(f"{name:<{width}} {nominal[mode - 1]:>17.3f} {f:>13.3f} {shift:>+10.3f} "
+              f"{sigma:>10.3f}  {'yes' if useful else 'no'}")
     for line in explain(result, ref):
         print(textwrap.fill(line, WIDTH, initial_indent="  ", subsequent_indent="    "))
     if result.verdict == "not explained by a ring crack":
         _say(f"verdict: {result.verdict} (fit statistic {result.fit_statistic:.3g}, p = "
               f"{result.fit_p_value:.2g} < {ref.fit_false_alarm_rate:g}): "
-              f"{result.explanation()}")
-    elif result.depth is None:
+              f"{result.explanation(ref.labels)}")
+    elif result.depth_high is None:
         _say(f"verdict: {result.verdict} (no measured mode tells the deepest crack of the "
               f"sweep, {1e3 * ref.depths[-1]:.3g} mm, from an intact reducer)")
     elif result.verdict == "crack indicated":
-        _say(f"verdict: {result.verdict}: depth {1e3 * result.depth:.3g} mm (posterior "
-              f"median), {100 * result.confidence:g} % interval {1e3 * result.depth_low:.3g} "
-              f".. {1e3 * result.depth_high:.3g} mm (it holds the depth with probability "
-              f"{result.confidence:g} under the model)")
+        _say(f"verdict: {result.verdict}: {result.words} (it holds the depth with probability "
+              f"{result.confidence:g} under the model; depths computed: "
+              f"{', '.join(f'{1e3 * d:.3g}' for d in ref.depths)} mm)")
     else:
-        _say(f"verdict: {result.verdict}: depth below {1e3 * result.depth_high:.3g} mm "
-              f"at {100 * result.confidence:g} %")
+        _say(f"verdict: {result.verdict}: depth {result.words}")
 
 
 def explain(result, ref) -> list[str]:
@@ -211,8 +211,19 @@ def explain(result, ref) -> list[str]:
         "deepest crack of the sweep moves the mode by more than one standard deviation of an "
         "intact measurement.",
         f"fit: the crack depth that explains these shifts best is "
-        f"{1e3 * result.fit_depth:.3g} mm (maximum likelihood); p-value "
+        f"{_fit_depth(result.fit_depth, ref.depths)} (maximum likelihood); p-value "
         f"{result.fit_p_value:.3g}: how often the model's own reducers with that crack, "
         "identified with the same scatter, fit as badly or worse (whole pattern or one mode "
         f"alone); below {ref.fit_false_alarm_rate:g} the pattern is not a ring crack.",
     ]
+
+
+def _fit_depth(depth: float, computed) -> str:
+    """The best-fitting depth in words: ``4.2 mm``, ``0 (intact)``, or ``below 3 mm``
+    between the intact reducer and the shallowest crack computed (the sweep tells no
+    finer)."""
+    if depth == 0:
+        return "0 (intact)"
+    if depth < computed[1]:
+        return f"below {1e3 * computed[1]:.3g} mm (the shallowest crack computed)"
+    return f"{1e3 * depth:.3g} mm"

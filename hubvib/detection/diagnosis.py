@@ -2,7 +2,7 @@
 
 The reference is a Monte Carlo of the study's spectrum model
 (:mod:`.spectrum_model`: the rigid-ring lumped model through :mod:`.uncertainty`, or
-the elastic ring through :mod:`.elastic_uncertainty`): at every depth of the sweep,
+the elastic ring through :mod:`.elastic_model`): at every depth of the sweep,
 the distribution of each mode's frequency as a record sees it.  For the measured modes the statistic is the shift against the
 baseline (the reducer's own intact frequencies when the CSV gives
 ``baseline_hz``, else the model's nominal intact spectrum).  Its mean and
@@ -130,7 +130,7 @@ def reference(model, options, timing, seed: int | None = None, workers: int = 1)
     model = as_spectrum_model(model)
     rng = np.random.default_rng(options.seed + 1 if seed is None else seed)
     samples = model.sampled_hz(options, timing, options.samples, rng, workers)
-    nominal_hz = model.nominal_hz(timing, options)
+    nominal_hz = model.nominal_hz(options, timing)
     drift = model.drift(nominal_hz[0], options)
     return Reference(np.array(model.depths), samples, nominal_hz,
                      options.sigma_hz(nominal_hz[0]), options.false_alarm_rate,
@@ -235,12 +235,33 @@ class Diagnosis:
     worst_z: float
     uniform_shift: float
     uniform_p_value: float
+    below: float | None = None
 
-    def explanation(self) -> str | None:
-        """The nearest other explanation when the crack model does not fit."""
+    @property
+    def words(self) -> str:
+        """The depth answer in words: ``depth 4.2 mm, 90 % interval 3.6 .. 4.9 mm``, ``below
+        3 mm`` (under the shallowest computed crack: the sweep says no more), ``below 3 mm at
+        90 %`` (no crack indicated) or ``-``."""
+        if self.depth_high is None:
+            return "-"
+        c = f"{100 * self.confidence:g} %"
+        if self.verdict == NO_CRACK:
+            return f"below {1e3 * self.depth_high:.3g} mm at {c}"
+        if self.below is not None:
+            return (f"below {1e3 * self.below:.3g} mm, the shallowest crack computed "
+                    f"({c} interval up to {1e3 * self.depth_high:.3g} mm)")
+        low = ("below" if self.depth_low == 0 else f"{1e3 * self.depth_low:.3g}")
+        return (f"depth {1e3 * self.depth:.3g} mm (posterior median), {c} interval {low} .. "
+                f"{1e3 * self.depth_high:.3g} mm")
+
+    def explanation(self, labels=()) -> str | None:
+        """The nearest other explanation when the crack model does not fit (``labels``: the
+        model's mode names, 0-based; default ``mode 7``)."""
         if self.verdict != NOT_EXPLAINED:
             return None
-        text = (f"mode {self.worst_mode} misfits most ({self.worst_z:+.1f} standard "
+        worst = (labels[self.worst_mode - 1] if len(labels) >= self.worst_mode
+                 else f"mode {self.worst_mode}")
+        text = (f"{worst} misfits most ({self.worst_z:+.1f} standard "
                 f"deviations {'above' if self.worst_z > 0 else 'below'} the best ring-crack "
                 f"fit)")
         if len(self.modes) == 1:
@@ -268,7 +289,13 @@ class Diagnosis:
                 "fit_depth_m": self.fit_depth, "worst_mode": self.worst_mode,
                 "worst_mode_z": self.worst_z, "uniform_shift_relative": self.uniform_shift,
                 "uniform_shift_p_value": self.uniform_p_value,
+                "below_m": self.below, "answer": self.words,
                 "explanation": self.explanation()}
+
+    def labelled(self, labels) -> dict:
+        """:meth:`to_dict` with each mode's name (``labels``: the model's, 0-based)."""
+        return {**self.to_dict(), "mode_labels": [labels[m - 1] for m in self.modes],
+                "explanation": self.explanation(labels)}
 
 
 class Posterior:
@@ -307,14 +334,32 @@ class Posterior:
 
     def _bootstrap(self, X: np.ndarray, rng) -> np.ndarray:
         """Sorted fit statistics (:meth:`fit_statistics`) of model reducers plus noise,
-        shape (2, depths, draws)."""
+        shape (2, depths, draws); the drawn reducers and their noise are kept for the null
+        between the sweep's depths (:meth:`null_at`)."""
         draws = min(BOOTSTRAP, X.shape[0])
         pick = rng.choice(X.shape[0], draws, replace=False)
         root = np.linalg.cholesky(self.noise)
-        y = X[pick] + (rng.standard_normal((draws, 1, self.modes.size)) @ root.T)
+        self._drawn = X[pick]
+        self._noise_draws = rng.standard_normal((draws, 1, self.modes.size)) @ root.T
+        y = self._drawn + self._noise_draws
         stats = np.stack([np.stack(self.fit_statistics(y[:, k])) for k in range(X.shape[1])],
                          axis=1)
         return np.sort(stats, axis=-1)
+
+    def null_at(self, depth: float) -> np.ndarray:
+        """Sorted fit statistics (2, draws) of the bootstrap reducers with a crack of
+        ``depth`` [m]: at a sweep depth the stored ones, between two the same reducers'
+        frequencies interpolated linearly (what the model says a crack there does), plus
+        the same noise draws."""
+        depths = self.ref.depths
+        at = np.flatnonzero(np.isclose(depths, depth, rtol=0, atol=1e-12 * depths[-1]))
+        if at.size:
+            return self.null[:, int(at[0])]
+        k = int(np.clip(np.searchsorted(depths, depth) - 1, 0, depths.size - 2))
+        t = (depth - depths[k]) / (depths[k + 1] - depths[k])
+        y = ((1 - t) * self._drawn[:, k] + t * self._drawn[:, k + 1]
+             + self._noise_draws[:, 0])
+        return np.sort(np.stack(self.fit_statistics(y)), axis=-1)
 
     def fit_statistics(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """For shifts ``y`` (..., modes): ``-2 max_d log L(d)`` (the whole pattern) and the
@@ -327,14 +372,13 @@ class Posterior:
         return -2 * loglike.max(axis=-1), np.abs(r / spread).max(axis=-1)
 
     def fit_p_value(self, statistics, depth: float) -> float:
-        """Bootstrap p-value of the two fit statistics under a crack of ``depth`` [m]: the
-        smaller tail fraction (neighbouring sweep depths, interpolated linearly), doubled
-        (Bonferroni over the two statistics), at most 1."""
-        draws = self.null.shape[-1]
-        p = []
-        for null, value in zip(self.null, statistics):
-            tail = np.array([draws - np.searchsorted(row, value, side="left") for row in null])
-            p.append(np.interp(depth, self.ref.depths, (1.0 + tail) / (draws + 1.0)))
+        """Bootstrap p-value of the two fit statistics under a crack of ``depth`` [m]
+        (:meth:`null_at`): the smaller tail fraction, doubled (Bonferroni over the two
+        statistics), at most 1."""
+        null = self.null_at(depth)
+        draws = null.shape[-1]
+        p = [(1.0 + draws - np.searchsorted(row, value, side="left")) / (draws + 1.0)
+             for row, value in zip(null, statistics)]
         return float(min(1.0, 2 * min(p)))
 
     def informative(self) -> np.ndarray:
@@ -397,14 +441,24 @@ class Posterior:
                              **common)
         cdf = _cdf(self.grid, loglike)
         c = ref.confidence
+        computed = ref.depths
+        shallowest = float(computed[1])
+        below = None
         if ratio > critical:
-            depth, low, high = (np.interp(q, cdf, self.grid)
+            depth, low, high = (float(np.interp(q, cdf, self.grid))
                                 for q in (0.5, (1 - c) / 2, (1 + c) / 2))
             verdict = CRACK
+            if depth < shallowest:  # no depth computed there: the sweep says "below"
+                depth, low, high, below = None, 0.0, max(high, shallowest), shallowest
+            elif low < shallowest:
+                low = 0.0
         else:
-            depth, low, high = 0.0, 0.0, np.interp(c, cdf, self.grid)
-            verdict = NO_CRACK
-        return Diagnosis(verdict, float(depth), float(low), float(high), likelihood_ratio=ratio,
+            bound = float(np.interp(c, cdf, self.grid))
+            # the bound rounded up to a computed depth: the sweep tells no finer
+            high = float(computed[min(np.searchsorted(computed, bound * (1 - 1e-12)),
+                                      computed.size - 1)])
+            depth, low, verdict = 0.0, 0.0, NO_CRACK
+        return Diagnosis(verdict, depth, low, high, likelihood_ratio=ratio, below=below,
                          **common)
 
 
@@ -471,7 +525,7 @@ def synthetic_measurements(model, options, timing, depths: np.ndarray, seed: int
     at = as_spectrum_model(model).at_depths(np.concatenate([[0.0], depths]))
     f = at.sampled_hz(options, timing, depths.size, rng, workers,
                       depth_index=np.arange(1, depths.size + 1))
-    intact = at.nominal_hz(timing, options, long_record=True)[0]
+    intact = at.nominal_hz(options, timing, long_record=True)[0]
     sigma = options.sigma_hz(intact)
     draw_errors = errors or (lambda generator, shape: generator.standard_normal(shape))
     noise = draw_errors(rng, f.shape) * sigma
@@ -492,8 +546,8 @@ def elastic_scene_model(scene):
     from hubvib.elastic.cases import cached_case
     from hubvib.cases.sweep import crack_of
 
-    from .elastic import case_arguments
-    from .elastic_uncertainty import elastic_spectrum_model
+    from .elastic_model import case_arguments
+    from .elastic_model import elastic_spectrum_model
 
     table = scene.elastic
     sweep = scene.crack

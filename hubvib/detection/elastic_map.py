@@ -9,8 +9,8 @@ reduced ring equals full rebuilds over the scales served (``tests/elastic/test_e
 The reference foundation is the intact ring's, for every depth (the crack does not touch
 the support arcs).
 
-The detection rule is :mod:`.elastic`'s, at each scale: planet 1 half a planet pitch
-from the cracked tooth, the cracked modes tracked to the intact ones (subspace match of
+The detection rule is :func:`.elastic_model.elastic_result`'s, at each scale: planet 1
+half a pitch from the cracked tooth, the cracked modes tracked to the intact ones (subspace match of
 at least ``MIN_MATCH``), the faces open; the reducer's own intact record is the baseline;
 watched: the modes the sensor sees (``VISIBLE``), ranked by their largest drop against
 the identification scatter (``DetectionOptions.sigma_hz``), Sidak per-mode rate.  The
@@ -32,8 +32,10 @@ from hubvib.elastic.options import ElasticScene
 from hubvib.elastic.tracking import track_modes
 from hubvib.foundation.output import finite_or_none
 
-from .elastic import MIN_MATCH, VISIBLE, family_pod, sensor_visibility
+from .elastic_model import MIN_MATCH, VISIBLE, sensor_visibility, tracked_to
 from .options import DetectionOptions
+from .pod import family_pod, watched_by_drop
+from .resolution import bracket
 
 #: foundation scales of the map (both stiffnesses x s); s = 1 is the reference
 SCALES = tuple(float(s) for s in np.geomspace(0.1, 100.0, 13))
@@ -138,19 +140,16 @@ class _Spectrum:
 
 
 def first_detectable(depths, pod, probability: float) -> float:
-    """Smallest depth > 0 with ``pod >= probability`` [m] (NaN: none)."""
-    hits = [d for d, p in zip(depths, pod) if d > 0 and p >= probability]
-    return min(hits) if hits else math.nan
+    """Smallest depth > 0 with ``pod >= probability`` [m] (NaN: none): the upper end of the
+    crossing's bracket (:func:`.resolution.bracket`)."""
+    high = bracket(depths, pod, probability).high
+    return math.nan if high is None else high
 
 
 def tracked_hz(intact, cracked, ring_mass: float) -> np.ndarray:
-    """Each intact mode's frequency in ``cracked`` (NaN: no match of ``MIN_MATCH``)."""
-    t = track_modes(intact, cracked, ring_mass)
-    f = np.full(intact.frequency_hz.size, np.nan)
-    for j, (ref, match) in enumerate(zip(t.reference, t.match)):
-        if ref >= 0 and match >= MIN_MATCH:
-            f[ref] = cracked.frequency_hz[j]
-    return f
+    """Each intact mode's frequency in ``cracked`` (NaN: no match of ``MIN_MATCH``), as
+    :func:`.elastic_model.tracked_to`."""
+    return tracked_to(intact, cracked, ring_mass)[0]
 
 
 def lowest_ring_mode(ring, scale: float) -> tuple[float, int | None]:
@@ -176,7 +175,7 @@ def elastic_map(design, depths, crack_of, scene: ElasticScene, options: Detectio
     """The elastic ring's detectability against the foundation scale (module docstring).
 
     ``depths`` [m] (the first 0), ``crack_of(depth)`` the ``Crack`` of a depth (as
-    :func:`.elastic.elastic_detection`); ``scales`` must hold 1 (the reference
+    :func:`.elastic_model.elastic_result`); ``scales`` must hold 1 (the reference
     foundation, ``scene.options``'s: given or sized); ``pod(shift_hz (depths, modes),
     sigma_hz (modes,), watched, rate) -> (depths,)``; ``rings``: the ``ScaledRing`` of
     every depth when computed elsewhere (:func:`ring_arguments`); ``clamped``: add the
@@ -233,9 +232,8 @@ def elastic_map(design, depths, crack_of, scene: ElasticScene, options: Detectio
         sigma = options.sigma_hz(intact.frequency_hz, record)
         visibility = sensor_visibility(intact, scene.sensor_angle)
         drop = np.nan_to_num(np.clip(-shift, 0.0, None), nan=0.0).max(axis=0)
-        seen = np.flatnonzero(visibility >= VISIBLE)
-        order = seen[np.argsort(-drop[seen] / sigma[seen], kind="stable")]
-        watched = tuple(int(i) for i in order[:options.watched_modes])
+        watched = watched_by_drop(shift, sigma, np.flatnonzero(visibility >= VISIBLE),
+                                  options.watched_modes)
         rate = options.per_mode_rate(len(watched)) if watched else options.false_alarm_rate
         family[k] = np.asarray(pod(shift, sigma, watched, rate), dtype=float)
         family_depth[k] = first_detectable(depths, family[k], options.detection_probability)

@@ -46,7 +46,7 @@ from hubvib.lumped import natural_modes
 from .budget import chunked_frequencies
 from .drift import Drift, drift_model, references
 from .drift import family_pod as family_pod_mc
-from .mode_names import mode_names
+from .mode_names import mode_names, rigid_label
 from .numbers import ROUND_OFF
 from .uncertainty import draw, nominal, observed_frequencies_of
 
@@ -236,7 +236,8 @@ class PodResult:
 
     def family_rows(self) -> list[dict]:
         """Family POD per depth and record length (``pod_family.csv``)."""
-        modes = " ".join(str(int(i) + 1) for i in self.watched)
+        f0 = self.nominal.frequency_hz[0]
+        modes = "; ".join(rigid_label(int(i), self.kind[i], f0[i]) for i in self.watched)
         def at(table, T, k):
             return float(table[T][k]) if T in table else None
 
@@ -256,6 +257,7 @@ class PodResult:
             for i, kind in enumerate(self.kind):
                 rows.append({
                     "depth_mm": 1e3 * depth, "mode": i + 1, "mode_name": names[i],
+                    "mode_label": rigid_label(i, kind, nominal.frequency_hz[0, i]),
                     "kind": kind,
                     "frequency_intact_hz": float(nominal.frequency_hz[0, i]),
                     "shift_hz": float(nominal.shift_hz[k, i]),
@@ -350,6 +352,48 @@ def pod_study(model, options, timing, samples: int | None = None, model_baseline
                      sigma, family, rate, threshold, pod, family_pod, threshold_model,
                      pod_model, options.false_alarm_rate, options.detection_probability, n,
                      drift, refs, drifting, compensated)
+
+
+def family_pod(shift_hz: np.ndarray, sigma_hz: np.ndarray, watched, rate: float) -> np.ndarray:
+    """Probability that some watched mode alarms against the reducer's own intact record
+    (the rule of this module's docstring, any spectrum model), per depth [-]: ``shift_hz`` (depths,
+    modes) of one reducer, or (samples, depths, modes) of Monte Carlo reducers (their mean
+    probability).  A NaN shift (the mode is not tracked) counts as no change."""
+    from scipy.stats import norm
+
+    z = norm.ppf(1.0 - rate)
+    shift_hz = np.asarray(shift_hz, dtype=float)
+    miss = np.ones(shift_hz.shape[:-1])
+    for i in watched:
+        d = np.nan_to_num(shift_hz[..., i], nan=0.0)
+        scale = math.sqrt(2.0) * sigma_hz[i]
+        miss *= norm.cdf((d + z * scale) / scale)
+    pod = 1.0 - miss
+    return pod if pod.ndim == 1 else pod.mean(axis=0)
+
+
+def monte_carlo_shifts(model, options, timing=None, seed: int | None = None) -> np.ndarray:
+    """Changes of every mode of ``options.samples`` Monte Carlo reducers of ``model`` (a
+    ``SpectrumModel``) against their own intact spectrum [Hz], (samples, depths, modes);
+    NaN where the model's nominal continuation of a mode is not tracked (its ``tracked``,
+    (depths, modes), when it has one)."""
+    rng = np.random.default_rng(options.seed + 3 if seed is None else seed)
+    f = model.sampled_hz(options, timing, options.samples, rng)
+    shift = f - f[:, :1]
+    tracked = getattr(model, "tracked", None)
+    if tracked is not None:
+        shift[:, ~np.asarray(tracked)] = np.nan
+    return shift
+
+
+def watched_by_drop(shift_hz: np.ndarray, sigma_hz: np.ndarray, seen, count: int) -> tuple:
+    """The ``count`` modes among ``seen`` (0-based) whose largest drop over the sweep
+    (``shift_hz`` (depths, modes) [Hz], NaN: not tracked) is largest against their
+    identification scatter ``sigma_hz`` [Hz], best first."""
+    drop = np.nan_to_num(np.clip(-shift_hz, 0.0, None), nan=0.0).max(axis=0)
+    seen = np.asarray(seen, dtype=int)
+    order = seen[np.argsort(-drop[seen] / sigma_hz[seen], kind="stable")]
+    return tuple(int(i) for i in order[:count])
 
 
 def _quantile_threshold(offsets: np.ndarray, sigma: float, alpha: float) -> float:

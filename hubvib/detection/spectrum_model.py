@@ -6,7 +6,8 @@ sees [Hz]: the nominal reducer's and those of reducers drawn from its uncertaint
 the modes in one fixed order (mode ``i`` is the same mode at every depth).  The rigid-ring
 lumped model (:class:`RigidSpectrum`, a wrapper of ``CrackModel`` and
 :mod:`.uncertainty`) and the elastic ring
-(:class:`hubvib.detection.elastic_uncertainty.ElasticSpectrum`) implement it.
+(:class:`hubvib.detection.elastic_model.ElasticSpectrum`) implement it, with one
+argument order: ``(options, timing, ...)``.
 """
 from __future__ import annotations
 
@@ -34,7 +35,7 @@ class SpectrumModel(Protocol):
     depths: tuple
     ring: str
 
-    def nominal_hz(self, timing, options, long_record: bool | None = None) -> np.ndarray:
+    def nominal_hz(self, options, timing, long_record: bool | None = None) -> np.ndarray:
         """Observed frequencies of the nominal reducer [Hz], (depths, modes).
         ``long_record``: the record spans more than one engagement of the cracked tooth
         (default: from ``options.record_length``)."""
@@ -58,6 +59,11 @@ class SpectrumModel(Protocol):
     def at_depths(self, depths) -> "SpectrumModel":
         """The same model at other depths [m] (the first 0, within the sweep)."""
 
+    @property
+    def tracked(self):
+        """(depths, modes) of bool: whether the nominal continuation of each mode is
+        tracked (a sampled change of an untracked one counts as none); None: all are."""
+
 
 @dataclass(frozen=True)
 class RigidSpectrum:
@@ -74,7 +80,7 @@ class RigidSpectrum:
     def _long(self, timing, options, long_record):
         return timing.long_record(options.record_length) if long_record is None else long_record
 
-    def nominal_hz(self, timing, options, long_record: bool | None = None) -> np.ndarray:
+    def nominal_hz(self, options, timing, long_record: bool | None = None) -> np.ndarray:
         return observed_frequencies(self.crack, nominal(self.crack), timing.engaged_fraction,
                                     self._long(timing, options, long_record))[0]
 
@@ -88,8 +94,19 @@ class RigidSpectrum:
                                     depth_index=depth_index)
 
     def mode_labels(self) -> tuple:
-        count = self.crack.params.n_dof
-        return tuple(f"mode {i + 1}" for i in range(count))
+        """``rigid 13 (rotational, 4548.5 Hz)`` per mode (:func:`.result.rigid_label`)."""
+        from hubvib.lumped import natural_modes
+
+        from .mode_names import rigid_label
+
+        spectrum = natural_modes(self.crack.parameters(0), self.crack.method)
+        f = spectrum.omega / (2 * np.pi)
+        return tuple(rigid_label(i, kind, f[i]) for i, kind in enumerate(spectrum.kind))
+
+    @property
+    def tracked(self):
+        """Every mode of the lumped model is tracked at every depth (None: no mask)."""
+        return None
 
     def drift(self, intact_hz, options) -> Drift:
         return drift_model(self.crack.parameters(0), intact_hz, options, self.crack.method)

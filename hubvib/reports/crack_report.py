@@ -13,6 +13,7 @@ from hubvib.detection.mesh_stiffness import iso_c_rp
 from hubvib.detection.numbers import depth_mm, percent, sensitivity, shift_hz
 from hubvib.render.captions import figure_lines
 from hubvib.render.schedule import rendered_depth
+from hubvib.reports.answer import lead, lead_lines
 from hubvib.reports.mesh_stiffness_section import mesh_stiffness_section
 from hubvib.reports.provenance import provenance
 from hubvib.reports.validation_status import lumped_model_status
@@ -45,13 +46,17 @@ def crack_report(result, plots: list[str], renders: list[str], fe_renders: list[
                 f" at the deepest point of a semi-elliptic crack of half-length "
                 f"{1e3 * result.half_length:g} mm in the solid ring."), ""]
     sources = {key: scene.lumped_source(key) for key in ("c_ru", "c_r")}
+    which = lead(result.rigid, result.elastic, result.elastic_validity)
     if study is not None:
-        lines += sections.short_answer(scene.name, model, study, sources)
+        lines += sections.short_answer(scene.name, model, study, sources,
+                                       lead_lines(which))
     if result.elastic is not None:
         from hubvib.reports.elastic_sections import side_by_side
 
-        lines += ([] if study is not None else ["## Short answer", ""])
-        lines += side_by_side(study, result.elastic)
+        lines += ([] if study is not None else ["## Short answer", "", *lead_lines(which)])
+        lines += side_by_side(result.rigid, result.elastic)
+    if result.mode_map:
+        lines += mode_map_lines(result.mode_map)
     if study is not None:
         lines += ["## Detectability against the ring mounting", "",
                   "The mounting is swept log-spaced in series with the FE ring body (whatever "
@@ -184,6 +189,21 @@ def crack_report(result, plots: list[str], renders: list[str], fe_renders: list[
         lines += SIGNAL_SECTION
     return "\n".join(lines) + "\n"
 
+
+
+def mode_map_lines(pairs) -> list[str]:
+    """The table mapping each elastic-ring mode to the rigid-ring mode its lumped bodies
+    move like (``detection.mode_map``; ``mode_map.csv`` has every mode)."""
+    lines = ["**Which mode is which.** Mode numbers mean different modes in the two models; "
+             "each elastic-ring mode below is paired with the rigid-ring mode whose motion of "
+             "the lumped bodies (sun, carrier, planets) it resembles most (mass-weighted MAC "
+             "on those coordinates; lumped share: the elastic mode's kinetic energy in the "
+             "lumped bodies, small for a mode of the ring's own):", "",
+             "| elastic ring | rigid ring | MAC | lumped share |", "|---|---|---:|---:|"]
+    for pair in pairs:
+        lines.append(f"| {pair.elastic} | {pair.rigid} | {pair.mac:.2f} | "
+                     f"{pair.lumped_share:.2f} |")
+    return lines + [""]
 
 
 def _image(name: str, plots: list[str]) -> list[str]:

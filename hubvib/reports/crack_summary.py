@@ -5,6 +5,7 @@ import math
 from pathlib import Path
 
 from hubvib.detection.numbers import percent
+from hubvib.reports.answer import answer_line, lead
 
 __all__ = ["crack_lines"]
 
@@ -22,6 +23,7 @@ def crack_lines(scene, result, folder: Path) -> list[str]:
         last = f"detectable from (POD >= {pod:g}), via"
     else:
         last = f"smallest crack shifting >= {scene.threshold_percent:g} %"
+    out.append(f"{'rigid ring (9 + 3N)':<24}")
     out.append(f"{'mode':>4} {'type':<13} {'f intact [Hz]':>13} {'inst. shift [%]':>15} "
                + (f"{'record shift [Hz]':>17} {'sigma [Hz]':>10} " if physical else "")
                + f"{'follows':>10}  {last}")
@@ -39,13 +41,20 @@ def crack_lines(scene, result, folder: Path) -> list[str]:
                   "alone at the family-corrected false-alarm rate" if physical else "")
                + "; follows: relative sensitivity above 0.01")
     if physical and result.detection is not None:
-        pod_result = result.detection.pod
-        parts = [f"{T:g} s: " + ("none" if math.isnan(d) else f"from {1e3 * d:.3g} mm")
-                 for T in sorted(pod_result.family_pod)
-                 for d in [pod_result.family_detectable_depth(T)]]
-        out.append(f"watched modes {', '.join(str(int(i) + 1) for i in pod_result.watched)} "
-                   f"together (family-wise false-alarm rate {pod_result.false_alarm_rate:g}), "
-                   f"crack detectable (POD >= {pod:g}) with records of " + "; ".join(parts))
+        rigid = result.rigid
+        out.append(f"rigid ring: watched modes {', '.join(rigid.watched_labels())} together "
+                   f"(family-wise false-alarm rate {rigid.false_alarm_rate:g}), crack "
+                   f"detected (POD >= {pod:g}) with records of "
+                   + "; ".join(f"{t:g} s: {rigid.answer(t)}" for t in rigid.lengths))
+    if result.elastic is not None:
+        elastic = result.elastic
+        out.append(f"elastic ring: watched modes {', '.join(elastic.watched_labels())}"
+                   + ("" if not elastic.added_depths else
+                      f"; depths added {', '.join(f'{1e3 * d:.3g}' for d in elastic.added_depths)}"
+                      " mm"))
     out.append(f"\nreport: {folder / 'report.md'} (in a browser: {folder / 'report.html'})")
+    last = answer_line(lead(result.rigid, result.elastic, result.elastic_validity))
+    if last is not None and (physical or result.elastic is not None):
+        out.append(last)
     return out
 

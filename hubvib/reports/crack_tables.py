@@ -11,6 +11,7 @@ from pathlib import Path
 
 from hubvib.detection.mesh_stiffness import family_depths, iso_c_rp
 from hubvib.foundation.output import write_csv, write_json
+from hubvib.reports.answer import answer_line, lead
 from hubvib.reports.provenance import json_safe, provenance
 
 __all__ = ["write_crack_tables"]
@@ -26,11 +27,18 @@ def write_crack_tables(result, folder: Path) -> list[Path]:
     files = [write_csv(folder / "stiffness_vs_depth.csv", result.stiffness_rows()),
              write_csv(folder / "frequency_vs_depth.csv", result.frequency_rows()),
              write_csv(folder / "modes.csv", result.mode_rows())]
+    if result.mode_map:
+        files.append(write_csv(folder / "mode_map.csv", [p.row() for p in result.mode_map]))
+    answers = [r for r in (result.rigid, result.elastic) if r is not None]
+    if answers:
+        files.append(write_csv(folder / "detection.csv",
+                               [row for r in answers for row in r.rows()]))
+    which = lead(result.rigid, result.elastic, result.elastic_validity)
     if study is not None:
         files += [write_csv(folder / "pod.csv", study.pod.rows()),
                   write_csv(folder / "pod_family.csv", study.pod.family_rows()),
                   write_csv(folder / "detectability_map.csv", study.map.rows())]
-    files.append(write_json(folder / "results.json", json_safe({
+    files.append(write_json(folder / "results.json", json_safe(_reasons_for_nulls({
         "scene": scene.name, **provenance(), "parameters": result.model.params.to_dict(),
         "crack": {k: v for k, v in asdict(scene.crack).items() if k != "design"},
         "mounting": {"apply": result.model.apply, "c_ru_mount_N_m": result.model.c_ru_mount,
@@ -46,7 +54,13 @@ def write_crack_tables(result, folder: Path) -> list[Path]:
                            for T, v in study.pod.family_pod.items()},
             "engaged_fraction": study.timing.engaged_fraction,
             "pass_seconds": study.timing.pass_seconds,
-            "watched_modes": [int(i) + 1 for i in study.watched_modes()]},
+            "watched_modes": [int(i) + 1 for i in study.watched_modes()],
+            "answer": result.rigid.to_dict()},
+        "detection_reason": None if study is not None else "the scene runs no detection study",
+        "short_answer": None if which.leader is None else {
+            "ring": which.leader.ring, "line": answer_line(which),
+            "comparison": None if which.other is None else which.other.ring,
+            "comparison_why": which.reason or None},
         "stiffness": result.stiffness_rows(), "modes": result.mode_rows(),
         "frequencies": result.frequency_rows(),
         "mesh_stiffness": dict(result.model.mesh_stiffness(),
@@ -54,15 +68,37 @@ def write_crack_tables(result, folder: Path) -> list[Path]:
                                c_rp_methods_differ=result.c_rp_comparison is not None),
         "c_rp_methods": (None if result.c_rp_comparison is None
                          else result.c_rp_comparison.rows()),
+        "c_rp_methods_reason": (None if result.c_rp_comparison is not None else
+                                "the lumped c_rp is the FE intact one: both methods agree"),
         "c_rp_other_method_family_pod": _other_family_pod(result.c_rp_comparison),
+        "c_rp_other_method_family_pod_reason": _other_reason(result.c_rp_comparison),
         "elastic_ring": None if result.elastic is None else dict(
             _elastic_json(result.elastic),
             validity=None if result.elastic_validity is None
             else _validity_record(result.elastic_validity)),
-        "elastic_map": None if result.elastic_map is None else result.elastic_map.rows()})))
+        "elastic_ring_reason": (None if result.elastic is not None else
+                                "the scene's [elastic] ring is \"rigid\" (or its crack is "
+                                "no plane sweep)"),
+        "mode_map": [p.row() for p in result.mode_map] or None,
+        "mode_map_reason": None if result.mode_map else "the elastic ring did not run",
+        "elastic_map": None if result.elastic_map is None else result.elastic_map.rows(),
+        "elastic_map_reason": (None if result.elastic_map is not None else
+                               "the elastic ring did not run" if result.elastic is None else
+                               "the scene's [elastic] map is false")}))))
     if result.elastic is not None:
         files.append(write_csv(folder / "elastic_ring.csv", _elastic_csv(result.elastic)))
     return files
+
+
+def _reasons_for_nulls(payload: dict) -> dict:
+    """``payload`` with each ``<key>_reason`` kept only beside a null ``<key>`` (and in
+    the nested dicts one level down, as the elastic ring's)."""
+    out = {}
+    for key, value in payload.items():
+        if key.endswith("_reason") and payload.get(key[:-len("_reason")], 0) is not None:
+            continue
+        out[key] = (_reasons_for_nulls(value) if isinstance(value, dict) else value)
+    return out
 
 
 def _validity_record(band) -> dict:
@@ -73,45 +109,59 @@ def _validity_record(band) -> dict:
 
 def _elastic_json(elastic) -> dict:
     """The elastic ring's answer for results.json."""
-    return {"depths_mm": [1e3 * d for d in elastic.depths],
-            "first_detectable_mm": {f"{t:g}": (None if elastic.first_detectable(t) is None
-                                               else 1e3 * elastic.first_detectable(t))
-                                    for t in elastic.pod},
-            "family_pod": {f"{t:g}": [float(p) for p in v] for t, v in elastic.pod.items()},
-            "family_pod_nominal": None if elastic.pod_nominal is None else {
-                f"{t:g}": [float(p) for p in v] for t, v in elastic.pod_nominal.items()},
-            "monte_carlo_samples": elastic.samples,
-            "scatter": None if not elastic.scatter else dict(zip(
-                ("masses", "stiffnesses", "mounting", "fe_change_error"), elastic.scatter)),
-            "watched_modes": [i + 1 for i in elastic.watched],
-            "k_rest_N_m": elastic.k_rest, "ring_dofs": elastic.ring_dofs,
-            "foundation_N_m2": None if elastic.foundation is None else {
-                "normal": elastic.foundation[0], "tangential": elastic.foundation[1]},
-            "sensor_angle_deg": math.degrees(elastic.sensor_angle),
-            "lowest_ring_mode": None if elastic.lowest_ring_mode is None else {
-                "frequency_hz": elastic.lowest_ring_mode[0],
-                "nodal_diameter": elastic.lowest_ring_mode[1]},
-            "modes": elastic.rows()}
+    from hubvib.detection.elastic_model import elastic_mode_rows
+
+    detail = elastic.detail
+    return {**elastic.to_dict(),
+            "family_pod_nominal": {f"{t:g}": [float(p) for p in v]
+                                   for t, v in elastic.pod_nominal.items()},
+            "scatter": None if not detail.scatter else dict(zip(
+                ("masses", "stiffnesses", "mounting", "fe_change_error"), detail.scatter)),
+            "k_rest_N_m": detail.k_rest, "ring_dofs": detail.ring_dofs,
+            "foundation_N_m2": None if detail.foundation is None else {
+                "normal": detail.foundation[0], "tangential": detail.foundation[1]},
+            "foundation_reason": (None if detail.foundation is not None else
+                                  "the ring is clamped on its support arcs"),
+            "sensor_angle_deg": math.degrees(detail.sensor_angle),
+            "lowest_ring_mode": None if detail.lowest_ring_mode is None else {
+                "frequency_hz": detail.lowest_ring_mode[0],
+                "nodal_diameter": detail.lowest_ring_mode[1]},
+            "lowest_ring_mode_reason": (None if detail.lowest_ring_mode is not None else
+                                        "no elastic mode of the ring's own in its basis"),
+            "modes": elastic_mode_rows(elastic)}
 
 
 def _elastic_csv(elastic) -> list[dict]:
     """One row per depth and coupled mode of the elastic ring."""
+    from hubvib.detection.elastic_model import bilinear_hz
+
+    detail, bilinear = elastic.detail, bilinear_hz(elastic)
     rows = []
     for k, depth in enumerate(elastic.depths):
         for i, f in enumerate(elastic.intact_hz):
-            rows.append({"depth_mm": 1e3 * depth, "mode": i + 1, "class": elastic.kind[i],
-                         "nodal_diameter": elastic.nodal_diameter[i],
-                         "intact_hz": float(f), "open_hz": float(elastic.open_hz[k, i]),
-                         "in_contact_hz": float(elastic.in_contact_hz[k, i]),
-                         "in_contact_intact_hz": float(elastic.in_contact_hz[0, i]),
-                         "bilinear_hz": float(elastic.bilinear_hz[k, i]),
-                         "split_pair": bool(elastic.split_pair[k, i]),
+            rows.append({"depth_mm": 1e3 * depth, "mode": elastic.labels[i],
+                         "class": detail.kind[i],
+                         "nodal_diameter": detail.nodal_diameter[i],
+                         "intact_hz": float(f), "open_hz": float(elastic.frequency_hz[k, i]),
+                         "in_contact_hz": float(detail.in_contact_hz[k, i]),
+                         "in_contact_intact_hz": float(detail.in_contact_hz[0, i]),
+                         "bilinear_hz": float(bilinear[k, i]),
+                         "split_pair": bool(detail.split_pair[k, i]),
                          "watched": i in elastic.watched,
+                         "added_depth": depth in elastic.added_depths,
                          "family_pod": float(elastic.pod[elastic.record_length][k]),
-                         "family_pod_nominal": (
-                             None if elastic.pod_nominal is None else
-                             float(elastic.pod_nominal[elastic.record_length][k]))})
+                         "family_pod_nominal": float(
+                             elastic.pod_nominal[elastic.record_length][k])})
     return rows
+
+
+def _other_reason(comparison) -> str | None:
+    """Why results.json has no family POD under the other c_rp method (None: it has)."""
+    if comparison is None:
+        return "the lumped c_rp is the FE intact one: both methods agree"
+    if comparison.other_pod is None:
+        return "the detection study did not run"
+    return None
 
 
 def _other_family_pod(comparison) -> dict | None:

@@ -6,6 +6,8 @@ import math
 import numpy as np
 
 from hubvib.detection.mode_names import mode_names
+from hubvib.detection.mode_names import rigid_label
+from hubvib.detection.resolution import bracket
 from hubvib.detection.numbers import depth_mm, number, percent, shift_hz
 from hubvib.detection.series import DIRECT, RATIO
 
@@ -69,27 +71,31 @@ def _sigma_range(pod, watched) -> str:
             else f"{sigma.min():.3g}-{sigma.max():.3g} Hz")
 
 
-def _family_sentence(pod) -> str:
-    """The short answer proper: depth detectable by the watched family per record length."""
-    parts = []
-    for T in sorted(pod.family_pod):
-        depth = pod.family_detectable_depth(T)
-        parts.append(f"{T:g} s: " + ("no crack of the sweep" if math.isnan(depth)
-                                      else f"from {depth_mm(depth)} mm"))
-    modes = ", ".join(str(i + 1) for i in pod.watched)
-    return (f"**Watching modes {modes} together (alarm when any of them drops below its "
-            f"threshold; family-wise false-alarm rate {pod.false_alarm_rate:g}), a crack is "
-            f"detected with POD >= {pod.detection_probability:g} with records of "
-            + "; ".join(parts) + ".** Records of the same reducer intact and now, identified "
-            "by the same method, without drift between them; with the scene's temperature "
-            "and load drift: " + "; ".join(
-                f"{T:g} s: " + ("none" if math.isnan(d) else f"from {depth_mm(d)} mm")
-                for T in sorted(pod.family_pod_drift)
-                for d in [pod.family_detectable_depth(T, "drift")])
+def _crossing(pod, T, which: str = "") -> str:
+    """Where the family POD with records of ``T`` [s] crosses the required probability
+    (``which``: ``""``, ``"drift"``, ``"compensated"``), as :mod:`hubvib.detection.resolution`
+    words it: ``below 3 mm`` means at or below the shallowest crack computed."""
+    table = getattr(pod, f"family_pod_{which}" if which else "family_pod")
+    return bracket(pod.depths, table[T], pod.detection_probability).words()
+
+
+def _family_sentence(pod, bold: bool = True) -> str:
+    """The rigid ring's answer: where the watched family's POD crosses the required
+    probability per record length (``bold``: the short answer's lead)."""
+    parts = [f"{T:g} s: {_crossing(pod, T)}" for T in sorted(pod.family_pod)]
+    f0 = pod.nominal.frequency_hz[0]
+    modes = ", ".join(rigid_label(i, pod.kind[i], f0[i]) for i in pod.watched)
+    mark = "**" if bold else ""
+    return (f"{mark}Watching modes {modes} together (alarm when any of them drops below its "
+            f"threshold; family-wise false-alarm rate {pod.false_alarm_rate:g}), the depth "
+            f"from which a crack is detected with POD >= {pod.detection_probability:g} is, "
+            "with records of " + "; ".join(parts) + f".{mark} Records of the same reducer "
+            "intact and now, identified by the same method, without drift between them; with "
+            "the scene's temperature and load drift: " + "; ".join(
+                f"{T:g} s: {_crossing(pod, T, 'drift')}" for T in sorted(pod.family_pod_drift))
             + " (compensated by reference modes: " + "; ".join(
-                f"{T:g} s: " + ("none" if math.isnan(d) else f"from {depth_mm(d)} mm")
-                for T in sorted(pod.family_pod_compensated)
-                for d in [pod.family_detectable_depth(T, "compensated")]) + ").")
+                f"{T:g} s: {_crossing(pod, T, 'compensated')}"
+                for T in sorted(pod.family_pod_compensated)) + ").")
 
 
 def drift_lines(pod, options) -> list[str]:
@@ -99,9 +105,10 @@ def drift_lines(pod, options) -> list[str]:
         return []
     w = pod.watched
     f0 = pod.nominal.frequency_hz[0]
-    per_k = ", ".join(f"mode {i + 1} {drift.per_kelvin_hz[i]:+.3g} Hz" for i in w)
-    per_load = ", ".join(f"mode {i + 1} {1e-3 * drift.per_load_hz[i]:+.3g} Hz" for i in w)
-    refs = ", ".join(f"{i + 1} by {r + 1} ({f0[r]:.1f} Hz)" if r >= 0 else f"{i + 1}: none"
+    per_k = ", ".join(f"rigid {i + 1} {drift.per_kelvin_hz[i]:+.3g} Hz" for i in w)
+    per_load = ", ".join(f"rigid {i + 1} {1e-3 * drift.per_load_hz[i]:+.3g} Hz" for i in w)
+    refs = ", ".join(f"rigid {i + 1} by {rigid_label(r, pod.kind[r], f0[r])}" if r >= 0
+                     else f"rigid {i + 1}: none"
                      for i, r in zip(w, pod.references))
     lengths = sorted(pod.family_pod_drift)
 
@@ -137,14 +144,17 @@ def _modulation_sentence(study, watched) -> str:
     split = [(i, int(np.argmax(index[:, i] > 1))) for i in watched if (index[:, i] > 1).any()]
     if not split:
         return ""
-    parts = ", ".join(f"mode {i + 1} from {depth_mm(study.pod.depths[k])} mm" for i, k in split)
+    parts = ", ".join(f"rigid {i + 1} from {depth_mm(study.pod.depths[k])} mm" for i, k in split)
     return (f" Caution: each pass of a planet over the cracked tooth modulates the phase of "
             f"{parts} by more than 1 rad (see Carrier position): there the crack shows as "
             f"sidebands {study.timing.pass_frequency:.3g} Hz apart as much as a shifted line.")
 
 
-def short_answer(name: str, model, study, sources: dict | None = None) -> list[str]:
-    """The report's opening: modes to watch, shift per depth, detectable depth, mounting."""
+def short_answer(name: str, model, study, sources: dict | None = None,
+                 lead: list[str] = ()) -> list[str]:
+    """The report's opening: ``lead`` (the answer of the model that holds,
+    :mod:`hubvib.reports.answer`), then the rigid ring's modes to watch, shift per depth,
+    detectable depth, mounting."""
     pod, options = study.pod, study.options
     watched = study.watched_modes()
     depth = pod.detectable_depth()
@@ -155,11 +165,11 @@ def short_answer(name: str, model, study, sources: dict | None = None) -> list[s
             f"(ASSUMED unless the scene sets it), modal SNR {options.snr:g}, so one identified "
             f"frequency scatters by {_sigma_range(pod, watched)}; compared with the same "
             "reducer's intact spectrum")
-    modes = ", ".join(f"{i + 1} ({f0[i]:.1f} Hz, signal in {pod.nominal.carried_by[-1, i]})"
-                      for i in watched)
+    modes = ", ".join(f"{rigid_label(i, pod.kind[i], f0[i])} (signal in "
+                      f"{pod.nominal.carried_by[-1, i]})" for i in watched)
     found = ~np.isnan(depth[watched])
-    lines = ["## Short answer", "", mounting_sentence(model, sources), "",
-             _family_sentence(pod), ""]
+    lines = ["## Short answer", "", *lead, mounting_sentence(model, sources), "",
+             _family_sentence(pod, bold=not lead), ""]
     if found.any():
         first = np.nanmin(depth[watched])
         shallowest = pod.depths[1]
@@ -175,7 +185,8 @@ def short_answer(name: str, model, study, sources: dict | None = None) -> list[s
     lines += ["", "Time-averaged shift a record sees [Hz] and the mode's POD per depth (nr: "
               "smaller than the FE error of the stiffness carrying it, not resolved):", ""]
     names = mode_names(f0)
-    head = "| depth [mm] | " + " | ".join(f"mode {names[i]} [Hz] | [%] | POD" for i in watched)
+    head = "| depth [mm] | " + " | ".join(f"rigid mode {names[i]} [Hz] | [%] | POD"
+                                         for i in watched)
     lines += [head + " |", "|---:|" + "---:|---:|---:|" * len(watched)]
     for k, d in enumerate(pod.depths):
         cells = []
@@ -242,7 +253,8 @@ def map_table(dmap) -> list[str]:
                 cells += ["not detectable", "-"]
             else:
                 i = int(np.nanargmin(own))
-                cells += [depth_mm(own[i]), f"{i + 1} ({dmap.frequency_hz[swept][m, i]:.1f} Hz)"]
+                cells += [depth_mm(own[i]), rigid_label(i, dmap.kind[i],
+                                                        dmap.frequency_hz[swept][m, i])]
             cells.append("not detectable" if np.isnan(depth).all()
                          else f"{depth_mm(np.nanmin(depth))} "
                               f"({dmap.carried_by[swept][m, int(np.nanargmin(depth))]})")

@@ -54,7 +54,8 @@ def map_table(emap: ElasticMap) -> list[str]:
     """Per foundation scale: the foundation, the ring's lowest mode, the family's smallest
     detectable depth and each followed watched mode's (its frequency there)."""
     ref = emap.reference
-    heads = [f"{emap.modes_hz[ref, j]:.0f} Hz mode [mm]" for j in range(emap.modes_hz.shape[1])]
+    heads = [f"elastic {emap.modes_hz[ref, j]:.1f} Hz mode [mm]"
+             for j in range(emap.modes_hz.shape[1])]
     lines = ["| s | k_n [N/m^2] | k_t [N/m^2] | lowest ring mode [Hz] (n) | family [mm] | "
              + " | ".join(heads) + (" |" if heads else ""),
              "|---:|---:|---:|---:|---:|" + "---:|" * len(heads)]

@@ -6,61 +6,60 @@ import math
 
 import numpy as np
 
-from hubvib.detection.elastic import ElasticDetection
+from hubvib.detection.elastic_model import bilinear_hz
+from hubvib.detection.result import DetectionResult
 
 
-def _mm(depth: float | None) -> str:
-    return "none of the sweep" if depth is None else f"{1e3 * depth:.3g} mm"
+def _answer(result: DetectionResult | None, length: float) -> str:
+    """The crossing of one record length in words, ``-`` without that model or length."""
+    if result is None or length not in result.pod:
+        return "-"
+    return result.answer(length)
 
 
-def rigid_first_detectable(study, record_length: float) -> float | None:
-    """Smallest depth whose family POD (the rigid-ring study's) reaches the detection
-    probability with records of ``record_length`` [s] [m]."""
-    pod = study.pod
-    curve = pod.family_pod.get(record_length)
-    if curve is None:
-        return None
-    hits = [d for d, p in zip(pod.depths, curve) if d > 0 and p >= pod.detection_probability]
-    return min(hits) if hits else None
-
-
-def side_by_side(study, elastic: ElasticDetection) -> list[str]:
-    """Both models' smallest detectable depth per record length, and why they differ."""
-    lengths = sorted(t for t in elastic.pod if study is None or t in study.pod.family_pod)
+def side_by_side(rigid: DetectionResult | None, elastic: DetectionResult) -> list[str]:
+    """Both models' POD crossing per record length (:mod:`hubvib.detection.resolution`),
+    and why they differ."""
+    lengths = sorted(t for t in elastic.pod if rigid is None or t in rigid.pod)
     rows = ["| record | rigid ring (9 + 3N) | elastic ring |", "|---:|---|---|"]
     for t in lengths:
-        rigid = "-" if study is None else _mm(rigid_first_detectable(study, t))
-        rows.append(f"| {t:g} s | {rigid} | {_mm(elastic.first_detectable(t))} |")
+        rows.append(f"| {t:g} s | {_answer(rigid, t)} | {_answer(elastic, t)} |")
+    detail = elastic.detail
     watched = elastic.watched
     if watched:
         i = watched[0]
-        best = (f"its best mode, {elastic.intact_hz[i]:.1f} Hz ({elastic.kind[i]}, ring "
-                f"nodal diameters {elastic.nodal_diameter[i]}), moves "
+        best = (f"its best mode, {elastic.labels[i]}, moves "
                 f"{_shift(np.nanmin(elastic.shift_hz[:, i]))} at most over the sweep against an "
                 f"identification scatter of {elastic.sigma_hz[elastic.record_length][i]:.2f} Hz")
     else:
         best = "the sensor sees none of the modes the crack moves"
-    lowest = min((f for f, n, share in zip(elastic.intact_hz, elastic.nodal_diameter,
-                                           elastic.ring_share)
+    lowest = min((f for f, n, share in zip(elastic.intact_hz, detail.nodal_diameter,
+                                           detail.ring_share)
                   if n >= 2 and share >= 0.3), default=None)
+    added = ("" if not elastic.added_depths else
+             " The elastic ring's depths " + ", ".join(f"{1e3 * d:.3g}" for d in
+                                                       elastic.added_depths)
+             + f" mm were added to resolve the crossing ({elastic.refinement}); the rigid "
+             "ring's depths are the scene's FE cases (each added depth would cost FE runs), "
+             "so its crossing is resolved only as finely as the sweep.")
     return [
-        "**Both ring models** (smallest depth with family POD >= "
-        f"{elastic.detection_probability:g}; {_scatter_words(elastic)}):", "", *rows, "",
+        "**Both ring models**: where the family POD crosses "
+        f"{elastic.detection_probability:g} ({_scatter_words(elastic)}):", "", *rows, "",
         "They differ because the rigid-ring model has no mode of the ring's own: there the "
         "crack acts only through the ring body's c_ru, c_r in series with a soft mounting "
         "and through one tooth pair's c_rp, which hardly move the lumped modes. The elastic "
         "ring's coupled modes with nodal diameters 2-5 and breathing lie "
         + (f"from {lowest:.0f} Hz on, " if lowest is not None else "")
         + "below and inside the watched band, and the crack, cutting the rim they bend, "
-        f"moves them tens to hundreds of Hz: {best}.", ""]
+        f"moves them tens to hundreds of Hz: {best}.{added}", ""]
 
 
-def _scatter_words(elastic: ElasticDetection) -> str:
+def _scatter_words(elastic: DetectionResult) -> str:
     """How the elastic ring's POD was obtained, for the side-by-side caption."""
     if not elastic.samples:
         return ("the elastic ring for the nominal reducer with identification noise only, "
                 "the rigid ring with parameter scatter and FE error as above")
-    masses, springs, mounting, fe = elastic.scatter
+    masses, springs, mounting, fe = elastic.detail.scatter
     return (f"both with parameter scatter and FE error: the elastic ring over "
             f"{elastic.samples} Monte Carlo reducers, masses and the ring's mass "
             f"{100 * masses:g} %, springs and the ring-planet spring {100 * springs:g} %, "
@@ -72,7 +71,7 @@ def _shift(value: float) -> str:
     return "(not tracked)" if not np.isfinite(value) else f"{value:+.1f} Hz"
 
 
-def _pod_words(elastic: ElasticDetection) -> str:
+def _pod_words(elastic: DetectionResult) -> str:
     if not elastic.samples:
         return ("The family POD is the nominal reducer's (identification noise only).")
     return ("The family POD is the mean over " f"{elastic.samples} Monte Carlo reducers "
@@ -82,25 +81,26 @@ def _pod_words(elastic: ElasticDetection) -> str:
             "the nominal reducer's is in results.json (`family_pod_nominal`).")
 
 
-def elastic_section(elastic: ElasticDetection, validity=None) -> list[str]:
+def elastic_section(elastic: DetectionResult, validity=None) -> list[str]:
     """The elastic ring's model, watched modes and their changes per depth."""
-    f = elastic.foundation
+    detail = elastic.detail
+    f = detail.foundation
     mount = ("clamped on the support arcs" if f is None else
              f"on a Winkler foundation over the support arcs (k_n {f[0]:.4g}, k_t {f[1]:.4g} "
              "N/m^2), sized so that its rigid-ring totals equal the design's lumped c_r and "
              "c_ru")
     lines = [
         "## Elastic ring", "",
-        f"The ring as the design's plane FE ring ({elastic.ring_dofs} DOFs, P2, plane "
+        f"The ring as the design's plane FE ring ({detail.ring_dofs} DOFs, P2, plane "
         f"stress) {mount}, reduced to its own modes and the planets' contact flexibility and "
         "coupled to the lumped sun, carrier and planets; the ring-planet spring without the "
-        f"ring body {elastic.k_rest:.4g} N/m (planet tooth and contact; the ring tooth is in "
+        f"ring body {detail.k_rest:.4g} N/m (planet tooth and contact; the ring tooth is in "
         "the FE ring). The crack is in the ring, so it acts at every carrier position: the "
         "change with planet 1 half a planet pitch away is the statistic (the change with "
         "planet 1 on the cracked tooth is in `elastic_ring.csv`). Faces open (an upper bound of the change); "
         "tied faces give the intact ring, so the breathing crack's bilinear estimate is "
         "2 f_open f_intact / (f_open + f_intact). Watched: the modes the sensor at "
-        f"{math.degrees(elastic.sensor_angle):g} deg from the cracked tooth sees (radial "
+        f"{math.degrees(detail.sensor_angle):g} deg from the cracked tooth sees (radial "
         "ring motion there at least 10 % of the largest), ranked by change against "
         "scatter. " + _pod_words(elastic)
         + " docs/elastic_ring.md has the model, its checks and the ring's modes.", ""]
@@ -108,27 +108,31 @@ def elastic_section(elastic: ElasticDetection, validity=None) -> list[str]:
         from hubvib.elastic.validity import validity_lines
 
         lines += validity_lines(validity)
-    elif elastic.lowest_ring_mode is not None:
-        f, n = elastic.lowest_ring_mode
+    elif detail.lowest_ring_mode is not None:
+        f, n = detail.lowest_ring_mode
         lines += [f"The mounted ring's lowest elastic mode of its own is {f:.1f} Hz "
                   f"(n = {n}); the rigid-ring model has no such mode.", ""]
     watched = list(elastic.watched)
     if not watched:
         return lines + ["The sensor sees none of the modes the crack moves.", ""]
     head = "| depth [mm] | " + " | ".join(
-        f"{elastic.intact_hz[i]:.0f} Hz (n {elastic.nodal_diameter[i]}) open / bilinear [Hz]"
-        for i in watched) + " | family POD |"
+        f"{elastic.labels[i]} open / bilinear [Hz]" for i in watched) + " | family POD |"
     lines += [head, "|---:|" + "---|" * len(watched) + "---:|"]
     pod = elastic.pod[elastic.record_length]
+    bilinear = bilinear_hz(elastic)
     for k, d in enumerate(elastic.depths):
         cells = []
         for i in watched:
             o = elastic.shift_hz[k, i]
-            b = elastic.bilinear_hz[k, i] - elastic.intact_hz[i]
-            split = " (split pair)" if elastic.split_pair[k, i] else ""
+            b = bilinear[k, i] - elastic.intact_hz[i]
+            split = " (split pair)" if detail.split_pair[k, i] else ""
             cells.append(" / ".join("-" if not np.isfinite(x) else f"{x:+.1f}"
                                     for x in (o, b)) + split)
-        lines.append(f"| {1e3 * d:.3g} | " + " | ".join(cells) + f" | {pod[k]:.2f} |")
+        added = " (added)" if d in elastic.added_depths else ""
+        lines.append(f"| {1e3 * d:.3g}{added} | " + " | ".join(cells) + f" | {pod[k]:.2f} |")
+    if elastic.left_out:
+        lines += ["", "Left out of this table: " + "; ".join(
+            f"{1e3 * d:.3g} mm ({why})" for d, why in elastic.left_out) + "."]
     lines += ["", f"Records of {elastic.record_length:g} s; identification scatter of the "
               "watched modes " + ", ".join(
                   f"{elastic.sigma_hz[elastic.record_length][i]:.2f}" for i in watched)

@@ -46,7 +46,7 @@ def mesh_stiffness_section(model, iso: float, comparison: MethodComparison | Non
               "c_rp factor with the cracked tooth in mesh (`results.json`: "
               "`mesh_stiffness`, `c_rp_methods`):", ""]
     head = (f"| depth [mm] | factor {comparison.method} | factor {comparison.other} | "
-            + " | ".join(f"mode {i + 1} {comparison.method} | mode {i + 1} {comparison.other}"
+            + " | ".join(f"rigid {i + 1} {comparison.method} | rigid {i + 1} {comparison.other}"
                          for i in watched))
     lines += [head + " |", "|---:|---:|---:|" + "---:|---:|" * len(watched)]
     for k, d in enumerate(comparison.depths):

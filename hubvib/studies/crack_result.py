@@ -22,6 +22,9 @@ __all__ = ["SENSITIVE", "STIFFNESSES", "CrackStudyResult"]
 SENSITIVE = 0.01
 #: the stiffnesses a ring crack changes (c_rp: all planets' ring meshes together)
 STIFFNESSES = ("c_ru", "c_r", "c_rp")
+#: why the rigid ring's sweep adds no depths
+RIGID_REFINEMENT = ("the scene's FE depths only: each added depth would cost FE runs of the "
+                    "ring (the elastic ring adds depths)")
 
 
 @dataclass
@@ -47,10 +50,31 @@ class CrackStudyResult:
     model: CrackModel | None = None
     detection: object = None
     c_rp_comparison: object = None
-    elastic: object = None  # hubvib.detection.elastic.ElasticDetection, when the scene asks
+    elastic: object = None  # hubvib.detection.result.DetectionResult, when the scene asks
     half_length: float | None = None
     elastic_validity: object = None  # hubvib.elastic.validity.ValidityBand, with ``elastic``
     elastic_map: object = None  # hubvib.detection.elastic_map.ElasticMap, ``[elastic] map``
+    mode_map: tuple = ()  # hubvib.detection.mode_map.ModePair per elastic mode
+
+    @cached_property
+    def rigid(self):
+        """The rigid ring's detection answer (``detection.result.DetectionResult``; None
+        without the detection study): the scene's FE depths, none added (each would cost
+        FE runs)."""
+        if self.detection is None:
+            return None
+        from hubvib.detection.result import rigid_result
+
+        return rigid_result(self.detection.pod, self.detection.options, self.kind,
+                            RIGID_REFINEMENT)
+
+    @property
+    def labels(self) -> list[str]:
+        """Per rigid-ring mode its identity: ``rigid 13 (rotational, 4548.5 Hz)``."""
+        from hubvib.detection.mode_names import rigid_label
+
+        f = self.omega[0] / (2 * math.pi)
+        return [rigid_label(i, kind, f[i]) for i, kind in enumerate(self.kind)]
 
     @property
     def depths(self) -> np.ndarray:
@@ -127,7 +151,8 @@ class CrackStudyResult:
         for i, kind in enumerate(self.kind):
             hits = np.flatnonzero(np.abs(self.percent[:, i]) >= self.scene.threshold_percent)
             follows = [n for n in STIFFNESSES if abs(rel[n][i]) > SENSITIVE] or ["none"]
-            row = {"mode": i + 1, "mode_name": self.names[i], "kind": kind,
+            row = {"mode": i + 1, "mode_name": self.names[i], "mode_label": self.labels[i],
+                   "kind": kind,
                    "frequency_intact_hz": float(self.omega[0, i] / (2 * math.pi)),
                    "shift_at_deepest_hz": float((self.omega[-1, i] - self.omega[0, i])
                                                 / (2 * math.pi)),

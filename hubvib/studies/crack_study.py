@@ -137,8 +137,9 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
         if elastic_cases is not None:
             started = time.perf_counter()
             with working("elastic ring"), timed("elastic"):
-                result.elastic, result.elastic_validity = finish_elastic(scene,
-                                                                         elastic_cases)
+                result.elastic, result.elastic_validity, intact = finish_elastic(
+                    scene, elastic_cases)
+                result.mode_map = _mode_map(result, intact)
                 result.elastic_map = elastic_map_of(scene, result.elastic)
             stage(f"elastic ring ({len(result.elastic.depths)} depths)", started)
         started = time.perf_counter()
@@ -162,6 +163,14 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
         result.files += [p for p in pages if p not in result.files]
     stage("tables, plots, renders and report", started)
     return result
+
+
+def _mode_map(result: CrackStudyResult, intact) -> tuple:
+    """Each elastic-ring mode's rigid-ring counterpart by shape (``detection.mode_map``)."""
+    from hubvib.detection.mode_map import mode_map
+
+    return mode_map(result.spectra[0], result.labels, intact.away.modes,
+                    result.elastic.labels)
 
 
 def _summary(scene: Scene, result: CrackStudyResult, folder: Path, files: list) -> dict:

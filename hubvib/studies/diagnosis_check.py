@@ -25,7 +25,9 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--scene", default="raba118_crack")
     parser.add_argument("--ring", default="rigid", choices=("rigid", "elastic"))
-    parser.add_argument("--modes", default="13,15,16,18")
+    parser.add_argument("--modes", default="13,15,16,18",
+                        help="model modes (1-based, in the chosen ring's own order: the "
+                        "numbers name different modes in the two models)")
     parser.add_argument("--trials", type=int, default=400)
     parser.add_argument("--out", type=Path)
     args = parser.parse_args(argv)
@@ -39,11 +41,14 @@ def main(argv=None) -> int:
                                    c_rp_given=scene.c_rp_given)
     timing = mesh_timing(scene.crack.reducer, options.carrier_speed)
     ref = reference(model, options, timing)
-    result = calibrate(model, options, timing, ref,
-                       [int(m) for m in args.modes.split(",")], args.trials)
+    modes = [int(m) for m in args.modes.split(",")]
+    if any(not 1 <= m <= len(ref.labels) for m in modes):
+        raise SystemExit(f"--modes {args.modes}: the {args.ring} ring has modes 1.."
+                         f"{len(ref.labels)}")
+    result = calibrate(model, options, timing, ref, modes, args.trials)
     text = "\n".join([f"Scene `{scene.name}`, "
                       + ("elastic ring, " if args.ring == "elastic" else "")
-                      + f"modes {args.modes}, damping "
+                      + "modes " + "; ".join(ref.labels[m - 1] for m in modes) + ", damping "
                       f"{100 * options.damping_ratio:g} %, records {options.record_length:g} s, "
                       f"SNR {options.snr:g}, {args.trials} trials each:", "", *result.table()])
     if args.out:

@@ -1,6 +1,7 @@
 """The elastic ring beside the plane crack study: its crack cases begun behind the FE
 cases (in the pool, or taken back into this process), its detection answer with the
-rigid-ring model's validity band, and the elastic map (depths in metres)."""
+rigid-ring model's validity band, the depths it adds to resolve where the POD crosses the
+required probability, and the elastic map (depths in metres)."""
 from __future__ import annotations
 
 from concurrent.futures import Future
@@ -10,7 +11,12 @@ from hubvib.reducer.stages import ring_gear
 from hubvib.runtime.engines import EngineError, Execution, run_cases, submit
 from hubvib.studies.kind_registry import Scene
 
-__all__ = ["begin_elastic", "elastic_depths", "elastic_map_of", "finish_elastic"]
+__all__ = ["begin_elastic", "elastic_depths", "elastic_map_of", "finish_elastic",
+           "refine_elastic", "THROUGH_RIM", "left_out_depths"]
+
+#: why the elastic ring leaves a depth out
+THROUGH_RIM = ("through the rim: the ring is opened, its modes no longer continue the intact "
+               "ones")
 
 
 def _elastic_scene(scene: Scene):
@@ -30,7 +36,7 @@ def begin_elastic(scene: Scene, pool):
     elastic = _elastic_scene(scene)
     if elastic is None:
         return None
-    from hubvib.detection.elastic import cached_case, case_arguments
+    from hubvib.detection.elastic_model import cached_case, case_arguments
 
     sweep = scene.crack
     depths = elastic_depths(sweep)
@@ -60,19 +66,66 @@ def _computed_here(function, arguments: tuple, label: str) -> Future:
     return done
 
 
-def finish_elastic(scene: Scene, begun) -> tuple:
-    """The elastic ring's detection answer from the cases ``begin_elastic`` began, and the
-    rigid-ring model's validity band its intact case computed (planet 1 where the
-    detection's statistic has it, half a planet pitch from the cracked tooth)."""
-    from hubvib.detection.elastic import cached_case, elastic_detection
+def finish_elastic(scene: Scene, begun, refine: bool = True) -> tuple:
+    """The elastic ring's detection answer (``detection.result.DetectionResult``) from the
+    cases ``begun_elastic`` began, with the depths :func:`refine_elastic` adds (``refine``),
+    the rigid-ring model's validity band its intact case computed (planet 1 where the
+    detection's statistic has it, half a planet pitch from the cracked tooth), and the
+    intact ``ElasticCase``."""
+    from hubvib.detection.elastic_model import cached_case, elastic_result
     from hubvib.detection.options import detection_options
 
     cases = [b.result() if hasattr(b, "result") else cached_case(*b) for b in begun]
     sweep = scene.crack
-    detection = elastic_detection(sweep.reducer, elastic_depths(sweep),
-                                  lambda d: crack_of(sweep, d), _elastic_scene(scene),
-                                  detection_options(scene), cases)
-    return detection, cases[0].validity
+    es, options = _elastic_scene(scene), detection_options(scene)
+    depths = elastic_depths(sweep)
+    result = elastic_result(sweep.reducer, depths, lambda d: crack_of(sweep, d), es, options,
+                            cases, left_out=left_out_depths(sweep))
+    if refine:
+        result = refine_elastic(scene, result, cases)
+    return result, cases[0].validity, cases[0]
+
+
+#: how the elastic ring's sweep resolves the POD crossing, in words
+REFINED = ("depths added by bisection below the first detectable one, per record length "
+           "(at most {most} each, shared where they coincide), until the POD {p:g} crossing "
+           "is bracketed within {width:g} mm or {floor:g} mm is reached")
+
+
+def refine_elastic(scene: Scene, result, cases: list, most: int | None = None):
+    """``result`` (the elastic ring's ``DetectionResult`` over ``cases``) with depths added
+    until, for records of 10, 60 and 600 s, the family POD's crossing of the detection
+    probability is resolved (:mod:`hubvib.detection.resolution`: bisection, at least 0.5
+    mm deep, at most ``MAX_ADDED`` per record length; a depth added for one length serves
+    the others).  Every new ``ElasticCase`` comes through the result cache."""
+    from hubvib.detection.elastic_model import cached_case, elastic_result
+    from hubvib.detection.options import detection_options
+    from hubvib.detection.pod import RECORD_LENGTHS
+    from hubvib.detection.resolution import FLOOR, MAX_ADDED, RESOLUTION, next_depth
+
+    most = MAX_ADDED if most is None else most
+    sweep, es, options = scene.crack, _elastic_scene(scene), detection_options(scene)
+    words = REFINED.format(most=most, p=options.detection_probability,
+                           width=1e3 * RESOLUTION, floor=1e3 * FLOOR)
+    depths, cases, added = list(result.depths), list(cases), list(result.added_depths)
+    k_rest = cases[0].k_rest
+    for length in RECORD_LENGTHS:
+        for _ in range(most):
+            depth = next_depth(result.bracket(length))
+            if depth is None:
+                break
+            at = next(k for k, d in enumerate(depths + [float("inf")]) if d > depth)
+            depths.insert(at, depth)
+            cases.insert(at, cached_case(sweep.reducer, crack_of(sweep, depth), es, k_rest))
+            added.append(depth)
+            result = elastic_result(sweep.reducer, depths, lambda d: crack_of(sweep, d), es,
+                                    options, cases, tuple(sorted(added)), words,
+                                    result.left_out)
+    if not added:
+        from dataclasses import replace
+
+        result = replace(result, refinement=words + "; none was needed")
+    return result
 
 
 def elastic_map_of(scene: Scene, elastic):
@@ -81,13 +134,13 @@ def elastic_map_of(scene: Scene, elastic):
     es = _elastic_scene(scene)
     if not es.map:
         return None
-    from hubvib.detection.elastic import family_pod
     from hubvib.detection.elastic_map import elastic_map
     from hubvib.detection.options import detection_options
+    from hubvib.detection.pod import family_pod
 
     sweep = scene.crack
     return elastic_map(sweep.reducer, elastic_depths(sweep), lambda d: crack_of(sweep, d), es,
-                       detection_options(scene), pod=family_pod, k_rest=elastic.k_rest)
+                       detection_options(scene), pod=family_pod, k_rest=elastic.detail.k_rest)
 
 
 def elastic_depths(sweep) -> tuple:
@@ -96,3 +149,8 @@ def elastic_depths(sweep) -> tuple:
     ring = ring_gear(sweep.reducer)
     return tuple(d for d in sweep.depths if d == 0 or not crack_of(sweep, d).is_through(ring))
 
+
+def left_out_depths(sweep) -> tuple:
+    """The sweep's depths the elastic ring leaves out, each with the reason [m]."""
+    kept = set(elastic_depths(sweep))
+    return tuple((float(d), THROUGH_RIM) for d in sweep.depths if d not in kept)

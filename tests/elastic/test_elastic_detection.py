@@ -5,7 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from hubvib.detection.elastic import ElasticDetection, family_pod
+from hubvib.detection.elastic_model import ElasticDetail, bilinear_hz, elastic_mode_rows
+from hubvib.detection.pod import family_pod
+from hubvib.detection.result import DetectionResult
 from hubvib.reports.elastic_sections import elastic_section, side_by_side
 from hubvib.elastic.options import ElasticScene, parse_elastic_table
 from hubvib.foundation.errors import SceneError
@@ -33,43 +35,48 @@ def test_family_pod_equals_a_monte_carlo_of_two_identified_records():
     assert abs(closed[0] - 0.01) < 1e-12  # the intact reducer alarms at the family rate
 
 
-def _synthetic(**changes) -> ElasticDetection:
+def _synthetic(samples=0, pod_nominal=None, scatter=()) -> DetectionResult:
     depths = (0.0, 0.003, 0.006)
     intact = np.array([1000.0, 2800.0, 4700.0])
     open_hz = intact + np.array([[0, 0, 0], [-0.5, -18.0, -26.0], [-1.0, -55.0, np.nan]])
     sigma = {10.0: np.array([0.8, 1.1, 1.5]), 60.0: np.array([0.3, 0.45, 0.6]),
              600.0: np.array([0.1, 0.14, 0.2])}
     pod = {t: family_pod(open_hz - intact, s, (2, 1), 0.005) for t, s in sigma.items()}
-    data = dict(depths=depths, intact_hz=intact, kind=("rotational", "rotational",
-                "translational"), nodal_diameter=(0, 3, 4), harmonic_index=(0, 0, 1),
-                ring_share=(0.1, 0.9, 0.8), open_hz=open_hz, in_contact_hz=open_hz.copy(),
-                split_pair=np.zeros((3, 3), dtype=bool), sigma_hz=sigma,
-                visibility=np.array([0.05, 1.0, 0.6]), watched=(2, 1), pod=pod,
-                detection_probability=0.9, record_length=10.0, k_rest=2e9,
-                foundation=(7e8, 1.8e6), ring_dofs=38000, sensor_angle=np.pi / 2)
-    data.update(changes)
-    return ElasticDetection(**data)
+    detail = ElasticDetail(("rotational", "rotational", "translational"), (0, 3, 4), (0, 0, 1),
+                           (0.1, 0.9, 0.8), open_hz.copy(), np.zeros((3, 3), dtype=bool),
+                           np.array([0.05, 1.0, 0.6]), 2e9, (7e8, 1.8e6), 38000, np.pi / 2,
+                           scatter=scatter)
+    labels = ("elastic n=0 (rotational, 1000.0 Hz)", "elastic n=3 (rotational, 2800.0 Hz)",
+              "elastic n=4 (translational, 4700.0 Hz)")
+    return DetectionResult("elastic", depths, open_hz, labels, sigma, (2, 1), pod,
+                           pod if pod_nominal is None else pod_nominal, 0.9, 0.01, 10.0,
+                           samples, left_out=((0.009, "through the rim: the ring is opened, "
+                                               "its modes no longer continue the intact "
+                                               "ones"),), detail=detail)
 
 
 def test_first_detectable_and_the_report_lines():
     det = _synthetic()
     assert det.first_detectable(10.0) == 0.003
-    assert np.isnan(det.bilinear_hz[2, 2])
+    assert np.isnan(bilinear_hz(det)[2, 2])
     # bilinear: open half the time, intact (closed) the other half
-    assert det.bilinear_hz[1, 1] == pytest.approx(2 * 2782.0 * 2800.0 / (2782.0 + 2800.0))
+    assert bilinear_hz(det)[1, 1] == pytest.approx(2 * 2782.0 * 2800.0 / (2782.0 + 2800.0))
     lines = "\n".join(side_by_side(None, det))
-    assert "| 10 s | - | 3 mm |" in lines
+    assert "| 10 s | - | below 3 mm |" in lines
     section = "\n".join(elastic_section(det))
-    assert "4700 Hz (n 4) open / bilinear [Hz]" in section
+    assert "elastic n=4 (translational, 4700.0 Hz) open / bilinear [Hz]" in section
     assert "| 6 | - / - |" in section  # not tracked: a dash, never nan
     assert "nan" not in section.lower()
+    # a depth left out says why
+    assert "9 mm (through the rim: the ring is opened" in section
 
 
 def test_rows_are_json_ready():
     import json
 
-    rows = _synthetic().rows()
+    rows = elastic_mode_rows(_synthetic())
     text = json.dumps(rows, allow_nan=False)
+    json.dumps(_synthetic().to_dict(), allow_nan=False)
     assert '"watched": true' in text
     assert rows[2]["shift_open_hz"][2] is None
 
@@ -118,13 +125,16 @@ renders = false
     assert main(["run", str(scene), "--out", str(tmp_path / "out")]) == 0
     results = json.loads((tmp_path / "out" / "results.json").read_text())
     elastic = results["elastic_ring"]
-    assert elastic["first_detectable_mm"]["10"] == pytest.approx(6.0)
+    crossing = elastic["pod_crossing"]["10"]  # depths added below 6 mm resolve it
+    assert crossing["resolved"] and crossing["high_mm"] <= 6.0, crossing
+    assert elastic["added_depths_mm"] and min(elastic["added_depths_mm"]) >= 0.5
     assert results["detection"]["family_pod"]["10"][1] < 0.9
     watched = [elastic["modes"][i - 1] for i in elastic["watched_modes"]]
-    assert min(m["shift_open_hz"][1] for m in watched) < -30
+    at_6mm = elastic["depths_mm"].index(6.0)
+    assert min(m["shift_open_hz"][at_6mm] for m in watched) < -30
     report = (tmp_path / "out" / "report.md").read_text()
     assert report.count("## Short answer") == 1 and "## Elastic ring" in report
-    assert "| 10 s | none of the sweep | 6 mm |" in report
+    assert f"| 10 s | not within the sweep (up to 6 mm) | {crossing['words']} |" in report
     assert (tmp_path / "out" / "elastic_ring.csv").stat().st_size > 0
 
 
@@ -146,7 +156,54 @@ def test_family_pod_over_sampled_reducers_is_their_mean_pod():
 def test_monte_carlo_fields_have_defaults_and_reach_the_report():
     det = _synthetic(samples=2000, pod_nominal=_synthetic().pod,
                      scatter=(0.02, 0.10, 0.30, 0.01))
-    assert _synthetic().samples == 0 and _synthetic().pod_nominal is None
+    assert _synthetic().samples == 0
     text = "\n".join(side_by_side(None, det))
     assert "2000 Monte Carlo reducers" in text
     assert "nominal reducer" in "\n".join(side_by_side(None, _synthetic()))
+
+
+@pytest.mark.slow
+def test_the_elastic_sweep_adds_depths_until_the_crossing_is_resolved(monkeypatch):
+    """``studies.elastic_stage.refine_elastic`` on the small synthetic elastic ring (a
+    crack softening it in proportion to depth, 4-12 mm computed): depths are added by
+    bisection, none below 0.5 mm, at most 4 per record length, until each record length's
+    POD crossing is resolved (within 0.5 mm, or below 0.5 mm); the POD at the sweep's own
+    depths is unchanged by them (the same Monte Carlo reducers), and every added depth's
+    case came through the case cache."""
+    from dataclasses import replace
+
+    from tests.elastic.test_elastic_diagnose import _synthetic_cases
+
+    from hubvib.detection import elastic_model
+    from hubvib.detection.resolution import FLOOR, MAX_ADDED, RESOLUTION
+    from hubvib.studies import elastic_stage
+    from hubvib.studies.scene import load_scene
+
+    deepest = 0.012
+    asked = []
+
+    def case_at(design, crack, scene, k_rest):
+        asked.append(crack.depth)
+        return _synthetic_cases((0.0, crack.depth, deepest))[1]
+
+    monkeypatch.setattr(elastic_model, "cached_case", case_at)
+    from hubvib.detection import options as detection_options
+
+    scene = load_scene(None)
+    options = replace(detection_options.detection_options(scene), samples=100)
+    monkeypatch.setattr(detection_options, "detection_options", lambda s: options)
+    es = parse_elastic_table({"ring": "both"})
+    monkeypatch.setattr(elastic_stage, "_elastic_scene", lambda s: es)
+    depths = (0.0, 0.004, 0.008, deepest)
+    cases = _synthetic_cases(depths)
+    first = elastic_model.elastic_result(None, depths, lambda d: None, es, options, cases)
+    refined = elastic_stage.refine_elastic(scene, first, cases)
+    assert sorted(asked) == sorted(refined.added_depths) and refined.added_depths
+    assert all(d >= FLOOR for d in refined.added_depths)
+    assert len(refined.added_depths) <= MAX_ADDED * len(refined.lengths)
+    for t in refined.lengths:
+        b = refined.bracket(t)
+        assert b.resolved, (t, b)
+        assert b.high is None or b.high - b.low <= RESOLUTION + 1e-12 or b.high <= FLOOR, b
+        kept = [refined.depths.index(d) for d in depths]
+        assert np.array_equal(refined.pod[t][kept], first.pod[t]), t

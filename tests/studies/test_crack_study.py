@@ -93,8 +93,16 @@ def test_default_scene_runs_in_series_and_its_report_opens_with_the_answer(defau
     assert "c_ru mounting 1.00006e+06 N/m" in short and "99.99 % of the ring's torsional" in short
     for name in ("pod.csv", "detectability_map.csv"):
         assert (folder / name).stat().st_size > 0, name
-    json.loads((folder / "results.json").read_text(),
-               parse_constant=lambda c: pytest.fail(f"results.json holds {c}"))
+    data = json.loads((folder / "results.json").read_text(),
+                      parse_constant=lambda c: pytest.fail(f"results.json holds {c}"))
+    nulls = [key for key, value in data.items() if value is None]
+    assert "elastic_ring" in nulls and "elastic_map" in nulls, nulls
+    for key in nulls:  # every null says why, and no reason stands beside a value
+        assert isinstance(data.get(f"{key}_reason"), str) and data[f"{key}_reason"], key
+    assert all(data[k[:-len("_reason")]] is None for k in data if k.endswith("_reason"))
+    # the short answer is the rigid ring's alone (no elastic ring ran), its crossing words
+    assert data["short_answer"]["ring"] == "rigid", data["short_answer"]
+    assert data["short_answer"]["comparison"] is None, data["short_answer"]
 
 
 @pytest.mark.slow

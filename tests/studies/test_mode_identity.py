@@ -97,7 +97,7 @@ def test_a_watched_split_pair_has_the_same_name_and_shift_in_the_short_answer(re
     short = text.split("## Short answer", 1)[1]
     table = [ln for ln in short.splitlines() if ln.startswith("| depth [mm] |")][0]
     header = [c.strip() for c in table.strip("|").split("|")]
-    column = header.index(f"mode {names[mode - 1]} [Hz]")
+    column = header.index(f"rigid mode {names[mode - 1]} [Hz]")
     lines = short.splitlines()
     start = lines.index(table) + 2  # below the header and its rule
     last = [c.strip() for c in lines[start + len(result.depths) - 1].strip("|").split("|")]

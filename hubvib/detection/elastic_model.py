@@ -1,4 +1,9 @@
-"""Monte Carlo of the elastic-ring spectrum: parameter scatter and FE error (SI).
+"""The elastic ring as a spectrum model (``spectrum_model.SpectrumModel``): per-depth
+frequencies a record sees, and their Monte Carlo over parameter scatter and FE error (SI).
+
+Per crack depth the design's FE ring is meshed with the crack, coupled to the lumped
+bodies (``hubvib.elastic``), and every coupled mode is tracked to the intact mode it
+continues (:func:`record_frequencies`: the one place a depth's frequencies come from).
 
 Each sample is one reducer as built, scattered like the rigid-ring model's
 (:mod:`.uncertainty`): every lumped mass and the ring's mass by ``scatter_masses``, every
@@ -28,16 +33,24 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from hubvib.elastic.cases import cached_case
 from hubvib.elastic.tracking import track_modes
+from hubvib.foundation.output import finite_or_none
 from hubvib.lumped.elastic_ring import RING_DOFS, coupled_matrices
 from hubvib.lumped.network import mass_diagonal, spring_network
 from hubvib.lumped.parameters import MASS_FIELDS
 
 from .drift import Drift
+from .pod import RECORD_LENGTHS, family_pod, monte_carlo_shifts, watched_by_drop
+from .mode_names import elastic_label
+from .result import DetectionResult
 from .uncertainty import lognormal
 
-__all__ = ["FE_CHANGE_ERROR", "ElasticSpectrum", "ElasticSamples", "elastic_spectrum_model",
-           "draw_elastic", "batched_hz", "depth_operators", "sorted_order_kept"]
+__all__ = ["ElasticDetail", "elastic_result", "bilinear_hz", "elastic_mode_rows",
+           "FE_CHANGE_ERROR", "MIN_MATCH", "VISIBLE", "ElasticSpectrum", "ElasticSamples",
+           "RecordFrequencies", "elastic_spectrum_model", "record_frequencies",
+           "draw_elastic", "batched_hz", "depth_operators", "sorted_order_kept",
+           "sensor_visibility", "case_arguments", "cached_case"]
 
 #: relative error of a crack's change of a coupled mode from the ring's discretisation:
 #: the crack study's ring mesh gives changes within 1 Hz of the modal mesh's at 9 mm on
@@ -48,6 +61,9 @@ FE_CHANGE_ERROR = 0.01
 MIN_MATCH = 0.5
 #: relative step of the mesh stiffnesses for the load drift's sensitivity
 LOAD_STEP = 1e-4
+#: radial amplitude at the sensor, relative to the largest of the band's modes there, for
+#: a mode to count as seen (mass-normalised shapes)
+VISIBLE = 0.1
 
 
 @dataclass(frozen=True, eq=False)
@@ -237,7 +253,15 @@ class ElasticSpectrum:
     ring body: it acts at every carrier position) at the sweep's depths ``grid``, linearly
     interpolated in depth to ``depths``.
 
-    ``labels``: one name per intact mode; ``k_rest`` [N/m]; ``fe_change_error`` [-].
+    ``labels``: one name per intact mode; ``k_rest`` [N/m]; ``fe_change_error`` [-];
+    ``nominal_grid_hz`` (grid, modes): what a record of the nominal reducer sees
+    (:func:`record_frequencies`); ``record_ratio`` (grid, modes) or None: per depth and
+    mode, the nominal record change over the change at the reference position (planet 1
+    half a pitch away, faces open; ``reference_grid_hz``), by which every sampled reducer's
+    change, solved at the reference position, is scaled, its intact frequency moved by the
+    nominal record's offset from the reference (None: the record is the reference).  A
+    shortcut: the Monte Carlo reducers share the nominal reducer's ratio of what the load
+    cycle does to the crack's change (zero scatter gives the nominal record exactly).
     """
 
     grid: tuple
@@ -251,6 +275,8 @@ class ElasticSpectrum:
     depths: tuple = ()
     ring: str = "elastic"
     mesh: dict = field(default_factory=dict)
+    record_ratio: np.ndarray | None = None
+    reference_grid_hz: np.ndarray | None = None
 
     def __post_init__(self):
         if not self.depths:
@@ -280,6 +306,9 @@ class ElasticSpectrum:
         out = np.empty((samples.n, len(self.grid), self.nominal_grid_hz.shape[1]))
         for k, op in enumerate(self.operators):
             out[:, k] = batched_hz(op, samples, self.masks)[:, op.slot]
+        if self.record_ratio is not None:  # the record, not the reference position
+            offset = self.nominal_grid_hz[0] - self.reference_grid_hz[0]
+            out = out[:, :1] + offset + self.record_ratio[None] * (out - out[:, :1])
         return out + samples.z[:, None, None] * self.fe_error_hz()[None]
 
     def _interpolated(self, values: np.ndarray, depths) -> np.ndarray:
@@ -298,7 +327,7 @@ class ElasticSpectrum:
         out[exact] = low[exact]
         return out
 
-    def nominal_hz(self, timing=None, options=None, long_record=None) -> np.ndarray:
+    def nominal_hz(self, options=None, timing=None, long_record=None) -> np.ndarray:
         values = self.nominal_grid_hz[None]
         return self._interpolated(values, self.depths)[0]
 
@@ -349,11 +378,6 @@ class ElasticSpectrum:
         return replace(self, depths=tuple(float(d) for d in depths))
 
 
-def mode_label(i: int, content) -> str:
-    """``mode 16 (rotational, n = 3)``."""
-    return f"mode {i + 1} ({content.kind}, n = {content.nodal_diameter})"
-
-
 def elastic_spectrum_model(depths, cases, fe_change_error: float = FE_CHANGE_ERROR
                            ) -> ElasticSpectrum:
     """The elastic spectrum model of ``cases`` (``ElasticCase`` per depth of ``depths``
@@ -365,11 +389,247 @@ def elastic_spectrum_model(depths, cases, fe_change_error: float = FE_CHANGE_ERR
                         case.away.frequency_hz.size else np.full(op.slot.size, np.nan)
                         for case, op in zip(cases, operators)])
     model = ElasticSpectrum(tuple(float(d) for d in depths), operators, masks, nominal,
-                            tuple(mode_label(i, c) for i, c in
-                                  enumerate(intact.away.content)),
+                            tuple(elastic_label(c, f) for c, f in
+                                  zip(intact.away.content, intact.away.frequency_hz)),
                             float(intact.k_rest), intact.foundation, fe_change_error)
     # the nominal reducer as the batched solve gives it: every mode, also those the band
     # of a cracked spectrum no longer holds
     solved = np.array([batched_hz(op, unscattered(model), masks)[0, op.slot]
                        for op in operators])
-    return replace(model, nominal_grid_hz=np.where(np.isfinite(nominal), nominal, solved))
+    reference = np.where(np.isfinite(nominal), nominal, solved)
+    records = [record_frequencies(intact, case) for case in cases]
+    if all(r.record_hz is r.reference_hz for r in records):  # today: the reference itself
+        return replace(model, nominal_grid_hz=reference)
+    record = np.array([padded(r.record_hz, reference.shape[1]) for r in records])
+    record = np.where(np.isfinite(record), record, reference)
+    change, moved = reference - reference[0], record - record[0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(np.abs(change) > 0, moved / change, 1.0)
+    return replace(model, nominal_grid_hz=record, record_ratio=ratio,
+                   reference_grid_hz=reference)
+
+
+@dataclass(frozen=True)
+class RecordFrequencies:
+    """What a record sees of one crack depth, per intact mode (the intact case's "away"
+    order) [Hz]: ``record_hz`` (NaN: no mode continues it), ``reference_hz`` (planet 1
+    half a planet pitch from the cracked tooth, faces open: where the Monte Carlo reducers
+    are solved) and ``split_pair`` (bool)."""
+
+    record_hz: np.ndarray
+    reference_hz: np.ndarray
+    split_pair: np.ndarray
+
+
+#: the share of the working torque a record's crack is loaded by; None: the faces open
+#: (the record sees the reference spectrum).  The loaded crack (``hubvib.elastic.loaded``)
+#: is used where a case carries it and this is set.
+RECORD_TORQUE_FRACTION = None
+
+
+def record_frequencies(intact, case, torque_fraction: float | None = None
+                       ) -> RecordFrequencies:
+    """The one place the elastic ring's per-depth nominal frequencies come from: ``case``
+    (an ``ElasticCase``) as a record sees it, its modes tracked to ``intact``'s (subspace
+    match at least ``MIN_MATCH``).
+
+    Without a loaded crack: the "away" spectrum (planet 1 half a pitch from the crack,
+    faces open), the record's and the reference's the same array.  With
+    ``torque_fraction`` (default ``RECORD_TORQUE_FRACTION``: setting it to the working
+    load, 1.0, is the swap) and a case holding its loaded crack, the record track of
+    :func:`hubvib.elastic.loaded.record_track` (the faces opening and closing as the
+    planets pass) is what the record sees."""
+    reference, split = tracked_to(intact.away, case.away, intact.ring_mass)
+    if torque_fraction is None:
+        torque_fraction = RECORD_TORQUE_FRACTION
+    if torque_fraction is None or not hasattr(case, "loaded"):
+        return RecordFrequencies(reference, reference, split)
+    from hubvib.elastic.loaded import record_track  # the loaded crack's API
+
+    track = record_track(intact, case, torque_fraction=torque_fraction)
+    return RecordFrequencies(np.asarray(track.record_hz, dtype=float), reference, split)
+
+
+def sensor_visibility(spectrum, sensor_angle: float) -> np.ndarray:
+    """Radial ring displacement at the sensor angle of each mode, over the largest [-]."""
+    probe = spectrum.modes.probe
+    points = probe.shape[0] // 2
+    index = int(round(sensor_angle % (2 * math.pi) / (2 * math.pi) * points)) % points
+    radial = np.abs(probe[index])
+    top = radial.max()
+    return radial / top if top > 0 else radial
+
+
+def tracked_to(intact, cracked, mass, index=None) -> tuple[np.ndarray, np.ndarray]:
+    """Each intact mode's frequency in ``cracked`` (NaN where no mode continues it with a
+    match of at least ``MIN_MATCH``) and whether it is a member of a split pair;
+    ``index``: the intact modes' positions in the reported order (default the same)."""
+    tracked = track_modes(intact, cracked, mass)
+    n = intact.frequency_hz.size if index is None else int(np.max(index)) + 1
+    f = np.full(n, np.nan)
+    split = np.zeros(n, dtype=bool)
+    for j, (ref, match) in enumerate(zip(tracked.reference, tracked.match)):
+        if ref >= 0 and match >= MIN_MATCH:
+            at = ref if index is None else index[ref]
+            if at >= 0:
+                f[at] = cracked.frequency_hz[j]
+                split[at] = tracked.split_pair[j]
+    return f, split
+
+
+def assignment(reference, other, mass):
+    tracked = track_modes(reference, other, mass)
+    return tracked.reference, tracked.match
+
+
+def padded(values: np.ndarray, n: int) -> np.ndarray:
+    out = np.full(n, np.nan)
+    out[:min(n, values.size)] = values[:n]
+    return out
+
+
+def case_arguments(design, depths, crack_of, scene: ElasticScene) -> list[tuple]:
+    """The arguments of ``cached_case`` for every depth (the first 0: intact)."""
+    from hubvib.elastic.rest import rest_stiffness
+
+    k_rest = rest_stiffness(design, scene.options.rest)
+    return [(design, crack_of(d), scene, k_rest) for d in depths]
+
+
+# ------------------------------------------------------------------ the detection answer
+
+@dataclass(frozen=True)
+class ElasticDetail:
+    """What only the elastic ring's answer has (``DetectionResult.detail``).
+
+    Attributes
+    ----------
+    kind, nodal_diameter, harmonic_index, ring_share : tuple
+        Each intact mode's content.
+    in_contact_hz : ndarray (depths, modes)
+        The tracked frequency with planet 1 on the cracked tooth [Hz] (NaN: not tracked).
+    split_pair : ndarray (depths, modes) of bool
+    visibility : ndarray (modes,)
+        Radial amplitude at the sensor relative to the largest among the modes [-].
+    k_rest, foundation, ring_dofs, sensor_angle, lowest_ring_mode
+        [N/m], (k_n, k_t) [N/m^2] or None, [-], [rad], (Hz, n) or None.
+    scatter : tuple
+        Relative scatter (masses, stiffnesses, mounting) [-] and the FE error of a
+        crack's change [-].
+    """
+
+    kind: tuple
+    nodal_diameter: tuple
+    harmonic_index: tuple
+    ring_share: tuple
+    in_contact_hz: np.ndarray
+    split_pair: np.ndarray
+    visibility: np.ndarray
+    k_rest: float
+    foundation: tuple | None
+    ring_dofs: int
+    sensor_angle: float
+    lowest_ring_mode: tuple | None = None
+    scatter: tuple = ()
+
+    @property
+    def in_contact_shift_hz(self) -> np.ndarray:
+        """Change with planet 1 on the cracked tooth, against the intact ring there [Hz]."""
+        return self.in_contact_hz - self.in_contact_hz[0]
+
+
+def bilinear_hz(result: DetectionResult) -> np.ndarray:
+    """Breathing crack: open half a cycle, closed (= intact) the other [Hz], (depths,
+    modes): ``2 f_open f_intact / (f_open + f_intact)``."""
+    f, f0 = result.frequency_hz, result.intact_hz
+    return 2 * f * f0 / (f + f0)
+
+
+def elastic_mode_rows(result: DetectionResult) -> list[dict]:
+    """One dict per intact mode of the elastic ring's answer (JSON-ready; NaN as None)."""
+    detail = result.detail
+    out = []
+    for i, f in enumerate(result.intact_hz):
+        out.append({
+            "mode": i + 1, "label": result.labels[i], "frequency_hz": float(f),
+            "class": detail.kind[i], "nodal_diameter": detail.nodal_diameter[i],
+            "harmonic_index": detail.harmonic_index[i], "ring_share": detail.ring_share[i],
+            "visibility": float(detail.visibility[i]), "watched": i in result.watched,
+            "sigma_hz": {f"{t:g}": float(s[i]) for t, s in result.sigma_hz.items()},
+            "shift_open_hz": [finite_or_none(x) for x in result.shift_hz[:, i]],
+            "shift_in_contact_hz": [finite_or_none(x)
+                                    for x in detail.in_contact_shift_hz[:, i]],
+            "shift_bilinear_hz": [finite_or_none(x) for x in bilinear_hz(result)[:, i] - f],
+            "split_pair": [bool(x) for x in detail.split_pair[:, i]]})
+    return out
+
+
+def elastic_result(design, depths, crack_of, scene, options, cases: list | None = None,
+                   added: tuple = (), refinement: str = "",
+                   left_out: tuple = ()) -> DetectionResult:
+    """The elastic ring's detection answer over ``depths`` [m] (the first 0).
+
+    ``crack_of(depth)`` gives the ``Crack`` of a depth; ``cases``: the ``ElasticCase`` of
+    every depth when computed elsewhere (a worker pool), else computed here; ``added``,
+    ``refinement``, ``left_out``: as :class:`.result.DetectionResult`.
+
+    Per depth the frequencies a record sees (:func:`record_frequencies`), each coupled
+    mode tracked to the intact mode it continues; the change with planet 1 on the cracked
+    tooth beside it (``detail.in_contact_hz``).  The rule is the rigid-ring study's with
+    the reducer's own intact record as baseline (:func:`.pod.family_pod`), over the Monte
+    Carlo reducers of :class:`ElasticSpectrum` (parameter scatter and FE error); the
+    nominal reducer's POD beside it.  Watched: the modes the sensor sees (radial ring motion
+    at the sensor at least ``VISIBLE`` of the largest), ranked by their largest drop over
+    the sweep against the scatter (:func:`.pod.watched_by_drop`).  Closed faces give the
+    intact ring within the mesh's discretisation error, so the bilinear (breathing)
+    estimate is :func:`bilinear_hz`; the detection uses the open crack, the upper bound."""
+    if cases is None:
+        cases = [cached_case(*a) for a in case_arguments(design, depths, crack_of, scene)]
+    intact = cases[0]
+    intact_away = intact.away
+    mass = intact.ring_mass
+    n = intact_away.frequency_hz.size
+    open_hz = np.full((len(depths), n), np.nan)
+    on_hz = np.full((len(depths), n), np.nan)
+    split = np.zeros((len(depths), n), dtype=bool)
+    # the on-tooth spectra are tracked to the intact on-tooth spectrum, then reported in
+    # the order of the intact modes away from the tooth
+    away_of_on = np.full(intact.on.frequency_hz.size, -1)
+    for j, (ref, match) in enumerate(zip(*assignment(intact_away, intact.on, mass))):
+        if ref >= 0 and match >= MIN_MATCH:
+            away_of_on[j] = ref
+    own = record_frequencies(intact, intact)
+    open_hz[0] = (intact_away.frequency_hz if own.record_hz is own.reference_hz
+                  else padded(own.record_hz, n))
+    if (away_of_on >= 0).any():
+        on_hz[0] = padded(tracked_to(intact.on, intact.on, mass, away_of_on)[0], n)
+    for k, case in enumerate(cases[1:], start=1):
+        seen = record_frequencies(intact, case)
+        open_hz[k], split[k] = seen.record_hz, seen.split_pair
+        if (away_of_on >= 0).any():
+            on_hz[k] = padded(tracked_to(intact.on, case.on, mass, away_of_on)[0], n)
+    lengths = tuple(sorted({*RECORD_LENGTHS, options.record_length}))
+    sigma = {t: options.sigma_hz(intact_away.frequency_hz, t) for t in lengths}
+    visibility = sensor_visibility(intact_away, scene.sensor_angle)
+    shift = open_hz - intact_away.frequency_hz
+    watched = watched_by_drop(shift, sigma[options.record_length],
+                              np.flatnonzero(visibility >= VISIBLE), options.watched_modes)
+    rate = options.per_mode_rate(len(watched)) if watched else options.false_alarm_rate
+    pod_nominal = {t: family_pod(shift, sigma[t], watched, rate) for t in lengths}
+    pod, samples = pod_nominal, 0
+    if intact.operators is not None and options.samples > 0:
+        sampled = monte_carlo_shifts(elastic_spectrum_model(depths, cases), options)
+        pod = {t: family_pod(sampled, sigma[t], watched, rate) for t in lengths}
+        samples = options.samples
+    c = intact_away.content
+    detail = ElasticDetail(
+        tuple(x.kind for x in c), tuple(x.nodal_diameter for x in c),
+        tuple(x.harmonic_index for x in c), tuple(x.ring_share for x in c), on_hz, split,
+        visibility, intact.k_rest, intact.foundation, intact.ring_dofs, scene.sensor_angle,
+        intact.lowest_ring_mode, (options.scatter_masses, options.scatter_stiffnesses,
+                                  options.scatter_mounting, FE_CHANGE_ERROR))
+    labels = tuple(elastic_label(x, f) for x, f in zip(c, intact_away.frequency_hz))
+    return DetectionResult(
+        "elastic", tuple(float(d) for d in depths), open_hz, labels, sigma, watched, pod,
+        pod_nominal, options.detection_probability, options.false_alarm_rate,
+        options.record_length, samples, tuple(added), refinement, tuple(left_out), detail)
