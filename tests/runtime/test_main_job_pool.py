@@ -103,7 +103,7 @@ def test_elastic_cases_the_workers_have_not_started_are_computed_here(cache, mon
     taken back and computed in this process, the deepest cases first, with one BLAS thread
     as on a worker (the same digits); the cases come back as finished futures in depth
     order."""
-    from hubvib.detection import elastic as detection_elastic
+    from hubvib.detection import elastic_model as detection_elastic
     from hubvib.elastic import rest
     from hubvib.foundation.blas import blas_thread_counts
     from hubvib.runtime.engines import SINGLE_THREADED
