@@ -10,6 +10,7 @@ from __future__ import annotations
 import re
 from pathlib import PurePosixPath
 
+from hubvib.render.mode_figure import ARROW
 from hubvib.render.modes import AMPLITUDE
 
 #: the FE renders' magnification (``hubvib.render.fe.MAGNIFIED``, which imports the FE
@@ -64,15 +65,29 @@ CAPTIONS = {
                "panels of their own on one scale, then their difference (the same noise "
                "seed, so the noise cancels).",
 }
+#: a render's mounting (the last part of its file name) in words
+MOUNTED = {"foundation": "on the elastic ring's Winkler foundation over the support arcs "
+                         "(its stiffness in the picture; unless the scene gives it, sized so "
+                         "that its rigid-ring totals are the design's c_r and c_ru)",
+           "clamped": "clamped on the support arcs", "free": "free (no mounting)",
+           None: "clamped on the support arcs"}
 _PATTERNS = (
-    (re.compile(r"fe_ring_mode_(\d+)\.png"),
-     "FE ring mode {n} on its clamped supports: colour is the displacement magnitude "
-     "relative to its largest value, grey the undeformed outline; the largest displacement "
-     f"is drawn as {100 * FE_MAGNIFIED:g} % of the outer radius."),
-    (re.compile(r"mode_(\d+)\.(png|gif)"),
-     "Mode {n} of the lumped model: sun orange, planets green, ring purple, carrier grey, "
-     f"moved by the mode (largest displacement drawn as {100 * AMPLITUDE:g} % of the ring "
-     "radius); the grey outlines are the bodies at rest."),
+    (re.compile(r"fe_ring_mode_(\d+)(?:_(foundation|clamped|free))?\.png"),
+     "FE ring mode {n}, the ring's own (its rigid motions on the mounting left out), "
+     "{mounting}: colour is the displacement magnitude relative to its largest value (scale "
+     "at the right), grey the undeformed outline; the largest displacement is drawn as "
+     f"{100 * FE_MAGNIFIED:g} % of the outer radius; the picture names its frequency and "
+     "nodal diameters."),
+    (re.compile(r"mode_(\d+)\.png"),
+     "Mode {n} of the lumped model: sun orange, planets green, ring purple, carrier grey; "
+     "dashed outlines: the bodies at rest, filled: moved by the mode (largest displacement "
+     f"drawn as {100 * AMPLITUDE:g} % of the ring radius); black arrows: each body's "
+     f"translation from its centre and its turn as a curved arrow around it (largest "
+     f"{100 * ARROW:g} % of the ring radius)."),
+    (re.compile(r"mode_(\d+)\.gif"),
+     "Mode {n} of the lumped model, animated: sun orange, planets green, ring purple, "
+     f"carrier grey, moved by the mode (largest displacement drawn as {100 * AMPLITUDE:g} % "
+     "of the ring radius); the grey outlines are the bodies at rest."),
     (re.compile(r"convergence_(\w+)\.png"),
      "Relative error of {n} against DOFs on log-log axes."),
 )
@@ -87,7 +102,10 @@ def caption(name: str) -> str:
         found = pattern.fullmatch(base)
         if found:
             number = found.group(1)
-            return text.format(n=int(number) if number.isdigit() else number)
+            words = {"n": int(number) if number.isdigit() else number}
+            if "{mounting}" in text:
+                words["mounting"] = MOUNTED.get(found.group(2), MOUNTED[None])
+            return text.format(**words)
     raise KeyError(f"figure {base!r} has no caption in hubvib.render.captions")
 
 

@@ -1,4 +1,6 @@
-"""Off-screen pyvista renders of lumped mode shapes: gear-like bodies moved by the mode.
+"""Off-screen renders of lumped mode shapes: gear-like bodies moved by the mode (the PNG
+drawn by ``mode_figure`` with arrows for the motion; the GIF animation and the VTM by
+pyvista).
 
 Sun, planets and ring are drawn as toothed plates of their base diameters, the
 carrier as arms to the planet centres.  Each body is translated by its (x, y)
@@ -200,28 +202,24 @@ def write_atomically(path: Path, write) -> Path:
 
 
 def render_mode(params, spectrum, index: int, folder: Path, gif: bool = False,
-                vtm: bool = False, plotter=None) -> list[Path]:
+                vtm: bool = False) -> list[Path]:
     """PNG (and GIF, VTM) of mode ``index`` (0-based) of ``spectrum``; returns the files.
-    ``plotter``: an ``offscreen_plotter`` to draw the PNG on (None: a new one)."""
-    import pyvista as pv
+    The PNG is ``mode_figure``'s (bodies at rest and moved, motion as arrows); the GIF
+    animates the pyvista bodies; the VTM holds them moved by the mode."""
+    from .mode_figure import save_mode_figure
 
     folder = Path(folder)
     shape = spectrum.shapes[:, index]
     omega = spectrum.omega[index]
-    label = (f"mode {index + 1}: {omega / (2 * math.pi):.2f} Hz ({omega:.1f} rad/s), "
-             f"{spectrum.kind[index]}\n{LEGEND}")
-    reference = deformed_bodies(params, shape, 0.0)
+    title = (f"mode {index + 1}: {omega / (2 * math.pi):.2f} Hz ({omega:.1f} rad/s), "
+             f"{spectrum.kind[index]}")
     stem = f"mode_{index + 1:02d}"
-    files = []
-
-    def png(tmp):
-        with plotter_for(plotter) as drawing:
-            clear_picture(drawing)
-            _draw(drawing, deformed_bodies(params, shape), reference, label)
-            save_picture(drawing, tmp)
-
-    files.append(write_atomically(folder / f"{stem}.png", png))
+    files = [write_atomically(folder / f"{stem}.png",
+                              lambda tmp: save_mode_figure(params, shape, title, tmp))]
     if gif:
+        reference = deformed_bodies(params, shape, 0.0)
+        label = f"{title}\n{LEGEND}"
+
         def animation(tmp):
             with plotter_for() as animated:
                 animated.open_gif(str(tmp), fps=12)
@@ -233,6 +231,8 @@ def render_mode(params, spectrum, index: int, folder: Path, gif: bool = False,
 
         files.append(write_atomically(folder / f"{stem}.gif", animation))
     if vtm:
+        import pyvista as pv
+
         blocks = pv.MultiBlock(deformed_bodies(params, shape))
         stem_path = folder / f"{stem}.vtm"
         blocks.save(str(stem_path))  # a .vtm plus a folder of pieces; written last, then listed
@@ -242,10 +242,9 @@ def render_mode(params, spectrum, index: int, folder: Path, gif: bool = False,
 
 def render_modes(params, spectrum, folder: Path, gif: bool = False, vtm: bool = False
                  ) -> list[Path]:
-    """Every elastic mode of ``spectrum`` on one plotter: see ``render_mode``."""
+    """Every elastic mode of ``spectrum``: see ``render_mode``."""
     files = []
-    with plotter_for() as plotter:
-        for index in range(spectrum.omega.size):
-            if spectrum.kind[index] != "rigid-body":
-                files += render_mode(params, spectrum, index, folder, gif, vtm, plotter)
+    for index in range(spectrum.omega.size):
+        if spectrum.kind[index] != "rigid-body":
+            files += render_mode(params, spectrum, index, folder, gif, vtm)
     return files

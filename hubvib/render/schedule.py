@@ -56,13 +56,24 @@ def render_mode_shapes(params, spectrum, gif: bool, vtm: bool, folder: Path) -> 
                          render, MODES_SOURCE)
 
 
+def scene_mounting(scene) -> tuple[str, tuple | None]:
+    """The mounting the report's ring is on: its elastic ring's (``[elastic]`` mounting and
+    foundation stiffness (k_n, k_t) [N/m^2], None: sized to the design's c_r and c_ru)."""
+    options = scene.elastic.options
+    foundation = (None if options.foundation_k_n is None
+                  else (options.foundation_k_n, options.foundation_k_t))
+    return options.mounting, foundation
+
+
 def _render_fe(scene, folder: Path) -> list[Path]:
-    """The FE ring at the rendered depth (``fe_render``), from the render cache when the
-    same design, crack and mesh were rendered by this FE stage before."""
-    return render_fe_ring(scene.crack, scene.vtm, folder)
+    """The FE ring at the rendered depth (``fe_render``), its modes on the scene's mounting,
+    from the render cache when the same design, crack, mesh and mounting were rendered by
+    this FE stage before."""
+    return render_fe_ring(scene.crack, scene.vtm, folder, *scene_mounting(scene))
 
 
-def _fe_render_case(sweep: CrackSweep, vtm: bool) -> tuple:
+def _fe_render_case(sweep: CrackSweep, vtm: bool, mounting: str = "foundation",
+                    foundation: tuple | None = None) -> tuple:
     """The crack and mesh options the FE ring is rendered with, and the render cache's
     inputs (everything that decides the pictures)."""
     depth = rendered_depth(sweep)
@@ -70,17 +81,21 @@ def _fe_render_case(sweep: CrackSweep, vtm: bool) -> tuple:
     options = scaled_options(ACCURACY[sweep.accuracy])
     inputs = {"design": sweep.reducer.fingerprint(),
               "crack": None if crack is None else asdict(crack), "options": asdict(options),
-              "vtu": vtm}
+              "vtu": vtm, "mounting": mounting,
+              "foundation": None if foundation is None else list(foundation)}
     return crack, options, inputs
 
 
-def render_fe_ring(sweep: CrackSweep, vtm: bool, folder: Path) -> list[Path]:
-    """``_render_fe`` from the sweep alone (picklable arguments: it may run in a worker,
-    ``fe_render_beside``)."""
-    crack, options, inputs = _fe_render_case(sweep, vtm)
+def render_fe_ring(sweep: CrackSweep, vtm: bool, folder: Path, mounting: str = "foundation",
+                   foundation: tuple | None = None) -> list[Path]:
+    """``_render_fe`` from the sweep and the mounting (picklable arguments: it may run in
+    a worker, ``begin_renders``); ``mounting``, ``foundation`` as ``render.fe.ring_fields``
+    takes them."""
+    crack, options, inputs = _fe_render_case(sweep, vtm, mounting, foundation)
 
     def render(target):
-        return render_fe(ring_fields(sweep.reducer, crack, options), target, vtu=vtm)
+        return render_fe(ring_fields(sweep.reducer, crack, options, mounting=mounting,
+                                     foundation=foundation), target, vtu=vtm)
 
     return cached_render("fe-ring", inputs, folder, render, FE_SOURCE)
 
@@ -112,8 +127,10 @@ def begin_renders(scene, folder: Path, pool, begun: dict, spectrum=None) -> None
             begun["modes"] = submit(pool, render_mode_shapes, scene.params, spectrum,
                                     scene.gif, scene.vtm, target)
     elif scene.crack.model == "plane" and not is_cached(
-            "fe-ring", _fe_render_case(scene.crack, scene.vtm)[2], FE_SOURCE):
-        begun["fe"] = submit(pool, render_fe_ring, scene.crack, scene.vtm, target)
+            "fe-ring", _fe_render_case(scene.crack, scene.vtm, *scene_mounting(scene))[2],
+            FE_SOURCE):
+        begun["fe"] = submit(pool, render_fe_ring, scene.crack, scene.vtm, target,
+                             *scene_mounting(scene))
 
 
 def study_renders(scene, spectrum, folder: Path, begun: dict) -> tuple[list, list]:
