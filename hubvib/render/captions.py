@@ -42,6 +42,21 @@ CAPTIONS = {
                             "moves most over one passage against the carrier angle, solid at "
                             "the mean ratio, dashed at the minimum; the shaded band is the "
                             "time the cracked tooth is in mesh.",
+    "frequency_both_models.png": "The watched modes' frequency change from the intact "
+                                 "ring [Hz] against crack depth [mm], as a record sees it: "
+                                 "left the rigid ring (9 + 3N model, record-averaged with "
+                                 "planet 1 meshing the cracked tooth part of the time), right "
+                                 "the elastic ring (crack open, planet 1 half a planet pitch "
+                                 "away), each on a scale of its own; one colour, marker and "
+                                 "line style per mode.",
+    "elastic_states.png": "Elastic ring: each watched mode's frequency [Hz] against crack "
+                          "depth [mm], one panel per mode on a scale of its own: red solid "
+                          "the crack open (faces free), blue dashed record-averaged over a "
+                          "carrier revolution (where computed), black dotted closed (faces "
+                          "tied: the intact ring).",
+    "crack_state.png": "Elastic ring: length of the crack that is open [mm] against the "
+                       "carrier position (planet 1's ring tooth, tooth 0 cracked) over a "
+                       "revolution, one curve per crack depth.",
     "c_ru_change.png": "Change of c_ru and c_r against the intact ring [%] over the crack "
                        "depth at its deepest point [mm]: one line per half-length "
                        "(semi-elliptic), and the plane crack through the face width.",
@@ -72,12 +87,20 @@ MOUNTED = {"foundation": "on the elastic ring's Winkler foundation over the supp
            "clamped": "clamped on the support arcs", "free": "free (no mounting)",
            None: "clamped on the support arcs"}
 _PATTERNS = (
-    (re.compile(r"fe_ring_mode_(\d+)(?:_(foundation|clamped|free))?\.png"),
+    (re.compile(r"fe_ring_mode_(\d+)(?:_(?P<mounting>foundation|clamped|free))?\.png"),
      "FE ring mode {n}, the ring's own (its rigid motions on the mounting left out), "
      "{mounting}: colour is the displacement magnitude relative to its largest value (scale "
      "at the right), grey the undeformed outline; the largest displacement is drawn as "
      f"{100 * FE_MAGNIFIED:g} % of the outer radius; the picture names its frequency and "
      "nodal diameters."),
+    (re.compile(r"elastic_mode_(\d+)_([a-z]+)_n(\d+)_(\d+)Hz_(?P<mounting>foundation|clamped|free)"
+                r"\.png"),
+     "Elastic ring, watched coupled mode {n} (best first): {kind} mode at {hz} Hz, ring "
+     "nodal diameters n = {diameters}, the intact ring {mounting}, planet 1 half a planet "
+     "pitch from the cracked tooth. The ring's deformed FE mesh coloured by its "
+     "displacement magnitude relative to its largest value (scale at the right), the sun "
+     "orange, planets green, carrier grey moved by the same mode, grey outline at rest; "
+     f"largest displacement drawn as {100 * AMPLITUDE:g} % of the ring radius."),
     (re.compile(r"mode_(\d+)\.png"),
      "Mode {n} of the lumped model: sun orange, planets green, ring purple, carrier grey; "
      "dashed outlines: the bodies at rest, filled: moved by the mode (largest displacement "
@@ -103,8 +126,11 @@ def caption(name: str) -> str:
         if found:
             number = found.group(1)
             words = {"n": int(number) if number.isdigit() else number}
+            if "{kind}" in text:
+                words |= {"kind": found.group(2), "diameters": int(found.group(3)),
+                          "hz": int(found.group(4))}
             if "{mounting}" in text:
-                words["mounting"] = MOUNTED.get(found.group(2), MOUNTED[None])
+                words["mounting"] = MOUNTED[found.group("mounting")]
             return text.format(**words)
     raise KeyError(f"figure {base!r} has no caption in hubvib.render.captions")
 
