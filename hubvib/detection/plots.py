@@ -98,7 +98,8 @@ def shift_threshold_figure(name: str, pod):
     for n, i in enumerate(sorted(strongest)):
         positive = shift[:, i] > 0
         shown.append(shift[positive, i])
-        ax.plot(1e3 * pod.depths[positive], shift[positive, i], **style(n),
+        ax.plot(1e3 * pod.depths[positive], shift[positive, i],
+                **(style(n) | {"linestyle": LINES[n % len(LINES)], "markersize": 5}),
                 label=_label(i, nominal.frequency_hz[0, i], pod.kind[i],
                              mode_names(nominal.frequency_hz[0])[i]))
     low, high = pod.threshold_hz[pod.watched].min(), pod.threshold_hz[pod.watched].max()

@@ -27,10 +27,15 @@ CAPTIONS = {
     "shift_vs_depth.png": "Frequency drop a record sees [Hz] of each mode against crack depth "
                           "[mm] (log axis); the grey band spans the alarm thresholds of the "
                           "watched modes, from the lowest to the highest.",
-    "pod.png": "Probability of detection against crack depth [mm] per mode; dashed: the "
-               "required POD, dotted: the false-alarm rate.",
+    "pod.png": "Probability of detection against crack depth [mm]: left the watched modes "
+               "together per record length (linear axis), right each watched mode alone on a "
+               "log axis (its POD lies near the false-alarm rate); dashed grey: the required "
+               "POD, dotted grey: the false-alarm rate; legends below the panels.",
     "detectability_map.png": "Smallest detectable crack depth [mm] against the mounting "
-                             "stiffness swept [N/m] (log axis).",
+                             "stiffness swept [N/m] (log axis): black line over all modes, a "
+                             "large marker where a mode sets it, its colour and shape naming "
+                             "the stiffness carrying the signal; shaded: mountings where no "
+                             "crack of the sweep is detectable.",
     "elastic_map.png": "Elastic ring: smallest detectable crack depth [mm] against the "
                        "foundation scale s (log axis; the watched family and each followed "
                        "mode alone), and beside it the intact frequencies [Hz] of the followed "

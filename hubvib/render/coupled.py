@@ -18,8 +18,10 @@ from .modes import (AMPLITUDE, COLOURS, _bodies, _carrier, _motion, clear_pictur
                     plotter_for, save_picture, write_atomically)
 
 LEGEND = ("ring: FE body coloured by its displacement; sun orange, planets green, carrier "
-          f"grey; grey outline: at rest; largest displacement drawn as {100 * AMPLITUDE:g} % "
+          f"grey;\ngrey outline: at rest; largest displacement drawn as {100 * AMPLITUDE:g} % "
           "of the ring radius")
+#: the title's font size in the picture (pyvista units: points at the 900 px window)
+LABEL_FONT = 12
 
 
 def _ring_geometry(er):
@@ -73,8 +75,8 @@ def mode_title(spectrum, j: int, mounting: str) -> str:
     diameters, ring share and the mounting."""
     content = spectrum.content[j]
     return (f"coupled mode {j + 1}: {spectrum.frequency_hz[j]:.1f} Hz, {content.kind}, ring "
-            f"nodal diameters n = {content.nodal_diameter}, ring share "
-            f"{content.ring_share:.2f}\nring {mounting}")
+            f"nodal diameters n = {content.nodal_diameter},\nring share "
+            f"{content.ring_share:.2f}; ring {mounting}")
 
 
 def elastic_mode_file(rank: int, spectrum, j: int, mounting: str) -> str:
@@ -137,7 +139,7 @@ def render_coupled_modes(er, spectrum, folder: Path, vtu: bool = True, modes=Non
                     moved = moved.translate((centre[0] + dx, centre[1] + dy, 0.0),
                                             inplace=False)
                     plotter.add_mesh(moved, color=COLOURS.get(name, "#1b9e77"))
-                _label(plotter, label)
+                _label(plotter, label, LABEL_FONT)
                 _readable_bars(plotter)
                 plotter.view_xy()
                 plotter.enable_parallel_projection()

@@ -184,10 +184,11 @@ def _readable_bars(plotter) -> None:
             text.SetBackgroundOpacity(1.0)
 
 
-def _label(plotter, text: str) -> None:
+def _label(plotter, text: str, font_size: int = 10) -> None:
     """Black text on a white, mostly opaque box in the upper left: readable on any colour
     of the mesh under it (the crack-tip close-up's title was black on dark navy)."""
-    actor = plotter.add_text(text, position="upper_left", font_size=10, color="black")
+    actor = plotter.add_text(text, position="upper_left", font_size=font_size,
+                             color="black")
     prop = actor.GetTextProperty()
     prop.SetBackgroundColor(1.0, 1.0, 1.0)
     prop.SetBackgroundOpacity(0.85)
