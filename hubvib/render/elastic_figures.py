@@ -65,7 +65,6 @@ def both_models_figure(name: str, rigid_depths, rigid_change_hz, rigid_labels: S
         change = np.asarray(change, dtype=float).reshape(len(depths), -1)
         for j, label in enumerate(labels):
             ax.plot(1e3 * np.asarray(depths), change[:, j], **curve_style(j), label=label)
-        ax.axhline(0.0, color="0.5", lw=0.8, zorder=0)
         ax.set_xlabel("crack depth [mm]")
         ax.set_ylabel("frequency change from the intact ring [Hz]")
         ax.set_title(title, fontsize=11)

@@ -85,7 +85,7 @@ def _path(outlines, holes: bool = True):
     return MplPath(np.array(vertices), codes)
 
 
-def _arc_arrow(ax, centre, radius, sweep, **style):
+def _arc_arrow(ax, centre, radius, sweep, gid: str, **style):
     """A curved arrow around ``centre`` at ``radius`` [m] over ``sweep`` [rad] (sign:
     counter-clockwise positive), starting on the body's upper right."""
     from matplotlib.patches import FancyArrowPatch
@@ -95,7 +95,8 @@ def _arc_arrow(ax, centre, radius, sweep, **style):
     phi = start + np.linspace(0.0, sweep, max(8, int(abs(sweep) / 0.05)))
     points = centre + radius * np.column_stack([np.cos(phi), np.sin(phi)])
     ax.add_patch(FancyArrowPatch(path=MplPath(points), arrowstyle="-|>", mutation_scale=22,
-                                 lw=2.6, color=style.get("color", ARROW_COLOUR), zorder=6))
+                                 lw=2.6, color=style.get("color", ARROW_COLOUR), zorder=6,
+                                 gid=gid))
 
 
 def mode_figure(params, shape: np.ndarray, title: str):
@@ -136,11 +137,11 @@ def mode_figure(params, shape: np.ndarray, title: str):
             tip = centre + arrow * np.array([dx, dy])
             ax.add_patch(FancyArrowPatch(centre, tip, arrowstyle="-|>", mutation_scale=22,
                                          lw=2.6, color=ARROW_COLOUR, zorder=6,
-                                         shrinkA=0, shrinkB=0))
+                                         shrinkA=0, shrinkB=0, gid=f"translation {name}"))
         if turn >= SMALLEST * largest:
             at = {"ring": 1.09 * ring_radius, "carrier": 0.5 * r_c}.get(name, 0.65 * radius)
             sweep = math.copysign(min(arrow * turn / at, math.radians(300)), angle)
-            _arc_arrow(ax, centre, at, sweep)
+            _arc_arrow(ax, centre, at, sweep, f"turn {name}")
     limit = 1.25 * ring_radius
     ax.set_xlim(-limit, limit)
     ax.set_ylim(-limit, limit)
