@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from .modes import AMPLITUDE, COLOURS, _motion, _toothed_outline
+from .lumped_geometry import AMPLITUDE, COLOURS, PLANET_COLOUR, motion, toothed_outline
 
 #: the largest motion's arrow, as a fraction of the ring radius
 ARROW = 0.32
@@ -27,7 +27,6 @@ DPI = 100
 #: text sizes [pt] at the saved size
 TITLE_PT = 14
 TEXT_PT = 12
-PLANET_COLOUR = "#1b9e77"
 ARROW_COLOUR = "#111111"
 
 
@@ -42,16 +41,16 @@ def _geometry(params) -> dict:
         phi = np.linspace(0, 2 * math.pi, n, endpoint=False)
         return np.column_stack([radius * np.cos(phi), radius * np.sin(phi)])
 
-    bodies = {"ring": ([circle(1.18 * r_r), _toothed_outline(r_r, teeth["ring"], -2.5e-3)],
+    bodies = {"ring": ([circle(1.18 * r_r), toothed_outline(r_r, teeth["ring"], -2.5e-3)],
                        np.zeros(2), r_r),
-              "sun": ([_toothed_outline(r_s, teeth["sun"], 2.5e-3), circle(0.35 * r_s)],
+              "sun": ([toothed_outline(r_s, teeth["sun"], 2.5e-3), circle(0.35 * r_s)],
                       np.zeros(2), r_s)}
     centres = []
     for i, theta in enumerate(params.theta):
         centre = r_c * np.array([math.cos(theta), math.sin(theta)])
         centres.append(centre)
         bodies[f"planet {i + 1}"] = (
-            [_toothed_outline(r_p, teeth["planet"], 2.5e-3) + centre,
+            [toothed_outline(r_p, teeth["planet"], 2.5e-3) + centre,
              circle(0.3 * r_p) + centre], centre, r_p)
     half = 0.06 * r_c
     arms = []
@@ -112,7 +111,7 @@ def mode_figure(params, shape: np.ndarray, title: str):
     bodies = _geometry(params)
     r_c = params.d_s / 2 + params.d_p / 2
     ring_radius = params.d_r / 2
-    motions = {name: _motion(params, shape, name, r_c) for name in bodies}
+    motions = {name: motion(params, shape, name, r_c) for name in bodies}
     sizes = {name: (math.hypot(dx, dy), abs(a) * bodies[name][2])
              for name, (dx, dy, a) in motions.items()}
     largest = max(max(v) for v in sizes.values())

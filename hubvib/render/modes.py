@@ -21,7 +21,9 @@ import numpy as np
 
 from hubvib.foundation.output import atomic_path
 
-AMPLITUDE = 0.08
+from .lumped_geometry import AMPLITUDE, COLOURS, motion as _motion
+from .lumped_geometry import toothed_outline as _toothed_outline
+
 TOOTH_PITCH = 10.2e-3   # [m] arc between drawn teeth (module 3.25 mm: pi m)
 THICKNESS = 0.02        # [m] plate thickness, for shading only
 SIZE = (900, 900)       # [px]
@@ -31,16 +33,6 @@ PNG_COMPRESSION = 3
 #: what the colours, the grey outline and the scale of a mode render mean (in the picture)
 LEGEND = (f"sun orange, planets green, ring purple, carrier grey; grey outline: at rest; "
           f"largest displacement drawn as {100 * AMPLITUDE:g} % of the ring radius")
-
-
-def _toothed_outline(radius: float, teeth: int, depth: float) -> np.ndarray:
-    """Closed polygon (n, 2) of a plate with ``teeth`` trapezoid teeth; outward if depth > 0."""
-    per = 8
-    phi = np.linspace(0, 2 * math.pi, teeth * per, endpoint=False)
-    phase = (phi * teeth / (2 * math.pi)) % 1.0
-    profile = np.clip(np.abs(phase - 0.5) * 4 - 0.5, 0, 1)  # trapezoid wave
-    r = radius + depth * (0.5 - profile)
-    return np.column_stack([r * np.cos(phi), r * np.sin(phi)])
 
 
 def _plate(outline: np.ndarray, hole: float):
@@ -93,25 +85,6 @@ def _carrier(centres: list[np.ndarray], width: float):
     return arms[0].merge(arms[1:]) if len(arms) > 1 else arms[0]
 
 
-def _motion(params, shape: np.ndarray, member: str, r_c: float):
-    """(dx, dy, angle) of a member for the mode ``shape`` (network coordinate order)."""
-    if member == "sun":
-        return shape[0], shape[1], shape[6] / (params.d_s / 2)
-    if member == "ring":
-        return shape[4], shape[5], shape[8] / (params.d_r / 2)
-    if member == "carrier":
-        return shape[2], shape[3], shape[7] / r_c
-    i = int(member.split()[1]) - 1
-    theta = params.theta[i]
-    tau, eta, u = shape[9 + 3 * i: 12 + 3 * i]
-    tangent = np.array([-math.sin(theta), math.cos(theta)])
-    radial = np.array([math.cos(theta), math.sin(theta)])
-    carrier_turn = shape[7] / r_c
-    carried = np.array([shape[2], shape[3]]) + carrier_turn * r_c * tangent
-    dx, dy = carried + tau * tangent + eta * radial
-    return dx, dy, u / (params.d_p / 2)
-
-
 def deformed_bodies(params, shape: np.ndarray, phase: float = 1.0) -> dict:
     """Each member's mesh moved by ``phase`` times the scaled mode ``shape``."""
     bodies, r_c = _bodies(params)
@@ -131,7 +104,6 @@ def deformed_bodies(params, shape: np.ndarray, phase: float = 1.0) -> dict:
     return moved
 
 
-COLOURS = {"sun": "#d95f02", "ring": "#7570b3", "carrier": "#666666"}
 
 
 def offscreen_plotter():

@@ -12,7 +12,7 @@ from hubvib.lumped import natural_modes  # noqa: E402
 from hubvib.reducer import lumped_preset  # noqa: E402
 from hubvib.render.mode_figure import (ARROW, DPI, SIZE_IN, SMALLEST, TEXT_PT,  # noqa: E402
                                        mode_figure, save_mode_figure)
-from hubvib.render.modes import _motion  # noqa: E402
+from hubvib.render.lumped_geometry import motion as _motion  # noqa: E402
 
 PARAMS = lumped_preset("raba118")
 SPECTRUM = natural_modes(PARAMS)
