@@ -20,8 +20,7 @@ from .modes import (AMPLITUDE, COLOURS, _bodies, _carrier, _motion, clear_pictur
 LEGEND = ("ring: FE body coloured by its displacement; sun orange, planets green, carrier "
           f"grey;\ngrey outline: at rest; largest displacement drawn as {100 * AMPLITUDE:g} % "
           "of the ring radius")
-#: the title's font size in the picture (pyvista units: points at the 900 px window)
-LABEL_FONT = 12
+
 
 
 def _ring_geometry(er):
@@ -139,7 +138,7 @@ def render_coupled_modes(er, spectrum, folder: Path, vtu: bool = True, modes=Non
                     moved = moved.translate((centre[0] + dx, centre[1] + dy, 0.0),
                                             inplace=False)
                     plotter.add_mesh(moved, color=COLOURS.get(name, "#1b9e77"))
-                _label(plotter, label, LABEL_FONT)
+                _label(plotter, label)
                 _readable_bars(plotter)
                 plotter.view_xy()
                 plotter.enable_parallel_projection()

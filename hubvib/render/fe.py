@@ -184,7 +184,11 @@ def _readable_bars(plotter) -> None:
             text.SetBackgroundOpacity(1.0)
 
 
-def _label(plotter, text: str, font_size: int = 10) -> None:
+#: the pictures' title size (pyvista font size at the 900 px window)
+LABEL_FONT = 12
+
+
+def _label(plotter, text: str, font_size: int = LABEL_FONT) -> None:
     """Black text on a white, mostly opaque box in the upper left: readable on any colour
     of the mesh under it (the crack-tip close-up's title was black on dark navy)."""
     actor = plotter.add_text(text, position="upper_left", font_size=font_size,
@@ -280,7 +284,7 @@ def render_fe(fields: RingFields, folder: Path, vtu: bool = False) -> list[Path]
                      if k < len(fields.mode_diameters) else "")
                 _label(plotter, f"{fields.label}\nFE ring mode {k + 1}{n}: {hz:.1f} Hz,\n"
                        f"{fields.mounting_words}\ncolour: displacement / largest; grey: "
-                       f"undeformed outline; largest displacement drawn as "
+                       f"undeformed outline;\nlargest displacement drawn as "
                        f"{100 * MAGNIFIED:g} % of the outer radius")
 
             files.append(_picture(plotter, folder / mode_file(k, fields.mounting), mode))

@@ -109,3 +109,29 @@ def test_open_length_over_a_revolution_from_synthetic_states(tmp_path):
         open_length_figure("t", depths[:1], [(teeth, np.zeros(2))])
     with pytest.raises(ValueError, match="1 states for 2 depths"):
         open_length_figure("t", depths[:2], states[:1])
+
+
+def test_the_report_draws_each_models_watched_modes():
+    """``both_models_arguments`` hands the figure the rigid study's watched modes
+    (record-averaged change) and the elastic ring's, labelled with frequency, class and
+    nodal diameters."""
+    from types import SimpleNamespace
+
+    from hubvib.reports.crack_figures import both_models_arguments
+
+    shift = -np.outer(DEPTHS, np.arange(1.0, 19.0))
+    pod = SimpleNamespace(depths=DEPTHS, kind=("translational",) * 18,
+                          nominal=SimpleNamespace(shift_hz=shift, frequency_hz=np.broadcast_to(
+                              100.0 * np.arange(1, 19), shift.shape)))
+    study = SimpleNamespace(pod=pod, watched_modes=lambda: np.array([12, 15]))
+    opened = 1000.0 - np.outer(DEPTHS, [10.0, 20.0, 30.0])
+    elastic = SimpleNamespace(depths=tuple(DEPTHS), watched=(2, 0),
+                              intact_hz=np.array([1000.0, 1000.0, 1000.0]),
+                              shift_hz=opened - 1000.0, kind=("ring", "mixed", "rotational"),
+                              nodal_diameter=(2, 3, 4))
+    args = both_models_arguments("t", SimpleNamespace(elastic=elastic), study)
+    name, rigid_depths, rigid, rigid_labels, elastic_depths, change, labels = args
+    np.testing.assert_array_equal(rigid, shift[:, [12, 15]])
+    np.testing.assert_array_equal(change, (opened - 1000.0)[:, [2, 0]])
+    assert labels == ["mode 3: 1000.0 Hz rotational, n = 4", "mode 1: 1000.0 Hz ring, n = 2"]
+    assert "1300.0 Hz translational" in rigid_labels[0]
