@@ -82,8 +82,11 @@ def relative_shift_figure(name: str, depths: np.ndarray, omega: np.ndarray, kind
 def shift_threshold_figure(name: str, pod):
     """|Shift| [Hz] a record sees against depth, with the alarm thresholds (log scale); the
     seven modes moving most against their identification scatter; the alarm thresholds
-    of the watched modes as one grey band from the lowest to the highest."""
+    of the watched modes as one grey band from the lowest to the highest.  The legend sits
+    below the panel; the log axis spans the data and the band with a margin, so no tick
+    label lies on the axes' top edge under the title."""
     fig, axes = _axes(layout="constrained")
+    fig.set_size_inches(8, 6.5)
     ax = axes[0, 0]
     nominal = pod.nominal
     shift = -nominal.shift_hz
@@ -91,83 +94,150 @@ def shift_threshold_figure(name: str, pod):
     moving = moving_modes(relative)
     strongest = moving[np.argsort(-np.abs(shift[-1, moving]) / pod.sigma_hz[moving],
                                   kind="stable")][:PER_PANEL - 1]
+    shown = []
     for n, i in enumerate(sorted(strongest)):
         positive = shift[:, i] > 0
-        ax.plot(1e3 * pod.depths[positive], shift[positive, i], **style(n),
+        shown.append(shift[positive, i])
+        ax.plot(1e3 * pod.depths[positive], shift[positive, i],
+                **(style(n) | {"linestyle": LINES[n % len(LINES)], "markersize": 5}),
                 label=_label(i, nominal.frequency_hz[0, i], pod.kind[i],
                              mode_names(nominal.frequency_hz[0])[i]))
     low, high = pod.threshold_hz[pod.watched].min(), pod.threshold_hz[pod.watched].max()
-    ax.axhspan(low, high * 1.0001, color="k", alpha=0.15,
+    ax.axhspan(low, high * 1.0001, color="k", alpha=0.15, zorder=0,
                label=f"alarm thresholds of the watched modes {low:.3g}-{high:.3g} Hz")
     ax.set_yscale("log")
+    values = np.concatenate(shown + [np.array([low, high])])
+    values = values[np.isfinite(values) & (values > 0)]
+    ax.set_ylim(values.min() / 2.5, values.max() * 2.5)
     ax.set_xlabel("crack depth [mm]")
     ax.set_ylabel("frequency drop seen by a record [Hz]")
-    ax.set_title(f"{name}: frequency drop against the alarm threshold")
+    ax.set_title(f"{name}: frequency drop against the alarm threshold", pad=12)
     ax.grid(True, which="both", alpha=0.3)
-    _legend(ax)
+    _legend_below(fig, ax)
     return fig
 
 
 def pod_figure(name: str, pod, modes):
-    """POD against depth for ``modes`` (0-based) against the reducer's own baseline; the
-    best of them against the model's spectrum as one grey line."""
-    fig, axes = _axes()
-    ax = axes[0, 0]
+    """POD against depth: left the watched modes together per record length with the
+    required POD and the false-alarm rate (linear axis); right each of ``modes`` (0-based)
+    alone on a log axis, where the small single-mode PODs (near the false-alarm rate) are
+    told apart.  Legends below the panels."""
+    fig, axes = _axes(2, layout="constrained")
+    family, single = axes[0]
+    fig.set_size_inches(13, 6.5)
+    depth_mm = 1e3 * pod.depths
     f0 = pod.nominal.frequency_hz[0]
-    for n, i in enumerate(modes):
-        ax.plot(1e3 * pod.depths, pod.pod[:, i], **style(n),
-                label=_label(i, f0[i], pod.kind[i], mode_names(f0)[i]))
     for n, T in enumerate(sorted(pod.family_pod)[:3]):
-        ax.plot(1e3 * pod.depths, pod.family_pod[T], color="k", lw=2.5 - 0.5 * n,
-                ls=("-", "--", ":")[n], marker="o", ms=3,
-                label=f"watched modes together, {T:g} s records")
-    ax.axhline(pod.detection_probability, color="k", lw=0.8, ls="--",
-               label=f"required POD {pod.detection_probability:g}")
-    ax.axhline(pod.false_alarm_rate, color="k", lw=0.8, ls=":",
-               label=f"false-alarm rate {pod.false_alarm_rate:g}")
-    ax.set_ylim(-0.02, 1.02)
-    ax.set_xlabel("crack depth [mm]")
-    ax.set_ylabel("probability of detection")
-    ax.axvline(1e3 * pod.depths[1], color="0.6", lw=0.8, ls="-.",
-               label=f"shallowest crack computed {1e3 * pod.depths[1]:.3g} mm")
-    ax.set_title(f"{name}: probability of detection ({pod.samples} Monte Carlo samples; "
-                 f"single modes: records of the scene's length)", fontsize=9)
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
+        family.plot(depth_mm, pod.family_pod[T], color=("k", "tab:blue", "tab:red")[n],
+                    lw=2.0, ls=("-", "--", ":")[n], marker=("o", "s", "^")[n], ms=5,
+                    label=f"watched modes together, {T:g} s records", zorder=3)
+    for ax in (family, single):
+        ax.axhline(pod.detection_probability, color="0.35", lw=1.0, ls=(0, (6, 3)),
+                   label=f"required POD {pod.detection_probability:g}", zorder=1)
+        ax.axhline(pod.false_alarm_rate, color="0.35", lw=1.0, ls=(0, (1, 2)),
+                   label=f"false-alarm rate {pod.false_alarm_rate:g}", zorder=1)
+        if len(pod.depths) > 1:
+            ax.axvline(depth_mm[1], color="0.6", lw=0.8, ls="-.", zorder=1,
+                       label=f"shallowest crack computed {depth_mm[1]:.3g} mm")
+        ax.set_xlabel("crack depth [mm]")
+        ax.set_ylabel("probability of detection")
+        ax.grid(True, which="both", alpha=0.3)
+    family.set_ylim(-0.02, 1.02)
+    family.set_title("watched modes together", fontsize=10)
+    floor = 0.2 * pod.false_alarm_rate
+    for n, i in enumerate(modes):
+        single.plot(depth_mm, np.maximum(pod.pod[:, i], floor), **(style(n) | {
+                    "linestyle": LINES[n % len(LINES)], "markersize": 6}), zorder=3,
+                    label=_label(i, f0[i], pod.kind[i], mode_names(f0)[i]))
+    single.set_yscale("log")
+    single.set_ylim(floor, 1.5)
+    single.set_title(f"each mode alone (records of the scene's length; log axis, "
+                     f"clipped at {floor:.2g})", fontsize=10)
+    fig.suptitle(f"{name}: probability of detection ({pod.samples} Monte Carlo samples)",
+                 fontsize=11)
+    for ax in (family, single):
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
     return fig
 
 
+#: the mounting axis's margin beyond the swept range (a factor)
+MARGIN = 10 ** 0.2
+#: the markers of the stiffness carrying the signal in the detectability map
+CARRIERS = (("c_ru", "tab:blue", "o"), ("c_r", "tab:orange", "s"), ("c_rp", "tab:green", "^"))
+
+
 def map_figure(name: str, dmap, deepest: float, shallowest: float | None = None):
-    """Smallest detectable depth against the mounting, per stiffness carrying the signal
-    (the label rule of the modes table) and over all modes; the sweep's shallowest crack
-    marked: nothing below it was computed."""
-    fig, axes = _axes(2)
+    """Smallest detectable depth against the mounting: over all modes a black line drawn
+    on top, and at each detecting mounting a large marker whose colour and shape name the
+    stiffness carrying the signal (the label rule of the modes table); mountings where
+    nothing of the sweep is detectable shaded.  Only what is drawn is in the legend (one,
+    below both panels); the sweep's shallowest crack is marked: nothing below it was
+    computed."""
+    fig, axes = _axes(2, layout="constrained")
+    fig.set_size_inches(14, 6.2)
+    entries = {}
     for ax, swept in zip(axes[0], ("c_ru_mount", "c_r_mount")):
         depth, carried = dmap.depth[swept], dmap.carried_by[swept]
-        ax.plot(dmap.mounts, 1e3 * dmap.smallest(swept), color="k", lw=3, alpha=0.35,
-                label="any mode")
-        if shallowest is not None:
-            ax.axhline(1e3 * shallowest, color="0.6", lw=0.8, ls="-.",
-                       label=f"shallowest crack computed {1e3 * shallowest:.3g} mm")
-        for n, carrier in enumerate(("c_ru", "c_r", "c_rp")):
+        mounts = np.asarray(dmap.mounts, dtype=float)
+        smallest = np.asarray(dmap.smallest(swept), dtype=float)
+        for n, (carrier, colour, marker) in enumerate(CARRIERS):
             masked = np.where((carried == carrier) & ~np.isnan(depth), depth, np.inf)
             best = masked.min(axis=1)
-            best = np.where(np.isinf(best), np.nan, best)
-            ax.plot(dmap.mounts, 1e3 * best, **style(n), label=f"signal in {carrier}")
+            # the marker where this stiffness carries the mode that sets the smallest depth
+            at = np.isfinite(best) & np.isclose(best, smallest)
+            if at.any():
+                entries[f"signal in {carrier}"] = ax.plot(
+                    mounts[at], 1e3 * best[at], ls="none", marker=marker, ms=11,
+                    mfc=colour, mec="k", mew=0.8, color=colour, zorder=2,
+                    label=f"signal in {carrier}")[0]
+        if np.isfinite(smallest).any():
+            entries["any mode"] = ax.plot(mounts, 1e3 * smallest, color="k", lw=1.8,
+                                          zorder=3, label="any mode")[0]
+        blind = ~np.isfinite(smallest)
+        for lo, hi in _runs(mounts, blind):
+            entries["nothing of the sweep detectable"] = ax.axvspan(
+                lo, hi, color="0.9", lw=0, zorder=0,
+                label="nothing of the sweep detectable")
+        if shallowest is not None:
+            entries["shallowest"] = ax.axhline(
+                1e3 * shallowest, color="0.4", lw=1.0, ls="-.", zorder=1,
+                label=f"shallowest crack computed {1e3 * shallowest:.3g} mm")
         ax.set_xscale("log")
         # explicit: where no mounting detects anything every curve is NaN, and a log axis
         # cannot take its limits from no data
-        ax.set_xlim(float(np.min(dmap.mounts)), float(np.max(dmap.mounts)))
+        # a margin of a fifth of a decade: the end markers drawn whole
+        ax.set_xlim(float(np.min(mounts)) / MARGIN, float(np.max(mounts)) * MARGIN)
         ax.set_ylim(0, 1.05e3 * deepest)
         ax.set_xlabel(f"{swept} [N/m]")
         ax.set_ylabel("smallest detectable crack depth [mm]")
         other = dmap.fixed[swept]
         ax.set_title(f"{swept} swept ({'c_r' if swept == 'c_ru_mount' else 'c_ru'}_mount "
-                     f"{'rigid' if math.isinf(other) else f'{other:.3g} N/m'})", fontsize=9)
+                     f"{'rigid' if math.isinf(other) else f'{other:.3g} N/m'})", fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.suptitle(f"{name}: detectability against the ring mounting (gap: not detectable)")
+    fig.suptitle(f"{name}: detectability against the ring mounting")
+    if entries:
+        fig.legend(list(entries.values()), [h.get_label() for h in entries.values()],
+                   loc="outside lower center", ncol=min(len(entries), 5), fontsize=9)
     return fig
+
+
+def _runs(x: np.ndarray, mask: np.ndarray) -> list[tuple[float, float]]:
+    """The spans of ``x`` (ascending, log-spaced) where ``mask`` holds, each widened by
+    half a step to both sides and clipped to the ends of ``x``."""
+    if x.size < 2:
+        return []
+    edges = np.sqrt(x[1:] * x[:-1])
+    lo_edges = np.concatenate([[x[0]], edges])
+    hi_edges = np.concatenate([edges, [x[-1]]])
+    spans, start = [], None
+    for k, on in enumerate(mask):
+        if on and start is None:
+            start = k
+        if start is not None and (not on or k == mask.size - 1):
+            end = k if on else k - 1
+            spans.append((float(lo_edges[start]), float(hi_edges[end])))
+            start = None
+    return spans
 
 
 AT_MEAN = "at the FE mean mesh ratio over the engagement"
@@ -234,6 +304,15 @@ def carrier_figure(name: str, carrier, kind):
     passage.grid(True, alpha=0.3)
     passage.legend(fontsize=7, loc="lower center")
     return fig
+
+
+def _legend_below(fig, ax, ncol: int = 2):
+    """The legend of ``ax`` below it, outside the data (a constrained-layout figure)."""
+    handles, labels = ax.get_legend_handles_labels()
+    if handles:
+        fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=9)
+    else:
+        ax.text(0.5, 0.5, "no mode moves", transform=ax.transAxes, ha="center")
 
 
 def _legend(ax):

@@ -10,6 +10,7 @@ from __future__ import annotations
 import re
 from pathlib import PurePosixPath
 
+from hubvib.render.mode_figure import ARROW
 from hubvib.render.modes import AMPLITUDE
 
 #: the FE renders' magnification (``hubvib.render.fe.MAGNIFIED``, which imports the FE
@@ -26,10 +27,15 @@ CAPTIONS = {
     "shift_vs_depth.png": "Frequency drop a record sees [Hz] of each mode against crack depth "
                           "[mm] (log axis); the grey band spans the alarm thresholds of the "
                           "watched modes, from the lowest to the highest.",
-    "pod.png": "Probability of detection against crack depth [mm] per mode; dashed: the "
-               "required POD, dotted: the false-alarm rate.",
+    "pod.png": "Probability of detection against crack depth [mm]: left the watched modes "
+               "together per record length (linear axis), right each watched mode alone on a "
+               "log axis (its POD lies near the false-alarm rate); dashed grey: the required "
+               "POD, dotted grey: the false-alarm rate; legends below the panels.",
     "detectability_map.png": "Smallest detectable crack depth [mm] against the mounting "
-                             "stiffness swept [N/m] (log axis).",
+                             "stiffness swept [N/m] (log axis): black line over all modes, a "
+                             "large marker where a mode sets it, its colour and shape naming "
+                             "the stiffness carrying the signal; shaded: mountings where no "
+                             "crack of the sweep is detectable.",
     "elastic_map.png": "Elastic ring: smallest detectable crack depth [mm] against the "
                        "foundation scale s (log axis; the watched family and each followed "
                        "mode alone), and beside it the intact frequencies [Hz] of the followed "
@@ -41,6 +47,21 @@ CAPTIONS = {
                             "moves most over one passage against the carrier angle, solid at "
                             "the mean ratio, dashed at the minimum; the shaded band is the "
                             "time the cracked tooth is in mesh.",
+    "frequency_both_models.png": "The watched modes' frequency change from the intact "
+                                 "ring [Hz] against crack depth [mm], as a record sees it: "
+                                 "left the rigid ring (9 + 3N model, record-averaged with "
+                                 "planet 1 meshing the cracked tooth part of the time), right "
+                                 "the elastic ring (crack open, planet 1 half a planet pitch "
+                                 "away), each on a scale of its own; one colour, marker and "
+                                 "line style per mode.",
+    "elastic_states.png": "Elastic ring: each watched mode's frequency [Hz] against crack "
+                          "depth [mm], one panel per mode on a scale of its own: red solid "
+                          "the crack open (faces free), blue dashed record-averaged over a "
+                          "carrier revolution (where computed), black dotted closed (faces "
+                          "tied: the intact ring).",
+    "crack_state.png": "Elastic ring: length of the crack that is open [mm] against the "
+                       "carrier position (planet 1's ring tooth, tooth 0 cracked) over a "
+                       "revolution, one curve per crack depth.",
     "c_ru_change.png": "Change of c_ru and c_r against the intact ring [%] over the crack "
                        "depth at its deepest point [mm]: one line per half-length "
                        "(semi-elliptic), and the plane crack through the face width.",
@@ -64,15 +85,37 @@ CAPTIONS = {
                "panels of their own on one scale, then their difference (the same noise "
                "seed, so the noise cancels).",
 }
+#: a render's mounting (the last part of its file name) in words
+MOUNTED = {"foundation": "on the elastic ring's Winkler foundation over the support arcs "
+                         "(its stiffness in the picture; unless the scene gives it, sized so "
+                         "that its rigid-ring totals are the design's c_r and c_ru)",
+           "clamped": "clamped on the support arcs", "free": "free (no mounting)",
+           None: "clamped on the support arcs"}
 _PATTERNS = (
-    (re.compile(r"fe_ring_mode_(\d+)\.png"),
-     "FE ring mode {n} on its clamped supports: colour is the displacement magnitude "
-     "relative to its largest value, grey the undeformed outline; the largest displacement "
-     f"is drawn as {100 * FE_MAGNIFIED:g} % of the outer radius."),
-    (re.compile(r"mode_(\d+)\.(png|gif)"),
-     "Mode {n} of the lumped model: sun orange, planets green, ring purple, carrier grey, "
-     f"moved by the mode (largest displacement drawn as {100 * AMPLITUDE:g} % of the ring "
-     "radius); the grey outlines are the bodies at rest."),
+    (re.compile(r"fe_ring_mode_(\d+)(?:_(?P<mounting>foundation|clamped|free))?\.png"),
+     "FE ring mode {n}, the ring's own (its rigid motions on the mounting left out), "
+     "{mounting}: colour is the displacement magnitude relative to its largest value (scale "
+     "at the right), grey the undeformed outline; the largest displacement is drawn as "
+     f"{100 * FE_MAGNIFIED:g} % of the outer radius; the picture names its frequency and "
+     "nodal diameters."),
+    (re.compile(r"elastic_mode_(\d+)_([a-z]+)_n(\d+)_(\d+)Hz_(?P<mounting>foundation|clamped|free)"
+                r"\.png"),
+     "Elastic ring, watched coupled mode {n} (best first): {kind} mode at {hz} Hz, ring "
+     "nodal diameters n = {diameters}, the intact ring {mounting}, planet 1 half a planet "
+     "pitch from the cracked tooth. The ring's deformed FE mesh coloured by its "
+     "displacement magnitude relative to its largest value (scale at the right), the sun "
+     "orange, planets green, carrier grey moved by the same mode, grey outline at rest; "
+     f"largest displacement drawn as {100 * AMPLITUDE:g} % of the ring radius."),
+    (re.compile(r"mode_(\d+)\.png"),
+     "Mode {n} of the lumped model: sun orange, planets green, ring purple, carrier grey; "
+     "dashed outlines: the bodies at rest, filled: moved by the mode (largest displacement "
+     f"drawn as {100 * AMPLITUDE:g} % of the ring radius); black arrows: each body's "
+     f"translation from its centre and its turn as a curved arrow around it (largest "
+     f"{100 * ARROW:g} % of the ring radius)."),
+    (re.compile(r"mode_(\d+)\.gif"),
+     "Mode {n} of the lumped model, animated: sun orange, planets green, ring purple, "
+     f"carrier grey, moved by the mode (largest displacement drawn as {100 * AMPLITUDE:g} % "
+     "of the ring radius); the grey outlines are the bodies at rest."),
     (re.compile(r"convergence_(\w+)\.png"),
      "Relative error of {n} against DOFs on log-log axes."),
 )
@@ -87,7 +130,13 @@ def caption(name: str) -> str:
         found = pattern.fullmatch(base)
         if found:
             number = found.group(1)
-            return text.format(n=int(number) if number.isdigit() else number)
+            words = {"n": int(number) if number.isdigit() else number}
+            if "{kind}" in text:
+                words |= {"kind": found.group(2), "diameters": int(found.group(3)),
+                          "hz": int(found.group(4))}
+            if "{mounting}" in text:
+                words["mounting"] = MOUNTED[found.group("mounting")]
+            return text.format(**words)
     raise KeyError(f"figure {base!r} has no caption in hubvib.render.captions")
 
 

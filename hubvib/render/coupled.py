@@ -18,8 +18,9 @@ from .modes import (AMPLITUDE, COLOURS, _bodies, _carrier, _motion, clear_pictur
                     plotter_for, save_picture, write_atomically)
 
 LEGEND = ("ring: FE body coloured by its displacement; sun orange, planets green, carrier "
-          f"grey; grey outline: at rest; largest displacement drawn as {100 * AMPLITUDE:g} % "
+          f"grey;\ngrey outline: at rest; largest displacement drawn as {100 * AMPLITUDE:g} % "
           "of the ring radius")
+
 
 
 def _ring_geometry(er):
@@ -57,10 +58,46 @@ def _grid(points, triangles, displacement=None):
     return pv.UnstructuredGrid({pv.CellType.TRIANGLE: triangles}, xyz)
 
 
-def render_coupled_modes(er, spectrum, folder: Path, vtu: bool = True) -> list[Path]:
-    """PNG of every coupled mode of ``spectrum`` (an ``elastic.ElasticSpectrum`` of ``er``)
-    and, with ``vtu``, ``coupled_modes.vtu``: the ring with point data ``mode_NN``
-    (displacement, 3 components) and field data ``frequency_hz``."""
+#: the colour bar of the ring's displacement (fe's bar, with its own title)
+BAR_TITLE = "ring displacement / largest"
+
+
+def mounting_of(er) -> str:
+    """The elastic ring's mounting in words (``render.fe.mounting_words``)."""
+    from .fe import mounting_words
+
+    return mounting_words(er.body.mounting, er.foundation)
+
+
+def mode_title(spectrum, j: int, mounting: str) -> str:
+    """What a coupled mode's picture says about it: number, frequency, class, nodal
+    diameters, ring share and the mounting."""
+    content = spectrum.content[j]
+    return (f"coupled mode {j + 1}: {spectrum.frequency_hz[j]:.1f} Hz, {content.kind}, ring "
+            f"nodal diameters n = {content.nodal_diameter},\nring share "
+            f"{content.ring_share:.2f}; ring {mounting}")
+
+
+def elastic_mode_file(rank: int, spectrum, j: int, mounting: str) -> str:
+    """The file name of a watched coupled mode's picture: its rank among the watched modes,
+    class, nodal diameters, frequency [Hz] and the ring's mounting (the caption reads them
+    back, ``render.captions``)."""
+    content = spectrum.content[j]
+    return (f"elastic_mode_{rank + 1:02d}_{content.kind}_n{content.nodal_diameter}_"
+            f"{spectrum.frequency_hz[j]:.0f}Hz_{mounting}.png")
+
+
+def render_coupled_modes(er, spectrum, folder: Path, vtu: bool = True, modes=None,
+                         names=None) -> list[Path]:
+    """PNG of the coupled modes ``modes`` (0-based; None: all) of ``spectrum`` (an
+    ``elastic.ElasticSpectrum`` of ``er``), named ``names(rank, j)`` (default
+    ``coupled_mode_NN.png``): the ring's deformed mesh coloured by its displacement
+    magnitude with a colour bar, the lumped bodies moved by the same mode, the mode's
+    class, nodal diameters, frequency and the ring's mounting in the title; with ``vtu``,
+    ``coupled_modes.vtu``: the ring with point data ``mode_NN`` (displacement, 3
+    components) and field data ``frequency_hz``."""
+    from .fe import _BAR, _label, _readable_bars
+
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     points, triangles, _ = _ring_geometry(er)
@@ -73,24 +110,27 @@ def render_coupled_modes(er, spectrum, folder: Path, vtu: bool = True) -> list[P
     bodies["carrier"] = (_carrier(centres, 0.06 * r_c), np.zeros(2), r_c)
     outer = float(np.hypot(*points.T).max())
     rest = _grid(points, triangles).extract_feature_edges()
+    mounting = mounting_of(er)
+    chosen = range(spectrum.frequency_hz.size) if modes is None else [int(j) for j in modes]
+    names = names or (lambda rank, j: f"coupled_mode_{j + 1:02d}.png")
     files = []
     with plotter_for() as plotter:
-        for j, (f, content) in enumerate(zip(spectrum.frequency_hz, spectrum.content)):
+        for rank, j in enumerate(chosen):
             motions = {name: _motion(params, lumped[:, j], name, r_c) for name in bodies}
+            size = np.hypot(*ring_u[j].T)
             largest = max([float(np.abs(ring_u[j]).max())] + [
                 max(abs(dx), abs(dy), abs(a) * r)
                 for (dx, dy, a), (_, _, r) in zip(motions.values(), bodies.values())])
             scale = AMPLITUDE * outer / largest if largest > 0 else 0.0
             ring = _grid(points, triangles, scale * ring_u[j])
-            ring.point_data["displacement"] = np.hypot(*ring_u[j].T) * scale
-            label = (f"mode {j + 1}: {f:.1f} Hz, {content.kind}, ring nodal diameters "
-                     f"{content.nodal_diameter}, ring share {content.ring_share:.2f}\n{LEGEND}")
+            ring.point_data[BAR_TITLE] = size / size.max() if size.max() > 0 else size
+            label = f"{mode_title(spectrum, j, mounting)}\n{LEGEND}"
 
             def png(tmp, ring=ring, motions=motions, scale=scale, label=label):
                 clear_picture(plotter)
                 plotter.add_mesh(rest, color="#bbbbbb", line_width=1)
-                plotter.add_mesh(ring, scalars="displacement", cmap="viridis",
-                                 show_scalar_bar=False)
+                plotter.add_mesh(ring, scalars=BAR_TITLE, cmap="viridis", clim=(0.0, 1.0),
+                                 scalar_bar_args=_BAR | {"title": BAR_TITLE})
                 for name, (mesh, centre, _) in bodies.items():
                     dx, dy, angle = (scale * v for v in motions[name])
                     moved = mesh.translate((-centre[0], -centre[1], 0.0), inplace=False)
@@ -98,16 +138,13 @@ def render_coupled_modes(er, spectrum, folder: Path, vtu: bool = True) -> list[P
                     moved = moved.translate((centre[0] + dx, centre[1] + dy, 0.0),
                                             inplace=False)
                     plotter.add_mesh(moved, color=COLOURS.get(name, "#1b9e77"))
-                actor = plotter.add_text(label, position="upper_left", font_size=10,
-                                         color="black")
-                actor.GetTextProperty().SetBackgroundColor(1.0, 1.0, 1.0)
-                actor.GetTextProperty().SetBackgroundOpacity(0.85)
+                _label(plotter, label)
+                _readable_bars(plotter)
                 plotter.view_xy()
                 plotter.enable_parallel_projection()
-                plotter.camera.zoom(1.2)
                 save_picture(plotter, tmp)
 
-            files.append(write_atomically(folder / f"coupled_mode_{j + 1:02d}.png", png))
+            files.append(write_atomically(folder / names(rank, j), png))
     if vtu:
         grid = _grid(points, triangles)
         for j in range(ring_u.shape[0]):
@@ -117,3 +154,12 @@ def render_coupled_modes(er, spectrum, folder: Path, vtu: bool = True) -> list[P
         files.append(write_atomically(folder / "coupled_modes.vtu",
                                       lambda tmp: grid.save(str(tmp), binary=True)))
     return files
+
+
+def render_watched_modes(er, spectrum, watched, folder: Path) -> list[Path]:
+    """The pictures of the watched coupled modes ``watched`` (0-based, best first) of
+    ``spectrum``, named by ``elastic_mode_file`` (no VTU)."""
+    kind = er.body.mounting
+    return render_coupled_modes(
+        er, spectrum, folder, vtu=False, modes=watched,
+        names=lambda rank, j: elastic_mode_file(rank, spectrum, j, kind))

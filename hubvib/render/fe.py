@@ -1,5 +1,10 @@
 """Off-screen renders of the FE ring: deformed under the planet mesh forces (von Mises),
-a zoom on the crack tip, and the ring's lowest modes on its supports (SI inside).
+a zoom on the crack tip, and the ring's lowest elastic modes on its mounting (SI inside).
+
+The modes are those of the ring on the mounting asked (``MOUNTINGS``; the crack study
+passes its elastic ring's: by default a Winkler foundation on the support arcs sized to the
+design's lumped c_r and c_ru), the ring's rigid motions on that mounting left out: the
+pictures show the ring's own modes, as the report's elastic ring section counts them.
 
 The load is the operating one: each of the three planets pushes on its ring
 tooth with the mesh force of the design's sun torque (``hubvib.design``); planet 1
@@ -14,9 +19,9 @@ from pathlib import Path
 
 import numpy as np
 
-from hubvib.reducer.stages import material, mesh_force, ring_gear
-from hubvib.fem.elasticity import plane_model, solve
-from hubvib.fem.modal import lowest_modes
+from hubvib.reducer.stages import lumped_parameters, material, mesh_force, ring_gear
+from hubvib.fem.elasticity import solve
+from hubvib.fem.ring_body import MOUNTINGS, Foundation, ring_body
 from hubvib.fem.ring_stiffness import mesh_force_load, planet_teeth
 from hubvib.fem.stress import von_mises
 from hubvib.meshing.ring_mesh import MeshOptions, ring_mesh
@@ -40,14 +45,75 @@ class RingFields:
     crack_tip: np.ndarray | None  # (2,) [m]
     ring_torque: float        # [N m]
     label: str
+    mounting: str = "clamped"  # what the modes are computed on: one of ``MOUNTINGS``
+    mounting_words: str = "clamped on its supports"
+    mode_diameters: tuple = ()  # each mode's dominant nodal diameters on the mid-rim circle
 
 
-def ring_fields(design, crack=None, options=None, modes: int = MODES) -> RingFields:
-    """Solve the design's ring under its planet mesh forces (at the design's sun torque)
-    and for its lowest ``modes``."""
+def mounting_words(mounting: str, foundation: Foundation | None) -> str:
+    """The mounting in words, for pictures and captions."""
+    if mounting == "foundation":
+        return (f"on a Winkler foundation over its support arcs (k_n {foundation.k_n:.3g}, "
+                f"k_t {foundation.k_t:.3g} N/m^2)")
+    return {"clamped": "clamped on its supports", "free": "free"}[mounting]
+
+
+def elastic_modes(body, count: int) -> tuple[np.ndarray, np.ndarray, tuple]:
+    """The ``count`` lowest elastic modes of a mounted ring (``fem.ring_body.RingBody``):
+    frequencies [Hz], shapes on the body's free DOFs (M-normalised, largest entry positive)
+    and dominant nodal diameters; the ring's rigid motions on its mounting (a rigid
+    rotation or translation on the mid-rim circle) are left out."""
+    import scipy.sparse.linalg as spla
+
+    from hubvib.elastic.content import diameter_content, is_elastic_ring_shape
+    from hubvib.fem.ring_basis import FREE_SHIFT
+    from hubvib.fem.solvers import factorise, pick
+    from hubvib.foundation.blas import blas_threads
+
+    sigma = FREE_SHIFT if body.mounting == "free" else 0.0
+    A = (body.K - sigma * body.M).tocsr() if sigma else body.K
+    method = pick("auto", body.ndofs, 2)
+    factor = factorise(A, "superlu" if method == "amg" else method)
+    try:
+        inverse = spla.LinearOperator(A.shape, matvec=factor.solve, dtype=float)
+        k = min(count + 6, body.ndofs - 2)
+        v0 = np.ones(body.ndofs) / np.sqrt(body.ndofs)
+        with blas_threads(1):
+            values, vectors = spla.eigsh(body.K, k=k, M=body.M, sigma=sigma, which="LM",
+                                         v0=v0, OPinv=inverse)
+    finally:
+        factor.free()
+    order = np.argsort(values)
+    values, vectors = values[order], vectors[:, order]
+    probe = np.asarray(body.probe @ vectors)
+    keep = [j for j in range(values.size) if is_elastic_ring_shape(probe[:, j])][:count]
+    shapes = vectors[:, keep]
+    shapes = shapes / np.sqrt(np.einsum("ij,ij->j", shapes, body.M @ shapes))
+    signs = np.sign(shapes[np.abs(shapes).argmax(axis=0), np.arange(shapes.shape[1])])
+    shapes = shapes * np.where(signs == 0, 1.0, signs)
+    diameters = tuple(int(np.argmax(diameter_content(probe[:, j]))) for j in keep)
+    hz = np.sqrt(np.clip(values[keep], 0.0, None)) / (2 * math.pi)
+    return hz, shapes, diameters
+
+
+def ring_fields(design, crack=None, options=None, modes: int = MODES,
+                mounting: str = "clamped", foundation: tuple | None = None) -> RingFields:
+    """Solve the design's ring under its planet mesh forces (at the design's sun torque, on
+    its held supports) and for its lowest ``modes`` elastic modes on ``mounting`` (one of
+    ``MOUNTINGS``); ``foundation``: (k_n, k_t) [N/m^2] of a ``"foundation"`` mounting, None:
+    sized so that its rigid-ring totals are the design's lumped c_r and c_ru."""
+    if mounting not in MOUNTINGS:
+        raise ValueError(f"mounting = {mounting!r}; allowed: {', '.join(MOUNTINGS)}")
     ring = ring_gear(design)
     mesh = ring_mesh(ring, crack, options or MeshOptions())
-    model = plane_model(mesh, material(design), thickness=ring.gear.face_width)
+    sized_to = None
+    if mounting == "foundation" and foundation is None:
+        params = lumped_parameters(design)
+        sized_to = (params.c_r, params.c_ru)
+    body = ring_body(ring, mesh, material(design), mounting,
+                     None if foundation is None else Foundation(*foundation),
+                     sized_to=sized_to)
+    model = body.model
     force = mesh_force(design)
     tooth = 0 if crack is None else crack.tooth
     teeth = planet_teeth(ring, tooth, design.n_planets)
@@ -62,7 +128,8 @@ def ring_fields(design, crack=None, options=None, modes: int = MODES) -> RingFie
     def at_corners(vector):
         return np.column_stack([vector[dofs[0]], vector[dofs[1]]])
 
-    vibration = lowest_modes(model, modes, ["supports"])
+    hz, shapes, diameters = elastic_modes(body, modes)
+    full = body.expand @ shapes
     tip = None
     if crack is not None and len(mesh.points_of.get("crack_tip", [])):
         tip = mesh.points[mesh.points_of["crack_tip"]].reshape(-1, 2).mean(axis=0)
@@ -70,8 +137,9 @@ def ring_fields(design, crack=None, options=None, modes: int = MODES) -> RingFie
     what = "intact" if crack is None else (f"{crack.start} crack {1e3 * crack.depth:.3g} mm "
                                            f"at tooth {crack.tooth}")
     return RingFields(fe.p[:, corners].T, index[fe.t.T], at_corners(u), stress[corners],
-                      np.array([at_corners(s) for s in vibration.shapes.T]), vibration.hertz,
-                      tip, torque, f"{design.name} ring, {what}")
+                      np.array([at_corners(s) for s in full.T]), hz, tip, torque,
+                      f"{design.name} ring, {what}", mounting,
+                      mounting_words(mounting, body.foundation), diameters)
 
 
 def _grid(fields: RingFields, displacement: np.ndarray, scale: float, scalars: dict):
@@ -116,10 +184,15 @@ def _readable_bars(plotter) -> None:
             text.SetBackgroundOpacity(1.0)
 
 
-def _label(plotter, text: str) -> None:
+#: the pictures' title size (pyvista font size at the 900 px window)
+LABEL_FONT = 12
+
+
+def _label(plotter, text: str, font_size: int = LABEL_FONT) -> None:
     """Black text on a white, mostly opaque box in the upper left: readable on any colour
     of the mesh under it (the crack-tip close-up's title was black on dark navy)."""
-    actor = plotter.add_text(text, position="upper_left", font_size=10, color="black")
+    actor = plotter.add_text(text, position="upper_left", font_size=font_size,
+                             color="black")
     prop = actor.GetTextProperty()
     prop.SetBackgroundColor(1.0, 1.0, 1.0)
     prop.SetBackgroundOpacity(0.85)
@@ -159,6 +232,11 @@ def _picture(plotter, path: Path, draw, centre=None) -> Path:
         save_picture(plotter, tmp)
 
     return write_atomically(path, write)
+
+
+def mode_file(k: int, mounting: str) -> str:
+    """The file name of FE ring mode ``k`` (0-based) computed on ``mounting``."""
+    return f"fe_ring_mode_{k + 1:02d}_{mounting}.png"
 
 
 def render_fe(fields: RingFields, folder: Path, vtu: bool = False) -> list[Path]:
@@ -202,12 +280,14 @@ def render_fe(fields: RingFields, folder: Path, vtu: bool = False) -> list[Path]
                 plotter.add_mesh(outline, color="#bbbbbb", line_width=1)
                 plotter.add_mesh(grid, scalars="displacement (normalised)", cmap="viridis",
                                  scalar_bar_args=_BAR | {"title": "displacement / largest"})
-                _label(plotter, f"{fields.label}\nFE mode {k + 1} on clamped supports: "
-                       f"{hz:.1f} Hz\ncolour: displacement / largest; grey: undeformed "
-                       f"outline; largest displacement drawn as {100 * MAGNIFIED:g} % of the "
-                       "outer radius")
+                n = (f" (n = {fields.mode_diameters[k]})"
+                     if k < len(fields.mode_diameters) else "")
+                _label(plotter, f"{fields.label}\nFE ring mode {k + 1}{n}: {hz:.1f} Hz,\n"
+                       f"{fields.mounting_words}\ncolour: displacement / largest; grey: "
+                       f"undeformed outline;\nlargest displacement drawn as "
+                       f"{100 * MAGNIFIED:g} % of the outer radius")
 
-            files.append(_picture(plotter, folder / f"fe_ring_mode_{k + 1:02d}.png", mode))
+            files.append(_picture(plotter, folder / mode_file(k, fields.mounting), mode))
     if vtu:
         data = {"displacement [m]": np.column_stack([fields.displacement,
                                                       np.zeros(len(fields.points))]),

@@ -1,4 +1,6 @@
-"""Off-screen pyvista renders of lumped mode shapes: gear-like bodies moved by the mode.
+"""Off-screen renders of lumped mode shapes: gear-like bodies moved by the mode (the PNG
+drawn by ``mode_figure`` with arrows for the motion; the GIF animation and the VTM by
+pyvista).
 
 Sun, planets and ring are drawn as toothed plates of their base diameters, the
 carrier as arms to the planet centres.  Each body is translated by its (x, y)
@@ -19,7 +21,9 @@ import numpy as np
 
 from hubvib.foundation.output import atomic_path
 
-AMPLITUDE = 0.08
+from .lumped_geometry import AMPLITUDE, COLOURS, motion as _motion
+from .lumped_geometry import toothed_outline as _toothed_outline
+
 TOOTH_PITCH = 10.2e-3   # [m] arc between drawn teeth (module 3.25 mm: pi m)
 THICKNESS = 0.02        # [m] plate thickness, for shading only
 SIZE = (900, 900)       # [px]
@@ -29,16 +33,6 @@ PNG_COMPRESSION = 3
 #: what the colours, the grey outline and the scale of a mode render mean (in the picture)
 LEGEND = (f"sun orange, planets green, ring purple, carrier grey; grey outline: at rest; "
           f"largest displacement drawn as {100 * AMPLITUDE:g} % of the ring radius")
-
-
-def _toothed_outline(radius: float, teeth: int, depth: float) -> np.ndarray:
-    """Closed polygon (n, 2) of a plate with ``teeth`` trapezoid teeth; outward if depth > 0."""
-    per = 8
-    phi = np.linspace(0, 2 * math.pi, teeth * per, endpoint=False)
-    phase = (phi * teeth / (2 * math.pi)) % 1.0
-    profile = np.clip(np.abs(phase - 0.5) * 4 - 0.5, 0, 1)  # trapezoid wave
-    r = radius + depth * (0.5 - profile)
-    return np.column_stack([r * np.cos(phi), r * np.sin(phi)])
 
 
 def _plate(outline: np.ndarray, hole: float):
@@ -91,25 +85,6 @@ def _carrier(centres: list[np.ndarray], width: float):
     return arms[0].merge(arms[1:]) if len(arms) > 1 else arms[0]
 
 
-def _motion(params, shape: np.ndarray, member: str, r_c: float):
-    """(dx, dy, angle) of a member for the mode ``shape`` (network coordinate order)."""
-    if member == "sun":
-        return shape[0], shape[1], shape[6] / (params.d_s / 2)
-    if member == "ring":
-        return shape[4], shape[5], shape[8] / (params.d_r / 2)
-    if member == "carrier":
-        return shape[2], shape[3], shape[7] / r_c
-    i = int(member.split()[1]) - 1
-    theta = params.theta[i]
-    tau, eta, u = shape[9 + 3 * i: 12 + 3 * i]
-    tangent = np.array([-math.sin(theta), math.cos(theta)])
-    radial = np.array([math.cos(theta), math.sin(theta)])
-    carrier_turn = shape[7] / r_c
-    carried = np.array([shape[2], shape[3]]) + carrier_turn * r_c * tangent
-    dx, dy = carried + tau * tangent + eta * radial
-    return dx, dy, u / (params.d_p / 2)
-
-
 def deformed_bodies(params, shape: np.ndarray, phase: float = 1.0) -> dict:
     """Each member's mesh moved by ``phase`` times the scaled mode ``shape``."""
     bodies, r_c = _bodies(params)
@@ -129,7 +104,6 @@ def deformed_bodies(params, shape: np.ndarray, phase: float = 1.0) -> dict:
     return moved
 
 
-COLOURS = {"sun": "#d95f02", "ring": "#7570b3", "carrier": "#666666"}
 
 
 def offscreen_plotter():
@@ -200,28 +174,24 @@ def write_atomically(path: Path, write) -> Path:
 
 
 def render_mode(params, spectrum, index: int, folder: Path, gif: bool = False,
-                vtm: bool = False, plotter=None) -> list[Path]:
+                vtm: bool = False) -> list[Path]:
     """PNG (and GIF, VTM) of mode ``index`` (0-based) of ``spectrum``; returns the files.
-    ``plotter``: an ``offscreen_plotter`` to draw the PNG on (None: a new one)."""
-    import pyvista as pv
+    The PNG is ``mode_figure``'s (bodies at rest and moved, motion as arrows); the GIF
+    animates the pyvista bodies; the VTM holds them moved by the mode."""
+    from .mode_figure import save_mode_figure
 
     folder = Path(folder)
     shape = spectrum.shapes[:, index]
     omega = spectrum.omega[index]
-    label = (f"mode {index + 1}: {omega / (2 * math.pi):.2f} Hz ({omega:.1f} rad/s), "
-             f"{spectrum.kind[index]}\n{LEGEND}")
-    reference = deformed_bodies(params, shape, 0.0)
+    title = (f"mode {index + 1}: {omega / (2 * math.pi):.2f} Hz ({omega:.1f} rad/s), "
+             f"{spectrum.kind[index]}")
     stem = f"mode_{index + 1:02d}"
-    files = []
-
-    def png(tmp):
-        with plotter_for(plotter) as drawing:
-            clear_picture(drawing)
-            _draw(drawing, deformed_bodies(params, shape), reference, label)
-            save_picture(drawing, tmp)
-
-    files.append(write_atomically(folder / f"{stem}.png", png))
+    files = [write_atomically(folder / f"{stem}.png",
+                              lambda tmp: save_mode_figure(params, shape, title, tmp))]
     if gif:
+        reference = deformed_bodies(params, shape, 0.0)
+        label = f"{title}\n{LEGEND}"
+
         def animation(tmp):
             with plotter_for() as animated:
                 animated.open_gif(str(tmp), fps=12)
@@ -233,6 +203,8 @@ def render_mode(params, spectrum, index: int, folder: Path, gif: bool = False,
 
         files.append(write_atomically(folder / f"{stem}.gif", animation))
     if vtm:
+        import pyvista as pv
+
         blocks = pv.MultiBlock(deformed_bodies(params, shape))
         stem_path = folder / f"{stem}.vtm"
         blocks.save(str(stem_path))  # a .vtm plus a folder of pieces; written last, then listed
@@ -242,10 +214,9 @@ def render_mode(params, spectrum, index: int, folder: Path, gif: bool = False,
 
 def render_modes(params, spectrum, folder: Path, gif: bool = False, vtm: bool = False
                  ) -> list[Path]:
-    """Every elastic mode of ``spectrum`` on one plotter: see ``render_mode``."""
+    """Every elastic mode of ``spectrum``: see ``render_mode``."""
     files = []
-    with plotter_for() as plotter:
-        for index in range(spectrum.omega.size):
-            if spectrum.kind[index] != "rigid-body":
-                files += render_mode(params, spectrum, index, folder, gif, vtm, plotter)
+    for index in range(spectrum.omega.size):
+        if spectrum.kind[index] != "rigid-body":
+            files += render_mode(params, spectrum, index, folder, gif, vtm)
     return files

@@ -1,15 +1,27 @@
-"""The crack study's PNG figures, each from the result cache when drawn before."""
+"""The crack study's PNG figures, each from the result cache when drawn before, and the
+pictures of the elastic ring's watched coupled modes (from the render cache)."""
 from __future__ import annotations
 
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["crack_plots", "pod_modes"]
+__all__ = ["both_models_arguments", "crack_plots", "elastic_mode_label", "pod_modes"]
+
+#: the rigid ring's modes drawn beside the elastic ring's when no detection study watched
+#: any (the modes that move most)
+RIGID_SHOWN = 4
 
 
 def crack_plots(scene, result, study, folder: Path) -> list[Path]:
-    """The study's PNG figures (each from the result cache when drawn before)."""
+    """The study's PNG figures (each from the result cache when drawn before); with the
+    elastic ring, its figures and (``scene.renders``) its watched modes' pictures.
+
+    The elastic figures read two optional attributes of ``result.elastic`` when present:
+    ``averaged_hz`` (depths, modes) [Hz], the record-averaged frequency of every mode
+    (its line in ``elastic_states.png``), and ``crack_states``, one ``(carrier_tooth,
+    open_length_m)`` pair of arrays per depth of ``result.elastic.depths`` (None for the
+    intact ring; ``crack_state.png``)."""
     from hubvib.detection import plots as figures
     from hubvib.detection.crack_detection import cached_plot
 
@@ -27,11 +39,83 @@ def crack_plots(scene, result, study, folder: Path) -> list[Path]:
                         pod_modes(study)),
             cached_plot(folder / "carrier_position.png", figures.carrier_figure, name,
                         study.carrier, result.kind)]
+    if result.elastic is not None:
+        plots += _elastic_plots(scene, result, study, folder)
     if result.elastic_map is not None:
         from hubvib.reports.elastic_map_sections import map_figure
 
         plots.append(cached_plot(folder / "elastic_map.png", map_figure, name,
                                  result.elastic_map))
+    return plots
+
+
+def elastic_mode_label(elastic, i: int) -> str:
+    """A watched elastic mode in a legend: number, intact frequency, class, diameters."""
+    return (f"mode {i + 1}: {elastic.intact_hz[i]:.1f} Hz {elastic.kind[i]}, "
+            f"n = {elastic.nodal_diameter[i]}")
+
+
+def both_models_arguments(name: str, result, study) -> tuple:
+    """The arguments of ``render.elastic_figures.both_models_figure``: the rigid ring's
+    watched modes (record-averaged change of the detection study; without one the
+    instantaneous change of the modes that move most) and the elastic ring's."""
+    from hubvib.detection.mode_names import mode_names
+
+    if study is not None:
+        pod = study.pod
+        rigid = [int(i) for i in study.watched_modes()]
+        f0 = pod.nominal.frequency_hz[0]
+        names = mode_names(f0)
+        rigid_change = pod.nominal.shift_hz[:, rigid]
+        rigid_depths = np.asarray(pod.depths, dtype=float)
+        rigid_labels = [f"{names[i]}: {f0[i]:.1f} Hz {pod.kind[i]}" for i in rigid]
+    else:
+        hz = np.asarray(result.omega, dtype=float) / (2 * np.pi)
+        change = hz - hz[0]
+        rigid = [int(i) for i in np.argsort(-np.abs(change[-1]), kind="stable")[:RIGID_SHOWN]]
+        names = mode_names(hz[0])
+        rigid_change = change[:, rigid]
+        rigid_depths = np.asarray(result.depths, dtype=float)
+        rigid_labels = [f"{names[i]}: {hz[0, i]:.1f} Hz {result.kind[i]} (instantaneous)"
+                        for i in rigid]
+    elastic = result.elastic
+    watched = list(elastic.watched)
+    return (name, rigid_depths, rigid_change, rigid_labels,
+            np.asarray(elastic.depths, dtype=float), elastic.shift_hz[:, watched],
+            [elastic_mode_label(elastic, i) for i in watched])
+
+
+def _elastic_plots(scene, result, study, folder: Path) -> list[Path]:
+    from hubvib.detection.crack_detection import cached_plot
+    from hubvib.render import elastic_figures as figures
+
+    name, elastic = scene.name, result.elastic
+    watched = list(elastic.watched)
+    plots = [cached_plot(folder / "frequency_both_models.png", figures.both_models_figure,
+                         *both_models_arguments(name, result, study))]
+    if watched:
+        averaged = getattr(elastic, "averaged_hz", None)
+        plots.append(cached_plot(
+            folder / "elastic_states.png", figures.crack_states_figure, name,
+            np.asarray(elastic.depths, dtype=float), elastic.intact_hz[watched],
+            elastic.open_hz[:, watched], [elastic_mode_label(elastic, i) for i in watched],
+            None if averaged is None else np.asarray(averaged)[:, watched]))
+    states = getattr(elastic, "crack_states", None)
+    if states is not None:
+        shown = [(d, s) for d, s in zip(elastic.depths, states) if s is not None]
+        if shown:
+            from hubvib.reducer.stages import ring_gear
+
+            plots.append(cached_plot(
+                folder / "crack_state.png", figures.open_length_figure, name,
+                np.array([d for d, _ in shown]), [s for _, s in shown],
+                ring_gear(scene.crack.reducer).teeth))
+    if scene.renders and watched:
+        from hubvib.render.schedule import render_elastic_modes
+
+        plots += render_elastic_modes(scene.crack.reducer, scene.elastic, watched,
+                                      elastic.intact_hz[watched], elastic.k_rest, folder,
+                                      scene.crack.tooth)
     return plots
 
 
@@ -43,5 +127,3 @@ def pod_modes(study) -> list[int]:
     reaching = np.flatnonzero((pod.pod >= pod.detection_probability).any(axis=0))
     modes = list(study.watched_modes())
     return (modes + [int(i) for i in reaching if i not in modes])[:4]
-
-

@@ -1,6 +1,8 @@
 """Off-screen renders of lumped and FE mode shapes and of the loaded FE ring: real images,
 distinct per mode, repeatable."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -21,12 +23,9 @@ def _image(path):
 
 @pytest.mark.slow
 def test_mode_renders_are_real_distinct_and_repeatable(tmp_path):
-    from hubvib.render.modes import plotter_for
-
-    first = render_mode(PARAMS, SPECTRUM, 0, tmp_path / "a")[0]  # on a plotter of its own
-    with plotter_for() as plotter:  # one plotter for both, as render_modes draws them
-        other = render_mode(PARAMS, SPECTRUM, 4, tmp_path / "a", plotter=plotter)[0]
-        again = render_mode(PARAMS, SPECTRUM, 0, tmp_path / "b", plotter=plotter)[0]
+    first = render_mode(PARAMS, SPECTRUM, 0, tmp_path / "a")[0]
+    other = render_mode(PARAMS, SPECTRUM, 4, tmp_path / "a")[0]
+    again = render_mode(PARAMS, SPECTRUM, 0, tmp_path / "b")[0]
     a, b, c = _image(first), _image(again), _image(other)
     assert a.shape[:2] == (900, 900)
     assert a.std() > 20  # not blank: bodies on a white background
@@ -72,8 +71,8 @@ def test_fe_renders_are_real_distinct_and_repeatable(tmp_path, cracked_ring_fiel
     fields = cracked_ring_fields
     files = render_fe(fields, tmp_path / "a", vtu=True)
     assert [f.name for f in files] == ["fe_ring_loaded.png", "fe_crack_tip.png",
-                                       "fe_ring_mode_01.png", "fe_ring_mode_02.png",
-                                       "fe_ring.vtu"]
+                                       "fe_ring_mode_01_clamped.png",
+                                       "fe_ring_mode_02_clamped.png", "fe_ring.vtu"]
     loaded, tip, mode1, mode2 = (_image(f) for f in files[:4])
     for image in (loaded, tip, mode1, mode2):
         assert image.shape[:2] == (900, 900) and image.std() > 20
@@ -157,8 +156,105 @@ def test_fe_colour_bar_text_is_readable_and_clear_of_the_ticks(tmp_path, cracked
     monkeypatch.setattr(fe_render, "save_picture", checked)
     files = fe_render.render_fe(fields, tmp_path)
     assert [f.name for f in files] == ["fe_ring_loaded.png", "fe_crack_tip.png",
-                                       "fe_ring_mode_01.png"]
+                                       "fe_ring_mode_01_clamped.png"]
     assert [len(found) for found in bars] == [1, 1, 1], "one colour bar per picture"
     wrong = [f"{path.name}: {problem}" for path, found in zip(files, bars)
              for problem in unreadable_bar_text(found) + bar_title_over_labels(found)]
     assert not wrong, "\n".join(wrong)
+
+
+@pytest.mark.slow
+def test_fe_ring_modes_on_the_foundation_are_the_elastic_rings(tmp_path, monkeypatch):
+    """On the report's mounting (a foundation sized to the preset's c_r, c_ru) the FE ring's
+    pictured modes are its own lowest: the n = 2 pair and the n = 3 pair the pads split,
+    as docs/elastic_ring.md measured them (1232.4, 2685.9 / 2874.3 Hz on the default mesh;
+    a coarser mesh here, 1 %); clamped, its first is 8051.6 Hz (1 %).  Each picture has
+    one colour bar and its file names the mounting, which its caption reads back."""
+    pytest.importorskip("gmsh")
+    pytest.importorskip("skfem")
+    import hubvib.render.fe as fe_render
+    from hubvib.meshing.levels import scaled_options
+    from hubvib.reducer import raba118
+    from hubvib.render.captions import caption
+
+    on = fe_render.ring_fields(raba118.design(), None, scaled_options(4.0), modes=4,
+                               mounting="foundation")
+    np.testing.assert_allclose(on.mode_hz, [1232.4, 1232.4, 2685.9, 2874.3], rtol=0.01,
+                               err_msg="vs docs/elastic_ring.md, ring on the mounting")
+    assert on.mode_diameters == (2, 2, 3, 3)
+    assert "Winkler foundation" in on.mounting_words
+    clamped = fe_render.ring_fields(raba118.design(), None, scaled_options(4.0), modes=1)
+    assert clamped.mode_hz[0] == pytest.approx(8051.6, rel=0.01), \
+        "first ring mode clamped on the six pads, docs/elastic_ring.md"
+    bars = []
+    save = fe_render.save_picture
+
+    def counted(plotter, path):
+        bars.append([b.GetTitle() for b in plotter.scalar_bars.values()])
+        save(plotter, path)
+
+    monkeypatch.setattr(fe_render, "save_picture", counted)
+    files = fe_render.render_fe(replace(on, mode_shapes=on.mode_shapes[:1],
+                                        mode_hz=on.mode_hz[:1]), tmp_path)
+    assert [f.name for f in files] == ["fe_ring_loaded.png", "fe_ring_mode_01_foundation.png"]
+    assert bars[1] == ["displacement / largest"]
+    assert "Winkler foundation" in caption(files[1].name)
+    assert "clamped" in caption("fe_ring_mode_01_clamped.png")
+
+
+def _text_of(actor) -> str:
+    """The text a pyvista text actor shows (a corner annotation's four corners, or a text
+    actor's input); empty for other actors."""
+    if hasattr(actor, "GetInput") and isinstance(actor.GetInput(), str):
+        return actor.GetInput()
+    if actor.IsA("vtkCornerAnnotation"):
+        return "\n".join(actor.GetText(i) or "" for i in range(4))
+    return ""
+
+
+@pytest.mark.slow
+def test_watched_coupled_modes_have_a_colour_bar_and_a_caption_naming_them(tmp_path,
+                                                                           monkeypatch):
+    """The elastic ring's watched modes: one picture each with one colour bar (0..1 of the
+    ring's largest displacement), the title naming class, nodal diameters, frequency and
+    mounting, and a file name the caption reads back to the same facts."""
+    pytest.importorskip("gmsh")
+    import hubvib.render.coupled as coupled
+    from hubvib.design import preset_design
+    from hubvib.elastic.model import elastic_ring, elastic_spectrum
+    from hubvib.elastic.options import ElasticOptions, study_mesh
+    from hubvib.render.captions import caption
+
+    er = elastic_ring(preset_design("hub4"),
+                      options=ElasticOptions(mesh=study_mesh(), rest="beam", band_hz=3e3))
+    spectrum = elastic_spectrum(er)
+    ring = max(range(spectrum.frequency_hz.size),
+               key=lambda j: spectrum.content[j].ring_share)
+    watched = [ring, 0]
+    seen = []
+    save = coupled.save_picture
+
+    def checked(plotter, path):
+        bars = list(plotter.scalar_bars.values())
+        texts = [_text_of(a) for a in plotter.renderer.actors.values()]
+        seen.append(([b.GetTitle() for b in bars],
+                     [tuple(b.GetLookupTable().GetRange()) for b in bars], texts))
+        save(plotter, path)
+
+    monkeypatch.setattr(coupled, "save_picture", checked)
+    files = coupled.render_watched_modes(er, spectrum, watched, tmp_path)
+    assert len(files) == 2 and all(f.suffix == ".png" for f in files)
+    for rank, (j, path, (titles, ranges, texts)) in enumerate(zip(watched, files, seen)):
+        content = spectrum.content[j]
+        assert titles == [coupled.BAR_TITLE] and ranges == [(0.0, 1.0)]
+        title = "\n".join(texts)
+        for fact in (f"{spectrum.frequency_hz[j]:.1f} Hz", content.kind,
+                     f"n = {content.nodal_diameter}", "Winkler foundation"):
+            assert fact in title, f"{fact!r} missing from the picture's title {title!r}"
+        words = caption(path.name)
+        assert path.name.startswith(f"elastic_mode_{rank + 1:02d}_{content.kind}_")
+        for fact in (f"{content.kind} mode at {spectrum.frequency_hz[j]:.0f} Hz",
+                     f"n = {content.nodal_diameter}", "Winkler foundation"):
+            assert fact in words, f"{fact!r} missing from the caption {words!r}"
+        image = _image(path)
+        assert image.std() > 20

@@ -111,7 +111,17 @@ def test_shift_vs_depth_draws_the_threshold_its_caption_describes():
     fig = shift_threshold_figure("test", _pod(depths, shift, [3, 4], thresholds))
     assert_readable(fig)
     assert shared_colours(series(fig)) == []
-    legend = fig.axes[0].get_legend()
+    (legend,) = fig.legends  # below the panel
+    ax = fig.axes[0]
+    box, panel = legend.get_window_extent(), ax.get_window_extent()
+    assert box.y1 <= panel.y0, "the legend lies below the panel, off the data"
+    assert box.width <= fig.get_window_extent().width, "the legend within the figure"
+    # the log axis spans the data and the thresholds with a margin: no tick label sits on
+    # the panel's top edge, under the title
+    low, high = ax.get_ylim()
+    drops = -shift[1:][shift[1:] < 0]
+    assert low < drops.min() / 2 and high > thresholds[[3, 4]].max() * 2
+    assert high < 100 * thresholds.max() and low > drops.min() / 10, "sized to the data"
     (entry,) = [(handle, text.get_text()) for handle, text in
                 zip(legend.legend_handles, legend.get_texts()) if "alarm" in text.get_text()]
     handle, _ = entry

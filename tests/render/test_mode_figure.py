@@ -1,0 +1,93 @@
+"""The lumped mode picture: arrows for the motion (straight from each moving body's centre
+along its translation, curved around it for its turn), text of at least 12 pt at the saved
+size, the bodies at rest as dashed outlines."""
+import math
+
+import numpy as np
+import pytest
+
+pytest.importorskip("matplotlib")
+
+from hubvib.lumped import natural_modes  # noqa: E402
+from hubvib.reducer import lumped_preset  # noqa: E402
+from hubvib.render.mode_figure import (ARROW, DPI, SIZE_IN, SMALLEST, TEXT_PT,  # noqa: E402
+                                       mode_figure, save_mode_figure)
+from hubvib.render.lumped_geometry import motion as _motion  # noqa: E402
+
+PARAMS = lumped_preset("raba118")
+SPECTRUM = natural_modes(PARAMS)
+
+
+def _arrows(fig):
+    from matplotlib.patches import FancyArrowPatch
+
+    return [p for p in fig.axes[0].patches if isinstance(p, FancyArrowPatch)]
+
+
+def _first(kind: str) -> int:
+    return next(i for i, k in enumerate(SPECTRUM.kind) if k == kind)
+
+
+def _motions(index):
+    r_c = PARAMS.d_s / 2 + PARAMS.d_p / 2
+    names = ["sun", "ring", "carrier"] + [f"planet {i + 1}" for i in range(PARAMS.n_planets)]
+    return {n: _motion(PARAMS, SPECTRUM.shapes[:, index], n, r_c) for n in names}, r_c
+
+
+@pytest.mark.parametrize("kind", ["rotational", "translational"])
+def test_every_moving_body_gets_its_arrows(kind):
+    """Count the arrows from the mode itself: one straight arrow per body translating by
+    at least SMALLEST of the largest motion, one curved per body turning so; a straight
+    arrow points along its body's translation."""
+    index = _first(kind)
+    fig = mode_figure(PARAMS, SPECTRUM.shapes[:, index], "t")
+    motions, r_c = _motions(index)
+    radius = {"sun": PARAMS.d_s / 2, "ring": PARAMS.d_r / 2, "carrier": r_c}
+    sizes = {n: (math.hypot(dx, dy), abs(a) * radius.get(n, PARAMS.d_p / 2))
+             for n, (dx, dy, a) in motions.items()}
+    largest = max(max(v) for v in sizes.values())
+    straight = sum(t >= SMALLEST * largest for t, _ in sizes.values())
+    curved = sum(r >= SMALLEST * largest for _, r in sizes.values())
+    arrows = _arrows(fig)
+    shapes = [len(a.get_path().vertices) for a in arrows]
+    assert len(arrows) == straight + curved and straight + curved > 0
+    assert sum(n > 6 for n in shapes) >= curved, "a curved arrow per turning body"
+    gids = {a.get_gid() for a in arrows}
+    assert gids == ({f"translation {n}" for n, (t, _) in sizes.items() if t >= SMALLEST * largest}
+                    | {f"turn {n}" for n, (_, r) in sizes.items() if r >= SMALLEST * largest})
+    if kind == "rotational":
+        assert curved >= 3, "sun, carrier and ring turn in a rotational mode"
+    else:
+        dx, dy, _ = motions["sun"]
+        (sun,) = [a for a in arrows if a.get_gid() == "translation sun"]
+        start, tip = np.asarray(sun._posA_posB)  # matplotlib keeps the two ends there
+        expected = ARROW * PARAMS.d_r / 2 / largest * np.array([dx, dy])
+        np.testing.assert_allclose(start, 0.0, atol=1e-15)
+        np.testing.assert_allclose(tip, expected, rtol=1e-9,
+                                   err_msg="the sun's arrow is its translation at the "
+                                   "arrow scale")
+
+
+def test_text_at_least_12_pt_and_one_dashed_outline_per_body(tmp_path):
+    from matplotlib.patches import PathPatch
+
+    index = _first("translational")
+    fig = mode_figure(PARAMS, SPECTRUM.shapes[:, index], "mode 4: 303.70 Hz, translational")
+    from tests.helpers.figure_checks import drawn_texts, overlapping_texts
+
+    texts = [t for t, _ in drawn_texts(fig)]  # every text the saved picture shows
+    assert len(texts) >= 8, "title, scales and the legend's entries"
+    small = [(t.get_text(), t.get_fontsize()) for t in texts if t.get_fontsize() < 12]
+    assert not small and TEXT_PT >= 12, f"text under 12 pt at the saved size: {small}"
+    assert overlapping_texts(fig) == []
+    outlines = [p for p in fig.axes[0].patches if isinstance(p, PathPatch)
+                and p.get_facecolor()[3] == 0 and p.get_linestyle() != "solid"]
+    assert len(outlines) == 3 + PARAMS.n_planets, "sun, ring, carrier and planets at rest"
+    out = tmp_path / "mode.png"
+    save_mode_figure(PARAMS, SPECTRUM.shapes[:, index], "mode 4", out)
+    import matplotlib.image
+
+    image = matplotlib.image.imread(out)
+    assert image.shape[:2] == (round(SIZE_IN * DPI),) * 2
+    dark = image[..., :3].max(axis=2) < 0.15
+    assert dark.mean() > 0.002, "black arrows drawn"
