@@ -51,8 +51,7 @@ def crack_plots(scene, result, study, folder: Path) -> list[Path]:
 
 def elastic_mode_label(elastic, i: int) -> str:
     """A watched elastic mode in a legend: number, intact frequency, class, diameters."""
-    return (f"mode {i + 1}: {elastic.intact_hz[i]:.1f} Hz {elastic.kind[i]}, "
-            f"n = {elastic.nodal_diameter[i]}")
+    return elastic.labels[i]
 
 
 def both_models_arguments(name: str, result, study) -> tuple:
@@ -98,7 +97,7 @@ def _elastic_plots(scene, result, study, folder: Path) -> list[Path]:
         plots.append(cached_plot(
             folder / "elastic_states.png", figures.crack_states_figure, name,
             np.asarray(elastic.depths, dtype=float), elastic.intact_hz[watched],
-            elastic.open_hz[:, watched], [elastic_mode_label(elastic, i) for i in watched],
+            elastic.frequency_hz[:, watched], [elastic_mode_label(elastic, i) for i in watched],
             None if averaged is None else np.asarray(averaged)[:, watched]))
     states = getattr(elastic, "crack_states", None)
     if states is not None:
@@ -114,7 +113,7 @@ def _elastic_plots(scene, result, study, folder: Path) -> list[Path]:
         from hubvib.render.schedule import render_elastic_modes
 
         plots += render_elastic_modes(scene.crack.reducer, scene.elastic, watched,
-                                      elastic.intact_hz[watched], elastic.k_rest, folder,
+                                      elastic.intact_hz[watched], elastic.detail.k_rest, folder,
                                       scene.crack.tooth)
     return plots
 
