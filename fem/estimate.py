@@ -110,6 +110,13 @@ def level_error(levels: tuple, ratios: tuple) -> ThreeLevelError:
     return three_level_error(*levels, r_fine=ratios[1], r_coarse=ratios[0])
 
 
+def _dict_of(estimate) -> dict:
+    """``estimate``'s fields under their ``RING_KEYS``, without the level fields it does
+    not store (empty)."""
+    return {RING_KEYS.get(k, k): v for k, v in asdict(estimate).items()
+            if not ((k.endswith("_levels") or k == "level_ratios") and v == ())}
+
+
 class _Levels:
     """The three-level error of a stored value: ``error_of(name)`` from ``name_levels``."""
 
@@ -202,8 +209,9 @@ class RingEstimate(_Levels):
     level_ratios: tuple = ()
 
     def to_dict(self) -> dict:
-        """Keys with units (``c_ru_N_m`` ...), as in the JSON output and the cache."""
-        return {RING_KEYS.get(k, k): v for k, v in asdict(self).items()}
+        """Keys with units (``c_ru_N_m`` ...), as in the JSON output and the cache (level
+        values only where stored)."""
+        return _dict_of(self)
 
     @classmethod
     def from_dict(cls, data: dict) -> RingEstimate:
@@ -397,8 +405,9 @@ class CrackCaseEstimate(_Levels):
     def to_dict(self) -> dict:
         """Keys with units, as ``RingEstimate.to_dict`` plus the ``c_rp_engaged_*`` ratios,
         the intact engaged c_rp (``c_rp_engaged_intact_N_m``, ``..._min_N_m``,
-        ``..._window_N_m``) and the root-land readings (``c_ru_root_land_N_m`` ...)."""
-        return {RING_KEYS.get(k, k): v for k, v in asdict(self).items()}
+        ``..._window_N_m``) and the root-land readings (``c_ru_root_land_N_m`` ...); level
+        values only where stored."""
+        return _dict_of(self)
 
     @classmethod
     def from_dict(cls, data: dict) -> CrackCaseEstimate:

@@ -14,7 +14,10 @@ cut couples only with its two neighbours), loads inside a piece enter condensed
 round-off (static condensation is exact).  The pieces that do not hold the crack (the
 plain pitch, held or free on its arc, and the pitches with a support end) are the same
 for every crack case of a ring and options: their condensations are kept between calls,
-so a crack case factorises the crack's block and the ring of cuts only.
+so a crack case factorises the crack's block and the ring of cuts only.  With a store
+(``set_condensation_store``, e.g. a result cache on disk) they are also shared between
+processes and runs: a kept condensation pickles without its factorisation, which is
+made again from ``K_ii`` when it is read back.
 
 ``substructured(pieces, model)`` returns a system with the interface of
 ``fem.elasticity.SupportedSystem`` (``solve``, ``release``, ``method``) for the model of
@@ -73,6 +76,10 @@ class Condensed:
         The piece model's node DOF table (``node_dof_table``).
     dofs : int
         DOFs of the piece model.
+    K_ii : scipy.sparse matrix
+        The interior stiffness [N/m] (a pickled condensation factorises it again).
+    method : str
+        The solver of ``factor``.
     """
 
     boundary: np.ndarray
@@ -83,9 +90,18 @@ class Condensed:
     factor: object
     table: np.ndarray
     dofs: int
+    K_ii: object = None
+    method: str = "superlu"
 
     def release(self) -> None:
         self.factor.free()
+
+    def __getstate__(self) -> dict:
+        return {k: v for k, v in self.__dict__.items() if k != "factor"}
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state)
+        self.factor = factorise(self.K_ii, self.method)
 
 
 def condense(mesh, cut_nodes, held_nodes, material: Material, thickness: float,
@@ -100,19 +116,39 @@ def condense(mesh, cut_nodes, held_nodes, material: Material, thickness: float,
     kind[boundary] = 1
     interior = np.flatnonzero(kind == 0)
     K = model.K.tocsr()
-    factor = factorise(submatrix(K, kind == 0), pick(solver, len(interior), 2))
+    K_ii = submatrix(K, kind == 0)
+    method = pick(solver, len(interior), 2)
+    factor = factorise(K_ii, method)
     K_bi = K[boundary][:, interior]
     X = factor.solve(K_bi.T.toarray())
     S = K[boundary][:, boundary].toarray() - K_bi @ X
     return Condensed(boundary, interior, (S + S.T) / 2, X, K_bi.tocsr(), factor, table,
-                     model.ndofs)
+                     model.ndofs, K_ii, method)
+
+
+#: where kept condensations come from beside this process's memory
+#: (``set_condensation_store``)
+_STORE = None
+
+
+def set_condensation_store(store) -> None:
+    """Let ``store(compute, inputs)`` give the intact pieces' condensations (None: compute
+    them here): it returns the ``Condensed`` that ``compute()`` returns for ``inputs``
+    (the piece's mesh, cut and held nodes, material, thickness and solver), e.g. from a
+    result cache on disk shared by processes and runs."""
+    global _STORE
+    _STORE = store
 
 
 @functools.lru_cache(maxsize=64)
 def _kept(mesh_key, mesh, cut_nodes: tuple, held_nodes: tuple, material: Material,
           thickness: float, solver: str) -> Condensed:
-    return condense(mesh, np.array(cut_nodes, dtype=np.int64),
-                    np.array(held_nodes, dtype=np.int64), material, thickness, solver)
+    def compute() -> Condensed:
+        return condense(mesh, np.array(cut_nodes, dtype=np.int64),
+                        np.array(held_nodes, dtype=np.int64), material, thickness, solver)
+    if _STORE is None:
+        return compute()
+    return _STORE(compute, (mesh, cut_nodes, held_nodes, material, thickness, solver))
 
 
 def piece_condensation(piece, material: Material, thickness: float,
