@@ -135,3 +135,27 @@ def test_published_figures_move_within_their_error_bars():
         assert change <= larger, (
             f"{where}: new - old {change:.3g} against the larger of the old bar "
             f"{row['old_error']:.3g} and the new bar {row['new_error']:.3g}")
+
+
+@pytest.mark.slow
+def test_crack_case_estimate_equals_the_whole_glued_ring_on_every_level():
+    """estimate_crack_case by substructures against the same glued meshes solved whole
+    (one factorisation of the whole ring per level): c_ru, c_r and the engaged c_rp ratio
+    on all three levels, hence their error bars, agree to 1e-9 (the intact tooth curves,
+    provided by the first run, are the same for both)."""
+    from hubvib.fem.estimate import estimate_crack_case
+
+    ring, planet = raba118.ring_gear(), gear_body(preset_design("raba118"), "planet")
+    crack = Crack(0, 0.012)
+
+    def glued_whole(ring, crack, options):
+        return ring_pieces(ring, crack, options).mesh
+
+    ours = estimate_crack_case(ring, planet, crack, 2.0, mesher=ring_pieces)
+    whole = estimate_crack_case(ring, planet, crack, 2.0, mesher=glued_whole)
+    for name in ("c_ru", "c_r", "c_rp_engaged_ratio", "c_ru_root_land", "c_r_root_land"):
+        np.testing.assert_allclose(getattr(ours, f"{name}_levels"),
+                                   getattr(whole, f"{name}_levels"), rtol=1e-9,
+                                   err_msg=f"{name} levels: pieces vs whole glued ring (1e-9)")
+        assert ours.error_of(name).error == pytest.approx(whole.error_of(name).error,
+                                                          rel=1e-6, abs=1e-12), name
