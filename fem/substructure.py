@@ -96,6 +96,23 @@ class Condensed:
     def release(self) -> None:
         self.factor.free()
 
+    @functools.cached_property
+    def interior_rows(self) -> np.ndarray:
+        """For each entry of ``table`` (raveled): its row among ``interior`` (-1: a cut or
+        held DOF)."""
+        rows = np.full(self.dofs, -1, dtype=np.int64)
+        rows[self.interior] = np.arange(len(self.interior))
+        return rows[self.table.ravel()]
+
+    @functools.cached_property
+    def table_rows(self) -> np.ndarray:
+        """For each entry of ``table`` (raveled): its row in ``[interior; boundary; 0]``
+        (the last row for a held DOF)."""
+        rows = np.full(self.dofs, len(self.interior) + len(self.boundary), dtype=np.int64)
+        rows[self.interior] = np.arange(len(self.interior))
+        rows[self.boundary] = len(self.interior) + np.arange(len(self.boundary))
+        return rows[self.table.ravel()]
+
     def __getstate__(self) -> dict:
         return {k: v for k, v in self.__dict__.items() if k != "factor"}
 
@@ -192,12 +209,18 @@ class SubstructuredSystem:
         m = columns.shape[1]
         u = np.zeros_like(columns)
         rhs = columns[self.interface].copy()
-        # interior loads of every part, solved together per condensation (one call each)
+        # interior loads of every loaded part, solved together per condensation (one call
+        # each); a part without loads has none inside (its interior follows from its cuts)
         groups: dict = {}
         for index, (piece, part, glued) in enumerate(self.parts):
-            local = np.zeros((part.dofs, m))
-            local[part.table.ravel()] = _turn(columns[glued], -piece.angle).reshape(-1, m)
-            groups.setdefault(id(part), (part, []))[1].append((index, local[part.interior]))
+            on_part = columns[glued]  # (nodes, 2, m)
+            if not on_part.any():
+                continue
+            turned = _turn(on_part, -piece.angle).reshape(-1, m)
+            rows = part.interior_rows
+            f_i = np.zeros((len(part.interior), m))
+            f_i[rows[rows >= 0]] = turned[rows >= 0]
+            groups.setdefault(id(part), (part, []))[1].append((index, f_i))
         inner = [None] * len(self.parts)
         for part, members in groups.values():
             stacked = np.hstack([f_i for _, f_i in members])
@@ -209,21 +232,26 @@ class SubstructuredSystem:
             for j, (index, _) in enumerate(members):
                 inner[index] = solved[:, j * m:(j + 1) * m]
         for (piece, part, glued), where, y in zip(self.parts, self.positions, inner):
+            if y is None:
+                continue
             condensed = -(part.coupling @ y)  # (boundary, m), piece frame
             turned = _turn(condensed.reshape(-1, 2, m), piece.angle).reshape(-1, m)
             keep = where >= 0
             np.add.at(rhs, where[keep], turned[keep])
         u_cut = self.factor.solve(rhs)
         u[self.interface] = u_cut
-        for (piece, part, glued), where, y in zip(self.parts, self.positions, inner):
-            u_b = np.zeros((len(where), m))
-            u_b[where >= 0] = u_cut[where[where >= 0]]
-            u_b = _turn(u_b.reshape(-1, 2, m), -piece.angle).reshape(-1, m)
-            local = np.zeros((part.dofs, m))
-            local[part.interior] = y - part.X @ u_b
-            local[part.boundary] = u_b
-            values = local[part.table].reshape(len(glued), 2, m)  # (nodes, 2, m)
-            u[glued.ravel()] = _turn(values, piece.angle).reshape(-1, m)
+        with blas_threads(1):  # many small products: threads only contend
+            for (piece, part, glued), where, y in zip(self.parts, self.positions, inner):
+                u_b = np.zeros((len(where), m))
+                u_b[where >= 0] = u_cut[where[where >= 0]]
+                u_b = _turn(u_b.reshape(-1, 2, m), -piece.angle).reshape(-1, m)
+                n_i = len(part.interior)
+                local = np.empty((n_i + len(part.boundary) + 1, m))  # interior, cuts, held 0
+                local[:n_i] = -(part.X @ u_b) if y is None else y - part.X @ u_b
+                local[n_i:-1] = u_b
+                local[-1] = 0.0
+                values = local[part.table_rows].reshape(len(glued), 2, m)  # (nodes, 2, m)
+                u[glued.ravel()] = _turn(values, piece.angle).reshape(-1, m)
         return Solution(u.reshape(f.shape), time.perf_counter() - started, self.method)
 
     def release(self) -> None:
