@@ -72,12 +72,12 @@ def case_inputs(sweep: CrackSweep, case) -> dict:
         depth, half_length = case
         return {"design": sweep.reducer.fingerprint(), "crack": asdict(crack_of(sweep, depth)),
                 "front": asdict(front_of(half_length)) if depth > 0 else None,
-                "levels": SOLID_LEVELS[-2:], "tooth_samples": SAMPLES, "half_width": True,
+                "levels": SOLID_LEVELS[-3:], "tooth_samples": SAMPLES, "half_width": True,
                 "quantities": "solid c_ru c_r pitch poor-half tooth-line-load half-width"}
-    return {"design": sweep.reducer.fingerprint(), "crack": asdict(crack_of(sweep, case)),
+    crack = crack_of(sweep, case)
+    return {"design": sweep.reducer.fingerprint(), "crack": asdict(crack),
             "scale": ACCURACY[sweep.accuracy], "levels": PLANE_LEVELS,
-            "ring": mesher_of(sweep, crack_of(sweep, case)).__name__,
-            "quantities": "c_ru c_r c_rp_engaged"}
+            "ring": mesher_of(sweep, crack).__name__, "quantities": "c_ru c_r c_rp_engaged"}
 
 
 def mesher_of(sweep: CrackSweep, crack):
@@ -99,7 +99,7 @@ def fe_case(sweep: CrackSweep, case) -> PlaneCase | SolidCase:
     (``fem.estimate.estimate_crack_case``), the ring glued from pieces and solved by
     substructures unless ``sweep.substructure`` is False (``mesher_of``).  Solid:
     c_ru over every carrier position of one planet pitch and c_r (the work-conjugate rim
-    parts, the root-land readings beside them) on the last two
+    parts, the root-land readings beside them) on the three
     ``SOLID_LEVELS``, and on the fine one again with its poorly shaped cells at half
     stiffness; every solid case is mirror-symmetric about the face width's mid-plane
     (crack centred, loads and supports uniform across the width), so half the width is
