@@ -20,6 +20,9 @@ ROWS = (
      "substructure_previous_seconds_plane"),
     ("substructure_max_rel_difference", "substructures against the whole ring (c_ru, c_r)", "",
      None),
+    ("elastic_case_seconds", "elastic-ring crack case (coupled spectra)", "s",
+     "elastic_case_baseline_seconds"),
+    ("ci_seconds", "the repository's .ci/run", "s", None),
     ("solid_seconds", "3D c_ru: model + loads + solve", "s", "solid_previous_seconds"),
     ("calculix_seconds", "3D c_ru by CalculiX 2.20, same mesh and loads", "s", None),
     ("calculix_speedup", "CalculiX time / ours", "x", None),
@@ -74,7 +77,7 @@ def run(args) -> int:
     if figures.get("main_job_stage_seconds"):
         print("main job, empty cache, per stage [s]: " + ", ".join(
             f"{key} {value:.3g}" for key, value in figures["main_job_stage_seconds"].items()))
-    for key in ("solid_skipped", "calculix_skipped", "lumped_skipped", "signal_skipped",
+    for key in ("substructure_solid_skipped", "solid_skipped", "calculix_skipped", "lumped_skipped", "signal_skipped",
                 "main_job_skipped", "tests_skipped", "crack_growth_3d_skipped"):
         if key in figures:
             print(f"{key.removesuffix('_skipped').replace('_', ' ')}: {figures[key]}")
