@@ -6,7 +6,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .model import elastic_ring, elastic_spectrum, lowest_ring_mode, out_of_contact_tooth
+from .model import (elastic_ring, elastic_spectrum, leading_ring, lowest_ring_mode,
+                    out_of_contact_tooth)
 from .options import ElasticScene
 
 
@@ -20,7 +21,10 @@ class ElasticCase:
     a foundation), so that the mounting can be varied apart from the ring body;
     ``params``: the lumped model the ring is coupled to; ``validity``: for the intact
     ring, the rigid-ring model's band (``validity.validity_band``, planet 1 away from the
-    tooth) from the same ring.
+    tooth) from the same ring; ``pitch``: the spectra over one planet pitch from the
+    cracked tooth (``loaded.PitchSpectra``: the ring as built at every position and, when
+    cracked, the crack as the working load leaves it for every load variant; None on a
+    free ring).
     """
 
     depth: float
@@ -35,6 +39,7 @@ class ElasticCase:
     foundation_K: np.ndarray | None = None
     params: object = None
     validity: object = None
+    pitch: object = None
 
 
 def carrier_positions(design, tooth: int) -> tuple[int, int]:
@@ -63,14 +68,26 @@ def reduced_foundation(er) -> np.ndarray:
 
 
 def elastic_case(design, crack, scene: ElasticScene, k_rest: float) -> ElasticCase:
-    """The coupled spectra of one crack (``crack`` None or of depth 0: intact), faces open."""
+    """The coupled spectra of one crack (``crack`` None or of depth 0: intact), faces open;
+    on a mounted ring also over the pitch, about the working load's crack states."""
     from dataclasses import replace
+
+    from hubvib.reducer.stages import mesh_force
+
+    from .crack_state import pitch_teeth
+    from .loaded import pitch_spectra
 
     tooth = 0 if crack is None else crack.tooth
     away, on = carrier_positions(design, tooth)
     intact = crack is None or crack.depth == 0
-    er = elastic_ring(design, None if intact else crack, False, scene.options, (away, on),
-                      k_rest=k_rest)
+    mounted = scene.options.mounting != "free"
+    pitch_positions = pitch_teeth(_teeth(design), design.n_planets, tooth) if mounted else ()
+    full = elastic_ring(design, None if intact else crack, False, scene.options, (away, on),
+                        k_rest=k_rest, more_positions=pitch_positions,
+                        crack_faces=mounted and not intact)
+    pitch = pitch_spectra(full, tooth, away, design.sun_torque,
+                          mesh_force(design)) if mounted else None
+    er = leading_ring(full)
     validity = None
     if intact and scene.options.mounting != "free":
         from .validity import validity_band
@@ -82,7 +99,13 @@ def elastic_case(design, crack, scene: ElasticScene, k_rest: float) -> ElasticCa
         replace(elastic_spectrum(er, on), ring=None), er.k_rest,
         None if er.foundation is None else (er.foundation.k_n, er.foundation.k_t),
         er.body.ndofs, float(er.body.rigid_mass()[0, 0]), lowest_ring_mode(er),
-        er.operators, reduced_foundation(er), er.params, validity)
+        er.operators, reduced_foundation(er), er.params, validity, pitch)
+
+
+def _teeth(design) -> int:
+    from hubvib.reducer.stages import ring_gear
+
+    return ring_gear(design).teeth
 
 
 def cached_case(design, crack, scene: ElasticScene, k_rest: float) -> ElasticCase:

@@ -8,7 +8,7 @@ given ring tooth and classes every mode below the band's top.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -30,7 +30,9 @@ class ElasticRing:
     """The coupled model's parts for one ring (one crack state).
 
     ``carrier_teeth``: the positions (planet 1's tooth) the basis serves; ``k_rest`` the
-    ring-planet spring without the ring body [N/m]; ``seconds`` per step.
+    ring-planet spring without the ring body [N/m]; ``seconds`` per step; ``contact``: the
+    crack faces' condensed contact (``crack_state.CrackContact``) when asked for, its
+    pairs' static responses then in the basis after the teeth.
     """
 
     params: PlanetaryParameters
@@ -44,6 +46,7 @@ class ElasticRing:
     options: ElasticOptions
     carrier_teeth: tuple
     seconds: dict = field(default_factory=dict)
+    contact: object = None  # crack_state.CrackContact when the crack's faces are paired
 
     @property
     def label(self) -> str:
@@ -85,13 +88,18 @@ def out_of_contact_tooth(teeth: int, n_planets: int) -> int:
 
 def elastic_ring(design, crack: Crack | None = None, closed: bool = False,
                  options: ElasticOptions = ElasticOptions(), carrier_teeth=None,
-                 params: PlanetaryParameters | None = None, k_rest: float | None = None
-                 ) -> ElasticRing:
+                 params: PlanetaryParameters | None = None, k_rest: float | None = None,
+                 more_positions=(), crack_faces: bool = False) -> ElasticRing:
     """The elastic ring of ``design``; ``carrier_teeth`` (planet 1's ring tooth at each
     carrier position the spectrum is wanted at) defaults to the cracked tooth (0 when
     intact) and the position half a planet pitch away.  ``params``: the lumped model to
     couple to (default: the design's); ``k_rest``: the ring-planet spring without the ring
-    body [N/m] (default ``rest_stiffness(design, options.rest)``)."""
+    body [N/m] (default ``rest_stiffness(design, options.rest)``).
+
+    ``more_positions``: further carrier positions whose engaged teeth the basis holds in a
+    block after those of ``carrier_teeth`` (``leading_ring`` drops it); ``crack_faces``
+    (an open crack only): pair the crack's faces, put their static responses in a last
+    block and condense their contact (``ElasticRing.contact``)."""
     seconds = {}
     started = time.perf_counter()
     params = lumped_parameters(design) if params is None else params
@@ -120,18 +128,49 @@ def elastic_ring(design, crack: Crack | None = None, closed: bool = False,
                               body.patch_angles, body.directions, body.probe)
     engaged = sorted({k for c in carrier_teeth
                       for k in engagement(params, probe_ops, c).teeth})
+    more = sorted({k for c in more_positions
+                   for k in engagement(params, probe_ops, int(c)).teeth} - set(engaged))
+    pairs = None
+    if crack_faces and crack is not None and not closed:
+        from hubvib.fem.crack_pairs import crack_pairs
+
+        pairs = crack_pairs(body)
     t = time.perf_counter()
-    basis = ring_basis(body, engaged, options.cutoff_hz)
+    basis = ring_basis(body, engaged, options.cutoff_hz, more_teeth=more,
+                       functionals=None if pairs is None else pairs.functionals)
     seconds["basis"] = time.perf_counter() - t
-    V = basis.V
-    operators = RingOperators(basis.K, np.eye(basis.size), np.asarray(body.contact.T @ V).T,
-                              probe_ops.moment_sign, body.patch_angles, body.directions,
-                              np.asarray(body.probe @ V))
+    contact = None
+    if pairs is not None:
+        from .crack_state import crack_contact
+
+        contact = crack_contact(body, pairs, basis.functional_response)
+        basis = replace(basis, functional_response=None)  # (dofs, 2 pairs): not kept
+    operators = basis_operators(body, basis, probe_ops.moment_sign)
     t = time.perf_counter()
     k_rest = rest_stiffness(design, options.rest) if k_rest is None else float(k_rest)
     seconds["rest"] = time.perf_counter() - t
     return ElasticRing(params, body, basis, operators, k_rest, foundation, crack,
-                       bool(closed and crack is not None), options, carrier_teeth, seconds)
+                       bool(closed and crack is not None), options, carrier_teeth, seconds,
+                       contact)
+
+
+def basis_operators(body: RingBody, basis: RingBasis, moment_sign: np.ndarray
+                    ) -> RingOperators:
+    """The reduced ring of ``basis`` as the coupled model sees it (M = I)."""
+    V = basis.V
+    return RingOperators(basis.K, np.eye(basis.size), np.asarray(body.contact.T @ V).T,
+                         moment_sign, body.patch_angles, body.directions,
+                         np.asarray(body.probe @ V))
+
+
+def leading_ring(er: ElasticRing) -> ElasticRing:
+    """``er`` on its basis's first block (the modes and the teeth of ``carrier_teeth``):
+    the ring as ``elastic_ring`` builds it without ``more_positions`` and ``crack_faces``."""
+    if len(er.basis.block_ends) <= 1 or er.basis.block_ends[0] == er.basis.size:
+        return replace(er, contact=None)
+    basis = er.basis.leading()
+    return replace(er, basis=basis, contact=None,
+                   operators=basis_operators(er.body, basis, er.operators.moment_sign))
 
 
 def lowest_ring_mode(er: ElasticRing) -> tuple[float, int] | None:
