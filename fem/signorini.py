@@ -71,6 +71,7 @@ def signorini(C: np.ndarray, q: np.ndarray, max_steps: int | None = None) -> Con
     lam = np.zeros(n)
     w = q.copy()
     seen = set()
+    step = 0
     for step in range(1, max_steps + 1):
         pressed = lam - w / d > 0
         key = pressed.tobytes()
