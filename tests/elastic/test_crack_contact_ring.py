@@ -1,0 +1,150 @@
+"""The crack of the Raba ring as the working load leaves it: Signorini's conditions
+checked on the full FE ring, the load's size and sign, and the modes about the loaded
+state against the tied-faces and the open-faces rings (``hubvib.elastic.crack_state``,
+``hubvib.elastic.loaded``)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from hubvib.design.presets import preset_design
+from hubvib.elastic.crack_state import crack_state, pitch_teeth
+from hubvib.elastic.loaded import (CARRIER_SPEED, DAMPING_RATIO, carrier_frame,
+                                   loaded_modes)
+from hubvib.elastic.model import elastic_ring, elastic_spectrum, leading_ring
+from hubvib.elastic.options import ElasticScene
+from hubvib.meshing.crack import Crack
+
+DEPTH = 0.006
+AWAY, ON = 11, 0  # Raba: z = 64, N = 3; half a pitch is round(64 / 6) = 11 teeth
+
+
+def test_record_constants_are_the_detection_defaults():
+    from hubvib.detection.options import DetectionOptions
+
+    o = DetectionOptions()
+    assert DAMPING_RATIO == o.damping_ratio and CARRIER_SPEED == pytest.approx(
+        o.carrier_speed, rel=1e-15), "the record's damping and carrier speed are the " \
+        "detection's defaults (one source per fact, the layer below cannot import them)"
+
+
+def test_carrier_frame_turns_back_a_turned_field():
+    """A field sampled on the circle and the sun's x, y turned by a whole number of probe
+    steps: turning back gives the original exactly (Fourier shift of a sampled field)."""
+    rng = np.random.default_rng(1)
+    n = 64
+    lumped = rng.normal(size=(6, 2))
+    field = rng.normal(size=(2 * n, 2))
+    d = np.vstack([lumped, field])
+    turn = 2 * math.pi * 5 / n
+    turned = d.copy()
+    c, s = math.cos(turn), math.sin(turn)
+    for i in (0, 2):
+        turned[i], turned[i + 1] = c * d[i] - s * d[i + 1], s * d[i] + c * d[i + 1]
+    turned[6:6 + n] = np.roll(d[6:6 + n], 5, axis=0)
+    turned[6 + n:] = np.roll(d[6 + n:], 5, axis=0)
+    np.testing.assert_allclose(carrier_frame(turned, turn), d, atol=1e-12,
+                               err_msg="carrier_frame undoes a turn of 5 probe steps")
+
+
+@pytest.fixture(scope="module")
+def rings():
+    design = preset_design("raba118")
+    options = ElasticScene().options
+    crack = Crack(depth=DEPTH)
+    full = elastic_ring(design, crack, False, options, (AWAY, ON),
+                        more_positions=pitch_teeth(64, 3, 0), crack_faces=True)
+    plain = elastic_ring(design, crack, False, options, (AWAY, ON), k_rest=full.k_rest)
+    tied = elastic_ring(design, crack, True, options, (AWAY, ON), k_rest=full.k_rest)
+    from hubvib.reducer.stages import mesh_force
+
+    return design, full, plain, tied, mesh_force(design)
+
+
+def _engaged(er, position):
+    from hubvib.lumped.elastic_ring import engagement
+
+    return engagement(er.params, er.operators, position).teeth
+
+
+@pytest.mark.slow
+def test_signorini_on_the_full_ring(rings):
+    """At every position of the pitch: force >= 0, no penetration, complementarity, and the
+    condensed openings equal a full FE solve with the contact forces applied."""
+    from hubvib.fem.solvers import factorise, pick
+
+    _, er, _, _, force = rings
+    body, pairs = er.body, er.contact.pairs
+    factor = factorise(body.K, pick("auto", body.ndofs, 1))
+    try:
+        for position in pitch_teeth(64, 3, 0):
+            teeth = _engaged(er, position)
+            state, solution = crack_state(er.contact, position, teeth, force, 1e-6)
+            load = force * np.asarray(body.contact[:, list(teeth)].sum(axis=1)).ravel()
+            u = np.asarray(factor.solve(load + pairs.G_n.T @ solution.force)).ravel()
+            w = pairs.G_n @ u - 1e-6
+            scale = np.abs(force * er.contact.tooth_opening[:, list(teeth)].sum(axis=1)).max()
+            assert solution.force.min() >= 0, "contact force >= 0"
+            assert w.min() >= -1e-9 * scale, (
+                f"tooth {position}: penetration {w.min():.3g} m beyond round-off of the "
+                f"opening scale {scale:.3g} m (full FE solve)")
+            assert abs(solution.force @ w) <= 1e-9 * scale * solution.force.sum(), (
+                "complementarity force . gap = 0 (full FE solve), 1e-9 of the opening scale")
+            np.testing.assert_allclose(np.maximum(w, 0), solution.gap, rtol=0,
+                                       atol=1e-9 * scale,
+                                       err_msg="condensed gaps vs the full FE solve")
+            assert state.open_length_m == pytest.approx(
+                pairs.length[~solution.pressed].sum(), rel=1e-12)
+    finally:
+        factor.free()
+
+
+@pytest.mark.slow
+def test_load_size_and_sign(rings):
+    """Without a closure gap the state is homogeneous of degree one in the load: the same
+    pairs apart at a quarter of the torque and the gaps a quarter; the reversed torque
+    changes the state at the cracked tooth."""
+    _, er, _, _, force = rings
+    for position in pitch_teeth(64, 3, 0):
+        teeth = _engaged(er, position)
+        full, s_full = crack_state(er.contact, position, teeth, force)
+        quarter, s_quarter = crack_state(er.contact, position, teeth, 0.25 * force)
+        assert full.open_pairs == quarter.open_pairs, "gap 0: state independent of the torque"
+        np.testing.assert_allclose(s_quarter.gap, 0.25 * s_full.gap, rtol=1e-9,
+                                   atol=1e-12 * s_full.gap.max(initial=1e-6),
+                                   err_msg="gap 0: gaps scale with the torque")
+    on, _ = crack_state(er.contact, ON, _engaged(er, ON), force)
+    reversed_, _ = crack_state(er.contact, ON, _engaged(er, ON), -force)
+    assert on.open_length_m > 0 and reversed_.open_length_m < on.open_length_m, (
+        "planet 1 on the cracked tooth opens its crack; the reversed load closes it")
+
+
+@pytest.mark.slow
+def test_modes_about_all_closed_and_all_open(rings):
+    """All pairs stuck: the tied-faces ring (closed=True); all open: the open ring; the
+    leading block of the basis: the ring built without the pitch and the pairs; sliding
+    faces (fewer ties) lower every frequency (Rayleigh's interlacing)."""
+    _, full, plain, tied, _ = rings
+    n = full.contact.pairs.count
+    for position in (AWAY, ON):
+        stuck = loaded_modes(full, position, np.ones(n, bool), True).frequency_hz
+        slip = loaded_modes(full, position, np.ones(n, bool), False).frequency_hz
+        opened = loaded_modes(full, position, np.zeros(n, bool)).frequency_hz
+        t = elastic_spectrum(tied, position).frequency_hz
+        o = elastic_spectrum(plain, position).frequency_hz
+        m = min(stuck.size, t.size)
+        np.testing.assert_allclose(stuck[:m], t[:m], rtol=1e-5, err_msg=(
+            "every pair stuck vs the tied-faces ring (ties exact on a basis holding every "
+            "pair's static response; both Ritz bases of one FE model), rtol 1e-5"))
+        m = min(opened.size, o.size)
+        np.testing.assert_allclose(opened[:m], o[:m], rtol=1e-5, err_msg=(
+            "no pair tied vs the open-faces ring (a larger Ritz basis of one model), 1e-5"))
+        m = min(slip.size, stuck.size)
+        assert np.all(slip[:m] <= stuck[:m] * (1 + 1e-7)), (
+            "sliding faces: fewer constraints, no frequency rises (interlacing; 1e-7: the "
+            "null-space projections round-off)")
+        lead = elastic_spectrum(leading_ring(full), position).frequency_hz
+        np.testing.assert_allclose(lead, o, rtol=1e-9, err_msg=(
+            "the basis's first block spans the ring built without the pitch and the pairs"))
