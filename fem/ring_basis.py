@@ -48,12 +48,8 @@ class RingBasis:
     teeth : tuple of int
         Teeth whose contact responses are in the basis.
     solver : str
-    block_ends : tuple of int
-        Column after each block: the modes with ``leading_teeth``, then the more teeth,
-        then the functionals' responses.
-    leading_teeth : tuple of int
-    functional_response : ndarray (dofs, p) or None
-        ``(K - sigma M)^-1`` of the functionals the basis was asked to hold [m per N].
+    responses : Responses or None
+        The raw static responses asked for beside the basis (not M-orthogonalised).
     """
 
     V: np.ndarray
@@ -62,22 +58,31 @@ class RingBasis:
     cutoff_hz: float
     teeth: tuple
     solver: str
-    block_ends: tuple = ()
-    leading_teeth: tuple = ()
-    functional_response: np.ndarray | None = None
+    responses: "Responses | None" = None
 
     @property
     def size(self) -> int:
         return self.V.shape[1]
 
-    def leading(self, columns: int | None = None) -> "RingBasis":
-        """The basis of its first block (the modes and the contacts of ``leading_teeth``),
-        or of its first ``columns`` columns: the same span as a basis built without the
-        later blocks, M-orthonormal as it is."""
-        n = self.block_ends[0] if columns is None else int(columns)
-        teeth = self.leading_teeth if columns is None else self.teeth
-        return RingBasis(self.V[:, :n], self.K[:n, :n], self.mode_hz, self.cutoff_hz, teeth,
-                         self.solver, (n,), teeth, None)
+    @property
+    def modes(self) -> int:
+        """Number of the ring's own modes (the first columns of V)."""
+        return self.mode_hz.size
+
+
+@dataclass(frozen=True, eq=False)
+class Responses:
+    """Raw static responses ``(K - sigma M)^-1 load`` from the basis's factorisation.
+
+    ``teeth``: the teeth; ``first`` (dofs, teeth): to each tooth's contact load [m/N];
+    ``second`` (dofs, teeth): to the inertia of ``first``; ``functional`` (dofs, p): to
+    the functionals' loads.
+    """
+
+    teeth: tuple
+    first: np.ndarray
+    second: np.ndarray
+    functional: np.ndarray
 
 
 def ring_modes(body: RingBody, cutoff_hz: float, solver: str = "auto"):
@@ -128,44 +133,52 @@ def ring_basis(body: RingBody, teeth, cutoff_hz: float, solver: str = "auto",
     [Hz] and, per tooth, the static response to its contact load and the response to
     that response's inertia (two Krylov vectors of ``(K - sigma M)^-1 M``).
 
-    ``more_teeth`` and ``functionals`` (sparse (dofs, p), e.g. crack-face pair loads) add
-    blocks after it, each its own static responses (and, for teeth, their second Krylov
-    vectors) made M-orthogonal to what comes before, so that the leading columns span the
-    basis without them (``RingBasis.leading``).  Every solve uses the one factorisation of
-    ``K - sigma M`` the modes are found with; ``functional_response`` keeps the raw
-    ``(K - sigma M)^-1 functionals``."""
+    ``more_teeth`` and ``functionals`` (sparse (dofs, p), e.g. crack-face pair loads): their
+    responses from the same factorisation, kept apart (``RingBasis.responses``, for
+    ``fem.ring_positions``); the basis itself is as without them."""
     teeth = tuple(sorted({int(k) for k in teeth}))
     more = tuple(sorted({int(k) for k in more_teeth} - set(teeth)))
     omega, phi, factor, sigma = ring_modes(body, cutoff_hz, solver)
-    response = None
-    try:
-        blocks = [_krylov(body, factor, teeth), _krylov(body, factor, more)]
-        if functionals is not None and functionals.shape[1]:
-            loads = functionals.toarray() if hasattr(functionals, "toarray") else np.asarray(
-                functionals)
-            response = np.asarray(factor.solve(loads)).reshape(body.ndofs, loads.shape[1])
-            blocks.append(response.copy())
-    finally:
-        factor.free()
-    columns = [phi]
-    ends = []
-    for block in blocks:
-        before = np.hstack(columns)
-        columns.append(_orthonormal_block(body, block, before))
-        ends.append(before.shape[1] + columns[-1].shape[1])
-    V = np.hstack(columns)
-    M = V.T @ (body.M @ V)
-    # V is M-orthonormal to round-off; one Cholesky step makes it so to the last digits
-    # (lower triangular: the leading columns keep their span)
-    L = sla.cholesky(0.5 * (M + M.T), lower=True)
-    V = sla.solve_triangular(L, V.T, lower=True).T
-    K = V.T @ (body.K @ V)
-    return RingBasis(V, 0.5 * (K + K.T), omega / (2 * np.pi), float(cutoff_hz), teeth + more,
-                     factor.method, tuple(ends), teeth, response)
+    responses = None
+    with blas_threads(1):  # tall-skinny dense products: one thread is fastest on a busy host
+        try:
+            static = _krylov(body, factor, teeth)
+            if more or functionals is not None:
+                extra = _krylov(body, factor, more)
+                loads = np.zeros((body.ndofs, 0)) if functionals is None else (
+                    functionals.toarray() if hasattr(functionals, "toarray")
+                    else np.asarray(functionals))
+                response = np.asarray(factor.solve(loads)).reshape(body.ndofs, loads.shape[1]) \
+                    if loads.shape[1] else loads
+                n = len(teeth)
+                responses = Responses(
+                    teeth + more,
+                    np.hstack([static[:, :n], extra[:, :len(more)]]),
+                    np.hstack([static[:, n:], extra[:, len(more):]]), response)
+        finally:
+            factor.free()
+        static = static - phi @ (phi.T @ (body.M @ static))
+        static = static - phi @ (phi.T @ (body.M @ static))  # twice: Gram-Schmidt to round-off
+        if static.shape[1]:
+            static = static / np.sqrt(np.einsum("ij,ij->j", static, body.M @ static))
+            gram = static.T @ (body.M @ static)
+            w, U = np.linalg.eigh(0.5 * (gram + gram.T))
+            useful = w > 1e-12 * w.max()
+            static = static @ (U[:, useful] / np.sqrt(w[useful]))
+        V = np.hstack([phi, static])
+        K = V.T @ (body.K @ V)
+        M = V.T @ (body.M @ V)
+        # V is M-orthonormal to round-off; one Cholesky step makes it so to the last digits
+        L = sla.cholesky(0.5 * (M + M.T), lower=True)
+        V = sla.solve_triangular(L, V.T, lower=True).T
+        K = V.T @ (body.K @ V)
+    return RingBasis(V, 0.5 * (K + K.T), omega / (2 * np.pi), float(cutoff_hz), teeth,
+                     factor.method, responses)
 
 
 def _krylov(body: RingBody, factor, teeth) -> np.ndarray:
-    """Static responses to the teeth's contact loads and to their inertia (dofs, 2 teeth)."""
+    """Static responses to the teeth's contact loads, then the responses to their inertia
+    (dofs, 2 teeth)."""
     if not teeth:
         return np.zeros((body.ndofs, 0))
     loads = body.contact[:, list(teeth)].toarray()
@@ -174,17 +187,3 @@ def _krylov(body: RingBody, factor, teeth) -> np.ndarray:
     # truncated modes' inertia, to fourth order in omega / omega_cut
     second = np.asarray(factor.solve(body.M @ first)).reshape(body.ndofs, len(teeth))
     return np.hstack([first, second])
-
-
-def _orthonormal_block(body: RingBody, static: np.ndarray, before: np.ndarray) -> np.ndarray:
-    """``static`` M-orthogonal to ``before`` (M-orthonormal columns) and M-orthonormal
-    itself, dropping directions it adds nothing in."""
-    if not static.shape[1]:
-        return static
-    for _ in range(2):  # twice: Gram-Schmidt to round-off
-        static = static - before @ (before.T @ (body.M @ static))
-    static = static / np.sqrt(np.einsum("ij,ij->j", static, body.M @ static))
-    gram = static.T @ (body.M @ static)
-    w, U = np.linalg.eigh(0.5 * (gram + gram.T))
-    useful = w > 1e-12 * w.max()
-    return static @ (U[:, useful] / np.sqrt(w[useful]))

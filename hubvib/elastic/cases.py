@@ -6,8 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .model import (elastic_ring, elastic_spectrum, leading_ring, lowest_ring_mode,
-                    out_of_contact_tooth)
+from .model import elastic_ring, elastic_spectrum, lowest_ring_mode, out_of_contact_tooth
 from .options import ElasticScene
 
 
@@ -82,12 +81,11 @@ def elastic_case(design, crack, scene: ElasticScene, k_rest: float) -> ElasticCa
     intact = crack is None or crack.depth == 0
     mounted = scene.options.mounting != "free"
     pitch_positions = pitch_teeth(_teeth(design), design.n_planets, tooth) if mounted else ()
-    full = elastic_ring(design, None if intact else crack, False, scene.options, (away, on),
-                        k_rest=k_rest, more_positions=pitch_positions,
-                        crack_faces=mounted and not intact)
-    pitch = pitch_spectra(full, tooth, away, design.sun_torque,
+    er = elastic_ring(design, None if intact else crack, False, scene.options, (away, on),
+                      k_rest=k_rest, more_positions=pitch_positions,
+                      crack_faces=mounted and not intact)
+    pitch = pitch_spectra(er, tooth, away, design.sun_torque,
                           mesh_force(design)) if mounted else None
-    er = leading_ring(full)
     validity = None
     if intact and scene.options.mounting != "free":
         from .validity import validity_band

@@ -135,6 +135,57 @@ def _store(modes, ring_mass: float) -> StoredSpectrum:
                           descriptors(_Modes(modes), ring_mass, PROBE_STRIDE).astype(np.float32))
 
 
+@dataclass(frozen=True, eq=False)
+class _LightModes:
+    """What a stored spectrum needs of ``CoupledModes`` (no ring coordinates)."""
+
+    omega: np.ndarray
+    lumped: np.ndarray
+    lumped_mass: np.ndarray
+    probe: np.ndarray
+
+    @property
+    def frequency_hz(self) -> np.ndarray:
+        return self.omega / (2 * np.pi)
+
+
+def _light_modes(er, operators, carrier_tooth: int) -> _LightModes:
+    """``coupled_modes`` below the band for a dense ring with M = I: the mass matrix is
+    diagonal, so the problem is made standard by scaling and only the eigenpairs below the
+    band are computed (LAPACK's MRRR driver)."""
+    import scipy.linalg as sla
+
+    from hubvib.lumped.elastic_ring import coupled_matrices
+
+    mats = coupled_matrices(er.params, operators, int(carrier_tooth), er.k_rest)
+    mass = np.diag(mats.M)
+    scale = 1 / np.sqrt(mass)
+    A = scale[:, None] * mats.K * scale[None, :]
+    top = (2 * np.pi * er.options.band_hz) ** 2
+    values, vectors = sla.eigh(0.5 * (A + A.T), subset_by_value=(-np.inf, top), driver="evr")
+    vectors = vectors * scale[:, None]
+    n = mats.n_ring
+    return _LightModes(np.sqrt(np.clip(values, 0.0, None)), vectors[n:], mats.lumped_mass,
+                       np.asarray(operators.probe @ vectors[:n]))
+
+
+def position_operators(er, carrier_tooth: int):
+    """The reduced ring at one carrier position (``fem.ring_positions``: the modes, the
+    engaged teeth's contact responses and, when the crack is paired, every pair's) as
+    ``RingOperators``, and the pair rows (2 pairs, m): normal, then tangential."""
+    from hubvib.fem.ring_positions import position_basis
+    from hubvib.lumped.elastic_ring import RingOperators, engagement
+
+    if er.positions is None:
+        raise ValueError("the ring was built without more_positions: it has no reduced "
+                         "ring per carrier position")
+    teeth = engagement(er.params, er.operators, int(carrier_tooth)).teeth
+    pb = position_basis(er.positions, teeth, functionals=er.contact is not None)
+    ops = er.operators
+    return RingOperators(pb.K, np.eye(pb.K.shape[0]), pb.contact, ops.moment_sign,
+                         ops.patch_angles, ops.directions, pb.probe), pb.rows
+
+
 def tied_operators(operators, rows: np.ndarray):
     """The reduced ring with ``rows @ q = 0`` imposed (coordinates on their null space;
     ``operators`` M = I, so the restricted ring keeps M = I)."""
@@ -151,27 +202,33 @@ def tied_operators(operators, rows: np.ndarray):
                          operators.probe @ Z)
 
 
-def tie_rows(er, pressed: np.ndarray, stick: bool) -> np.ndarray:
-    """Rows of the ties of the pressed pairs on ``er``'s reduced coordinates: normal, and
-    tangential too when ``stick``."""
-    pairs = er.contact.pairs
-    V = er.basis.V
-    rows = [np.asarray(pairs.G_n[pressed] @ V)]
+def tie_rows(rows: np.ndarray, pressed: np.ndarray, stick: bool) -> np.ndarray:
+    """The ties of the ``pressed`` pairs from a position's pair rows (normal, then
+    tangential): normal, and tangential too when ``stick``."""
+    p = pressed.size
+    tied = [rows[:p][pressed]]
     if stick:
-        rows.append(np.asarray(pairs.G_t[pressed] @ V))
-    return np.vstack(rows)
+        tied.append(rows[p:][pressed])
+    return np.vstack(tied)
 
 
-def loaded_modes(er, carrier_tooth: int, pressed: np.ndarray, stick: bool = True):
+def loaded_operators(er, carrier_tooth: int, pressed, stick: bool = True):
+    """The reduced ring at ``carrier_tooth`` with the ``pressed`` pairs tied (``stick``:
+    tangentially too)."""
+    ops, rows = position_operators(er, carrier_tooth)
+    pressed = np.zeros(0, bool) if pressed is None else np.asarray(pressed, bool)
+    if er.contact is not None and pressed.any():
+        ops = tied_operators(ops, tie_rows(rows, pressed, stick))
+    return ops
+
+
+def loaded_modes(er, carrier_tooth: int, pressed, stick: bool = True):
     """Coupled modes (``CoupledModes``) below the band with planet 1 on ``carrier_tooth``
     and the ``pressed`` pairs tied (``stick``: tangentially too)."""
     from hubvib.lumped.elastic_ring import coupled_modes
 
-    ops = er.operators
-    if er.contact is not None and np.any(pressed):
-        ops = tied_operators(ops, tie_rows(er, np.asarray(pressed, bool), stick))
-    return coupled_modes(er.params, ops, int(carrier_tooth), er.k_rest,
-                         max_hz=er.options.band_hz)
+    return coupled_modes(er.params, loaded_operators(er, carrier_tooth, pressed, stick),
+                         int(carrier_tooth), er.k_rest, max_hz=er.options.band_hz)
 
 
 def pitch_spectra(er, tooth: int, reference_tooth: int, sun_torque: float,
@@ -210,7 +267,8 @@ def _pitch_spectra(er, tooth, reference_tooth, sun_torque, mesh_force, torque_fr
         if key not in index:
             t = time.perf_counter()
             index[key] = len(spectra)
-            spectra.append(_store(loaded_modes(er, position, pressed, stick), ring_mass))
+            ops = loaded_operators(er, position, pressed, stick)
+            spectra.append(_store(_light_modes(er, ops, position), ring_mass))
             seconds["modes"] += time.perf_counter() - t
         return index[key]
 

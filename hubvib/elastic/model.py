@@ -31,8 +31,9 @@ class ElasticRing:
 
     ``carrier_teeth``: the positions (planet 1's tooth) the basis serves; ``k_rest`` the
     ring-planet spring without the ring body [N/m]; ``seconds`` per step; ``contact``: the
-    crack faces' condensed contact (``crack_state.CrackContact``) when asked for, its
-    pairs' static responses then in the basis after the teeth.
+    crack faces' condensed contact (``crack_state.CrackContact``) when asked for;
+    ``positions``: the reduced ring for every position of ``more_positions``
+    (``fem.ring_positions``, with the crack pairs' responses when paired).
     """
 
     params: PlanetaryParameters
@@ -47,6 +48,7 @@ class ElasticRing:
     carrier_teeth: tuple
     seconds: dict = field(default_factory=dict)
     contact: object = None  # crack_state.CrackContact when the crack's faces are paired
+    positions: object = None  # fem.ring_positions.RingPositions for more carrier positions
 
     @property
     def label(self) -> str:
@@ -96,10 +98,10 @@ def elastic_ring(design, crack: Crack | None = None, closed: bool = False,
     couple to (default: the design's); ``k_rest``: the ring-planet spring without the ring
     body [N/m] (default ``rest_stiffness(design, options.rest)``).
 
-    ``more_positions``: further carrier positions whose engaged teeth the basis holds in a
-    block after those of ``carrier_teeth`` (``leading_ring`` drops it); ``crack_faces``
-    (an open crack only): pair the crack's faces, put their static responses in a last
-    block and condense their contact (``ElasticRing.contact``)."""
+    ``more_positions``: further carrier positions, each to get its own reduced ring
+    (``ElasticRing.positions``) from the same factorisation; ``crack_faces`` (an open
+    crack only): pair the crack's faces, add their static responses to every position's
+    ring and condense their contact (``ElasticRing.contact``)."""
     seconds = {}
     started = time.perf_counter()
     params = lumped_parameters(design) if params is None else params
@@ -136,22 +138,29 @@ def elastic_ring(design, crack: Crack | None = None, closed: bool = False,
 
         pairs = crack_pairs(body)
     t = time.perf_counter()
+    functionals = pairs.functionals if pairs is not None else (
+        np.zeros((body.ndofs, 0)) if len(more_positions) else None)  # responses kept
     basis = ring_basis(body, engaged, options.cutoff_hz, more_teeth=more,
-                       functionals=None if pairs is None else pairs.functionals)
+                       functionals=functionals)
     seconds["basis"] = time.perf_counter() - t
-    contact = None
-    if pairs is not None:
-        from .crack_state import crack_contact
+    contact = positions = None
+    if basis.responses is not None:
+        from hubvib.fem.ring_positions import ring_positions
 
-        contact = crack_contact(body, pairs, basis.functional_response)
-        basis = replace(basis, functional_response=None)  # (dofs, 2 pairs): not kept
+        positions = ring_positions(body, basis, None if pairs is None else pairs.functionals)
+        if pairs is not None:
+            from .crack_state import crack_contact
+
+            contact = crack_contact(body, pairs, basis.responses.functional)
+        basis = replace(basis, responses=None)  # (dofs, many): not kept
+    seconds["positions"] = time.perf_counter() - t - seconds["basis"]
     operators = basis_operators(body, basis, probe_ops.moment_sign)
     t = time.perf_counter()
     k_rest = rest_stiffness(design, options.rest) if k_rest is None else float(k_rest)
     seconds["rest"] = time.perf_counter() - t
     return ElasticRing(params, body, basis, operators, k_rest, foundation, crack,
                        bool(closed and crack is not None), options, carrier_teeth, seconds,
-                       contact)
+                       contact, positions)
 
 
 def basis_operators(body: RingBody, basis: RingBasis, moment_sign: np.ndarray
@@ -161,16 +170,6 @@ def basis_operators(body: RingBody, basis: RingBasis, moment_sign: np.ndarray
     return RingOperators(basis.K, np.eye(basis.size), np.asarray(body.contact.T @ V).T,
                          moment_sign, body.patch_angles, body.directions,
                          np.asarray(body.probe @ V))
-
-
-def leading_ring(er: ElasticRing) -> ElasticRing:
-    """``er`` on its basis's first block (the modes and the teeth of ``carrier_teeth``):
-    the ring as ``elastic_ring`` builds it without ``more_positions`` and ``crack_faces``."""
-    if len(er.basis.block_ends) <= 1 or er.basis.block_ends[0] == er.basis.size:
-        return replace(er, contact=None)
-    basis = er.basis.leading()
-    return replace(er, basis=basis, contact=None,
-                   operators=basis_operators(er.body, basis, er.operators.moment_sign))
 
 
 def lowest_ring_mode(er: ElasticRing) -> tuple[float, int] | None:

@@ -13,7 +13,7 @@ from hubvib.design.presets import preset_design
 from hubvib.elastic.crack_state import crack_state, pitch_teeth
 from hubvib.elastic.loaded import (CARRIER_SPEED, DAMPING_RATIO, carrier_frame,
                                    loaded_modes)
-from hubvib.elastic.model import elastic_ring, elastic_spectrum, leading_ring
+from hubvib.elastic.model import elastic_ring, elastic_spectrum
 from hubvib.elastic.options import ElasticScene
 from hubvib.meshing.crack import Crack
 
@@ -123,9 +123,9 @@ def test_load_size_and_sign(rings):
 
 @pytest.mark.slow
 def test_modes_about_all_closed_and_all_open(rings):
-    """All pairs stuck: the tied-faces ring (closed=True); all open: the open ring; the
-    leading block of the basis: the ring built without the pitch and the pairs; sliding
-    faces (fewer ties) lower every frequency (Rayleigh's interlacing)."""
+    """All pairs stuck: the tied-faces ring (closed=True); all open: the open ring; a
+    position's ring without the pairs: the ring built for the positions; sliding faces
+    (fewer ties) lower every frequency (Rayleigh's interlacing)."""
     _, full, plain, tied, _ = rings
     n = full.contact.pairs.count
     for position in (AWAY, ON):
@@ -135,9 +135,11 @@ def test_modes_about_all_closed_and_all_open(rings):
         t = elastic_spectrum(tied, position).frequency_hz
         o = elastic_spectrum(plain, position).frequency_hz
         m = min(stuck.size, t.size)
-        np.testing.assert_allclose(stuck[:m], t[:m], rtol=1e-5, err_msg=(
-            "every pair stuck vs the tied-faces ring (ties exact on a basis holding every "
-            "pair's static response; both Ritz bases of one FE model), rtol 1e-5"))
+        np.testing.assert_allclose(stuck[:m], t[:m], rtol=3e-5, err_msg=(
+            "every pair stuck vs the tied-faces ring: ties exact on the open ring's modes "
+            "plus every pair's static response, both Ritz reductions of one FE model; the "
+            "stuck ring's reduction error against the full tied FE is up to 1.2e-5 (0.1 Hz "
+            "at 8.6 kHz), so rtol 3e-5"))
         m = min(opened.size, o.size)
         np.testing.assert_allclose(opened[:m], o[:m], rtol=1e-5, err_msg=(
             "no pair tied vs the open-faces ring (a larger Ritz basis of one model), 1e-5"))
@@ -145,6 +147,25 @@ def test_modes_about_all_closed_and_all_open(rings):
         assert np.all(slip[:m] <= stuck[:m] * (1 + 1e-7)), (
             "sliding faces: fewer constraints, no frequency rises (interlacing; 1e-7: the "
             "null-space projections round-off)")
-        lead = elastic_spectrum(leading_ring(full), position).frequency_hz
-        np.testing.assert_allclose(lead, o, rtol=1e-9, err_msg=(
-            "the basis's first block spans the ring built without the pitch and the pairs"))
+        lead = _without_pairs(full, position).frequency_hz
+        np.testing.assert_allclose(lead, o, rtol=1e-6, err_msg=(
+            "a position's reduced ring without the pairs (its three engaged teeth) vs "
+            "ring_basis's for the six teeth of both positions: Ritz reductions of one "
+            "model, rtol 1e-6"))
+        assert np.all(lead >= o * (1 - 1e-9)), (
+            "the position's basis is a subspace of the six-teeth basis: no frequency lower "
+            "(Rayleigh-Ritz; 1e-9: round-off)")
+        np.testing.assert_allclose(elastic_spectrum(full, position).frequency_hz, o,
+                                   rtol=1e-12, err_msg="asking for the pitch and the pairs "
+                                   "leaves the ring's own basis as it was")
+
+
+def _without_pairs(er, position):
+    from hubvib.fem.ring_positions import position_basis
+    from hubvib.lumped.elastic_ring import RingOperators, coupled_modes
+
+    pb = position_basis(er.positions, _engaged(er, position), functionals=False)
+    o = er.operators
+    ops = RingOperators(pb.K, np.eye(pb.K.shape[0]), pb.contact, o.moment_sign,
+                        o.patch_angles, o.directions, pb.probe)
+    return coupled_modes(er.params, ops, position, er.k_rest, max_hz=er.options.band_hz)
