@@ -195,6 +195,9 @@ def tied_operators(operators, rows: np.ndarray):
 
     if rows.shape[0] == 0:
         return operators
+    norm = np.linalg.norm(rows, axis=1)
+    rows = rows[norm > 0] / norm[norm > 0, None]  # each tie weighted alike: a rank that
+    # does not depend on which other ties are imposed
     Z = sla.null_space(rows, rcond=NULL_RCOND)
     K = Z.T @ (operators.K @ Z)
     return RingOperators(0.5 * (K + K.T), np.eye(Z.shape[1]), Z.T @ operators.contact,

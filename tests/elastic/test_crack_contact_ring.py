@@ -144,9 +144,9 @@ def test_modes_about_all_closed_and_all_open(rings):
         np.testing.assert_allclose(opened[:m], o[:m], rtol=1e-5, err_msg=(
             "no pair tied vs the open-faces ring (a larger Ritz basis of one model), 1e-5"))
         m = min(slip.size, stuck.size)
-        assert np.all(slip[:m] <= stuck[:m] * (1 + 1e-7)), (
-            "sliding faces: fewer constraints, no frequency rises (interlacing; 1e-7: the "
-            "null-space projections round-off)")
+        assert np.all(slip[:m] <= stuck[:m] * (1 + 1e-6)), (
+            "sliding faces: fewer constraints, no frequency rises (interlacing; 1e-6: the "
+            "rank decisions on nearly dependent ties move the 45 Hz mode by ~1e-7)")
         lead = _without_pairs(full, position).frequency_hz
         np.testing.assert_allclose(lead, o, rtol=1e-6, err_msg=(
             "a position's reduced ring without the pairs (its three engaged teeth) vs "
