@@ -66,9 +66,14 @@ def reduced_foundation(er) -> np.ndarray:
     return 0.5 * (reduced + reduced.T)
 
 
-def elastic_case(design, crack, scene: ElasticScene, k_rest: float) -> ElasticCase:
+def elastic_case(design, crack, scene: ElasticScene, k_rest: float,
+                 torque_fractions=None, closure_gaps=None) -> ElasticCase:
     """The coupled spectra of one crack (``crack`` None or of depth 0: intact), faces open;
-    on a mounted ring also over the pitch, about the working load's crack states."""
+    on a mounted ring also over the pitch, about the working load's crack states for
+    ``torque_fractions`` (of the design's sun torque) x ``closure_gaps`` [m] (default
+    ``loaded.TORQUE_FRACTIONS`` x ``loaded.CLOSURE_GAPS``)."""
+    from .loaded import CLOSURE_GAPS, TORQUE_FRACTIONS
+
     from dataclasses import replace
 
     from hubvib.reducer.stages import mesh_force
@@ -84,8 +89,10 @@ def elastic_case(design, crack, scene: ElasticScene, k_rest: float) -> ElasticCa
     er = elastic_ring(design, None if intact else crack, False, scene.options, (away, on),
                       k_rest=k_rest, more_positions=pitch_positions,
                       crack_faces=mounted and not intact)
-    pitch = pitch_spectra(er, tooth, away, design.sun_torque,
-                          mesh_force(design)) if mounted else None
+    pitch = pitch_spectra(
+        er, tooth, away, design.sun_torque, mesh_force(design),
+        TORQUE_FRACTIONS if torque_fractions is None else tuple(torque_fractions),
+        CLOSURE_GAPS if closure_gaps is None else tuple(closure_gaps)) if mounted else None
     validity = None
     if intact and scene.options.mounting != "free":
         from .validity import validity_band

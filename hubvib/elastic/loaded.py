@@ -114,8 +114,9 @@ class PitchSpectra:
         if not self.loaded:
             return None
         for v in self.loaded:
-            if v.closure_gap_m == closure_gap_m and (
-                    closure_gap_m == 0 or math.isclose(v.torque_fraction, torque_fraction)):
+            same = (math.copysign(1.0, v.torque_fraction) == math.copysign(1.0, torque_fraction)
+                    if closure_gap_m == 0 else math.isclose(v.torque_fraction, torque_fraction))
+            if v.closure_gap_m == closure_gap_m and same:
                 return v
         have = sorted({(v.torque_fraction, v.closure_gap_m) for v in self.loaded})
         raise ValueError(f"torque_fraction = {torque_fraction!r}, closure_gap_m = "
@@ -234,6 +235,19 @@ def loaded_modes(er, carrier_tooth: int, pressed, stick: bool = True):
                          int(carrier_tooth), er.k_rest, max_hz=er.options.band_hz)
 
 
+def loaded_spectrum(er, carrier_tooth: int, pressed, stick: bool = True):
+    """``loaded_modes`` with each mode's content and multiplicity (``ElasticSpectrum``)."""
+    from .content import mode_content, multiplicities
+    from .model import ElasticSpectrum
+
+    modes = loaded_modes(er, carrier_tooth, pressed, stick)
+    spaced = er.params.equally_spaced(1e-9)
+    content = tuple(mode_content(modes, j, er.params.n_planets, spaced)
+                    for j in range(modes.omega.size))
+    return ElasticSpectrum(modes, content, multiplicities(modes.frequency_hz),
+                           int(carrier_tooth), None)
+
+
 def pitch_spectra(er, tooth: int, reference_tooth: int, sun_torque: float,
                   mesh_force: float, torque_fractions=TORQUE_FRACTIONS,
                   closure_gaps=CLOSURE_GAPS) -> PitchSpectra:
@@ -280,8 +294,7 @@ def _pitch_spectra(er, tooth, reference_tooth, sun_torque, mesh_force, torque_fr
     engaged = {p: engagement(params, er.operators, p).teeth for p in positions}
     loaded = []
     if er.contact is not None:
-        variants = [(1.0, 0.0)] + [(f, c) for c in closure_gaps if c > 0
-                                   for f in torque_fractions]
+        variants = load_variants(torque_fractions, closure_gaps)
         for fraction, gap in variants:
             states, stick, slip = [], [], []
             for p in positions:
@@ -329,6 +342,21 @@ def _probe_points(d: np.ndarray) -> int:
     from hubvib.fem.ring_body import PROBE_POINTS
 
     return -(-PROBE_POINTS // PROBE_STRIDE)
+
+
+def load_variants(torque_fractions, closure_gaps) -> list:
+    """(torque fraction, closure gap [m]) pairs to compute: every pair, but with no
+    closure gap one per sign of the torque (the state does not depend on its size)."""
+    out = []
+    for gap in closure_gaps:
+        for fraction in torque_fractions:
+            if not (math.isfinite(fraction) and fraction != 0):
+                raise ValueError(f"torque fraction = {fraction!r}, allowed finite and != 0")
+            if gap == 0:
+                fraction = math.copysign(1.0, fraction)
+            if (fraction, float(gap)) not in out:
+                out.append((fraction, float(gap)))
+    return out
 
 
 def _table(rows) -> np.ndarray:
