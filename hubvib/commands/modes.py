@@ -57,6 +57,7 @@ def add_parser(sub) -> None:
                    "(default 0.3)")
     p.add_argument("--density", type=float, default=None, help="annulus: [kg/m^3] "
                    "(default 7850)")
+    p.add_argument("--count", type=int, default=12, help="annulus: elastic modes to report")
     p.add_argument("--out", metavar="DIR",
                    help="elastic ring: write modes.json and, with --render, a PNG per "
                    "coupled mode and coupled_modes.vtu (every mode's ring displacement, for "
