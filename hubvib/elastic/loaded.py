@@ -93,8 +93,7 @@ class PitchSpectra:
     ``base_index``: per position, the ring as built (intact, or faces free) in
     ``spectra``; ``reference``: the position whose intact spectrum orders the modes;
     ``loaded``: the load variants (empty when intact); ``mesh_force_N``: each planet's
-    mesh force at the design's torque [N]; ``seconds``: per step; ``carrier_turn``: per
-    position, the carrier's turn from the reference position [rad].
+    mesh force at the design's torque [N]; ``seconds``: per step.
     """
 
     carrier_teeth: tuple
@@ -106,7 +105,6 @@ class PitchSpectra:
     mesh_force_N: float
     n_planets: int
     seconds: dict
-    carrier_turn: tuple = ()  # per position, the carrier's turn from the reference [rad]
 
     def variant(self, torque_fraction: float = 1.0, closure_gap_m: float = 0.0
                 ) -> LoadedSpectra | None:
@@ -310,38 +308,9 @@ def _pitch_spectra(er, tooth, reference_tooth, sun_torque, mesh_force, torque_fr
                 _table([spectra[i].frequency_hz for i in stick]),
                 _table([spectra[i].frequency_hz for i in slip]), tuple(stick), tuple(slip),
                 float(fraction)))
-    angles = er.operators.patch_angles
-    turn = tuple(float(np.angle(np.exp(1j * (angles[p] - angles[reference_tooth]))))
-                 for p in positions)
     return PitchSpectra(positions, positions.index(reference_tooth), tuple(spectra), base,
                         tuple(loaded), float(sun_torque), float(mesh_force), params.n_planets,
-                        seconds, turn)
-
-
-def carrier_frame(descriptors: np.ndarray, turn: float) -> np.ndarray:
-    """Stored descriptors of a position whose carrier is turned by ``turn`` [rad] from the
-    reference, seen from the carrier: the sun's and the carrier's x, y (the first four
-    lumped rows) turned back, the mid-rim field shifted back along the circle (Fourier
-    shift, exact for the sampled field's band).  The planets' coordinates turn with the
-    carrier already."""
-    d = np.array(descriptors, dtype=float)
-    c, s = math.cos(turn), math.sin(turn)
-    for i in (0, 2):
-        x, y = d[i].copy(), d[i + 1].copy()
-        d[i], d[i + 1] = c * x + s * y, -s * x + c * y
-    n = _probe_points(d)
-    for start in (d.shape[0] - 2 * n, d.shape[0] - n):
-        block = d[start:start + n]
-        k = np.fft.fftfreq(n, 1.0 / n)
-        d[start:start + n] = np.real(np.fft.ifft(np.fft.fft(block, axis=0)
-                                                 * np.exp(1j * k * turn)[:, None], axis=0))
-    return d
-
-
-def _probe_points(d: np.ndarray) -> int:
-    from hubvib.fem.ring_body import PROBE_POINTS
-
-    return -(-PROBE_POINTS // PROBE_STRIDE)
+                        seconds)
 
 
 def load_variants(torque_fractions, closure_gaps) -> list:
@@ -404,8 +373,10 @@ class RecordTrack:
 def ordered_frequencies(intact: PitchSpectra, case: PitchSpectra, index) -> np.ndarray:
     """(positions, modes): the spectra ``index`` (one per position, in ``case.spectra``)
     in the order of the intact ring's reference spectrum, NaN where untracked: each
-    tracked to the intact spectrum at its position, that to the reference in the
-    carrier's frame (``carrier_frame``: the modes turn with the planets)."""
+    tracked to the intact spectrum at its position (``track_descriptors``), that to the
+    reference by order.  The intact ring's modes keep their order over the pitch (a pair
+    that veers as the planets turn, Raba's 2.6 / 2.8 kHz pair, exchanges shapes, not
+    order), and a record's identification follows a branch, not a shape."""
     from .tracking import track_descriptors
 
     if intact.carrier_teeth != case.carrier_teeth:
@@ -415,9 +386,9 @@ def ordered_frequencies(intact: PitchSpectra, case: PitchSpectra, index) -> np.n
     out = np.full((len(index), ref.frequency_hz.size), np.nan)
     for p, i in enumerate(index):
         here = intact.spectra[intact.base_index[p]]
-        seen = carrier_frame(here.descriptors, intact.carrier_turn[p])
-        to_ref = np.asarray(track_descriptors(ref.descriptors, ref.frequency_hz,
-                                              seen, here.frequency_hz).reference)
+        to_ref = np.full(here.frequency_hz.size, -1)
+        common = min(here.frequency_hz.size, ref.frequency_hz.size)
+        to_ref[:common] = np.arange(common)
         s = case.spectra[i]
         to_here = np.asarray(track_descriptors(here.descriptors, here.frequency_hz,
                                                s.descriptors, s.frequency_hz).reference)

@@ -11,8 +11,7 @@ import pytest
 
 from hubvib.design.presets import preset_design
 from hubvib.elastic.crack_state import crack_state, pitch_teeth
-from hubvib.elastic.loaded import (CARRIER_SPEED, DAMPING_RATIO, carrier_frame,
-                                   loaded_modes)
+from hubvib.elastic.loaded import CARRIER_SPEED, DAMPING_RATIO, loaded_modes
 from hubvib.elastic.model import elastic_ring, elastic_spectrum
 from hubvib.elastic.options import ElasticScene
 from hubvib.meshing.crack import Crack
@@ -28,25 +27,6 @@ def test_record_constants_are_the_detection_defaults():
     assert DAMPING_RATIO == o.damping_ratio and CARRIER_SPEED == pytest.approx(
         o.carrier_speed, rel=1e-15), "the record's damping and carrier speed are the " \
         "detection's defaults (one source per fact, the layer below cannot import them)"
-
-
-def test_carrier_frame_turns_back_a_turned_field():
-    """A field sampled on the circle and the sun's x, y turned by a whole number of probe
-    steps: turning back gives the original exactly (Fourier shift of a sampled field)."""
-    rng = np.random.default_rng(1)
-    n = 64
-    lumped = rng.normal(size=(6, 2))
-    field = rng.normal(size=(2 * n, 2))
-    d = np.vstack([lumped, field])
-    turn = 2 * math.pi * 5 / n
-    turned = d.copy()
-    c, s = math.cos(turn), math.sin(turn)
-    for i in (0, 2):
-        turned[i], turned[i + 1] = c * d[i] - s * d[i + 1], s * d[i] + c * d[i + 1]
-    turned[6:6 + n] = np.roll(d[6:6 + n], 5, axis=0)
-    turned[6 + n:] = np.roll(d[6 + n:], 5, axis=0)
-    np.testing.assert_allclose(carrier_frame(turned, turn), d, atol=1e-12,
-                               err_msg="carrier_frame undoes a turn of 5 probe steps")
 
 
 @pytest.fixture(scope="module")
@@ -169,3 +149,30 @@ def _without_pairs(er, position):
     ops = RingOperators(pb.K, np.eye(pb.K.shape[0]), pb.contact, o.moment_sign,
                         o.patch_angles, o.directions, pb.probe)
     return coupled_modes(er.params, ops, position, er.k_rest, max_hz=er.options.band_hz)
+
+
+@pytest.mark.slow
+def test_record_of_the_intact_ring_against_itself(tmp_path, monkeypatch):
+    """The intact case's record against itself: no change; every record frequency within
+    the instantaneous range; with the crack, the stuck record no lower than the sliding
+    bound (interlacing at every position carries over to the dwell average)."""
+    from hubvib.elastic.cases import elastic_case
+    from hubvib.elastic.loaded import record_track
+    from hubvib.elastic.rest import rest_stiffness
+
+    design = preset_design("raba118")
+    scene = ElasticScene()
+    k_rest = rest_stiffness(design, scene.options.rest)
+    intact = elastic_case(design, None, scene, k_rest)
+    same = record_track(intact, intact)
+    np.testing.assert_array_equal(same.record_hz, same.intact_record_hz,
+                                  err_msg="intact against itself: the same record")
+    assert same.open_share == 0.0 and same.states == ()
+    case = elastic_case(design, Crack(depth=0.003), scene, k_rest)
+    track = record_track(intact, case)
+    ok = np.isfinite(track.record_hz)
+    assert ok.sum() >= 0.9 * ok.size, "nearly every intact mode tracked at some position"
+    assert np.all(track.instantaneous_min_hz[ok] <= track.record_hz[ok] + 1e-9) and np.all(
+        track.record_hz[ok] <= track.instantaneous_max_hz[ok] + 1e-9), (
+        "the record frequency lies within the instantaneous range")
+    assert 0 < track.open_share < 1, "the crack opens and closes over the pitch"
