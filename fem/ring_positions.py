@@ -89,9 +89,10 @@ def ring_positions(body: RingBody, basis: RingBasis, functionals=None) -> RingPo
     z = len(raw.teeth)
     with blas_threads(1):
         S = np.hstack([raw.first, raw.second, raw.functional])
-        for _ in range(2):  # twice: Gram-Schmidt to round-off
-            S = S - phi @ (phi.T @ (body.M @ S))
-        MS = body.M @ S
+        MS, Mphi = body.M @ S, body.M @ phi
+        for _ in range(2):  # twice: Gram-Schmidt to round-off (M S updated, not remade)
+            C = phi.T @ MS
+            S, MS = S - phi @ C, MS - Mphi @ C
         norm = 1 / np.sqrt(np.einsum("ij,ij->j", S, MS))
         S, MS = S * norm, MS * norm
         gram_M = S.T @ MS
