@@ -24,7 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .crack_state import CrackState, crack_state, pitch_teeth
+from .crack_state import CrackState, crack_state, pitch_teeth  # noqa: F401  (CrackState: the
+# states a LoadedSpectra holds, importable from here)
 
 #: torque fractions x closure gaps [m] of the loaded states a case carries
 TORQUE_FRACTIONS = (1.0, 0.5, 0.25)
