@@ -86,9 +86,10 @@ def elastic_case(design, crack, scene: ElasticScene, k_rest: float,
     intact = crack is None or crack.depth == 0
     mounted = scene.options.mounting != "free"
     pitch_positions = pitch_teeth(_teeth(design), design.n_planets, tooth) if mounted else ()
+    # a crack through the rim has no tip: its faces are left free (nothing to pair)
+    paired = mounted and not intact and not crack.is_through(_ring(design))
     er = elastic_ring(design, None if intact else crack, False, scene.options, (away, on),
-                      k_rest=k_rest, more_positions=pitch_positions,
-                      crack_faces=mounted and not intact)
+                      k_rest=k_rest, more_positions=pitch_positions, crack_faces=paired)
     pitch = pitch_spectra(
         er, tooth, away, design.sun_torque, mesh_force(design),
         TORQUE_FRACTIONS if torque_fractions is None else tuple(torque_fractions),
@@ -107,10 +108,14 @@ def elastic_case(design, crack, scene: ElasticScene, k_rest: float,
         er.operators, reduced_foundation(er), er.params, validity, pitch)
 
 
-def _teeth(design) -> int:
+def _ring(design):
     from hubvib.reducer.stages import ring_gear
 
-    return ring_gear(design).teeth
+    return ring_gear(design)
+
+
+def _teeth(design) -> int:
+    return _ring(design).teeth
 
 
 def cached_case(design, crack, scene: ElasticScene, k_rest: float) -> ElasticCase:
