@@ -215,10 +215,10 @@ def tie_rows(rows: np.ndarray, pressed: np.ndarray, stick: bool) -> np.ndarray:
     return np.vstack(tied)
 
 
-def loaded_operators(er, carrier_tooth: int, pressed, stick: bool = True):
+def loaded_operators(er, carrier_tooth: int, pressed, stick: bool = True, base=None):
     """The reduced ring at ``carrier_tooth`` with the ``pressed`` pairs tied (``stick``:
-    tangentially too)."""
-    ops, rows = position_operators(er, carrier_tooth)
+    tangentially too); ``base``: ``position_operators(er, carrier_tooth)`` when at hand."""
+    ops, rows = position_operators(er, carrier_tooth) if base is None else base
     pressed = np.zeros(0, bool) if pressed is None else np.asarray(pressed, bool)
     if er.contact is not None and pressed.any():
         ops = tied_operators(ops, tie_rows(rows, pressed, stick))
@@ -275,6 +275,7 @@ def _pitch_spectra(er, tooth, reference_tooth, sun_torque, mesh_force, torque_fr
     ring_mass = float(er.body.rigid_mass()[0, 0])
     spectra: list = []
     index: dict = {}
+    bases: dict = {}
 
     def spectrum(position, pressed, stick):
         key = (position, np.asarray(pressed, bool).tobytes(), bool(stick) and np.any(pressed))
@@ -283,7 +284,9 @@ def _pitch_spectra(er, tooth, reference_tooth, sun_torque, mesh_force, torque_fr
         if key not in index:
             t = time.perf_counter()
             index[key] = len(spectra)
-            ops = loaded_operators(er, position, pressed, stick)
+            if position not in bases:
+                bases[position] = position_operators(er, position)
+            ops = loaded_operators(er, position, pressed, stick, bases[position])
             spectra.append(_store(_light_modes(er, ops, position), ring_mass))
             seconds["modes"] += time.perf_counter() - t
         return index[key]
