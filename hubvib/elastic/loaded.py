@@ -149,24 +149,31 @@ class _LightModes:
         return self.omega / (2 * np.pi)
 
 
-def _light_modes(er, operators, carrier_tooth: int) -> _LightModes:
-    """``coupled_modes`` below the band for a dense ring with M = I: the mass matrix is
-    diagonal, so the problem is made standard by scaling and only the eigenpairs below the
-    band are computed (LAPACK's MRRR driver)."""
+def _light_modes(mats, probe: np.ndarray, Z: np.ndarray | None, band_hz: float
+                 ) -> _LightModes:
+    """``coupled_modes`` below ``band_hz`` of the dense coupled model ``mats``
+    (``coupled_matrices``, ring M = I) with its ring coordinates restricted to the columns
+    of ``Z`` (orthonormal; None: all).  The restriction of the assembled model is the model
+    of the restricted ring (the couplings are linear in the ring's contact rows).  The mass
+    is diagonal, so the problem is made standard by scaling and only the eigenpairs below
+    the band are computed (LAPACK's MRRR driver)."""
     import scipy.linalg as sla
 
-    from hubvib.lumped.elastic_ring import coupled_matrices
-
-    mats = coupled_matrices(er.params, operators, int(carrier_tooth), er.k_rest)
-    mass = np.diag(mats.M)
+    n = mats.n_ring
+    K = np.asarray(mats.K)
+    if Z is not None:
+        rr, rl = Z.T @ K[:n, :n] @ Z, Z.T @ K[:n, n:]
+        K = np.block([[rr, rl], [rl.T, K[n:, n:]]])
+        probe = probe @ Z
+        n = Z.shape[1]
+    mass = np.concatenate([np.ones(n), mats.lumped_mass])
     scale = 1 / np.sqrt(mass)
-    A = scale[:, None] * mats.K * scale[None, :]
-    top = (2 * np.pi * er.options.band_hz) ** 2
+    A = scale[:, None] * K * scale[None, :]
+    top = (2 * np.pi * band_hz) ** 2
     values, vectors = sla.eigh(0.5 * (A + A.T), subset_by_value=(-np.inf, top), driver="evr")
     vectors = vectors * scale[:, None]
-    n = mats.n_ring
     return _LightModes(np.sqrt(np.clip(values, 0.0, None)), vectors[n:], mats.lumped_mass,
-                       np.asarray(operators.probe @ vectors[:n]))
+                       np.asarray(probe @ vectors[:n]))
 
 
 def position_operators(er, carrier_tooth: int):
@@ -189,20 +196,25 @@ def position_operators(er, carrier_tooth: int):
 def tied_operators(operators, rows: np.ndarray):
     """The reduced ring with ``rows @ q = 0`` imposed (coordinates on their null space;
     ``operators`` M = I, so the restricted ring keeps M = I)."""
-    import scipy.linalg as sla
-
     from hubvib.lumped.elastic_ring import RingOperators
 
     if rows.shape[0] == 0:
         return operators
-    norm = np.linalg.norm(rows, axis=1)
-    rows = rows[norm > 0] / norm[norm > 0, None]  # each tie weighted alike: a rank that
-    # does not depend on which other ties are imposed
-    Z = sla.null_space(rows, rcond=NULL_RCOND)
+    Z = tie_space(rows)
     K = Z.T @ (operators.K @ Z)
     return RingOperators(0.5 * (K + K.T), np.eye(Z.shape[1]), Z.T @ operators.contact,
                          operators.moment_sign, operators.patch_angles, operators.directions,
                          operators.probe @ Z)
+
+
+def tie_space(rows: np.ndarray) -> np.ndarray:
+    """Orthonormal basis of the coordinates with ``rows @ q = 0``."""
+    import scipy.linalg as sla
+
+    norm = np.linalg.norm(rows, axis=1)
+    rows = rows[norm > 0] / norm[norm > 0, None]  # each tie weighted alike: a rank that
+    # does not depend on which other ties are imposed
+    return sla.null_space(rows, rcond=NULL_RCOND)
 
 
 def tie_rows(rows: np.ndarray, pressed: np.ndarray, stick: bool) -> np.ndarray:
@@ -265,7 +277,7 @@ def _pitch_spectra(er, tooth, reference_tooth, sun_torque, mesh_force, torque_fr
                    closure_gaps) -> PitchSpectra:
     import time
 
-    from hubvib.lumped.elastic_ring import engagement
+    from hubvib.lumped.elastic_ring import coupled_matrices, engagement
 
     seconds = {"states": 0.0, "modes": 0.0}
     params = er.params
@@ -285,9 +297,14 @@ def _pitch_spectra(er, tooth, reference_tooth, sun_torque, mesh_force, torque_fr
             t = time.perf_counter()
             index[key] = len(spectra)
             if position not in bases:
-                bases[position] = position_operators(er, position)
-            ops = loaded_operators(er, position, pressed, stick, bases[position])
-            spectra.append(_store(_light_modes(er, ops, position), ring_mass))
+                ops, rows = position_operators(er, position)
+                bases[position] = (coupled_matrices(params, ops, position, er.k_rest),
+                                   ops.probe, rows)
+            mats, probe, rows = bases[position]
+            pressed = np.asarray(pressed, bool)
+            Z = tie_space(tie_rows(rows, pressed, stick)) if pressed.any() else None
+            spectra.append(_store(_light_modes(mats, probe, Z, er.options.band_hz),
+                                  ring_mass))
             seconds["modes"] += time.perf_counter() - t
         return index[key]
 
