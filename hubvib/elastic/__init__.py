@@ -8,7 +8,8 @@ cut-off), ``rest`` (the ring-planet spring without the ring body), ``model`` (a 
 coupled model and its spectrum at a carrier position), ``content`` (nodal diameters,
 harmonic index, mode class, multiplicity), ``tracking`` (modes followed over crack depth),
 ``crack_state`` (the crack's faces in contact under the working load), ``loaded`` (the
-coupled modes about that state over a planet pitch and the record's spectrum of them)
+coupled modes about that state over a planet pitch), ``record_spectrum`` (what a
+record of a mode whose frequency varies over the pitch shows)
 and ``annulus`` (a plain annulus, for checks against ring theory).  Every name below is
 imported on first use (PEP 562).
 """
@@ -23,6 +24,7 @@ if TYPE_CHECKING:
     from .loaded import LoadedSpectra, RecordTrack, record_track
     from .model import ElasticRing, ElasticSpectrum, elastic_ring, elastic_spectrum
     from .options import ElasticOptions
+    from .record_spectrum import RecordSpectrum, record_spectrum
     from .rest import rest_stiffness
     from .tracking import track_modes
 
@@ -30,5 +32,6 @@ __all__ = [
     "ElasticOptions", "ElasticRing", "ElasticSpectrum", "elastic_ring", "elastic_spectrum",
     "ModeContent", "mode_content", "rest_stiffness", "track_modes", "annulus_modes",
     "CrackState", "crack_state", "LoadedSpectra", "RecordTrack", "record_track",
+    "RecordSpectrum", "record_spectrum",
 ]
 __getattr__, __dir__ = lazy_face(__name__, __file__, __all__)

@@ -456,33 +456,6 @@ def record_track(intact_case, case, torque_fraction: float = 1.0,
 
 
 def _record(instantaneous_hz, dwell, damping_ratio, pass_hz):
-    try:
-        from .record_spectrum import record_spectrum
-    except ImportError:
-        return _dwell_mean_record(instantaneous_hz, dwell)
+    from .record_spectrum import record_spectrum
+
     return record_spectrum(instantaneous_hz, dwell, damping_ratio, pass_hz)
-
-
-@dataclass(frozen=True)
-class _MeanRecord:
-    frequency_hz: np.ndarray
-    instantaneous_min_hz: np.ndarray
-    instantaneous_max_hz: np.ndarray
-    regime: tuple
-    peaks_hz: tuple
-
-
-def _dwell_mean_record(instantaneous_hz, dwell) -> _MeanRecord:
-    """PLACEHOLDER until ``record_spectrum`` lands: the dwell-weighted mean over the
-    positions where a mode is tracked (NaN where it is tracked nowhere)."""
-    f = np.asarray(instantaneous_hz, dtype=float)
-    w = np.where(np.isfinite(f), np.asarray(dwell, dtype=float)[:, None], 0.0)
-    total = w.sum(axis=0)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        mean = np.where(total > 0, np.nansum(w * np.nan_to_num(f), axis=0) / total, np.nan)
-    finite = np.isfinite(f).any(axis=0)
-    low = np.full(f.shape[1], np.nan)
-    high = np.full(f.shape[1], np.nan)
-    low[finite] = np.nanmin(f[:, finite], axis=0)
-    high[finite] = np.nanmax(f[:, finite], axis=0)
-    return _MeanRecord(mean, low, high, ("averaged",) * f.shape[1], ((),) * f.shape[1])

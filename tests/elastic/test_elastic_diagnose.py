@@ -401,7 +401,8 @@ def test_the_loaded_record_swaps_in_through_one_seam(small, monkeypatch):
     cases, reference_model = small
     fake = types.ModuleType("hubvib.elastic.loaded")
 
-    def record_track(intact, case, torque_fraction=1.0, closure_gap_m=0.0):
+    def record_track(intact, case, torque_fraction=1.0, closure_gap_m=0.0, damping_ratio=0.02,
+                     carrier_speed=1.0):
         seen = elastic_model.tracked_to(intact.away, case.away, intact.ring_mass)[0]
         f0 = intact.away.frequency_hz
         return SimpleNamespace(record_hz=f0 + 0.5 + 0.6 * (seen - f0),
@@ -409,9 +410,8 @@ def test_the_loaded_record_swaps_in_through_one_seam(small, monkeypatch):
 
     fake.record_track = record_track
     monkeypatch.setitem(sys.modules, "hubvib.elastic.loaded", fake)
-    monkeypatch.setattr(elastic_model, "RECORD_TORQUE_FRACTION", 1.0)
-    loaded = [SimpleNamespace(**{k: getattr(c, k) for k in c.__dataclass_fields__},
-                              loaded=True) for c in cases]
+    loaded = [SimpleNamespace(**{**{k: getattr(c, k) for k in c.__dataclass_fields__},
+                                 "pitch": True}) for c in cases]
     model = elastic_model.elastic_spectrum_model(reference_model.grid, loaded)
     base = reference_model.nominal_grid_hz
     expected = base[0] + 0.5 + 0.6 * (base - base[0])
@@ -427,3 +427,45 @@ def test_the_loaded_record_swaps_in_through_one_seam(small, monkeypatch):
     moved = (np.abs(base - base[0]) > 1e-6) & tracked  # untracked: the record is the reference
     assert np.allclose(change[moved], 0.6 * (plain - plain[0])[moved], rtol=1e-9), \
         "each sampled change scaled by the nominal ratio"
+
+
+def test_a_record_change_the_reference_hardly_sees_is_added_not_scaled(small, monkeypatch):
+    """Where the open crack half a pitch away moves a mode by less than ``RATIO_FLOOR`` of
+    what the record sees (here: the reference change times 0.1, plus -5 Hz), a sampled
+    reducer's record change is its own reference change plus the nominal difference, so
+    the ratio (which would be about 50) does not magnify the sample's scatter."""
+    import sys
+    import types
+    from types import SimpleNamespace
+
+    from hubvib.detection import elastic_model
+
+    cases, reference_model = small
+    fake = types.ModuleType("hubvib.elastic.loaded")
+
+    def record_track(intact, case, torque_fraction=1.0, closure_gap_m=0.0, damping_ratio=0.02,
+                     carrier_speed=1.0):
+        seen = elastic_model.tracked_to(intact.away, case.away, intact.ring_mass)[0]
+        f0 = intact.away.frequency_hz
+        extra = 0.0 if case is intact else -5.0
+        return SimpleNamespace(record_hz=f0 + 0.1 * (seen - f0) + extra)
+
+    fake.record_track = record_track
+    monkeypatch.setitem(sys.modules, "hubvib.elastic.loaded", fake)
+    loaded = [SimpleNamespace(**{**{k: getattr(c, k) for k in c.__dataclass_fields__},
+                                 "pitch": True}) for c in cases]
+    model = elastic_model.elastic_spectrum_model(reference_model.grid, loaded)
+    base = reference_model.nominal_grid_hz
+    tracked = np.array([op.tracked for op in model.operators])
+    small_change = np.abs(base - base[0]) < 1.0  # record change -5 Hz dominates
+    assert np.all(np.isnan(model.record_ratio[1:][small_change[1:] & tracked[1:]]))
+    drawn = ElasticSamples({k: np.full(1, 1.02) for k in model.mass_fields},
+                           np.full(1, 0.99), {k: np.full(1, 1.05)
+                                              for k in model.stiffness_names}, np.zeros(1))
+    change = model.frequencies_of(drawn)[0] - model.frequencies_of(drawn)[0][0]
+    plain = reference_model.frequencies_of(drawn)[0]
+    added = (model.nominal_grid_hz - model.nominal_grid_hz[0]) - (base - base[0])
+    check = small_change & tracked
+    check[0] = False
+    assert np.allclose(change[check], ((plain - plain[0]) + added)[check], atol=1e-9), \
+        "reference change plus the nominal difference where the ratio is not used"
