@@ -5,12 +5,19 @@ output that cannot be written (one line ``hubvib: error: ...`` naming the flag,
 key or file); 130 interrupted (Ctrl-C: one line ``hubvib: interrupted``); 141
 standard output closed early (``hubvib spectrum | head -1``, ``--help`` too) or
 from the start (``>&-``): quiet, like a program stopped by SIGPIPE; 143 terminated
-(SIGTERM: one line ``hubvib: terminated``).  No traceback for any of these.
+(SIGTERM: one line ``hubvib: terminated``).  No traceback for any of these.  A signal
+that comes before the interpreter has started ``hubvib`` ends it by its default action
+(nothing was started that needs cleaning up; a shell reports 143 or 130 the same).
 
 Run as the program, SIGTERM unwinds like Ctrl-C (``Terminated``), so that every
-``finally`` runs: the output stage folders and the temporary files and folders in the
-cache are removed on the way out (what ``kill -9`` leaves, the next run removes:
-``hubvib.runtime.cache_check.sweep_cache``).  A second SIGTERM ends the process at once.
+``finally`` runs: the output stage folders, the output lock, the worker pool and the
+temporary files and folders in the cache are removed on the way out (what ``kill -9``
+leaves, the next run removes: ``hubvib.runtime.cache_check.sweep_cache``).  A SIGTERM or
+SIGINT repeated within ``REPEAT_SECONDS`` of the first is the same request and changes
+nothing (``timeout`` sends SIGTERM to the command and then to its whole process group,
+and a terminal's Ctrl-C is often pressed twice: a repeat that ended the process at once
+left the lock, the stage and the pool's semaphores behind); one that comes later, while
+the clean-up still runs, ends the process at once.
 """
 from __future__ import annotations
 
@@ -21,6 +28,7 @@ import json
 import os
 import signal
 import sys
+import time
 
 EXIT_ERROR = 2
 EXIT_INTERRUPTED = 130
@@ -28,21 +36,46 @@ EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE, what a shell reports for `yes | head -1
 EXIT_TERMINATED = 143  # 128 + SIGTERM
 
 
+#: a SIGTERM or SIGINT this soon after the first is the same request [s]
+REPEAT_SECONDS = 2.0
+
+
 class Terminated(KeyboardInterrupt):
     """SIGTERM, raised in the main thread (see the module docstring); a KeyboardInterrupt,
     so that whatever stops cleanly on Ctrl-C (worker pools, locks, stages) does so here."""
 
 
-def _raise_terminated(signum, frame):
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # a second SIGTERM ends the process
-    raise Terminated
+class _Stop:
+    """When the first SIGTERM or SIGINT came (``time.monotonic``), and whether the process
+    is past the point where one could still be turned into an exception (exiting)."""
+
+    first: float | None = None
+    exiting = False
+
+
+def _on_stop_signal(signum, frame):
+    """The first SIGTERM raises ``Terminated``, the first SIGINT ``KeyboardInterrupt``;
+    a repeat within ``REPEAT_SECONDS`` is ignored; a later one, or any once the process
+    is exiting without a stop request, ends it at once (the signal's default action)."""
+    now = time.monotonic()
+    if _Stop.first is not None and now - _Stop.first < REPEAT_SECONDS:
+        return
+    if _Stop.first is None and not _Stop.exiting:
+        _Stop.first = now
+        raise Terminated if signum == signal.SIGTERM else KeyboardInterrupt
+    signal.signal(signum, signal.SIG_DFL)
+    os.kill(os.getpid(), signum)
 
 
 def _terminate_by_exception() -> None:
-    """SIGTERM raises ``Terminated`` in this process (main thread only)."""
+    """SIGTERM raises ``Terminated`` and SIGINT ``KeyboardInterrupt`` in this process, once
+    (main thread only; see the module docstring)."""
+    _Stop.first, _Stop.exiting = None, False
     try:
-        signal.signal(signal.SIGTERM, _raise_terminated)
-    except ValueError:  # not the main thread: the default stays
+        signal.signal(signal.SIGTERM, _on_stop_signal)
+        if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+            signal.signal(signal.SIGINT, _on_stop_signal)
+    except ValueError:  # not the main thread: the defaults stay
         pass
 
 
@@ -79,11 +112,15 @@ def _ignore_interrupts() -> None:
     here) leaves it set, and ``python -m hubvib.cli`` then died by SIGINT after exit 130
     was chosen (13 of 40 interrupts in the first second); an empty ``PyRun_*`` resets it.
     """
+    _Stop.exiting = True  # from here a SIGTERM just ends it (a repeat: see _on_stop_signal)
     try:
         signal.signal(signal.SIGINT, signal.SIG_IGN)
-        signal.signal(signal.SIGTERM, signal.SIG_DFL)  # from here a SIGTERM just ends it
     except ValueError:  # not the main thread: nothing to do
         return
+    if _Stop.first is not None:
+        # the stop is carried out: a repeat is ignored to the end (the interpreter's last
+        # teardown puts the default action back in place of a Python handler, not of this)
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)
     try:
         ctypes.pythonapi.PyRun_SimpleString(b"")
     except (AttributeError, OSError):  # not CPython
