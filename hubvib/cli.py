@@ -210,7 +210,16 @@ class _Retry(Exception):
     """A usage error met by the one-command parser: parse again with every command."""
 
 
-class _OneCommandParser(argparse.ArgumentParser):
+class _Parser(argparse.ArgumentParser):
+    """argparse with a usage error on one line, ``hubvib CMD: error: ...`` naming the flag
+    (argparse's own text: the flag, the value, the choices), exit 2; the usage is
+    ``hubvib CMD --help``."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} ({self.prog} --help lists the flags)\n")
+
+
+class _OneCommandParser(_Parser):
     """The parser of a command line that names its command: that command's module only
     (the others' imports cost a second or more).  Its usage errors are raised as
     :class:`_Retry` while it parses, so that the whole parser reports them with the
@@ -243,11 +252,11 @@ def _parser(command: str | None = None) -> argparse.ArgumentParser:
     every command when no module is named so)."""
     from .commands import command_modules
 
-    parser = (_OneCommandParser if command else argparse.ArgumentParser)(
+    parser = (_OneCommandParser if command else _Parser)(
         prog="hubvib", description="Natural-frequency shifts of planetary hub reducers with a "
         "cracked ring gear.", epilog="exit codes: 0 done, 1 a check failed (validate, "
         "stability), 2 bad input or output that cannot be written, 130 interrupted, 141 "
-        "standard output closed early")
+        "standard output closed early, 143 terminated")
     sub = parser.add_subparsers(dest="command", required=True)
     for module in command_modules(command):
         module.add_parser(sub)

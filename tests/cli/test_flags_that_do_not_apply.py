@@ -82,3 +82,16 @@ def test_the_scene_tables_design_check_knows_are_the_scene_loaders():
     from hubvib.studies.scene import TOP_LEVEL
 
     assert SCENE_TABLES == (TOP_LEVEL | study_tables()) - {"design"}
+
+
+@pytest.mark.parametrize("argv,names", [
+    (["stiffness", "--crack-depth", "abc"], "argument --crack-depth: invalid float value: 'abc'"),
+    (["mesh", "ring", "--dim", "4"], "argument --dim: invalid choice: 4 (choose from 2, 3)"),
+    (["nosuch"], "invalid choice: 'nosuch'"),
+], ids=["type", "choice", "command"])
+def test_a_usage_error_is_one_line_naming_the_flag_and_its_choices(argv, names, capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(argv)
+    assert stop.value.code == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and names in err and "--help lists the flags" in err, err
