@@ -50,7 +50,7 @@ def add_parser(sub) -> None:
                    help="skip the 3D crack-growth scene (13 solid cases: ~8 min on 2 cores)")
     p.add_argument("--ci", action="store_true",
                    help="also time the repository's .ci/run (ci_seconds; else null)")
-    p.add_argument("--json", action="store_true")
+    p.add_argument("--json", action="store_true", help="machine-readable output (JSON)")
     p.set_defaults(handler=run)
 
 

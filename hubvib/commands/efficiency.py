@@ -42,7 +42,7 @@ def add_parser(sub) -> None:
                         "--table or --json: the JSON holds the curves anyway)")
     p.add_argument("--out", type=Path, metavar="DIR",
                    help="write plots (PNG) and the alpha1 curves (CSV) here")
-    p.add_argument("--json", action="store_true")
+    p.add_argument("--json", action="store_true", help="machine-readable output (JSON)")
     p.set_defaults(handler=run)
 
 

@@ -43,7 +43,7 @@ def add_parser(sub) -> None:
                    help="element size at the crack tip [m] (default 5e-5 in 2D, 5e-4 in 3D)")
     p.add_argument("--out", type=Path, default=Path("hubvib-out/mesh"), metavar="DIR",
                    help="output folder for the VTU and PNG (default hubvib-out/mesh)")
-    p.add_argument("--json", action="store_true")
+    p.add_argument("--json", action="store_true", help="machine-readable output (JSON)")
     p.set_defaults(handler=run)
 
 

@@ -45,7 +45,7 @@ def add_parser(sub) -> None:
                    help="inertia moment M_U of the roller [N m] (default 0, quasi-static)")
     p.add_argument("--out", type=Path, metavar="DIR",
                    help="write the results (CSV) and, for a sweep, eta against phi2 (PNG)")
-    p.add_argument("--json", action="store_true")
+    p.add_argument("--json", action="store_true", help="machine-readable output (JSON)")
     p.set_defaults(handler=run)
 
 
