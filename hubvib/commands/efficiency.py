@@ -10,6 +10,8 @@ from hubvib.foundation.output import written_line
 
 #: the paper's satellite diameters [mm], the defaults of --ball-diameter-mm, --roller-diameter-mm
 PAPER_DIAMETER_MM = {"ball": 15.0, "roller": 10.0}
+#: the paper's input power [W], the default of --input-power-w
+PAPER_INPUT_POWER_W = 1500.0
 
 
 def add_parser(sub) -> None:
@@ -33,8 +35,9 @@ def add_parser(sub) -> None:
                    help="friction, rolling with sliding on the fixed track, [0, 1) (paper: 0.05)")
     p.add_argument("--f3", type=float, default=0.1,
                    help="friction, sliding in the carrier slots, [0, 1) (paper: 0.1)")
-    p.add_argument("--input-power-w", type=float, default=1500.0, metavar="W",
-                   help="input power W1 for the link losses [W] (paper: 1500)")
+    p.add_argument("--input-power-w", type=float, default=None, metavar="W",
+                   help="input power W1 for the link losses [W] (paper: 1500); with --table "
+                        "only for --json or --out (the printed table has no link losses)")
     p.add_argument("--table", action="store_true",
                    help="recompute the paper's table for i = 5..30 and compare it")
     p.add_argument("--curve", action="store_true", default=None,
@@ -62,7 +65,10 @@ def run(args) -> int:
         ("--roller-diameter-mm", args.satellite in ("roller", "both"),
          "to roller satellites (--satellite roller or both)"),
         ("--curve", not args.table and not args.json,
-         "to the printed report of one or more ratios (not --table; --json holds the curves)")))
+         "to the printed report of one or more ratios (not --table; --json holds the curves)"),
+        ("--input-power-w", not args.table or args.json or args.out is not None,
+         "to the designs' link losses: without --table, or with --json or --out")))
+    input_power = value(args, "--input-power-w", PAPER_INPUT_POWER_W)
     friction = Friction(args.f1, args.f2, args.f3)
     satellites = {name: check_diameter(name, value(args, f"--{name}-diameter-mm",
                                                    PAPER_DIAMETER_MM[name]) * 1e-3)
@@ -76,10 +82,10 @@ def run(args) -> int:
     alpha1 = None if args.alpha1_deg is None else check_alpha1(math.radians(args.alpha1_deg))
     if args.table:
         table = paper_table(ratios, friction, satellites)
-        designs = tuple(gear_design(i, friction, None, satellites, args.input_power_w)
+        designs = tuple(gear_design(i, friction, None, satellites, input_power)
                         for i in ratios)
     else:
-        designs = tuple(gear_design(i, friction, alpha1, satellites, args.input_power_w)
+        designs = tuple(gear_design(i, friction, alpha1, satellites, input_power)
                         for i in ratios)
     files = write_efficiency_files(args.out, designs) if args.out else []
     if args.json:

@@ -30,6 +30,10 @@ REFUSED = [
     (["efficiency", "--ratio", "7", "--curve", "--json"], "--curve applies only", "--json"),
     (["torus-screw", "--fingers", "cylindrical", "--finger-spacing", "0.02"],
      "--finger-spacing = 0.02", "--fingers spherical or both"),
+    (["efficiency", "--table", "--input-power-w", "100"], "--input-power-w = 100.0",
+     "with --json or --out"),
+    (["benchmark", "--quick", "--no-3d-scene"], "--no-3d-scene applies only to a full run",
+     "--quick skips"),
 ]
 
 
@@ -37,7 +41,7 @@ REFUSED = [
 def test_a_flag_that_does_not_apply_is_refused(argv, flag, needs, tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     out = tmp_path / "out"
-    extra = ["--out", str(out)] if argv[0] in ("mesh", "efficiency", "torus-screw") else []
+    extra = ["--out", str(out)] if argv[0] in ("mesh", "torus-screw") else []
     assert main(argv + extra) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith("hubvib: error: "), err
