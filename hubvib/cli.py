@@ -17,7 +17,8 @@ SIGINT repeated within ``REPEAT_SECONDS`` of the first is the same request and c
 nothing (``timeout`` sends SIGTERM to the command and then to its whole process group,
 and a terminal's Ctrl-C is often pressed twice: a repeat that ended the process at once
 left the lock, the stage and the pool's semaphores behind); one that comes later, while
-the clean-up still runs, ends the process at once.
+the clean-up still runs, ends the process at once.  Once the outcome is decided and its
+line printed, SIGTERM and SIGINT are ignored while the interpreter exits.
 """
 from __future__ import annotations
 
@@ -46,23 +47,21 @@ class Terminated(KeyboardInterrupt):
 
 
 class _Stop:
-    """When the first SIGTERM or SIGINT came (``time.monotonic``), and whether the process
-    is past the point where one could still be turned into an exception (exiting)."""
+    """When the first SIGTERM or SIGINT came (``time.monotonic``)."""
 
     first: float | None = None
-    exiting = False
 
 
 def _on_stop_signal(signum, frame):
     """The first SIGTERM raises ``Terminated``, the first SIGINT ``KeyboardInterrupt``;
-    a repeat within ``REPEAT_SECONDS`` is ignored; a later one, or any once the process
-    is exiting without a stop request, ends it at once (the signal's default action)."""
+    a repeat within ``REPEAT_SECONDS`` is ignored; a later one ends the process at once
+    (the signal's default action)."""
     now = time.monotonic()
-    if _Stop.first is not None and now - _Stop.first < REPEAT_SECONDS:
-        return
-    if _Stop.first is None and not _Stop.exiting:
+    if _Stop.first is None:
         _Stop.first = now
         raise Terminated if signum == signal.SIGTERM else KeyboardInterrupt
+    if now - _Stop.first < REPEAT_SECONDS:
+        return
     signal.signal(signum, signal.SIG_DFL)
     os.kill(os.getpid(), signum)
 
@@ -70,7 +69,7 @@ def _on_stop_signal(signum, frame):
 def _terminate_by_exception() -> None:
     """SIGTERM raises ``Terminated`` and SIGINT ``KeyboardInterrupt`` in this process, once
     (main thread only; see the module docstring)."""
-    _Stop.first, _Stop.exiting = None, False
+    _Stop.first = None
     try:
         signal.signal(signal.SIGTERM, _on_stop_signal)
         if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
@@ -105,22 +104,21 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _ignore_interrupts() -> None:
-    """From here on SIGINT changes nothing (the process is about to exit).
+    """From here on SIGINT and SIGTERM change nothing (the process is about to exit).
 
     Also clears CPython's "unhandled KeyboardInterrupt" flag: a Ctrl-C that ran through
     code an extension module runs with ``PyRun_*`` while being imported (then caught
     here) leaves it set, and ``python -m hubvib.cli`` then died by SIGINT after exit 130
     was chosen (13 of 40 interrupts in the first second); an empty ``PyRun_*`` resets it.
     """
-    _Stop.exiting = True  # from here a SIGTERM just ends it (a repeat: see _on_stop_signal)
     try:
         signal.signal(signal.SIGINT, signal.SIG_IGN)
+        # the outcome is decided (done, failed or stopped) and its line printed: a SIGTERM
+        # now changes nothing either (the interpreter's last teardown puts the default
+        # action back in place of a Python handler, not of this)
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)
     except ValueError:  # not the main thread: nothing to do
         return
-    if _Stop.first is not None:
-        # the stop is carried out: a repeat is ignored to the end (the interpreter's last
-        # teardown puts the default action back in place of a Python handler, not of this)
-        signal.signal(signal.SIGTERM, signal.SIG_IGN)
     try:
         ctypes.pythonapi.PyRun_SimpleString(b"")
     except (AttributeError, OSError):  # not CPython
