@@ -47,9 +47,10 @@ class Terminated(KeyboardInterrupt):
 
 
 class _Stop:
-    """When the first SIGTERM or SIGINT came (``time.monotonic``)."""
+    """When the first SIGTERM or SIGINT came (``time.monotonic``), and which it was."""
 
     first: float | None = None
+    signum: int | None = None
 
 
 def _on_stop_signal(signum, frame):
@@ -58,7 +59,7 @@ def _on_stop_signal(signum, frame):
     (the signal's default action)."""
     now = time.monotonic()
     if _Stop.first is None:
-        _Stop.first = now
+        _Stop.first, _Stop.signum = now, signum
         raise Terminated if signum == signal.SIGTERM else KeyboardInterrupt
     if now - _Stop.first < REPEAT_SECONDS:
         return
@@ -69,7 +70,7 @@ def _on_stop_signal(signum, frame):
 def _terminate_by_exception() -> None:
     """SIGTERM raises ``Terminated`` and SIGINT ``KeyboardInterrupt`` in this process, once
     (main thread only; see the module docstring)."""
-    _Stop.first = None
+    _Stop.first = _Stop.signum = None
     try:
         signal.signal(signal.SIGTERM, _on_stop_signal)
         if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
@@ -101,6 +102,21 @@ def main(argv: list[str] | None = None) -> int:
             _ignore_interrupts()
         _say("hubvib: interrupted")
         return EXIT_INTERRUPTED
+    except Exception:
+        if _Stop.signum is None:
+            raise
+        return _stopped()
+
+
+def _stopped() -> int:
+    """The one line and the exit code of the stop signal this process received: the
+    failure it caused (an extension module's import turns the exception raised inside it
+    into an ``ImportError`` that no longer names it) is its consequence, not the outcome."""
+    if _Stop.signum == signal.SIGTERM:
+        _say("hubvib: terminated")
+        return EXIT_TERMINATED
+    _say("hubvib: interrupted")
+    return EXIT_INTERRUPTED
 
 
 def _ignore_interrupts() -> None:
@@ -176,7 +192,10 @@ def _flush_stdout() -> None:
 
 def _error(message, as_json: bool = False) -> int:
     """One line ``hubvib: error: ...`` on stderr; with ``--json`` also
-    ``{"error": ..., "exit_code": 2}`` on stdout (a script reading stdout sees why)."""
+    ``{"error": ..., "exit_code": 2}`` on stdout (a script reading stdout sees why).
+    After a stop signal the error is its consequence: the stop's line instead."""
+    if _Stop.signum is not None:
+        return _stopped()
     _say(f"hubvib: error: {message}")
     if as_json:
         try:
