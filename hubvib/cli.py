@@ -86,6 +86,7 @@ def main(argv: list[str] | None = None) -> int:
     could still turn it into ``KeyboardInterrupt`` here is ignored: it used to escape
     ``main`` (1 run in 25 killed by the signal instead of exit 130).
     """
+    _Stop.first = _Stop.signum = None  # this call's stop only
     if argv is None:
         _terminate_by_exception()
     try:

@@ -16,11 +16,8 @@ from pathlib import Path
 
 import pytest
 
-import hubvib
 from hubvib.foundation.output import LOCK_NAME, MANIFEST_NAME, STAGE_PREFIX
 
-#: where hubvib's own frames of a traceback point
-PACKAGE = str(Path(hubvib.__file__).parent)
 EXPECTED = {signal.SIGTERM: (143, "hubvib: terminated"),
             signal.SIGINT: (130, "hubvib: interrupted")}
 
@@ -66,10 +63,11 @@ def _check(process: subprocess.Popen, folder: Path, signum: int, when: str,
     what = f"{signal.Signals(signum).name} {when}: exit {process.returncode}, stderr {err!r}"
     out = folder / "out"
     left = sorted(p.name for p in out.iterdir()) if out.is_dir() else []
-    if process.returncode != 0 and PACKAGE not in err and "hubvib:" not in err and not left:
-        return  # before the interpreter ran any hubvib code: its default action (for SIGINT
-        # a KeyboardInterrupt in site or runpy, or exit 1 "Failed to import the site
-        # module"), nothing was started
+    if process.returncode != 0 and ", in main" not in err and "hubvib:" not in err and \
+            not left:
+        return  # before hubvib.cli's main ran (interpreter start-up, the import of hubvib.cli):
+        # the signal's default action (for SIGINT a KeyboardInterrupt in site, runpy or the
+        # import, or exit 1 "Failed to import the site module"); nothing was started
     assert "leaked" not in err and "Traceback" not in err and "Warning" not in err, what
     assert LOCK_NAME not in left and not any(n.startswith(STAGE_PREFIX) for n in left), (
         f"{what}; left in the output folder: {left}")
