@@ -50,15 +50,22 @@ def add_parser(sub) -> None:
                    help="skip the 3D race, the memory probes, the main job and the tests "
                    "(a smoke test, ~1 min)")
     p.add_argument("--no-3d-scene", dest="scene_3d", action="store_false",
-                   help="skip the 3D crack-growth scene (13 solid cases: ~8 min on 2 cores)")
+                   help="skip the 3D crack-growth scene (13 solid cases: ~8 min on 2 cores); "
+                   "not with --quick (it skips it already)")
     p.add_argument("--ci", action="store_true",
                    help="also time the repository's .ci/run (ci_seconds; else null)")
-    p.add_argument("--json", action="store_true")
+    p.add_argument("--json", action="store_true", help="machine-readable output (JSON)")
     p.set_defaults(handler=run)
 
 
 def run(args) -> int:
     import hubvib.benchmarks as benchmarks
+
+    from ._applies import FlagError
+
+    if args.quick and not args.scene_3d:
+        raise FlagError("--no-3d-scene applies only to a full run (--quick skips the 3D "
+                        "scene already); drop it")
 
     figures = benchmarks.run_benchmark(quick=args.quick, scene_3d=args.scene_3d, ci=args.ci,
                             progress=lambda line: print(line, file=sys.stderr, flush=True))

@@ -13,13 +13,13 @@ def add_parser(sub) -> None:
                        "c_sp, c_rp; bearing c_p, c_c")
     add_reducer_options(p)
     p.add_argument("--crack-depth", type=float, default=0.0, metavar="D",
-                   help="root crack length at tooth 0 [m]; 0 = intact only")
+                   help="root crack length at tooth 0 [m] (metres: 0.005 = 5 mm); 0 = intact only")
     p.add_argument("--solid", action="store_true",
                    help="also c_ru and c_r of the solid (3D) ring, ~1 min per case")
     p.add_argument("--solver", default="auto", choices=SOLVERS,
                    help="sparse solver of c_ru, c_r; auto: PARDISO if installed (2D and 3D), else "
                    "SuperLU in 2D and below 6e4 DOFs, else AMG-CG")
-    p.add_argument("--json", action="store_true")
+    p.add_argument("--json", action="store_true", help="machine-readable output (JSON)")
     p.set_defaults(handler=run)
 
 
