@@ -101,9 +101,17 @@ def data_source_key(entry: str) -> str:
 def stale_data() -> list[str]:
     """The docs/data entries whose meta file's "source_key" is not the current source's
     (recorded by ``python docs/generate.py --record-source ENTRY`` after its commands ran,
-    as ``docs/data/regenerate.sh`` does): each written by other code than the one now."""
+    as ``docs/data/regenerate.sh`` does): each written by other code than the one now.
+    An entry with no key recorded yet is :func:`unkeyed_data`, not stale."""
     return [entry for entry in data_entries()
-            if _meta(entry).get("source_key") != data_source_key(entry)]
+            if "source_key" in _meta(entry)
+            and _meta(entry)["source_key"] != data_source_key(entry)]
+
+
+def unkeyed_data() -> list[str]:
+    """The docs/data entries not regenerated since source keys are recorded: their age
+    against the code is unknown (the build names them; ``regenerate.sh ENTRY`` keys one)."""
+    return [entry for entry in data_entries() if "source_key" not in _meta(entry)]
 
 
 def record_source(entries: list[str]) -> None:
@@ -1323,7 +1331,7 @@ TABLES = {name: function for name, function in list(globals().items())
           if callable(function) and not name.startswith("_") and function.__module__ == __name__
           and name not in {"markdown_table", "provenance", "table", "console", "render",
                            "expand", "fill", "blocks", "stale", "write_pages", "data_entries",
-                           "command_modules", "data_source_key", "stale_data",
+                           "command_modules", "data_source_key", "stale_data", "unkeyed_data",
                            "record_source"}}
 
 

@@ -15,16 +15,20 @@ class MeshingError(RuntimeError):
 
 
 def _restore_sigpipe() -> None:
-    """Put back the SIGPIPE disposition Python set at start-up (ignored, so that a write to a
-    closed pipe raises BrokenPipeError).  ``gmsh.initialize`` resets it to the default, which
-    kills the whole process on such a write (exit 141): a test run or a pool whose worker
-    died would vanish without a word.  Python still reports the old handler, so it is
-    installed again as it is; only the main thread may do so."""
-    if not hasattr(signal, "SIGPIPE") or threading.current_thread() is not threading.main_thread():
+    """Put back the dispositions of SIGPIPE, SIGTERM and SIGINT that Python and hubvib set
+    (``gmsh.initialize`` resets them at the C level).  SIGPIPE: Python ignores it, so that a
+    write to a closed pipe raises BrokenPipeError, where the default kills the whole
+    process (exit 141): a test run or a pool whose worker died would vanish without a word.
+    SIGTERM, SIGINT: the command's handlers, which end a run with one line and nothing
+    left in its out folder.  Python still reports the old handlers, so they are installed
+    again as they are; only the main thread may do so."""
+    if threading.current_thread() is not threading.main_thread():
         return
-    handler = signal.getsignal(signal.SIGPIPE)
-    if handler is not None:
-        signal.signal(signal.SIGPIPE, handler)
+    for name in ("SIGPIPE", "SIGTERM", "SIGINT"):
+        signum = getattr(signal, name, None)
+        handler = None if signum is None else signal.getsignal(signum)
+        if handler is not None:
+            signal.signal(signum, handler)
 
 
 @contextlib.contextmanager

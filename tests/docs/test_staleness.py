@@ -37,7 +37,8 @@ def test_a_recorded_source_key_is_current_until_the_code_changes(tmp_path, monke
     (tmp_path / "x.json").write_text("{}")
     meta = tmp_path / "x.json.meta.json"
     meta.write_text(json.dumps({"command": ["hubvib design check demo.toml > docs/data/x.json"]}))
-    assert generate.stale_data() == ["x.json"], "no key recorded: stale"
+    assert generate.stale_data() == [] and generate.unkeyed_data() == ["x.json"], \
+        "no key recorded: unkeyed, not stale"
     generate.record_source(["x.json"])
     assert generate.stale_data() == []
     assert json.loads(meta.read_text())["command"], "the other fields are kept"

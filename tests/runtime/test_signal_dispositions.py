@@ -28,8 +28,6 @@ print(caught(signal.SIGTERM))
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc/self/status")
-@pytest.mark.xfail(strict=True, reason="hubvib.meshing.session restores SIGPIPE only after "
-                   "gmsh.initialize; it must restore SIGTERM (and SIGINT) too")
 def test_a_mesh_session_keeps_the_processes_sigterm_handler():
     pytest.importorskip("gmsh")
     result = subprocess.run([sys.executable, "-c", CHILD], capture_output=True, text=True,
