@@ -76,6 +76,9 @@ def crack_report(result, plots: list[str], renders: list[str], fe_renders: list[
         from hubvib.reports.elastic_sections import elastic_section
 
         lines += elastic_section(result.elastic, result.elastic_validity)
+        from hubvib.reports.elastic_sections import load_sensitivity_lines
+
+        lines += load_sensitivity_lines(result.load_sensitivity, result.elastic.record_length)
     if result.elastic_map is not None:
         from hubvib.reports.elastic_map_sections import map_section
 
@@ -184,8 +187,9 @@ def crack_report(result, plots: list[str], renders: list[str], fe_renders: list[
                   f"Rendered depth: {1e3 * shown:.3g} mm.{why} Under the "
                   f"{sweep.reducer.n_planets} planet mesh forces of the design's "
                   f"{sweep.reducer.sun_torque:g} N m sun torque (planet 1 on the cracked "
-                  "tooth), von Mises stress; then its lowest modes on the clamped supports "
-                  "(plane stress, deformation magnified).", ""]
+                  "tooth), von Mises stress; then its lowest elastic modes of its own on the "
+                  "elastic ring's mounting (its Winkler foundation on the support arcs unless "
+                  "the scene sets another; plane stress, deformation magnified).", ""]
         lines += [x for n in fe_renders for x in figure_lines(n)]
     if signal:
         lines += SIGNAL_SECTION

@@ -5,6 +5,8 @@ frequencies in Hz (the keys carry the units).
 """
 from __future__ import annotations
 
+import numpy as np
+
 import math
 from dataclasses import asdict
 from pathlib import Path
@@ -81,6 +83,9 @@ def write_crack_tables(result, folder: Path) -> list[Path]:
                                 "no plane sweep)"),
         "mode_map": [p.row() for p in result.mode_map] or None,
         "mode_map_reason": None if result.mode_map else "the elastic ring did not run",
+        "load_sensitivity": [v.to_dict() for v in result.load_sensitivity] or None,
+        "load_sensitivity_reason": (None if result.load_sensitivity else
+                                    "the elastic ring did not run on a mounted ring"),
         "elastic_map": None if result.elastic_map is None else result.elastic_map.rows(),
         "elastic_map_reason": (None if result.elastic_map is not None else
                                "the elastic ring did not run" if result.elastic is None else
@@ -142,7 +147,13 @@ def _elastic_csv(elastic) -> list[dict]:
             rows.append({"depth_mm": 1e3 * depth, "mode": elastic.labels[i],
                          "class": detail.kind[i],
                          "nodal_diameter": detail.nodal_diameter[i],
-                         "intact_hz": float(f), "open_hz": float(elastic.frequency_hz[k, i]),
+                         "intact_hz": float(f), "record_hz": float(elastic.frequency_hz[k, i]),
+                         "open_hz": float(_open(elastic)[k, i]),
+                         "instantaneous_min_hz": _track_value(elastic, k, i,
+                                                              "instantaneous_min_hz"),
+                         "instantaneous_max_hz": _track_value(elastic, k, i,
+                                                              "instantaneous_max_hz"),
+                         "slip_hz": _track_value(elastic, k, i, "slip_hz"),
                          "in_contact_hz": float(detail.in_contact_hz[k, i]),
                          "in_contact_intact_hz": float(detail.in_contact_hz[0, i]),
                          "bilinear_hz": float(bilinear[k, i]),
@@ -153,6 +164,20 @@ def _elastic_csv(elastic) -> list[dict]:
                          "family_pod_nominal": float(
                              elastic.pod_nominal[elastic.record_length][k])})
     return rows
+
+
+def _open(elastic) -> np.ndarray:
+    """Faces open, planet 1 half a pitch away [Hz] (the record when it is the same)."""
+    detail = elastic.detail
+    return elastic.frequency_hz if detail.open_hz is None else detail.open_hz
+
+
+def _track_value(elastic, k: int, i: int, name: str) -> float:
+    """Mode ``i`` of depth ``k``'s loaded-crack track (``name``) [Hz]; NaN without one."""
+    tracks = elastic.detail.tracks
+    track = tracks[k] if k < len(tracks) else None
+    values = None if track is None else getattr(track, name)
+    return float(values[i]) if values is not None and i < len(values) else float("nan")
 
 
 def _other_reason(comparison) -> str | None:

@@ -95,11 +95,7 @@ def elastic_section(elastic: DetectionResult, validity=None) -> list[str]:
         f"stress) {mount}, reduced to its own modes and the planets' contact flexibility and "
         "coupled to the lumped sun, carrier and planets; the ring-planet spring without the "
         f"ring body {detail.k_rest:.4g} N/m (planet tooth and contact; the ring tooth is in "
-        "the FE ring). The crack is in the ring, so it acts at every carrier position: the "
-        "change with planet 1 half a planet pitch away is the statistic (the change with "
-        "planet 1 on the cracked tooth is in `elastic_ring.csv`). Faces open (an upper bound of the change); "
-        "tied faces give the intact ring, so the breathing crack's bilinear estimate is "
-        "2 f_open f_intact / (f_open + f_intact). Watched: the modes the sensor at "
+        "the FE ring). " + _load_words(elastic) + " Watched: the modes the sensor at "
         f"{math.degrees(detail.sensor_angle):g} deg from the cracked tooth sees (radial "
         "ring motion there at least 10 % of the largest), ranked by change against "
         "scatter. " + _pod_words(elastic)
@@ -115,21 +111,30 @@ def elastic_section(elastic: DetectionResult, validity=None) -> list[str]:
     watched = list(elastic.watched)
     if not watched:
         return lines + ["The sensor sees none of the modes the crack moves.", ""]
+    loaded = detail.open_hz is not None and any(t is not None for t in detail.tracks)
+    second = "open" if loaded else "bilinear"
     head = "| depth [mm] | " + " | ".join(
-        f"{elastic.labels[i]} open / bilinear [Hz]" for i in watched) + " | family POD |"
+        f"{elastic.labels[i]} record / {second} [Hz]" for i in watched) + " | family POD |"
     lines += [head, "|---:|" + "---|" * len(watched) + "---:|"]
     pod = elastic.pod[elastic.record_length]
-    bilinear = bilinear_hz(elastic)
+    other = (detail.open_hz - detail.open_hz[0]) if loaded else (
+        bilinear_hz(elastic) - bilinear_hz(elastic)[0])
     for k, d in enumerate(elastic.depths):
         cells = []
         for i in watched:
             o = elastic.shift_hz[k, i]
-            b = bilinear[k, i] - elastic.intact_hz[i]
+            b = other[k, i]
             split = " (split pair)" if detail.split_pair[k, i] else ""
             cells.append(" / ".join("-" if not np.isfinite(x) else f"{x:+.1f}"
                                     for x in (o, b)) + split)
         added = " (added)" if d in elastic.added_depths else ""
         lines.append(f"| {1e3 * d:.3g}{added} | " + " | ".join(cells) + f" | {pod[k]:.2f} |")
+    if loaded:
+        lines += ["", "Record: the change a record identifies with the crack under the "
+                  "working load (the intact ring treated the same way); open: the faces "
+                  "held open with planet 1 half a planet pitch away (the upper bound the "
+                  "record was once taken to be)."]
+        lines += crack_state_lines(elastic)
     if elastic.left_out:
         lines += ["", "Left out of this table: " + "; ".join(
             f"{1e3 * d:.3g} mm ({why})" for d, why in elastic.left_out) + "."]
@@ -141,3 +146,65 @@ def elastic_section(elastic: DetectionResult, validity=None) -> list[str]:
               "top, with the change when planet 1 is on the cracked tooth (`in_contact_hz`, "
               "against the intact ring at that carrier position).", ""]
     return lines
+
+
+def _load_words(elastic: DetectionResult) -> str:
+    """What the statistic is: the loaded crack over a planet pitch, or the open crack."""
+    detail = elastic.detail
+    track = next((t for t in detail.tracks if t is not None), None)
+    if track is None:
+        return ("The crack is in the ring, so it acts at every carrier position: the change "
+                "with planet 1 half a planet pitch away, faces open (an upper bound), is the "
+                "statistic; tied faces give the intact ring, so the breathing crack's "
+                "bilinear estimate is 2 f_open f_intact / (f_open + f_intact).")
+    gap = "" if not track.closure_gap_m else f", closure gap {1e6 * track.closure_gap_m:g} um"
+    return (
+        f"The crack is loaded by the working torque ({track.torque_N_m:g} N m at the sun, "
+        "the design's `load.sun_torque`, the same quantity as a `[signal]` table's "
+        f"`sun_torque_N_m`{gap}): at each carrier position of one planet pitch the faces are "
+        "apart or pressed (frictionless Signorini contact on the FE ring), small vibrations "
+        "about each state see the pressed faces stuck (their sliding is the bound in "
+        "`elastic_ring.csv`, `slip_hz`), and a record spanning many planet passes sees the "
+        "mixture of the states' responses weighted by their dwell (`hubvib.elastic."
+        "record_spectrum`: the time average where a mode's swing stays inside its "
+        "half-power band, else the mixture's highest peak). That record frequency, against "
+        "the intact ring's treated the same way, is the statistic.")
+
+
+def crack_state_lines(elastic: DetectionResult) -> list[str]:
+    """The crack's state over the pitch per depth: share of positions with the faces
+    apart, largest open length and gap."""
+    rows = ["", "The crack's state over one planet pitch under the working load:", "",
+            "| depth [mm] | positions with faces apart | largest open length [mm] | "
+            "largest gap [um] |", "|---:|---:|---:|---:|"]
+    for d, track in zip(elastic.depths, elastic.detail.tracks):
+        states = getattr(track, "states", ()) if track is not None else ()
+        if not states:
+            continue
+        length = max(s.open_length_m for s in states)
+        gap = max(s.max_gap_m for s in states)
+        rows.append(f"| {1e3 * d:.3g} | {100 * track.open_share:.0f} % | "
+                    f"{1e3 * length:.2f} | {1e6 * gap:.2f} |")
+    return rows + [""]
+
+
+def load_sensitivity_lines(variants, record_length: float) -> list[str]:
+    """The smallest detectable depth per closure gap and torque (nominal POD)."""
+    if not variants:
+        return []
+    lengths = sorted({t for v in variants for t in v.answer})
+    rows = ["## What the answer rests on: closure gap and load", "",
+            "The crack's state depends on a closure gap (roughness, the residual compression "
+            "of a case-hardened root: the faces separate only where the free opening exceeds "
+            "it) and, with a gap, on the torque. Where the family POD of the nominal reducer "
+            "(identification noise only) crosses the required probability, on the same "
+            "depths:", "",
+            "| closure gap [um] | torque | " + " | ".join(f"{t:g} s records" for t in lengths)
+            + " |", "|---:|---:|" + "---|" * len(lengths)]
+    for v in variants:
+        torque = "any" if v.gap == 0 else f"{100 * v.torque_fraction:g} %"
+        rows.append(f"| {1e6 * v.gap:g} | {torque} | "
+                    + " | ".join(v.answer.get(t, "-") for t in lengths) + " |")
+    return rows + ["", "With no gap the state does not depend on the torque's size (the "
+                   "contact problem is linear in the load); `results.json` "
+                   "(`load_sensitivity`) has each variant's open share per depth.", ""]

@@ -55,6 +55,7 @@ class CrackStudyResult:
     elastic_validity: object = None  # hubvib.elastic.validity.ValidityBand, with ``elastic``
     elastic_map: object = None  # hubvib.detection.elastic_map.ElasticMap, ``[elastic] map``
     mode_map: tuple = ()  # hubvib.detection.mode_map.ModePair per elastic mode
+    load_sensitivity: tuple = ()  # hubvib.detection.load_sensitivity.LoadVariant each
 
     @cached_property
     def rigid(self):

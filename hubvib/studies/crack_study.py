@@ -33,7 +33,8 @@ from hubvib.runtime.progress import stage, working
 from hubvib.runtime.stage_seconds import timed
 from hubvib.studies.crack_result import CrackStudyResult
 from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
-from hubvib.studies.elastic_stage import begin_elastic, elastic_map_of, finish_elastic
+from hubvib.studies.elastic_stage import (begin_elastic, elastic_load_sensitivity,
+                                          elastic_map_of, finish_elastic)
 from hubvib.studies.kind_registry import Scene, Study
 
 __all__ = ["CRACK_STUDY", "CrackStudyResult", "crack_study_from_fe", "run_crack_study"]
@@ -140,6 +141,7 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
                 result.elastic, result.elastic_validity, intact = finish_elastic(
                     scene, elastic_cases)
                 result.mode_map = _mode_map(result, intact)
+                result.load_sensitivity = elastic_load_sensitivity(scene, result.elastic)
                 result.elastic_map = elastic_map_of(scene, result.elastic)
             stage(f"elastic ring ({len(result.elastic.depths)} depths)", started)
         started = time.perf_counter()

@@ -11,8 +11,8 @@ from hubvib.reducer.stages import ring_gear
 from hubvib.runtime.engines import EngineError, Execution, run_cases, submit
 from hubvib.studies.kind_registry import Scene
 
-__all__ = ["begin_elastic", "elastic_depths", "elastic_map_of", "finish_elastic",
-           "refine_elastic", "THROUGH_RIM", "left_out_depths"]
+__all__ = ["begin_elastic", "elastic_depths", "elastic_load_sensitivity", "elastic_map_of",
+           "finish_elastic", "refine_elastic", "THROUGH_RIM", "left_out_depths"]
 
 #: why the elastic ring leaves a depth out
 THROUGH_RIM = ("through the rim: the ring is opened, its modes no longer continue the intact "
@@ -126,6 +126,23 @@ def refine_elastic(scene: Scene, result, cases: list, most: int | None = None):
 
         result = replace(result, refinement=words + "; none was needed")
     return result
+
+
+def elastic_load_sensitivity(scene: Scene, elastic) -> tuple:
+    """The elastic ring's answer per closure gap and torque fraction
+    (``detection.load_sensitivity``) on the depths of ``elastic`` (the refined sweep; its
+    cases from the result cache), or () when its cases carry no loaded crack."""
+    from hubvib.detection.elastic_model import cached_case, case_arguments
+    from hubvib.detection.load_sensitivity import load_sensitivity
+    from hubvib.detection.options import detection_options
+
+    sweep, es = scene.crack, _elastic_scene(scene)
+    of = lambda d: crack_of(sweep, d)  # noqa: E731
+    cases = [cached_case(*a) for a in case_arguments(sweep.reducer, elastic.depths, of, es)]
+    if cases[0].pitch is None:
+        return ()
+    return load_sensitivity(sweep.reducer, elastic.depths, of, es, detection_options(scene),
+                            cases)
 
 
 def elastic_map_of(scene: Scene, elastic):
