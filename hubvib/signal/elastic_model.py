@@ -177,6 +177,14 @@ def elastic_time_model(params: PlanetaryParameters, ring: RingOperators, k_rest:
         raise ValueError(f"damping_ratio = {damping_ratio!r}; allowed: (0, 1)")
     if not (math.isfinite(sun_torque) and sun_torque > 0):
         raise ValueError(f"sun_torque = {sun_torque!r} N m; allowed: > 0")
+    from hubvib.foundation.blas import blas_threads
+
+    with blas_threads(1):  # many small dense problems: threads only contend
+        return _time_model(params, ring, k_rest, damping_ratio, sun_torque, keep_hz,
+                           ring_stiffness)
+
+
+def _time_model(params, ring, k_rest, damping_ratio, sun_torque, keep_hz, ring_stiffness):
     get = None
     if ring_stiffness is not None:
         get = ring_stiffness if callable(ring_stiffness) else (lambda p: ring_stiffness[p])
@@ -197,7 +205,7 @@ def elastic_time_model(params: PlanetaryParameters, ring: RingOperators, k_rest:
         vectors = vectors * np.sign(vectors[big, np.arange(vectors.shape[1])])
         names = mats.lumped_names
         sun = mats.n_ring + names.index("u_s")
-        unit = np.linalg.solve(K, np.eye(K.shape[0])[sun])
+        unit = sla.solve(K, np.eye(K.shape[0])[sun], assume_a="sym")
         transmitted = 1.0 - params.c_su * unit[sun]
         q0 = (sun_torque / (params.d_s / 2)) / transmitted * unit
         physical = mesh_rows(params, ring_p, p)

@@ -167,6 +167,13 @@ def elastic_record(model: ElasticTimeModel, curves: MeshCurves, phasing: MeshPha
     ambient forces (required when ``operation.ambient_psd > 0``); ``initial``: kept modal
     displacement and velocity at t = 0 (default: the static state of the first position).
     """
+    from hubvib.foundation.blas import blas_threads
+
+    with blas_threads(1):  # small matrices, one step after another: threads only contend
+        return _record(model, curves, phasing, operation, sensor_angle, rng, initial)
+
+
+def _record(model, curves, phasing, operation, sensor_angle, rng, initial):
     from scipy.signal import resample_poly
 
     started = time.perf_counter()
