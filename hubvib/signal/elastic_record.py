@@ -154,6 +154,7 @@ def records_json(records: list[DepthRecord], files, scene_name: str, options: Si
             "ambient_seed": options.ambient_seed, "damping_ratio": options.damping_ratio,
             "depths": [{"depth_mm": 1e3 * r.depth, "samples": int(r.values.size),
                         "rms_m_s2": float(np.sqrt(np.mean(r.values ** 2))),
+                        "peak_m_s2": float(np.max(np.abs(r.values))),
                         "seconds": r.seconds, "integration_seconds": r.integration_seconds,
                         "steps": r.steps, "modes": r.modes} for r in records],
             "files": [str(f) for f in files]}
