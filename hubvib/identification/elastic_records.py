@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .modes import MORE_FORCING, ModeIdentification
+from .modes import CLOSE_MODE_METHOD, MORE_FORCING, ModeIdentification
 from .records import Record
 
 #: radial amplitude at the sensor, over the largest in the band, for a mode to be seen
@@ -39,6 +39,8 @@ CLOSE = 3.0
 MERGE = 0.25
 #: the band reaches this many zeta f beyond its outer peaks
 BAND = 3.0
+#: a fitted frequency whose Cramer-Rao bound exceeds this many zeta f is not reported
+POORLY = 0.25
 
 
 @dataclass(frozen=True)
@@ -201,6 +203,12 @@ def identify_bands(record: Record, bands: list, skipped: dict,
         for g, j in zip((peaks[i] for i in order), range(len(peaks))):
             if g.mode in skipped:  # fitted, not seen
                 continue
+            if not fit.sigma_hz[j] < POORLY * damping_ratio * fit.frequency_hz[j]:
+                skipped[g.mode] = (f"poorly determined in its band {low:.5g}..{high:.5g} Hz "
+                                   f"(Cramer-Rao bound {fit.sigma_hz[j]:.3g} Hz, more than "
+                                   f"{POORLY:g} zeta f): its neighbours take its response")
+                helps[g.mode] = CLOSE_MODE_METHOD
+                continue
             found[g.mode] = IdentifiedMode(float(fit.frequency_hz[j]),
                                            float(fit.damping_ratio[j]), float(fit.snr[j]),
                                            float(fit.sigma_hz[j]))
@@ -284,3 +292,27 @@ def model_peaks(elastic_spectrum_or_case, sensor_angle: float, damping_ratio: fl
         if members:
             out[g.mode] = group_peak(f[members], vis[members], damping_ratio)
     return out
+
+
+def scene_record_input(scene, record_path, baseline_path, damping_ratio: float | None = None
+                       ) -> ElasticRecordInput:
+    """:func:`identify_elastic_records` for a crack scene's elastic ring: the records read
+    from files (CSV, WAV, UFF 58), the intact model the scene's cached elastic case (planet
+    1 half a planet pitch from the cracked tooth), the sensor at ``[elastic]
+    sensor_angle_deg`` from the cracked tooth's centre line, the damping the scene's
+    ``[signal] damping_ratio`` unless given."""
+    from hubvib.elastic.cases import cached_case
+    from hubvib.elastic.rest import rest_stiffness
+    from hubvib.reducer.stages import ring_gear
+
+    from .readers import read_record
+
+    record = read_record(record_path, "--record")
+    baseline = read_record(baseline_path, "--baseline-record")
+    elastic = scene.elastic
+    tooth = scene.crack.tooth if scene.crack is not None else 0
+    case = cached_case(scene.design, None, elastic, rest_stiffness(scene.design,
+                                                                   elastic.options.rest))
+    angle = 2 * math.pi * tooth / ring_gear(scene.design).teeth + elastic.sensor_angle
+    zeta = scene.signal.damping_ratio if damping_ratio is None else float(damping_ratio)
+    return identify_elastic_records(record, baseline, case, angle, zeta)
