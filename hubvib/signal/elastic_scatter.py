@@ -31,7 +31,6 @@ def elastic_scatter(seeds: int = 6, record_s: float = 10.0, progress=None) -> di
     from hubvib.identification.law import au_sigma_hz
     from hubvib.identification.records import Record
     from hubvib.lumped.elastic_ring import coupled_modes
-    from hubvib.studies.scene import load_scene
 
     from dataclasses import replace
 
@@ -41,7 +40,7 @@ def elastic_scatter(seeds: int = 6, record_s: float = 10.0, progress=None) -> di
     from .mesh_curves import synthetic_curves
     from .mesh_phase import design_teeth
 
-    scene = load_scene(SCENE)
+    scene = _scene()
     design, options = scene.design, scene.signal
     teeth = design_teeth(design)
     carrier_hz = options.sun_speed_rpm / 60 * teeth["sun"] / (teeth["sun"] + teeth["ring"])
@@ -82,6 +81,26 @@ def elastic_scatter(seeds: int = 6, record_s: float = 10.0, progress=None) -> di
     return {"scene": SCENE, "seeds": seeds, "record_s": T, "damping_ratio": zeta,
             "sensor_angle_deg": math.degrees(scene.elastic.sensor_angle),
             "mesh_curves": "synthetic", "record_seconds": seconds, "modes": rows}
+
+
+def _scene():
+    """The shipped scene's design, ``[signal]``, ``[elastic]`` and cracked tooth (read here:
+    the scene loader sits above this layer)."""
+    import tomllib
+    from importlib import resources
+    from types import SimpleNamespace
+
+    from hubvib.design import preset_design
+    from hubvib.elastic.options import parse_elastic_table
+
+    from .options import parse_signal_table
+
+    text = resources.files("hubvib.scenes").joinpath(f"{SCENE}.toml").read_text("utf-8")
+    data = tomllib.loads(text)
+    return SimpleNamespace(design=preset_design(data["reducer"]["preset"]),
+                           signal=parse_signal_table(data["signal"]),
+                           elastic=parse_elastic_table(data["elastic"]),
+                           crack=SimpleNamespace(tooth=int(data["crack"]["tooth"])))
 
 
 def scatter_table(data: dict) -> str:
