@@ -45,8 +45,9 @@ class BandFit:
     band_hz: tuple
 
 
-def _psd(params: np.ndarray, f: np.ndarray, k: int):
-    """D_k and its gradient (k modes: f_j, ln zeta_j, ln S_j, then ln S_e)."""
+def _psd(params: np.ndarray, f: np.ndarray, k: int, power: int = 4):
+    """D_k and its gradient (k modes: f_j, ln zeta_j, ln S_j, then ln S_e); ``power`` 4:
+    acceleration, 0: displacement."""
     D = np.full(f.size, math.exp(params[-1]))
     grad = np.zeros((params.size, f.size))
     grad[-1] = D
@@ -54,22 +55,25 @@ def _psd(params: np.ndarray, f: np.ndarray, k: int):
         f0, zeta, S = params[3 * j], math.exp(params[3 * j + 1]), math.exp(params[3 * j + 2])
         b = f / f0
         g = (1 - b * b) ** 2 + (2 * zeta * b) ** 2
-        h2 = b ** 4 / g
+        bp = b ** power
+        h2 = bp / g
         term = S * h2
         D = D + term
         dg_db = -4 * b * (1 - b * b) + 8 * zeta * zeta * b
-        dh2_db = 4 * b ** 3 / g - b ** 4 * dg_db / g ** 2
+        dh2_db = power * b ** (power - 1) / g - bp * dg_db / g ** 2 if power else \
+            -dg_db / g ** 2
         grad[3 * j] = S * dh2_db * (-b / f0)
-        grad[3 * j + 1] = S * (-b ** 4 / g ** 2) * (8 * zeta * b * b) * zeta
+        grad[3 * j + 1] = S * (-bp / g ** 2) * (8 * zeta * b * b) * zeta
         grad[3 * j + 2] = term
     return D, grad
 
 
 def identify_band(values, sample_rate: float, guesses_hz, damping_guess: float, low_hz: float,
-                  high_hz: float, lines: bool = True) -> BandFit:
+                  high_hz: float, lines: bool = True, acceleration: bool = True) -> BandFit:
     """Fit the modes near ``guesses_hz`` [Hz] together in ``low_hz .. high_hz`` [Hz] of the
-    acceleration record ``values`` sampled at ``sample_rate`` [Hz]; ``lines``: leave the
-    spectral lines out (:func:`.bfft.line_mask`).
+    record ``values`` sampled at ``sample_rate`` [Hz] (an acceleration, or with
+    ``acceleration`` False a displacement); ``lines``: leave the spectral lines out
+    (:func:`.bfft.line_mask`).
 
     Raises :class:`.bfft.IdentificationError` when a fitted frequency leaves the band or the
     fit carries no information on it."""
@@ -97,16 +101,18 @@ def identify_band(values, sample_rate: float, guesses_hz, damping_guess: float, 
     scale = np.ones_like(start)
     scale[0:3 * k:3] = damping_guess * guesses
 
+    power = 4 if acceleration else 0
+
     def nll(qv):
         p = start + qv * scale
-        D, grad = _psd(p, f, k)
+        D, grad = _psd(p, f, k, power)
         w = 1.0 / D - P / (D * D)
         return float(np.sum(np.log(D) + P / D)), (grad @ w) * scale
 
     result = minimize(nll, np.zeros_like(start), jac=True, method="L-BFGS-B",
                       options={"maxiter": 2000})
     p = start + result.x * scale
-    D, grad = _psd(p, f, k)
+    D, grad = _psd(p, f, k, power)
     info = (grad / D) @ (grad / D).T
     try:
         cov = np.linalg.inv(info)
@@ -123,3 +129,4 @@ def identify_band(values, sample_rate: float, guesses_hz, damping_guess: float, 
     return BandFit(freq[order], zeta[order], sigma[order],
                    (S / (4 * zeta ** 2 * math.exp(p[-1])))[order], (float(low_hz),
                                                                      float(high_hz)))
+
