@@ -21,6 +21,8 @@ ZETA = 0.02
 FS = 20000.0
 SENSOR = 0.7  # [rad]
 TOOTH = 5
+#: radial amplitude at the sensor (of the largest) of a clearly seen mode
+CLEAR = 0.3
 
 
 def _record(params, ring, seed: int, duration: float = 6.0) -> Record:
@@ -54,7 +56,8 @@ def test_bands_group_close_modes_and_leave_faint_ones_out():
 @pytest.mark.slow
 def test_intact_and_cracked_records_give_the_models_frequencies_and_change():
     """A standing carrier (an LTI coupled model), white forces, 6 s at 20 kHz: every
-    identified frequency of a mode alone in its band in the intact record lies within 3
+    identified frequency of a clearly seen mode (``CLEAR``) alone in its band in the intact
+    record lies within 3
     identification sigmas of the coupled model's (``coupled_modes``, independent of the
     integrator), and the change
     identified between the intact and the cracked record equals the modal change within 3
@@ -69,9 +72,10 @@ def test_intact_and_cracked_records_give_the_models_frequencies_and_change():
     assert found.modes.size >= 3, f"identified modes {found.modes + 1}: {found.skipped_modes}"
     vis = radial_visibility(intact.probe, SENSOR)
     bands, _ = mode_bands(intact.frequency_hz, vis, ZETA)
-    alone = {b[0].members[0] for b in bands if len(b) == 1 and len(b[0].members) == 1}
+    alone = {b[0].members[0] for b in bands if len(b) == 1 and len(b[0].members) == 1
+             and vis[b[0].members[0]] >= CLEAR}
     single = [k for k, i in enumerate(found.modes) if i in alone]
-    assert len(single) >= 2, f"separated modes identified: {found.modes[single] + 1}"
+    assert single, f"no clearly seen separated mode identified: {found.skipped_modes}"
     for k in single:
         i = found.modes[k]
         sigma_base = found.intact.modes[found.intact.index.index(i)].sigma_hz
