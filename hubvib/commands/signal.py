@@ -69,7 +69,8 @@ def _elastic_records(scene, folder: Path, prefix: str, as_json: bool) -> int:
     ``{prefix}_{depth}.csv`` and ``.wav`` and ``elastic_records.json`` in ``folder``."""
     from hubvib.foundation.output import json_text, output_set, write_json
     from hubvib.runtime.progress import stage
-    from hubvib.signal.elastic_record import records_json, scene_records, write_elastic_records
+    from hubvib.signal.elastic_files import records_json, write_elastic_records
+    from hubvib.signal.elastic_record import scene_records
 
     started = time.perf_counter()
     records = scene_records(scene, progress=lambda m: print(f"hubvib: {m}", file=sys.stderr))
