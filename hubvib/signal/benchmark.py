@@ -180,7 +180,7 @@ def benchmark_elastic_signal(design, record_s: float = 10.0, sample_rate_hz: flo
     teeth = design_teeth(design)
     carrier_hz = 1500.0 / 60 * teeth["sun"] / (teeth["sun"] + teeth["ring"])
     options = replace(SignalOptions(sample_rate_hz=sample_rate_hz, damping_ratio=0.02,
-                                    ambient_force_psd_N2_Hz=1e4),
+                                    ambient_force_psd_N2_Hz=100.0),
                       revolutions=record_s * carrier_hz)
     record, _ = depth_record(design, er, curves, options, 0.0, 0, 0)
     return {"signal_elastic_seconds": time.perf_counter() - started,

@@ -230,7 +230,14 @@ def _time_model(params, ring, k_rest, damping_ratio, sun_torque, keep_hz, ring_s
 
 def carrier_position(model: ElasticTimeModel, carrier_angle) -> np.ndarray:
     """Ring tooth whose load point is nearest planet 1 at each carrier angle [rad]."""
+    return carrier_offset(model, carrier_angle)[0]
+
+
+def carrier_offset(model: ElasticTimeModel, carrier_angle) -> tuple[np.ndarray, np.ndarray]:
+    """The carrier position (:func:`carrier_position`) and planet 1's angle past its load
+    point in tooth pitches, in [-1/2, 1/2)."""
     a = model.patch_angles
     pitch = 2 * math.pi / a.size
     position = ((model.theta[0] + np.asarray(carrier_angle) - a[0]) % (2 * math.pi)) / pitch
-    return np.floor(position + 0.5).astype(int) % a.size
+    nearest = np.floor(position + 0.5)
+    return nearest.astype(int) % a.size, position - nearest

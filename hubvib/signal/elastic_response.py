@@ -10,7 +10,11 @@ stiffness ``k_j(t) = kbar_j + dk_j(t)`` and transmission error ``e_j(t)``,
 
 ``C = diag(2 zeta omega_p)``.  When planet 1 passes half way to the next tooth the
 contacts switch: the displacement and velocity carry over (``q`` and ``q'`` continuous),
-projected on the new position's modes.  Modes above ``keep_hz`` respond quasi-statically:
+projected on the new position's modes.  Between the switches the static state follows the
+load: a force whose static response is ``|u| (q0_(p+-1) - q0_p)``, ``u`` planet 1's travel
+past its load point in pitches (towards the next position's static state ahead of it, from
+the previous one's behind), so the equilibrium the system is drawn to moves continuously
+with the carrier and the switch does not strike the ring.  Modes above ``keep_hz`` respond quasi-statically:
 the mesh terms on the kept modes are condensed with the rows' residual flexibility
 (:func:`condensed`).
 
@@ -34,7 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .elastic_model import ElasticTimeModel, carrier_position
+from .elastic_model import ElasticTimeModel, carrier_offset
 from .mesh_curves import MeshCurves
 from .mesh_phase import MeshPhasing
 
@@ -151,6 +155,23 @@ def run_in_seconds(model: ElasticTimeModel) -> float:
     return min(MAX_RUN_IN, 5.0 / (model.damping_ratio * float(model.omega[:, 0].min())))
 
 
+def _moving_equilibrium(model: ElasticTimeModel, lam: np.ndarray, S: np.ndarray):
+    """Per position, the (scaled) modal force whose static response is the move of the
+    static state towards the next (``[0]``) and from the previous (``[1]``) position's,
+    per pitch of carrier travel: with it the static state moves with the carrier between
+    the switches (continuous across them) instead of jumping at each."""
+    m = lam.shape[1]
+    z = model.teeth
+    out = np.empty((2, z, m))
+    for p in range(z):
+        Phi = model.shapes[p][:, :m] * model.mass[:, None]
+        ahead = Phi.T @ (model.static[(p + 1) % z] - model.static[p])
+        behind = Phi.T @ (model.static[(p - 1) % z] - model.static[p])
+        out[0, p] = lam[p] * ahead / S[p]
+        out[1, p] = lam[p] * behind / S[p]
+    return out
+
+
 def _switch(model: ElasticTimeModel, old: int, new: int, m: int):
     """Map of the kept modal state from position ``old`` to ``new``: (T (m, m), shift (m,)),
     ``eta_new = T eta_old + shift`` (the same physical displacement)."""
@@ -200,6 +221,7 @@ def _record(model, curves, phasing, operation, sensor_angle, rng, initial):
     base_inv = 1.0 / (1.0 + hh * c + q * lam)                                 # (z, m)
     sensors = model.sensor_rows(sensor_angle)[:, :m] * S
     switches = {}
+    moving = _moving_equilibrium(model, lam, S) if operation.carrier_speed else None
     out = np.empty(steps + 1)
     eta = np.zeros(m) if initial is None else np.array(initial[0], dtype=float)
     v = np.zeros(m) if initial is None else np.array(initial[1], dtype=float)
@@ -208,7 +230,7 @@ def _record(model, curves, phasing, operation, sensor_angle, rng, initial):
     for k0 in range(0, steps + 1, BLOCK):
         k1 = min(k0 + BLOCK, steps + 1)
         angle = operation.carrier_speed * h * np.arange(k0, k1)
-        pos = carrier_position(model, angle)
+        pos, offset = carrier_offset(model, angle)
         if here is None:
             here = int(pos[0])
             eta, v = eta / S[here], v / S[here]
@@ -223,6 +245,10 @@ def _record(model, curves, phasing, operation, sensor_angle, rng, initial):
         g = np.einsum("bjm,bj->bm", U, phi)
         if ambient:
             g += np.einsum("bk,bkm->bm", e[:, :6], model.central[pos][:, :, :m]) * Sb
+        if moving is not None:  # the static state follows the load between positions
+            ahead = offset >= 0
+            g += np.abs(offset)[:, None] * np.where(ahead[:, None], moving[0][pos],
+                                                    moving[1][pos])
         P = U * base_inv[pos][:, None, :]
         qWt = q * Wt
         cap_inv = np.linalg.inv(np.eye(2 * N)[None] + qWt @ (P @ U.transpose(0, 2, 1)))
