@@ -203,7 +203,7 @@ def identify_bands(record: Record, bands: list, skipped: dict,
         for g, j in zip((peaks[i] for i in order), range(len(peaks))):
             if g.mode in skipped:  # fitted, not seen
                 continue
-            if not fit.sigma_hz[j] < POORLY * damping_ratio * fit.frequency_hz[j]:
+            if not 0 < fit.sigma_hz[j] < POORLY * damping_ratio * fit.frequency_hz[j]:
                 skipped[g.mode] = (f"poorly determined in its band {low:.5g}..{high:.5g} Hz "
                                    f"(Cramer-Rao bound {fit.sigma_hz[j]:.3g} Hz, more than "
                                    f"{POORLY:g} zeta f): its neighbours take its response")

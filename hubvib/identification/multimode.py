@@ -122,7 +122,8 @@ def identify_band(values, sample_rate: float, guesses_hz, damping_guess: float, 
     freq = p[0:3 * k:3]
     zeta = np.exp(p[1:3 * k:3])
     S = np.exp(p[2:3 * k:3])
-    sigma = np.sqrt(np.clip(np.diag(cov)[0:3 * k:3], 0.0, None))
+    variance = np.diag(cov)[0:3 * k:3]
+    sigma = np.where(variance > 0, np.sqrt(np.abs(variance)), np.inf)  # < 0: no information
     order = np.argsort(freq)
     if np.any((freq <= low_hz) | (freq >= high_hz)):
         raise IdentificationError(f"a fitted mode left its band {low_hz:.5g}..{high_hz:.5g} Hz")
