@@ -32,7 +32,8 @@ def run(args) -> int:
     ring = scene.elastic.ring
     if ring in ("elastic", "both"):
         elastic = _elastic_records(scene, folder, "signal" if ring == "elastic" else
-                                   "signal_elastic", args.json and ring == "elastic")
+                                   "signal_elastic", args.json and ring == "elastic",
+                                   quiet=args.json and ring == "both")
         if ring == "elastic":
             return elastic
     # every input error (the time step needs the model) is raised here, before any file
@@ -64,9 +65,11 @@ def run(args) -> int:
 
 
 
-def _elastic_records(scene, folder: Path, prefix: str, as_json: bool) -> int:
+def _elastic_records(scene, folder: Path, prefix: str, as_json: bool, quiet: bool = False
+                     ) -> int:
     """One record per crack depth from the elastic ring (``hubvib.signal.elastic_record``):
-    ``{prefix}_{depth}.csv`` and ``.wav`` and ``elastic_records.json`` in ``folder``."""
+    ``{prefix}_{depth}.csv`` and ``.wav`` and ``{prefix}_records.json`` in ``folder``;
+    ``quiet``: print nothing (the rigid study's JSON follows on stdout)."""
     from hubvib.foundation.output import json_text, output_set, write_json
     from hubvib.runtime.progress import stage
     from hubvib.signal.elastic_files import records_json, write_elastic_records
@@ -82,6 +85,8 @@ def _elastic_records(scene, folder: Path, prefix: str, as_json: bool) -> int:
         write_json(staged / f"{prefix}_records.json", data)
     if as_json:
         print(json_text(data))
+        return 0
+    if quiet:
         return 0
     print(f"scene {scene.name!r}: elastic ring, {scene.signal.sample_rate_hz:g} samples/s, "
           f"{scene.signal.revolutions:g} carrier revolutions")
