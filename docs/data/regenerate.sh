@@ -31,6 +31,8 @@ ENTRIES=(
   raba118_signal_planet_error
   raba118_signal_noise0.5
   raba118_signal_noise2
+  records
+  elastic_identification.json
   diagnosis
   benchmark.json
 )

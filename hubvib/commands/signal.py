@@ -29,6 +29,13 @@ def run(args) -> int:
     folder = Path(args.out or scene.folder)
     sweep_cache()  # what a killed run left in the cache, before this one adds to it
     started = time.perf_counter()
+    ring = scene.elastic.ring
+    if ring in ("elastic", "both"):
+        elastic = _elastic_records(scene, folder, "signal" if ring == "elastic" else
+                                   "signal_elastic", args.json and ring == "elastic",
+                                   quiet=args.json and ring == "both")
+        if ring == "elastic":
+            return elastic
     # every input error (the time step needs the model) is raised here, before any file
     study = run_signal_study(scene, progress=lambda m: print(f"hubvib: {m}", file=sys.stderr))
     stage(f"signals of {len(study.depths)} crack depth(s)", started)
@@ -56,3 +63,35 @@ def run(args) -> int:
     print(f"\nreport: {folder / 'report.md'} (in a browser: {folder / 'report.html'})")
     return 0
 
+
+
+def _elastic_records(scene, folder: Path, prefix: str, as_json: bool, quiet: bool = False
+                     ) -> int:
+    """One record per crack depth from the elastic ring (``hubvib.signal.elastic_record``):
+    ``{prefix}_{depth}.csv`` and ``.wav`` and ``{prefix}_records.json`` in ``folder``;
+    ``quiet``: print nothing (the rigid study's JSON follows on stdout)."""
+    from hubvib.foundation.output import json_text, output_set, write_json
+    from hubvib.runtime.progress import stage
+    from hubvib.signal.elastic_files import records_json, write_elastic_records
+    from hubvib.signal.elastic_record import scene_records
+
+    started = time.perf_counter()
+    records = scene_records(scene, progress=lambda m: print(f"hubvib: {m}", file=sys.stderr))
+    stage(f"elastic-ring records of {len(records)} crack depth(s)", started)
+    with output_set(folder) as staged:
+        files = write_elastic_records(records, staged, prefix)
+        data = records_json(records, [folder / f.name for f in files], scene.name,
+                            scene.signal, scene.elastic.sensor_angle)
+        write_json(staged / f"{prefix}_records.json", data)
+    if as_json:
+        print(json_text(data))
+        return 0
+    if quiet:
+        return 0
+    print(f"scene {scene.name!r}: elastic ring, {scene.signal.sample_rate_hz:g} samples/s, "
+          f"{scene.signal.revolutions:g} carrier revolutions")
+    print(f"{'depth [mm]':>10} {'RMS [m/s^2]':>12} {'modes':>6} {'seconds':>8}  file")
+    for d, f in zip(data["depths"], data["files"][::2]):
+        print(f"{d['depth_mm']:>10.3g} {d['rms_m_s2']:>12.4g} {d['modes']:>6d} "
+              f"{d['seconds']:>8.1f}  {f}")
+    return 0

@@ -36,9 +36,11 @@ from hubvib.signal.time_response import Excitation, integrate, periodic_start
 
 
 def benchmark_signal(design, params, revolutions: int = 10, sample_rate_hz: float = 20000.0,
-                     rtol: float = 1e-6) -> dict:
+                     rtol: float = 1e-6, elastic: bool = False) -> dict:
     """Timings [s], their ratio and the errors of both integrators (see the module), for a
-    design and its lumped parameters (the benchmark: Raba 118/76)."""
+    design and its lumped parameters (the benchmark: Raba 118/76); with ``elastic``, also
+    the elastic ring's record (:func:`benchmark_elastic_signal`, keys ``signal_elastic_*``)
+    beside the rigid route's record of the same length (``signal_rigid_seconds``)."""
     from scipy.integrate import solve_ivp  # the baseline only: not with the package
 
 
@@ -113,7 +115,14 @@ def benchmark_signal(design, params, revolutions: int = 10, sample_rate_hz: floa
     quarter_s = time.perf_counter() - started
     s_quarter = sensor(x_quarter)
     mesh_hz = carrier_hz * teeth["ring"]
-    return {
+    extra = benchmark_elastic_signal(design, sample_rate_hz=sample_rate_hz) if elastic else {}
+    if elastic:
+        started = time.perf_counter()
+        rigid = simulate(params, curves, phasing, options, 0, 1, teeth["sun"])
+        sampled(sensor_signal(rigid, options.sensor_angle)[:-1], carrier_hz, sample_rate_hz,
+                extra["signal_elastic_record_s"])
+        extra["signal_rigid_seconds"] = time.perf_counter() - started
+    return extra | {
         "revolutions": revolutions, "sample_rate_hz": sample_rate_hz,
         "samples_per_mesh_period": sample_rate_hz / mesh_hz, "record_samples": record.size,
         "steps_per_revolution": M, "time_step_s": h,
@@ -145,3 +154,38 @@ def _sensor(dyn, dk, x, angle, sensor_angle):
     theta = angle[:, None] + np.array(dyn.params.theta)[None, :]
     window = hann_window(theta - sensor_angle, N)
     return (window * forces[:, N:]).sum(axis=1) / dyn.params.m_r
+
+
+def benchmark_elastic_signal(design, record_s: float = 10.0, sample_rate_hz: float = 20000.0,
+                             depth: float = 0.0) -> dict:
+    """Cost [s] of one elastic-ring record of ``record_s`` [s] (the design's FE ring with
+    every tooth's contact response, its model at every carrier position, the time
+    integration, synthetic mesh curves): ``signal_elastic_seconds`` in all,
+    ``signal_elastic_integration_seconds`` of the time integration alone."""
+    from dataclasses import replace
+
+    from hubvib.elastic.options import ElasticScene
+    from hubvib.elastic.rest import rest_stiffness
+    from hubvib.meshing.crack import Crack
+
+    from .elastic_record import depth_record, elastic_ring_all_teeth
+
+    scene = ElasticScene(ring="elastic", sensor_angle=0.0)
+    started = time.perf_counter()
+    k_rest = rest_stiffness(design, scene.options.rest)
+    er = elastic_ring_all_teeth(design, Crack(0, depth, 0.0, "root") if depth else None, scene,
+                                k_rest)
+    ring_s = time.perf_counter() - started
+    curves = synthetic_curves(design).to_preset(er.params.c_sp, er.params.c_rp)
+    teeth = design_teeth(design)
+    carrier_hz = 1500.0 / 60 * teeth["sun"] / (teeth["sun"] + teeth["ring"])
+    options = replace(SignalOptions(sample_rate_hz=sample_rate_hz, damping_ratio=0.02,
+                                    ambient_force_psd_N2_Hz=100.0),
+                      revolutions=record_s * carrier_hz)
+    record, _ = depth_record(design, er, curves, options, 0.0, 0, 0)
+    return {"signal_elastic_seconds": time.perf_counter() - started,
+            "signal_elastic_ring_seconds": ring_s,
+            "signal_elastic_integration_seconds": record.integration_seconds,
+            "signal_elastic_steps": record.steps, "signal_elastic_modes": record.modes,
+            "signal_elastic_ring_dofs": er.operators.size,
+            "signal_elastic_record_s": record.values.size / sample_rate_hz}
