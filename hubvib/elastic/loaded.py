@@ -20,6 +20,7 @@ positions' spectra into what its identification returns.
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -419,12 +420,32 @@ def ordered_frequencies(intact: PitchSpectra, case: PitchSpectra, index) -> np.n
     return out
 
 
+#: record tracks already computed, per case's pitch spectra (kept while those live): a
+#: sweep refined depth by depth asks for the same tracks again
+_TRACKS = weakref.WeakKeyDictionary()
+
+
 def record_track(intact_case, case, torque_fraction: float = 1.0,
                  closure_gap_m: float = 0.0, damping_ratio: float = DAMPING_RATIO,
                  carrier_speed: float = CARRIER_SPEED) -> RecordTrack:
     """The record's spectrum of ``case`` (an ``ElasticCase`` with its pitch spectra)
     against ``intact_case`` at one load variant; ``carrier_speed`` [rad/s] sets the
     planet-pass frequency ``N carrier_speed / 2 pi`` [Hz]."""
+    pitch, intact = getattr(case, "pitch", None), getattr(intact_case, "pitch", None)
+    key = (float(torque_fraction), float(closure_gap_m), float(damping_ratio),
+           float(carrier_speed))
+    try:
+        known = _TRACKS.setdefault(pitch, weakref.WeakKeyDictionary()).setdefault(intact, {})
+    except TypeError:  # not weakly referable (None, a stand-in): computed every time
+        known = {}
+    if key not in known:
+        known[key] = _record_track(intact_case, case, torque_fraction, closure_gap_m,
+                                   damping_ratio, carrier_speed)
+    return known[key]
+
+
+def _record_track(intact_case, case, torque_fraction, closure_gap_m, damping_ratio,
+                  carrier_speed) -> RecordTrack:
     intact, pitch = intact_case.pitch, case.pitch
     if intact is None or pitch is None:
         raise ValueError("record_track: both cases need their pitch spectra (a mounted "

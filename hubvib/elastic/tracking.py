@@ -53,11 +53,15 @@ def track_descriptors(a: np.ndarray, f_ref: np.ndarray, b: np.ndarray, f: np.nda
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
     f_ref, f = np.asarray(f_ref, dtype=float), np.asarray(f, dtype=float)
     b_norm = np.linalg.norm(b, axis=0)
-    score = np.zeros((a.shape[1], b.shape[1]))
-    for group in frequency_groups(f_ref, rtol):
+    b_unit = b / np.where(b_norm > 0, b_norm, 1)
+    groups = frequency_groups(f_ref, rtol)
+    pairs = [g for g in groups if g.size >= 2]
+    # a single mode's subspace is its own direction: all of them in one product
+    a_norm = np.linalg.norm(a, axis=0)
+    score = ((a / np.where(a_norm > 0, a_norm, 1)).T @ b_unit) ** 2
+    for group in pairs:
         q, _ = np.linalg.qr(a[:, group])
-        share = np.linalg.norm(q.T @ b, axis=0) ** 2 / np.where(b_norm > 0, b_norm, 1) ** 2
-        score[group] = share
+        score[group] = np.linalg.norm(q.T @ b_unit, axis=0) ** 2
     rows, cols = linear_sum_assignment(-score)
     ref = np.full(b.shape[1], -1)
     match = np.zeros(b.shape[1])
@@ -65,17 +69,12 @@ def track_descriptors(a: np.ndarray, f_ref: np.ndarray, b: np.ndarray, f: np.nda
     match[cols] = score[rows, cols]
     # a repeated frequency's members are interchangeable: its lower continuation is named
     # after its first member, the upper after the second
-    for group in frequency_groups(f_ref, rtol):
+    split = np.zeros(b.shape[1], dtype=bool)
+    for group in pairs:
         members = np.flatnonzero(np.isin(ref, group))
         if members.size >= 2:
             ordered = members[np.argsort(f[members], kind="stable")]
             ref[ordered] = np.sort(ref[members])  # the match is the group's: unchanged
-    split = np.zeros(b.shape[1], dtype=bool)
-    for group in frequency_groups(f_ref, rtol):
-        if group.size < 2:
-            continue
-        members = np.flatnonzero(np.isin(ref, group))
-        if members.size >= 2 and np.ptp(f[members]) > rtol * f[members].mean():
-            split[members] = True
+            split[members] = np.ptp(f[members]) > rtol * f[members].mean()
     return Tracked(tuple(int(r) for r in ref), tuple(float(m) for m in match),
                    tuple(bool(s) for s in split))

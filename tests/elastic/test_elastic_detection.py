@@ -64,7 +64,7 @@ def test_first_detectable_and_the_report_lines():
     lines = "\n".join(side_by_side(None, det))
     assert "| 10 s | - | below 3 mm |" in lines
     section = "\n".join(elastic_section(det))
-    assert "elastic n=4 (translational, 4700.0 Hz) open / bilinear [Hz]" in section
+    assert "elastic n=4 (translational, 4700.0 Hz) record / bilinear [Hz]" in section
     assert "| 6 | - / - |" in section  # not tracked: a dash, never nan
     assert "nan" not in section.lower()
     # a depth left out says why
