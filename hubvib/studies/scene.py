@@ -211,6 +211,8 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
     if flags["renders"] and not kind.renders:
         raise SceneError("[output] renders = true needs a [crack] study (it renders its modes)")
     tables = {key: _extension(key, data[key]) for key in EXTENSION_TABLES if key in data}
+    if "signal" in tables and design is not None:
+        tables["signal"] = _one_sun_torque(tables["signal"], data["signal"], design)
     for table in tables.values():  # checks that need the design (e.g. its mesh frequency)
         if hasattr(table, "check_design"):
             table.check_design(design)
@@ -220,6 +222,20 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
     # before any FE
     check_detection_budget(scene.given("detection"), options, params)
     return scene
+
+
+def _one_sun_torque(signal, table: dict, design):
+    """The ``[signal]`` options with the design's working torque: the sun torque is one
+    quantity, the design's ``load.sun_torque`` (the loaded crack, bearing loads), which
+    ``sun_torque_N_m`` may repeat but not contradict."""
+    from dataclasses import replace
+
+    given = table.get("sun_torque_N_m") if isinstance(table, dict) else None
+    if given is not None and given != design.sun_torque:
+        raise SceneError(f"[signal] sun_torque_N_m = {given!r} N m, but the design's sun "
+                         f"torque (load.sun_torque) is {design.sun_torque:g} N m: give the "
+                         "torque once, in the design (or repeat the same value)")
+    return replace(signal, sun_torque_N_m=float(design.sun_torque))
 
 
 def _refuse_design_file(data: dict, where: str) -> None:

@@ -64,3 +64,19 @@ def test_an_unknown_section_is_refused_in_one_line():
         assert "\n" not in message
         assert message == ("unknown scene section 'crack'; registered: detection, elastic, "
                            "execution, signal")
+
+
+def test_the_sun_torque_is_one_quantity_the_designs(tmp_path):
+    """``[signal] sun_torque_N_m`` repeats the design's ``load.sun_torque`` or is refused
+    naming both; absent, the signal runs at the design's torque."""
+    from hubvib.foundation.errors import SceneError
+
+    base = '[reducer]\npreset = "raba118"\n[study]\nparameter = "c_ru"\nvalues = [5e5]\n'
+    same = tmp_path / "same.toml"
+    same.write_text(base + "[signal]\nsun_torque_N_m = 1000.0\n")
+    assert load_scene(same).signal.sun_torque_N_m == load_scene(same).design.sun_torque
+    other = tmp_path / "other.toml"
+    other.write_text(base + "[signal]\nsun_torque_N_m = 500.0\n")
+    with pytest.raises(SceneError, match=r"sun_torque_N_m = 500.0 N m, but the design's sun "
+                                         r"torque \(load.sun_torque\) is 1000 N m"):
+        load_scene(other)
