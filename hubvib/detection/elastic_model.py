@@ -610,6 +610,12 @@ def bilinear_hz(result: DetectionResult) -> np.ndarray:
     return 2 * f * f0 / (f + f0)
 
 
+def _open_shift(result: DetectionResult) -> np.ndarray:
+    """Change with the faces open, planet 1 half a pitch away [Hz] (depths, modes)."""
+    f = result.detail.open_hz
+    return result.shift_hz if f is None else f - f[0]
+
+
 def elastic_mode_rows(result: DetectionResult) -> list[dict]:
     """One dict per intact mode of the elastic ring's answer (JSON-ready; NaN as None)."""
     detail = result.detail
@@ -621,7 +627,17 @@ def elastic_mode_rows(result: DetectionResult) -> list[dict]:
             "harmonic_index": detail.harmonic_index[i], "ring_share": detail.ring_share[i],
             "visibility": float(detail.visibility[i]), "watched": i in result.watched,
             "sigma_hz": {f"{t:g}": float(s[i]) for t, s in result.sigma_hz.items()},
-            "shift_open_hz": [finite_or_none(x) for x in result.shift_hz[:, i]],
+            "shift_record_hz": [finite_or_none(x) for x in result.shift_hz[:, i]],
+            "shift_open_hz": [finite_or_none(x) for x in _open_shift(result)[:, i]],
+            "record": [None if t is None else {
+                "frequency_hz": finite_or_none(t.record_hz[i]),
+                "intact_hz": finite_or_none(t.intact_record_hz[i]),
+                "instantaneous_min_hz": finite_or_none(t.instantaneous_min_hz[i]),
+                "instantaneous_max_hz": finite_or_none(t.instantaneous_max_hz[i]),
+                "frequency_slip_hz": finite_or_none(t.slip_hz[i]),
+                "regime": t.regime[i] if i < len(t.regime) else None,
+                "split_hz": list(t.split_hz[i]) if i < len(t.split_hz) else []}
+                if i < len(t.record_hz) else None for t in detail.tracks],
             "shift_in_contact_hz": [finite_or_none(x)
                                     for x in detail.in_contact_shift_hz[:, i]],
             "shift_bilinear_hz": [finite_or_none(x) for x in bilinear_hz(result)[:, i] - f],

@@ -133,7 +133,28 @@ def _elastic_json(elastic) -> dict:
                 "nodal_diameter": detail.lowest_ring_mode[1]},
             "lowest_ring_mode_reason": (None if detail.lowest_ring_mode is not None else
                                         "no elastic mode of the ring's own in its basis"),
+            "crack_state": _crack_state_rows(elastic),
+            "crack_state_reason": (None if any(t is not None for t in detail.tracks) else
+                                   "the faces are taken open (no loaded crack)"),
             "modes": elastic_mode_rows(elastic)}
+
+
+def _crack_state_rows(elastic) -> list[dict] | None:
+    """Per cracked depth the loaded crack over the pitch: share of positions with the
+    faces apart, largest open length [m] and gap [m], and each position's state."""
+    rows = []
+    for d, track in zip(elastic.depths, elastic.detail.tracks):
+        states = getattr(track, "states", ()) if track is not None else ()
+        if states:
+            rows.append({"depth_m": float(d), "open_share": float(track.open_share),
+                         "torque_N_m": float(track.torque_N_m),
+                         "closure_gap_m": float(track.closure_gap_m),
+                         "max_open_length_m": max(float(s.open_length_m) for s in states),
+                         "max_gap_m": max(float(s.max_gap_m) for s in states),
+                         "positions": [{"carrier_tooth": int(s.carrier_tooth),
+                                        "open_length_m": float(s.open_length_m),
+                                        "max_gap_m": float(s.max_gap_m)} for s in states]})
+    return rows or None
 
 
 def _elastic_csv(elastic) -> list[dict]:

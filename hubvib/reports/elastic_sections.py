@@ -132,8 +132,8 @@ def elastic_section(elastic: DetectionResult, validity=None) -> list[str]:
     if loaded:
         lines += ["", "Record: the change a record identifies with the crack under the "
                   "working load (the intact ring treated the same way); open: the faces "
-                  "held open with planet 1 half a planet pitch away (the upper bound the "
-                  "record was once taken to be)."]
+                  "held open with planet 1 half a planet pitch away (an upper bound: the "
+                  "crack open at every moment of the record)."]
         lines += crack_state_lines(elastic)
     if elastic.left_out:
         lines += ["", "Left out of this table: " + "; ".join(
