@@ -3,7 +3,9 @@ cache, then again with its FE cases and renders cached; where the fresh run's ti
 (``main_job_stage_seconds``); and the default scene with the rigid ring only
 (``[elastic] ring = "rigid"``) from an empty cache, right after the fresh run, so that
 ``elastic_ring_time_ratio`` is the whole job over the job without the elastic-ring study,
-in the same run.  ``elastic_ring_cpu_ratio`` is the same ratio of CPU seconds (the run's
+in the same run, and with the crack's faces open (``[elastic] crack_load = "open"``), so that
+``loaded_crack_time_ratio`` is what the contact states over the pitch add.
+``elastic_ring_cpu_ratio`` is the same ratio of CPU seconds (the run's
 process and its workers): on shared cores the wall times follow the other users' load,
 the CPU seconds much less."""
 from __future__ import annotations
@@ -32,7 +34,8 @@ def main_job(progress=None) -> dict:
     out = {"main_job_fresh_seconds": None, "main_job_cached_seconds": None,
            "main_job_stage_seconds": None}
     ratio = {"main_job_rigid_ring_seconds": None, "elastic_ring_time_ratio": None,
-             "elastic_ring_cpu_ratio": None}
+             "elastic_ring_cpu_ratio": None, "main_job_open_crack_seconds": None,
+             "loaded_crack_time_ratio": None, "loaded_crack_cpu_ratio": None}
     with tempfile.TemporaryDirectory() as folder:
         env = dict(os.environ, HUBVIB_CACHE=os.path.join(folder, "cache"))
         for name in ("fresh", "cached"):
@@ -62,6 +65,14 @@ def main_job(progress=None) -> dict:
                              "elastic_ring_time_ratio": out["main_job_fresh_seconds"] / rigid[0],
                              "elastic_ring_cpu_ratio": (None if None in (fresh_cpu, rigid[1])
                                                         else fresh_cpu / rigid[1])}
+                opened = open_crack_seconds(folder, env)
+                if opened is not None:
+                    say(f"main job, crack faces open, empty cache: {opened[0]:.1f} s")
+                    ratio |= {"main_job_open_crack_seconds": opened[0],
+                              "loaded_crack_time_ratio":
+                                  out["main_job_fresh_seconds"] / opened[0],
+                              "loaded_crack_cpu_ratio": (None if None in (fresh_cpu, opened[1])
+                                                         else fresh_cpu / opened[1])}
     return out | ratio
 
 
@@ -84,19 +95,34 @@ def _spent(before: float | None) -> float | None:
 def rigid_ring_seconds(folder: str, env: dict) -> tuple[float, float | None] | None:
     """The default scene with ``[elastic] ring = "rigid"`` from an empty cache: wall and
     CPU seconds [s] (None when it fails; the CPU seconds None where not counted)."""
+    return variant_seconds(folder, env, "rigid", 'ring = "both"', 'ring = "rigid"')
+
+
+def open_crack_seconds(folder: str, env: dict) -> tuple[float, float | None] | None:
+    """The default scene with ``[elastic] crack_load = "open"`` (no contact states: the
+    faces free at every moment) from an empty cache: wall and CPU seconds [s]."""
+    return variant_seconds(folder, env, "open", 'ring = "both"',
+                           'ring = "both"\ncrack_load = "open"')
+
+
+def variant_seconds(folder: str, env: dict, name: str, old: str, new: str
+                    ) -> tuple[float, float | None] | None:
+    """The default scene with ``old`` replaced by ``new`` from an empty cache of its own:
+    wall and CPU seconds [s] (None when the scene has no ``old`` or the run fails; the
+    CPU seconds None where not counted)."""
     from hubvib.studies.scene import DEFAULT_SCENE, shipped_scene_text
 
     text = shipped_scene_text(DEFAULT_SCENE)
-    if 'ring = "both"' not in text:
+    if old not in text:
         return None
-    scene = os.path.join(folder, "rigid.toml")
+    scene = os.path.join(folder, f"{name}.toml")
     with open(scene, "w", encoding="utf-8") as out:
-        out.write(text.replace('ring = "both"', 'ring = "rigid"'))
-    env = dict(env, HUBVIB_CACHE=os.path.join(folder, "cache-rigid"))
+        out.write(text.replace(old, new))
+    env = dict(env, HUBVIB_CACHE=os.path.join(folder, f"cache-{name}"))
     env.pop(ENV, None)
     started, cpu = time.perf_counter(), children_cpu_seconds()
     run = subprocess.run([sys.executable, "-m", "hubvib.cli", "run", scene, "--json", "--out",
-                          os.path.join(folder, "rigid")], env=env, capture_output=True, text=True)
+                          os.path.join(folder, name)], env=env, capture_output=True, text=True)
     if run.returncode != 0:
         return None
     return time.perf_counter() - started, _spent(cpu)

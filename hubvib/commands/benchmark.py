@@ -39,6 +39,11 @@ ROWS = (
     ("elastic_ring_time_ratio", "main job over the main job without the elastic ring", "x",
      None),
     ("elastic_ring_cpu_ratio", "  the same in CPU seconds (run and its workers)", "x", None),
+    ("main_job_open_crack_seconds", "main job with the crack's faces open, empty cache", "s",
+     None),
+    ("loaded_crack_time_ratio", "main job over the main job with the faces open (what the "
+     "contact states add)", "x", None),
+    ("loaded_crack_cpu_ratio", "  the same in CPU seconds", "x", None),
     ("tests_seconds", "default test command (python -m pytest)", "s", None),
 )
 

@@ -669,6 +669,8 @@ def elastic_result(design, depths, crack_of, scene, options, cases: list | None 
     away beside the record."""
     if cases is None:
         cases = [cached_case(*a) for a in case_arguments(design, depths, crack_of, scene)]
+    if getattr(scene, "crack_load", "working") == "open":
+        load = None
     intact = cases[0]
     intact_away = intact.away
     mass = intact.ring_mass

@@ -69,7 +69,7 @@ def reduced_foundation(er) -> np.ndarray:
 def elastic_case(design, crack, scene: ElasticScene, k_rest: float,
                  torque_fractions=None, closure_gaps=None) -> ElasticCase:
     """The coupled spectra of one crack (``crack`` None or of depth 0: intact), faces open;
-    on a mounted ring also over the pitch, about the working load's crack states for
+    on a mounted ring with ``scene.crack_load`` "working" also over the pitch, about the working load's crack states for
     ``torque_fractions`` (of the design's sun torque) x ``closure_gaps`` [m] (default
     ``loaded.TORQUE_FRACTIONS`` x ``loaded.CLOSURE_GAPS``)."""
     from .loaded import CLOSURE_GAPS, TORQUE_FRACTIONS
@@ -84,7 +84,7 @@ def elastic_case(design, crack, scene: ElasticScene, k_rest: float,
     tooth = 0 if crack is None else crack.tooth
     away, on = carrier_positions(design, tooth)
     intact = crack is None or crack.depth == 0
-    mounted = scene.options.mounting != "free"
+    mounted = scene.options.mounting != "free" and scene.crack_load == "working"
     pitch_positions = pitch_teeth(_teeth(design), design.n_planets, tooth) if mounted else ()
     # a crack through the rim has no tip: its faces are left free (nothing to pair)
     paired = mounted and not intact and not crack.is_through(_ring(design))
@@ -122,6 +122,6 @@ def cached_case(design, crack, scene: ElasticScene, k_rest: float) -> ElasticCas
     """``elastic_case`` through the result cache (inputs and this computation's source)."""
     from hubvib.runtime.result_cache import cached_result
 
-    inputs = (design.fingerprint(), crack, scene.options, float(k_rest))
+    inputs = (design.fingerprint(), crack, scene.options, scene.crack_load, float(k_rest))
     return cached_result("elastic-case", inputs, (__name__,),
                          lambda: elastic_case(design, crack, scene, k_rest), ElasticCase)

@@ -77,6 +77,7 @@ class ElasticOptions:
 
 
 RING_MODELS = ("rigid", "elastic", "both")
+CRACK_LOADS = ("working", "open")
 
 
 @dataclass(frozen=True)
@@ -87,7 +88,10 @@ class ElasticScene:
     gives both answers side by side); ``sensor_angle``: the accelerometer on the ring's
     outer surface, from the cracked tooth's centre line [rad]; ``options``: the model;
     ``map``: also the elastic ring's detectability against the foundation stiffness
-    (``hubvib.detection.elastic_map``; one reduced ring per crack depth).
+    (``hubvib.detection.elastic_map``; one reduced ring per crack depth); ``crack_load``:
+    ``"working"`` (the crack's faces opening and closing under the design's sun torque as
+    the planets pass, and the spectrum a record sees of it) or ``"open"`` (the faces free
+    at every moment, planet 1 half a planet pitch away: an upper bound of the change).
     """
 
     ring: str = "rigid"
@@ -95,6 +99,7 @@ class ElasticScene:
     options: ElasticOptions = field(default_factory=lambda: ElasticOptions(mesh=study_mesh(),
                                                                            cutoff_factor=2.0))
     map: bool = False
+    crack_load: str = "working"
 
     @property
     def elastic(self) -> bool:
@@ -127,6 +132,10 @@ SCHEMA = Schema("elastic", (
     Field("sensor_angle_deg", "number", -360.0, 360.0, False, False, default=90.0,
           unit="deg", doc="accelerometer on the ring's outer surface, from the cracked "
           "tooth", attr="sensor_angle", scale=math.pi / 180),
+    Field("crack_load", "choice", choices=CRACK_LOADS, default="working",
+          doc="working: the crack under the design's sun torque over a planet pitch (faces "
+          "apart or pressed) and the spectrum a record sees; open: faces free at every "
+          "moment (an upper bound)", message="{label} = {value}; allowed: {allowed}"),
     Field("map", "bool", default=False,
           doc="also the elastic ring's smallest detectable depth against the foundation "
           "stiffness (x 0.1 .. 100; needs mounting foundation)"),
@@ -148,4 +157,5 @@ def parse_elastic_table(table: dict) -> ElasticScene:
     if values["map"] and options.mounting != "foundation":
         raise SceneError(f"[elastic] map = true scales the foundation: it needs mounting = "
                          f"foundation (not {options.mounting})")
-    return ElasticScene(values["ring"], values["sensor_angle"], options, values["map"])
+    return ElasticScene(values["ring"], values["sensor_angle"], options, values["map"],
+                        values["crack_load"])
