@@ -427,3 +427,81 @@ def test_the_loaded_record_swaps_in_through_one_seam(small, monkeypatch):
     moved = (np.abs(base - base[0]) > 1e-6) & tracked  # untracked: the record is the reference
     assert np.allclose(change[moved], 0.6 * (plain - plain[0])[moved], rtol=1e-9), \
         "each sampled change scaled by the nominal ratio"
+
+
+# ------------------------------------------- the diagnosis on the depths the study adds
+
+def _refining_scene(monkeypatch):
+    """``raba118_crack`` with its elastic cases replaced by the small synthetic ring (its
+    crack scaled to the scene's deepest elastic depth) and 100 Monte Carlo reducers; the
+    cases it is asked for, and the options."""
+    from hubvib.detection import diagnosis, elastic_model
+    from hubvib.detection import options as detection_options
+    from hubvib.studies import elastic_stage
+    from hubvib.studies.scene import load_scene
+
+    scene = load_scene("raba118_crack")
+    deepest = max(elastic_stage.elastic_depths(scene.crack))
+    asked = []
+
+    def case_at(design, crack, table, k_rest):
+        asked.append(crack.depth)
+        return _synthetic_cases((0.0, crack.depth, deepest))[1 if crack.depth else 0]
+
+    options = replace(detection_options.detection_options(scene), samples=100)
+    monkeypatch.setattr(elastic_model, "cached_case", case_at)
+    monkeypatch.setattr(detection_options, "detection_options", lambda s: options)
+    monkeypatch.setattr(diagnosis, "detection_options", lambda s: options)
+    return scene, case_at, asked, options
+
+
+@pytest.mark.slow
+def test_the_elastic_diagnosis_uses_the_depths_the_run_adds(monkeypatch):
+    """``diagnosis.elastic_scene_model`` solves the elastic ring at the depths ``hubvib
+    run`` does (``studies.elastic_stage.finish_elastic``: the sweep's, less the crack
+    through the rim, plus those its refinement adds): same grid, and added depths between
+    0.5 mm (``resolution.FLOOR``) and the shallowest depth of the scene."""
+    from hubvib.detection.diagnosis import elastic_scene_model
+    from hubvib.detection.resolution import FLOOR
+    from hubvib.studies import elastic_stage
+
+    scene, _, asked, _ = _refining_scene(monkeypatch)
+    run, _, _ = elastic_stage.finish_elastic(scene, elastic_stage.begin_elastic(scene, None))
+    model = elastic_scene_model(scene)
+    assert run.added_depths, "the synthetic ring's POD crosses below the scene's 3 mm"
+    assert model.depths == run.depths, (model.depths, run.depths)
+    shallowest = min(d for d in scene.crack.depths if d > 0)
+    assert all(FLOOR <= d < shallowest for d in run.added_depths), run.added_depths
+    assert set(run.added_depths) <= set(asked)
+
+
+@pytest.mark.slow
+def test_a_shallow_pattern_is_diagnosed_between_the_added_depths(monkeypatch):
+    """The mean pattern of a 1 mm crack of the synthetic ring (its four most shifted
+    modes, against the reducer's own intact frequencies): on the scene's depths alone the
+    diagnosis can only say "below 3 mm"; with the depths the study adds it gives a depth
+    whose 90 % interval holds 1 mm and lies below 3 mm (the independent check: the pattern
+    is computed from a case at 1 mm itself, not interpolated from the sweep)."""
+    from types import SimpleNamespace
+
+    from hubvib.detection.carrier import mesh_timing
+    from hubvib.detection.diagnosis import CRACK, diagnose, elastic_scene_model
+    from hubvib.detection.measured import Measured
+
+    scene, case_at, _, options = _refining_scene(monkeypatch)
+    timing = mesh_timing(scene.crack.reducer, options.carrier_speed)
+    truth = 0.001
+    at = [case_at(None, SimpleNamespace(depth=d), None, None) for d in (0.0, truth)]
+    f = elastic_spectrum_model((0.0, truth), at).nominal_hz(options, timing)
+    model = elastic_scene_model(scene)
+    ref = reference(model, options, timing)
+    modes = np.argsort(-np.abs(f[1] - f[0]) / ref.sigma_hz)[:4]
+    measured = Measured(f[1][modes], modes + 1, f[0][modes], (2, 3, 4, 5), "1 mm pattern")
+    refined = diagnose(measured, ref, options)
+    assert refined.verdict == CRACK and refined.below is None, refined.words
+    assert refined.depth_low <= truth <= refined.depth_high < 0.003, refined.words
+    kept = [d for d in model.depths if d == 0 or d >= 0.003]
+    coarse_model = elastic_spectrum_model(
+        kept, [case_at(None, SimpleNamespace(depth=d), None, None) for d in kept])
+    coarse = diagnose(measured, reference(coarse_model, options, timing), options)
+    assert coarse.below == pytest.approx(0.003), coarse.words
