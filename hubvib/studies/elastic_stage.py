@@ -103,17 +103,20 @@ def refine_elastic(scene: Scene, result, cases: list, most: int | None = None):
 
 def elastic_map_of(scene: Scene, elastic):
     """The elastic ring's detectability against the foundation scale when ``[elastic]
-    map`` asks (else None), its rings through the result cache."""
+    map`` asks (else None), a ``detection.mounting_map.MountingMap`` (its rings through
+    the result cache) over the sweep's depths (those the elastic ring is solved at)."""
     es = _elastic_scene(scene)
     if not es.map:
         return None
-    from hubvib.detection.elastic_map import elastic_map
+    from hubvib.detection.mounting_map import ElasticMounting
     from hubvib.detection.options import detection_options
     from hubvib.detection.pod import family_pod
 
     sweep = scene.crack
-    return elastic_map(sweep.reducer, elastic_depths(sweep), lambda d: crack_of(sweep, d), es,
-                       detection_options(scene), pod=family_pod, k_rest=elastic.detail.k_rest)
+    mounting = ElasticMounting(sweep.reducer, elastic_depths(sweep),
+                               lambda d: crack_of(sweep, d), es, pod=family_pod,
+                               k_rest=elastic.detail.k_rest)
+    return mounting.mounting_map(detection_options(scene))
 
 
 def elastic_depths(sweep) -> tuple:
