@@ -184,7 +184,9 @@ def rigid_mounting_map(dmap, depths=(), record_length: float = math.nan) -> Moun
     ``depths`` [m] default the map's own."""
     from .mode_names import rigid_label
 
-    depths = tuple(float(d) for d in (depths or getattr(dmap, "depths", ()) or ()))
+    if len(depths) == 0:
+        depths = getattr(dmap, "depths", ())
+    depths = tuple(float(d) for d in depths)
     kind = getattr(dmap, "kind", None)
     frequency = getattr(dmap, "frequency_hz", None)
     panels = []
