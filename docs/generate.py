@@ -73,6 +73,49 @@ def _data_sources() -> dict[str, str]:
 DATA_SOURCES = _data_sources()
 
 
+def data_entries() -> list[str]:
+    """Every entry of docs/data (a file or folder name), each with its meta file."""
+    return sorted(p.name.removesuffix(".meta.json") for p in DATA.glob("*.meta.json"))
+
+
+def command_modules(command: str) -> list[str]:
+    """The modules a regenerating command runs: ``hubvib CMD ...`` the CLI and the command's
+    module, ``python -m MODULE ...`` that module (each with what it imports)."""
+    argv = shlex.split(command)
+    if argv[:2] == ["python", "-m"]:
+        return [argv[2]]
+    if argv[0] == "hubvib":
+        return ["hubvib.cli", f"hubvib.commands.{argv[1].replace('-', '_')}"]
+    raise ValueError(f"a docs/data command runs hubvib or python -m, not {command!r}")
+
+
+def data_source_key(entry: str) -> str:
+    """The source key (``hubvib.foundation.source_graph``) of every hubvib module the
+    entry's commands import: what its "source_key" must be for the data to be current."""
+    from hubvib.foundation.source_graph import source_key
+
+    modules = sorted({m for c in _meta(entry)["command"] for m in command_modules(c)})
+    return source_key(*modules)
+
+
+def stale_data() -> list[str]:
+    """The docs/data entries whose meta file's "source_key" is not the current source's
+    (recorded by ``python docs/generate.py --record-source ENTRY`` after its commands ran,
+    as ``docs/data/regenerate.sh`` does): each written by other code than the one now."""
+    return [entry for entry in data_entries()
+            if _meta(entry).get("source_key") != data_source_key(entry)]
+
+
+def record_source(entries: list[str]) -> None:
+    """Write the current source key into the meta files of ``entries`` (just regenerated)."""
+    for entry in entries:
+        path = DATA / f"{entry}.meta.json"
+        meta = json.loads(path.read_text())
+        meta["source_key"] = data_source_key(entry)
+        path.write_text(json.dumps(meta, indent=1) + "\n")
+        print(f"recorded: {path.name}")
+
+
 # ---------------------------------------------------------------- helpers
 
 def markdown_table(header: list[str], rows: list[list], align: str | None = None) -> str:
@@ -1279,7 +1322,9 @@ BLOCK = re.compile(r"<!--[ \t]*(gen|cli):[ \t]*([^\n]*?)[ \t]*-->"
 TABLES = {name: function for name, function in list(globals().items())
           if callable(function) and not name.startswith("_") and function.__module__ == __name__
           and name not in {"markdown_table", "provenance", "table", "console", "render",
-                           "expand", "fill", "blocks", "stale", "write_pages"}}
+                           "expand", "fill", "blocks", "stale", "write_pages", "data_entries",
+                           "command_modules", "data_source_key", "stale_data",
+                           "record_source"}}
 
 
 @lru_cache(maxsize=None)
@@ -1386,7 +1431,9 @@ def write_pages(pages: list[Path]) -> None:
 
 
 if __name__ == "__main__":
-    if sys.argv[1:2] == ["--write"]:
+    if sys.argv[1:2] == ["--record-source"]:
+        record_source(sys.argv[2:] or data_entries())
+    elif sys.argv[1:2] == ["--write"]:
         here = Path(__file__).resolve().parent
         write_pages([Path(p) for p in sys.argv[2:]] or sorted(here.glob("*.md")))
     else:

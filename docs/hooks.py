@@ -15,7 +15,13 @@
   the generated text replaces (``generate.expand``; a marker without a block is expanded
   the same way).
 
-An unknown marker, a table that raises or a command that fails stops the build.
+An unknown marker, a table that raises or a command that fails stops the build, and so does
+a page whose committed block is not what its marker generates now (except the ``LIVE``
+ones, measured while the docs are built: timings), and a ``docs/data`` entry written by other
+code than the current (its meta file's "source_key", ``generate.stale_data``): the pages
+in the repository cannot go stale unnoticed, the slow blocks included (``mkdocs build
+--strict`` runs every generator anyway).  ``docs/data/regenerate.sh [ENTRY ...]`` reruns the
+entries' commands, records their source key and refills the pages.
 """
 from __future__ import annotations
 
@@ -55,6 +61,11 @@ def source_tree(root: Path = ROOT) -> Path:
 
 @event_priority(100)  # before mkdocstrings reads its handler options
 def on_config(config):
+    stale = generate.stale_data()
+    if stale:
+        raise PluginError(f"docs/data entries written by other code than the current: "
+                          f"{', '.join(stale)}; regenerate with docs/data/regenerate.sh "
+                          f"{' '.join(stale)}")
     handlers = config["plugins"]["mkdocstrings"].config.setdefault("handlers", {})
     python = handlers.setdefault("python", {})
     python["paths"] = [str(source_tree())] + list(python.get("paths", []))
@@ -62,10 +73,20 @@ def on_config(config):
 
 
 def on_page_markdown(markdown, page, config, files):
-    def render(kind, body):
-        try:
-            return generate.render(kind, body)
-        except Exception as exc:  # any failure of a figure fails the build, naming the page
-            raise PluginError(f"{page.file.src_path}: <!-- {kind}: {body} -->: {exc}") from exc
+    made = {}
 
+    def render(kind, body):
+        if (kind, body) not in made:
+            try:
+                made[kind, body] = generate.render(kind, body)
+            except Exception as exc:  # any failure of a figure fails the build, naming the page
+                raise PluginError(f"{page.file.src_path}: <!-- {kind}: {body} -->: {exc}"
+                                  ) from exc
+        return made[kind, body]
+
+    stale = generate.stale(markdown, render, skip=generate.LIVE)
+    if stale:
+        raise PluginError(f"{page.file.src_path}: committed blocks not what their markers "
+                          f"generate now: {'; '.join(stale)}; refill with python "
+                          f"docs/generate.py --write docs/{page.file.src_path}")
     return generate.expand(markdown, render)

@@ -1,7 +1,11 @@
-"""FE stiffnesses with their error estimate: the default mesh against one twice as coarse (SI).
+"""FE stiffnesses with their error estimate from three mesh levels: the default mesh, one
+twice as coarse and one twice as coarse again (SI).
 
-The estimated error is the difference between the two levels (an upper bound
-when the convergence is monotone with rate >= 1; see the annulus study).
+The error bar of every value is ``fem.three_level.three_level_error`` of its three levels:
+Richardson's estimate with the observed order where the levels are in the asymptotic
+range, else the larger of the two level differences.  The third level is the coarser one
+(a quarter of the medium level's elements in the plane: cheap) rather than a finer one
+(four times the default's): the error bar is of the default mesh's value either way.
 """
 from __future__ import annotations
 
@@ -14,6 +18,7 @@ from hubvib.fem.crack_level import crack_level
 from hubvib.fem.material import Material
 from hubvib.fem.ring_stiffness import ring_stiffness
 from hubvib.fem.mesh_cycle import GearPair
+from hubvib.fem.three_level import ThreeLevelError, three_level_error
 from hubvib.fem.tooth_stiffness import (contact_radii, engaged_mesh, offer_intact_curve,
                                          provide_intact_curve, reducer_mesh_stiffness)
 from hubvib.meshing.crack import Crack, CrackFront
@@ -35,7 +40,13 @@ RING_KEYS = {"c_ru": "c_ru_N_m", "c_ru_error": "c_ru_error_N_m", "c_ru_min": "c_
              "c_ru_root_land_error": "c_ru_root_land_error_N_m",
              "c_r_root_land": "c_r_root_land_N_m", "c_r_root_land_error": "c_r_root_land_error_N_m",
              "tooth_radii": "tooth_radii_m", "tooth_compliance": "tooth_compliance_m_N",
-             "tooth_compliance_coarse": "tooth_compliance_coarse_m_N"}
+             "tooth_compliance_coarse": "tooth_compliance_coarse_m_N",
+             "tooth_compliance_coarsest": "tooth_compliance_coarsest_m_N",
+             "c_ru_levels": "c_ru_levels_N_m", "c_r_levels": "c_r_levels_N_m",
+             "c_ru_root_land_levels": "c_ru_root_land_levels_N_m",
+             "c_r_root_land_levels": "c_r_root_land_levels_N_m"}
+#: element sizes of the plane levels over the default's, coarsest first [-]
+PLANE_LEVELS = (4.0, 2.0, 1.0)
 #: a cell whose gmsh min SICN is below this counts as poorly shaped
 USABLE_QUALITY = 0.1
 #: version of the dict form of the estimates (``to_dict`` / ``from_dict``), stored with
@@ -43,8 +54,9 @@ USABLE_QUALITY = 0.1
 #: (2: the crack case stores the absolute intact engaged c_rp; 3: the
 #: crack case's c_ru and c_r are the work-conjugate rim parts, the root-land readings and
 #: the intact engaged c_rp over the contact window beside them; 4: the
-#: solid case stores its cracked tooth's line-load compliance)
-SCHEMA_VERSION = 4
+#: solid case stores its cracked tooth's line-load compliance; 5: three mesh levels, the
+#: values on each stored as ``*_levels``)
+SCHEMA_VERSION = 5
 
 
 #: the field types of the estimates, as their annotations name them
@@ -79,8 +91,46 @@ def _from_dict(cls, data: dict):
     return cls(**values)
 
 
+def level_ratio(coarse, fine) -> float:
+    """Element size of the ``coarse`` options over the ``fine`` ones' [-]: the geometric
+    mean of the rim, tooth and load-patch sizes' ratios."""
+    return float((coarse.size / fine.size * coarse.tooth_size / fine.tooth_size
+                  * coarse.load_size / fine.load_size) ** (1 / 3))
+
+
+def level_ratios(options) -> tuple[float, float]:
+    """(coarsest over coarse, coarse over fine) element sizes [-] of three levels'
+    options, coarsest first."""
+    return level_ratio(options[0], options[1]), level_ratio(options[1], options[2])
+
+
+def level_error(levels: tuple, ratios: tuple) -> ThreeLevelError:
+    """``three_level_error`` of one value's ``levels`` (coarsest, coarse, fine) with the
+    levels' size ``ratios`` (``level_ratios``)."""
+    return three_level_error(*levels, r_fine=ratios[1], r_coarse=ratios[0])
+
+
+def _dict_of(estimate) -> dict:
+    """``estimate``'s fields under their ``RING_KEYS``, without the level fields it does
+    not store (empty)."""
+    return {RING_KEYS.get(k, k): v for k, v in asdict(estimate).items()
+            if not ((k.endswith("_levels") or k == "level_ratios") and v == ())}
+
+
+class _Levels:
+    """The three-level error of a stored value: ``error_of(name)`` from ``name_levels``."""
+
+    def error_of(self, name: str) -> ThreeLevelError:
+        """The three-level error (estimate, error, order, rule) of the field ``name``
+        (``c_ru``, ``c_r``, ...) from its stored levels."""
+        levels = getattr(self, f"{name}_levels")
+        if len(levels) != 3 or len(self.level_ratios) != 2:
+            raise ValueError(f"{name}: no three levels stored ({len(levels)} values)")
+        return level_error(levels, self.level_ratios)
+
+
 @dataclass(frozen=True)
-class RingEstimate:
+class RingEstimate(_Levels):
     """The ring body's stiffnesses on the default mesh, with error estimates.
 
     Attributes
@@ -114,9 +164,16 @@ class RingEstimate:
         lumped model uses.
     c_ru_root_land, c_ru_root_land_error, c_r_root_land, c_r_root_land_error : float
         With ``"rim"``: the root-land readings and their errors beside them [N/m].
-    tooth_radii, tooth_compliance, tooth_compliance_coarse : tuple of float
+    tooth_radii, tooth_compliance, tooth_compliance_coarse, tooth_compliance_coarsest : tuple
         With ``tooth`` (solid): the flank radii [m] and the tooth's line-load compliance
-        [m/N] there on the fine and the coarse level (``fem.tooth_solid``; empty otherwise).
+        [m/N] there on the fine, the coarse and the coarsest level (``fem.tooth_solid``;
+        empty otherwise).
+    c_ru_levels, c_r_levels, c_ru_root_land_levels, c_r_root_land_levels : tuple of float
+        The value on each level, coarsest first [N/m]: the errors are their
+        ``three_level_error`` (``error_of``).
+    level_ratios : tuple of float
+        Element size of the coarsest level over the coarse one's and of the coarse over
+        the fine one's [-] (``level_ratios``).
     """
 
     c_ru: float
@@ -144,10 +201,17 @@ class RingEstimate:
     tooth_radii: tuple = ()
     tooth_compliance: tuple = ()
     tooth_compliance_coarse: tuple = ()
+    tooth_compliance_coarsest: tuple = ()
+    c_ru_levels: tuple = ()
+    c_r_levels: tuple = ()
+    c_ru_root_land_levels: tuple = ()
+    c_r_root_land_levels: tuple = ()
+    level_ratios: tuple = ()
 
     def to_dict(self) -> dict:
-        """Keys with units (``c_ru_N_m`` ...), as in the JSON output and the cache."""
-        return {RING_KEYS.get(k, k): v for k, v in asdict(self).items()}
+        """Keys with units (``c_ru_N_m`` ...), as in the JSON output and the cache (level
+        values only where stored)."""
+        return _dict_of(self)
 
     @classmethod
     def from_dict(cls, data: dict) -> RingEstimate:
@@ -156,6 +220,8 @@ class RingEstimate:
         return _from_dict(cls, data)
 
 
+#: the three mesh levels, coarsest first
+LEVEL_NAMES = ("coarsest", "coarse", "fine")
 #: what ``estimate_ring`` gives as c_ru and c_r: the root-land readings or the
 #: work-conjugate rim parts (the lumped model's definition)
 RING_DEFINITIONS = ("root_land", "rim")
@@ -176,9 +242,10 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
                   poor_cells_halved: bool = False,
                   definition: str = "root_land", tooth=None,
                   half_width: bool = False) -> RingEstimate:
-    """c_ru and c_r on the default mesh (sizes times ``scale``) and on one twice as coarse.
+    """c_ru and c_r on the default mesh (sizes times ``scale``), with their three-level
+    errors (``PLANE_LEVELS``: twice and four times as coarse besides).
 
-    With ``solid``: the solid ring on the last two ``SOLID_LEVELS``, by default planet 1
+    With ``solid``: the solid ring on the three ``SOLID_LEVELS``, by default planet 1
     on tooth 0 only.  ``mesher(ring, crack, options)`` replaces the plane mesher
     (to share meshes).  ``material`` (default steel) and ``n_planets`` (equally spaced)
     are the design's; ``front`` (``meshing.crack.CrackFront``) shapes a solid crack
@@ -200,18 +267,16 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
     if half_width and not solid:
         raise ValueError("half_width = True applies to the solid ring only (solid = True)")
     mesher = mesher or ring_mesh
-    if solid:
-        levels = {"coarse": solid_options(*SOLID_LEVELS[-2]),
-                  "fine": solid_options(*SOLID_LEVELS[-1])}
-    else:
-        levels = {"coarse": scaled_options(2 * scale), "fine": scaled_options(scale)}
+    options = ([solid_options(*level) for level in SOLID_LEVELS[-3:]] if solid
+               else [scaled_options(factor * scale) for factor in PLANE_LEVELS])
+    ratios = level_ratios(options)
     results = {}
     teeth = [0] if solid and carrier_teeth is None else carrier_teeth
-    for name, options in levels.items():
+    for name, level in zip(LEVEL_NAMES, options):
         started = time.perf_counter()
-        mesh = (ring_mesh_3d(ring, crack, front or CrackFront(), options=options,
+        mesh = (ring_mesh_3d(ring, crack, front or CrackFront(), options=level,
                              half_width=half_width) if solid
-                else mesher(ring, crack, options))
+                else mesher(ring, crack, level))
         meshed = time.perf_counter()
         result = ring_stiffness(ring, mesh, material or Material(), n_planets=n_planets,
                                 carrier_teeth=teeth, solver=solver, tooth=tooth)
@@ -229,32 +294,41 @@ def estimate_ring(ring, crack=None, scale: float = 1.0, solver: str = "auto",
         c_ru_half, _, c_r_half = _ring_values(result, definition)
         halved = dict(c_ru_poor_half=c_ru_half, c_r_poor_half=c_r_half)
         results["halved"] = (result, 0.0, time.perf_counter() - started)
-    fine, coarse = results["fine"][0], results["coarse"][0]
-    c_ru, c_ru_positions, c_r = _ring_values(fine, definition)
-    c_ru_coarse, _, c_r_coarse = _ring_values(coarse, definition)
-    land = {} if definition == "root_land" else dict(
-        c_ru_root_land=fine.c_ru, c_ru_root_land_error=abs(fine.c_ru - coarse.c_ru),
-        c_r_root_land=fine.c_r, c_r_root_land_error=abs(fine.c_r - coarse.c_r))
+    solved = [results[name][0] for name in LEVEL_NAMES]
+    fine, coarse, coarsest = solved[2], solved[1], solved[0]
+    values = [_ring_values(result, definition) for result in solved]
+    c_ru_levels = tuple(float(v[0]) for v in values)
+    c_r_levels = tuple(float(v[2]) for v in values)
+    c_ru_positions = values[2][1]
+    land = {}
+    if definition != "root_land":
+        land_ru = tuple(float(r.c_ru) for r in solved)
+        land_r = tuple(float(r.c_r) for r in solved)
+        land = dict(c_ru_root_land=land_ru[2], c_ru_root_land_error=level_error(land_ru, ratios).error,
+                    c_r_root_land=land_r[2], c_r_root_land_error=level_error(land_r, ratios).error,
+                    c_ru_root_land_levels=land_ru, c_r_root_land_levels=land_r)
     teeth_values = {} if tooth is None else dict(
         tooth_radii=tuple(float(r) for r in fine.tooth.radii),
         tooth_compliance=tuple(float(q) for q in fine.tooth.compliance),
-        tooth_compliance_coarse=tuple(float(q) for q in coarse.tooth.compliance))
+        tooth_compliance_coarse=tuple(float(q) for q in coarse.tooth.compliance),
+        tooth_compliance_coarsest=tuple(float(q) for q in coarsest.tooth.compliance))
     return RingEstimate(
-        c_ru=c_ru, c_ru_error=abs(c_ru - c_ru_coarse),
+        c_ru=c_ru_levels[2], c_ru_error=level_error(c_ru_levels, ratios).error,
         c_ru_min=float(c_ru_positions.min()), c_ru_max=float(c_ru_positions.max()),
-        c_r=c_r, c_r_error=abs(c_r - c_r_coarse), dofs=fine.dofs,
+        c_r=c_r_levels[2], c_r_error=level_error(c_r_levels, ratios).error, dofs=fine.dofs,
         solver=fine.seconds["solver"], seconds_mesh=results["fine"][1],
         seconds_fe=results["fine"][2],
         seconds_total=sum(r[1] + r[2] for r in results.values()),
-        c_ru_coarse=c_ru_coarse, c_r_coarse=c_r_coarse,
+        c_ru_coarse=c_ru_levels[1], c_r_coarse=c_r_levels[1],
         min_quality=float(quality.min()), poor_cells=int(poor.sum()), **halved,
-        definition=definition, **land, **teeth_values)
+        definition=definition, **land, **teeth_values, c_ru_levels=c_ru_levels,
+        c_r_levels=c_r_levels, level_ratios=ratios)
 
 
 @dataclass(frozen=True)
-class CrackCaseEstimate:
+class CrackCaseEstimate(_Levels):
     """One crack case of a sweep: the ring body's stiffnesses and the cracked tooth's mesh
-    stiffness, each on the default mesh with its error against a mesh twice as coarse.
+    stiffness, each on the default mesh with its three-level error (``PLANE_LEVELS``).
 
     Attributes
     ----------
@@ -290,7 +364,14 @@ class CrackCaseEstimate:
         Sparse solver used.
     seconds_mesh, seconds_fe, seconds_total : float
         Wall times [s]: fine mesh, fine FE (one factorisation for c_ru, c_r and the
-        tooth), both levels in all.
+        tooth), the three levels in all.
+    c_ru_levels, c_r_levels, c_ru_root_land_levels, c_r_root_land_levels : tuple of float
+        The value on each level, coarsest first [N/m] (``error_of``; empty: not stored).
+    c_rp_engaged_ratio_levels : tuple of float
+        The same for the engaged c_rp ratio [-].
+    level_ratios : tuple of float
+        Element size of the coarsest level over the coarse one's and of the coarse over
+        the fine one's [-].
     """
 
     c_ru: float
@@ -314,12 +395,19 @@ class CrackCaseEstimate:
     c_ru_root_land_error: float = float("nan")
     c_r_root_land: float = float("nan")
     c_r_root_land_error: float = float("nan")
+    c_ru_levels: tuple = ()
+    c_r_levels: tuple = ()
+    c_ru_root_land_levels: tuple = ()
+    c_r_root_land_levels: tuple = ()
+    c_rp_engaged_ratio_levels: tuple = ()
+    level_ratios: tuple = ()
 
     def to_dict(self) -> dict:
         """Keys with units, as ``RingEstimate.to_dict`` plus the ``c_rp_engaged_*`` ratios,
         the intact engaged c_rp (``c_rp_engaged_intact_N_m``, ``..._min_N_m``,
-        ``..._window_N_m``) and the root-land readings (``c_ru_root_land_N_m`` ...)."""
-        return {RING_KEYS.get(k, k): v for k, v in asdict(self).items()}
+        ``..._window_N_m``) and the root-land readings (``c_ru_root_land_N_m`` ...); level
+        values only where stored."""
+        return _dict_of(self)
 
     @classmethod
     def from_dict(cls, data: dict) -> CrackCaseEstimate:
@@ -340,9 +428,9 @@ def engaged_intact(engaged) -> dict:
 def estimate_crack_case(ring, planet, crack, scale: float = 1.0, mesher=None, material=None,
                         n_planets: int = 3) -> CrackCaseEstimate:
     """c_ru, c_r (the work-conjugate rim parts; the root-land readings beside them) and the
-    cracked tooth's engaged c_rp ratio on the default plane mesh
-    (sizes times ``scale``) and on one twice as coarse: per level one mesh, one assembly
-    and one factorisation serve all three (``fem.crack_level``).
+    cracked tooth's engaged c_rp ratio on the default plane mesh (sizes times ``scale``),
+    with their three-level errors (``PLANE_LEVELS``): per level one mesh, one assembly and
+    one factorisation serve all three (``fem.crack_level``).
 
     ``crack`` (None or depth 0: intact) is measured on the tooth it is in; ``planet`` is
     the planet's gear body; ``mesher(ring, crack, options)`` replaces ``ring_mesh``
@@ -358,45 +446,53 @@ def estimate_crack_case(ring, planet, crack, scale: float = 1.0, mesher=None, ma
     measures_intact_tooth = uncracked and mesher in (None, ring_mesh, ring_pieces)
     mesher = mesher or ring_mesh
     span = contact_radii(ring, [GearPair(planet, ring)])
+    options = [scaled_options(factor * scale) for factor in PLANE_LEVELS]
+    ratios = level_ratios(options)
     results = {}
-    for name, level in (("coarse", 2 * scale), ("fine", scale)):
-        options = scaled_options(level)
+    for name, level in zip(LEVEL_NAMES, options):
         if not uncracked and mesher is ring_pieces:
-            provide_intact_curve(ring, span, material, options, tooth,
-                                 _intact_tooth(ring, planet, crack, options, material, n_planets))
+            provide_intact_curve(ring, span, material, level, tooth,
+                                 _intact_tooth(ring, planet, crack, level, material, n_planets))
         started = time.perf_counter()
-        mesh = mesher(ring, crack, options)
+        mesh = mesher(ring, crack, level)
         meshed = time.perf_counter()
-        result = crack_level(ring, planet, crack, mesh, options, material, n_planets,
+        result = crack_level(ring, planet, crack, mesh, level, material, n_planets,
                              intact_tooth=tooth if measures_intact_tooth else None)
         if measures_intact_tooth:
-            offer_intact_curve(ring, span, material, options, tooth, result.intact_tooth)
+            offer_intact_curve(ring, span, material, level, tooth, result.intact_tooth)
         results[name] = (result, meshed - started, time.perf_counter() - meshed)
-    fine, coarse = results["fine"][0], results["coarse"][0]
-    ratios = dict(c_rp_engaged_ratio=1.0, c_rp_engaged_ratio_error=0.0,
-                  c_rp_engaged_min_ratio=1.0)
+    solved = [results[name][0] for name in LEVEL_NAMES]
+    fine = solved[2]
+    ratio_levels = (1.0, 1.0, 1.0)
     engaged = fine.engaged
     if engaged is None:  # intact: the same tooth's engagement on the fine level's options
         engaged = engaged_mesh(planet, ring, None, scaled_options(scale), material, tooth)
+    else:
+        ratio_levels = tuple(float(level.engaged.mean_ratio) for level in solved)
     intact = engaged_intact(engaged)
-    if fine.engaged is not None:
-        ratios = dict(c_rp_engaged_ratio=fine.engaged.mean_ratio,
-                      c_rp_engaged_ratio_error=abs(fine.engaged.mean_ratio
-                                                   - coarse.engaged.mean_ratio),
-                      c_rp_engaged_min_ratio=fine.engaged.min_ratio)
-    ring_fine, ring_coarse = fine.ring, coarse.ring
-    rim_fine, rim_coarse = ring_fine.work, ring_coarse.work
+    ratios_of = dict(c_rp_engaged_ratio=ratio_levels[2],
+                     c_rp_engaged_ratio_error=level_error(ratio_levels, ratios).error,
+                     c_rp_engaged_min_ratio=(1.0 if fine.engaged is None
+                                             else fine.engaged.min_ratio))
+    rim_ru = tuple(float(level.ring.work.c_ru_rim) for level in solved)
+    rim_r = tuple(float(level.ring.work.c_r_rim) for level in solved)
+    land_ru = tuple(float(level.ring.c_ru) for level in solved)
+    land_r = tuple(float(level.ring.c_r) for level in solved)
+    ring_fine = fine.ring
     return CrackCaseEstimate(
-        c_ru=rim_fine.c_ru_rim, c_ru_error=abs(rim_fine.c_ru_rim - rim_coarse.c_ru_rim),
-        c_ru_min=float(rim_fine.c_ru_rim_positions.min()),
-        c_ru_max=float(rim_fine.c_ru_rim_positions.max()),
-        c_r=rim_fine.c_r_rim, c_r_error=abs(rim_fine.c_r_rim - rim_coarse.c_r_rim),
-        **ratios, **intact,
-        c_ru_root_land=ring_fine.c_ru, c_ru_root_land_error=abs(ring_fine.c_ru - ring_coarse.c_ru),
-        c_r_root_land=ring_fine.c_r, c_r_root_land_error=abs(ring_fine.c_r - ring_coarse.c_r),
+        c_ru=rim_ru[2], c_ru_error=level_error(rim_ru, ratios).error,
+        c_ru_min=float(ring_fine.work.c_ru_rim_positions.min()),
+        c_ru_max=float(ring_fine.work.c_ru_rim_positions.max()),
+        c_r=rim_r[2], c_r_error=level_error(rim_r, ratios).error,
+        **ratios_of, **intact,
+        c_ru_root_land=land_ru[2], c_ru_root_land_error=level_error(land_ru, ratios).error,
+        c_r_root_land=land_r[2], c_r_root_land_error=level_error(land_r, ratios).error,
         dofs=ring_fine.dofs, solver=ring_fine.seconds["solver"],
         seconds_mesh=results["fine"][1], seconds_fe=results["fine"][2],
-        seconds_total=sum(r[1] + r[2] for r in results.values()))
+        seconds_total=sum(r[1] + r[2] for r in results.values()),
+        c_ru_levels=rim_ru, c_r_levels=rim_r, c_ru_root_land_levels=land_ru,
+        c_r_root_land_levels=land_r, c_rp_engaged_ratio_levels=ratio_levels,
+        level_ratios=ratios)
 
 
 def _intact_tooth(ring, planet, crack, options, material, n_planets: int):
@@ -431,6 +527,12 @@ class MeshEstimate:
     engaged, engaged_intact, engaged_min, engaged_intact_min : float or None
         With a cracked ring tooth: mean and minimum over its engagement, cracked
         and intact [N/m].
+    levels : tuple of float
+        The FE mean on each level, coarsest first [N/m]; ``error`` is their
+        ``three_level_error`` (``error_of``).
+    level_ratios : tuple of float
+        Element size of the coarsest level over the coarse one's and of the coarse over
+        the fine one's [-].
     """
 
     value: float
@@ -448,6 +550,12 @@ class MeshEstimate:
     engaged_intact: float | None = None
     engaged_min: float | None = None
     engaged_intact_min: float | None = None
+    levels: tuple = ()
+    level_ratios: tuple = ()
+
+    def error_of(self) -> ThreeLevelError:
+        """The three-level error (estimate, error, order, rule) of ``value``."""
+        return level_error(self.levels, self.level_ratios)
 
     def to_dict(self, engaged: bool = True) -> dict:
         """Keys with units (``value_N_m`` ...), as in ``hubvib stiffness --json``."""
@@ -455,7 +563,7 @@ class MeshEstimate:
         for key, value in asdict(self).items():
             if key.startswith("engaged") and (value is None or not engaged):
                 continue
-            if key in ("contact_ratio", "iso_in_range", "seconds_total"):
+            if key in ("contact_ratio", "iso_in_range", "seconds_total", "level_ratios"):
                 out[key] = value
             else:
                 out[f"{key}_N_m"] = value
@@ -465,22 +573,25 @@ class MeshEstimate:
 def estimate_mesh(sun, planet, ring, crack=None, scale: float = 1.0,
                   material=None) -> dict[str, MeshEstimate]:
     """c_sp and c_rp (FE mean over the mesh cycle) on the default mesh (sizes times
-    ``scale``) and on one twice as coarse; analytical and ISO 6336-1 values beside them.
+    ``scale``) with their three-level errors (``PLANE_LEVELS``); analytical and ISO 6336-1
+    values beside them.
 
     ``sun``, ``planet`` are gear bodies, ``ring`` the ring gear; with ``crack`` the
     ring-planet mesh is also given over the cracked tooth's engagement.
     """
+    options = [scaled_options(factor * scale) for factor in PLANE_LEVELS]
+    ratios = level_ratios(options)
     results = {}
-    for name, level in (("coarse", 2 * scale), ("fine", scale)):
+    for name, level in zip(LEVEL_NAMES, options):
         started = time.perf_counter()
-        results[name] = (reducer_mesh_stiffness(sun, planet, ring, scaled_options(level), crack,
+        results[name] = (reducer_mesh_stiffness(sun, planet, ring, level, crack,
                                                 **({} if material is None else
                                                    {"material": material})),
                          time.perf_counter() - started)
     seconds = sum(r[1] for r in results.values())
     out = {}
     for key, fine in results["fine"][0].items():
-        coarse = results["coarse"][0][key]
+        levels = tuple(float(results[name][0][key].value) for name in LEVEL_NAMES)
         engaged = {}
         if fine.cracked is not None:
             intact = fine.cracked_reference
@@ -488,9 +599,10 @@ def estimate_mesh(sun, planet, ring, crack=None, scale: float = 1.0,
                            engaged_min=float(fine.cracked.stiffness.min()),
                            engaged_intact_min=float(intact.stiffness.min()))
         out[key] = MeshEstimate(
-            value=fine.value, error=abs(fine.value - coarse.value),
+            value=fine.value, error=level_error(levels, ratios).error,
             min=float(fine.fe.stiffness.min()), max=float(fine.fe.stiffness.max()),
             single_pair_max=fine.fe.single_pair_max, contact_ratio=fine.pair.contact_ratio,
             analytic=fine.analytic.mean, iso_c_gamma=fine.iso_mesh, iso_c_single=fine.iso_single,
-            iso_in_range=fine.iso_in_range, seconds_total=seconds, **engaged)
+            iso_in_range=fine.iso_in_range, seconds_total=seconds, **engaged, levels=levels,
+            level_ratios=ratios)
     return out

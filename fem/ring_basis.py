@@ -48,6 +48,8 @@ class RingBasis:
     teeth : tuple of int
         Teeth whose contact responses are in the basis.
     solver : str
+    responses : Responses or None
+        The raw static responses asked for beside the basis (not M-orthogonalised).
     """
 
     V: np.ndarray
@@ -56,10 +58,31 @@ class RingBasis:
     cutoff_hz: float
     teeth: tuple
     solver: str
+    responses: "Responses | None" = None
 
     @property
     def size(self) -> int:
         return self.V.shape[1]
+
+    @property
+    def modes(self) -> int:
+        """Number of the ring's own modes (the first columns of V)."""
+        return self.mode_hz.size
+
+
+@dataclass(frozen=True, eq=False)
+class Responses:
+    """Raw static responses ``(K - sigma M)^-1 load`` from the basis's factorisation.
+
+    ``teeth``: the teeth; ``first`` (dofs, teeth): to each tooth's contact load [m/N];
+    ``second`` (dofs, teeth): to the inertia of ``first``; ``functional`` (dofs, p): to
+    the functionals' loads.
+    """
+
+    teeth: tuple
+    first: np.ndarray
+    second: np.ndarray
+    functional: np.ndarray
 
 
 def ring_modes(body: RingBody, cutoff_hz: float, solver: str = "auto"):
@@ -104,35 +127,63 @@ def ring_modes(body: RingBody, cutoff_hz: float, solver: str = "auto"):
     return omega, vectors, factor, sigma
 
 
-def ring_basis(body: RingBody, teeth, cutoff_hz: float, solver: str = "auto") -> RingBasis:
+def ring_basis(body: RingBody, teeth, cutoff_hz: float, solver: str = "auto",
+               more_teeth=(), functionals=None) -> RingBasis:
     """The Ritz basis of ``body`` for contacts on ``teeth``: modes up to ``cutoff_hz``
     [Hz] and, per tooth, the static response to its contact load and the response to
-    that response's inertia (two Krylov vectors of ``(K - sigma M)^-1 M``)."""
+    that response's inertia (two Krylov vectors of ``(K - sigma M)^-1 M``).
+
+    ``more_teeth`` and ``functionals`` (sparse (dofs, p), e.g. crack-face pair loads): their
+    responses from the same factorisation, kept apart (``RingBasis.responses``, for
+    ``fem.ring_positions``); the basis itself is as without them."""
     teeth = tuple(sorted({int(k) for k in teeth}))
+    more = tuple(sorted({int(k) for k in more_teeth} - set(teeth)))
     omega, phi, factor, sigma = ring_modes(body, cutoff_hz, solver)
-    try:
-        loads = body.contact[:, list(teeth) or [0]].toarray()[:, :len(teeth)]
-        first = np.asarray(factor.solve(loads)).reshape(body.ndofs, len(teeth))
-        # the second Krylov vector of each contact (its inertia-loaded response): the
-        # truncated modes' inertia, to fourth order in omega / omega_cut
-        second = np.asarray(factor.solve(body.M @ first)).reshape(body.ndofs, len(teeth))
-        static = np.hstack([first, second])
-    finally:
-        factor.free()
-    static = static - phi @ (phi.T @ (body.M @ static))
-    static = static - phi @ (phi.T @ (body.M @ static))  # twice: Gram-Schmidt to round-off
-    if static.shape[1]:
-        static = static / np.sqrt(np.einsum("ij,ij->j", static, body.M @ static))
-        gram = static.T @ (body.M @ static)
-        w, U = np.linalg.eigh(0.5 * (gram + gram.T))
-        useful = w > 1e-12 * w.max()
-        static = static @ (U[:, useful] / np.sqrt(w[useful]))
-    V = np.hstack([phi, static])
-    K = V.T @ (body.K @ V)
-    M = V.T @ (body.M @ V)
-    # V is M-orthonormal to round-off; one Cholesky step makes it so to the last digits
-    L = sla.cholesky(0.5 * (M + M.T), lower=True)
-    V = sla.solve_triangular(L, V.T, lower=True).T
-    K = V.T @ (body.K @ V)
+    responses = None
+    with blas_threads(1):  # tall-skinny dense products: one thread is fastest on a busy host
+        try:
+            static = _krylov(body, factor, teeth)
+            if more or functionals is not None:
+                extra = _krylov(body, factor, more)
+                loads = np.zeros((body.ndofs, 0)) if functionals is None else (
+                    functionals.toarray() if hasattr(functionals, "toarray")
+                    else np.asarray(functionals))
+                response = np.asarray(factor.solve(loads)).reshape(body.ndofs, loads.shape[1]) \
+                    if loads.shape[1] else loads
+                n = len(teeth)
+                responses = Responses(
+                    teeth + more,
+                    np.hstack([static[:, :n], extra[:, :len(more)]]),
+                    np.hstack([static[:, n:], extra[:, len(more):]]), response)
+        finally:
+            factor.free()
+        static = static - phi @ (phi.T @ (body.M @ static))
+        static = static - phi @ (phi.T @ (body.M @ static))  # twice: Gram-Schmidt to round-off
+        if static.shape[1]:
+            static = static / np.sqrt(np.einsum("ij,ij->j", static, body.M @ static))
+            gram = static.T @ (body.M @ static)
+            w, U = np.linalg.eigh(0.5 * (gram + gram.T))
+            useful = w > 1e-12 * w.max()
+            static = static @ (U[:, useful] / np.sqrt(w[useful]))
+        V = np.hstack([phi, static])
+        K = V.T @ (body.K @ V)
+        M = V.T @ (body.M @ V)
+        # V is M-orthonormal to round-off; one Cholesky step makes it so to the last digits
+        L = sla.cholesky(0.5 * (M + M.T), lower=True)
+        V = sla.solve_triangular(L, V.T, lower=True).T
+        K = V.T @ (body.K @ V)
     return RingBasis(V, 0.5 * (K + K.T), omega / (2 * np.pi), float(cutoff_hz), teeth,
-                     factor.method)
+                     factor.method, responses)
+
+
+def _krylov(body: RingBody, factor, teeth) -> np.ndarray:
+    """Static responses to the teeth's contact loads, then the responses to their inertia
+    (dofs, 2 teeth)."""
+    if not teeth:
+        return np.zeros((body.ndofs, 0))
+    loads = body.contact[:, list(teeth)].toarray()
+    first = np.asarray(factor.solve(loads)).reshape(body.ndofs, len(teeth))
+    # the second Krylov vector of each contact (its inertia-loaded response): the
+    # truncated modes' inertia, to fourth order in omega / omega_cut
+    second = np.asarray(factor.solve(body.M @ first)).reshape(body.ndofs, len(teeth))
+    return np.hstack([first, second])

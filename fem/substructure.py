@@ -14,7 +14,10 @@ cut couples only with its two neighbours), loads inside a piece enter condensed
 round-off (static condensation is exact).  The pieces that do not hold the crack (the
 plain pitch, held or free on its arc, and the pitches with a support end) are the same
 for every crack case of a ring and options: their condensations are kept between calls,
-so a crack case factorises the crack's block and the ring of cuts only.
+so a crack case factorises the crack's block and the ring of cuts only.  With a store
+(``set_condensation_store``, e.g. a result cache on disk) they are also shared between
+processes and runs: a kept condensation pickles without its factorisation, which is
+made again from ``K_ii`` when it is read back.
 
 ``substructured(pieces, model)`` returns a system with the interface of
 ``fem.elasticity.SupportedSystem`` (``solve``, ``release``, ``method``) for the model of
@@ -73,6 +76,10 @@ class Condensed:
         The piece model's node DOF table (``node_dof_table``).
     dofs : int
         DOFs of the piece model.
+    K_ii : scipy.sparse matrix
+        The interior stiffness [N/m] (a pickled condensation factorises it again).
+    method : str
+        The solver of ``factor``.
     """
 
     boundary: np.ndarray
@@ -83,9 +90,35 @@ class Condensed:
     factor: object
     table: np.ndarray
     dofs: int
+    K_ii: object = None
+    method: str = "superlu"
 
     def release(self) -> None:
         self.factor.free()
+
+    @functools.cached_property
+    def interior_rows(self) -> np.ndarray:
+        """For each entry of ``table`` (raveled): its row among ``interior`` (-1: a cut or
+        held DOF)."""
+        rows = np.full(self.dofs, -1, dtype=np.int64)
+        rows[self.interior] = np.arange(len(self.interior))
+        return rows[self.table.ravel()]
+
+    @functools.cached_property
+    def table_rows(self) -> np.ndarray:
+        """For each entry of ``table`` (raveled): its row in ``[interior; boundary; 0]``
+        (the last row for a held DOF)."""
+        rows = np.full(self.dofs, len(self.interior) + len(self.boundary), dtype=np.int64)
+        rows[self.interior] = np.arange(len(self.interior))
+        rows[self.boundary] = len(self.interior) + np.arange(len(self.boundary))
+        return rows[self.table.ravel()]
+
+    def __getstate__(self) -> dict:
+        return {k: v for k, v in self.__dict__.items() if k != "factor"}
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state)
+        self.factor = factorise(self.K_ii, self.method)
 
 
 def condense(mesh, cut_nodes, held_nodes, material: Material, thickness: float,
@@ -100,19 +133,39 @@ def condense(mesh, cut_nodes, held_nodes, material: Material, thickness: float,
     kind[boundary] = 1
     interior = np.flatnonzero(kind == 0)
     K = model.K.tocsr()
-    factor = factorise(submatrix(K, kind == 0), pick(solver, len(interior), 2))
+    K_ii = submatrix(K, kind == 0)
+    method = pick(solver, len(interior), 2)
+    factor = factorise(K_ii, method)
     K_bi = K[boundary][:, interior]
     X = factor.solve(K_bi.T.toarray())
     S = K[boundary][:, boundary].toarray() - K_bi @ X
     return Condensed(boundary, interior, (S + S.T) / 2, X, K_bi.tocsr(), factor, table,
-                     model.ndofs)
+                     model.ndofs, K_ii, method)
+
+
+#: where kept condensations come from beside this process's memory
+#: (``set_condensation_store``)
+_STORE = None
+
+
+def set_condensation_store(store) -> None:
+    """Let ``store(compute, inputs)`` give the intact pieces' condensations (None: compute
+    them here): it returns the ``Condensed`` that ``compute()`` returns for ``inputs``
+    (the piece's mesh, cut and held nodes, material, thickness and solver), e.g. from a
+    result cache on disk shared by processes and runs."""
+    global _STORE
+    _STORE = store
 
 
 @functools.lru_cache(maxsize=64)
 def _kept(mesh_key, mesh, cut_nodes: tuple, held_nodes: tuple, material: Material,
           thickness: float, solver: str) -> Condensed:
-    return condense(mesh, np.array(cut_nodes, dtype=np.int64),
-                    np.array(held_nodes, dtype=np.int64), material, thickness, solver)
+    def compute() -> Condensed:
+        return condense(mesh, np.array(cut_nodes, dtype=np.int64),
+                        np.array(held_nodes, dtype=np.int64), material, thickness, solver)
+    if _STORE is None:
+        return compute()
+    return _STORE(compute, (mesh, cut_nodes, held_nodes, material, thickness, solver))
 
 
 def piece_condensation(piece, material: Material, thickness: float,
@@ -156,12 +209,18 @@ class SubstructuredSystem:
         m = columns.shape[1]
         u = np.zeros_like(columns)
         rhs = columns[self.interface].copy()
-        # interior loads of every part, solved together per condensation (one call each)
+        # interior loads of every loaded part, solved together per condensation (one call
+        # each); a part without loads has none inside (its interior follows from its cuts)
         groups: dict = {}
         for index, (piece, part, glued) in enumerate(self.parts):
-            local = np.zeros((part.dofs, m))
-            local[part.table.ravel()] = _turn(columns[glued], -piece.angle).reshape(-1, m)
-            groups.setdefault(id(part), (part, []))[1].append((index, local[part.interior]))
+            on_part = columns[glued]  # (nodes, 2, m)
+            if not on_part.any():
+                continue
+            turned = _turn(on_part, -piece.angle).reshape(-1, m)
+            rows = part.interior_rows
+            f_i = np.zeros((len(part.interior), m))
+            f_i[rows[rows >= 0]] = turned[rows >= 0]
+            groups.setdefault(id(part), (part, []))[1].append((index, f_i))
         inner = [None] * len(self.parts)
         for part, members in groups.values():
             stacked = np.hstack([f_i for _, f_i in members])
@@ -173,21 +232,26 @@ class SubstructuredSystem:
             for j, (index, _) in enumerate(members):
                 inner[index] = solved[:, j * m:(j + 1) * m]
         for (piece, part, glued), where, y in zip(self.parts, self.positions, inner):
+            if y is None:
+                continue
             condensed = -(part.coupling @ y)  # (boundary, m), piece frame
             turned = _turn(condensed.reshape(-1, 2, m), piece.angle).reshape(-1, m)
             keep = where >= 0
             np.add.at(rhs, where[keep], turned[keep])
         u_cut = self.factor.solve(rhs)
         u[self.interface] = u_cut
-        for (piece, part, glued), where, y in zip(self.parts, self.positions, inner):
-            u_b = np.zeros((len(where), m))
-            u_b[where >= 0] = u_cut[where[where >= 0]]
-            u_b = _turn(u_b.reshape(-1, 2, m), -piece.angle).reshape(-1, m)
-            local = np.zeros((part.dofs, m))
-            local[part.interior] = y - part.X @ u_b
-            local[part.boundary] = u_b
-            values = local[part.table].reshape(len(glued), 2, m)  # (nodes, 2, m)
-            u[glued.ravel()] = _turn(values, piece.angle).reshape(-1, m)
+        with blas_threads(1):  # many small products: threads only contend
+            for (piece, part, glued), where, y in zip(self.parts, self.positions, inner):
+                u_b = np.zeros((len(where), m))
+                u_b[where >= 0] = u_cut[where[where >= 0]]
+                u_b = _turn(u_b.reshape(-1, 2, m), -piece.angle).reshape(-1, m)
+                n_i = len(part.interior)
+                local = np.empty((n_i + len(part.boundary) + 1, m))  # interior, cuts, held 0
+                local[:n_i] = -(part.X @ u_b) if y is None else y - part.X @ u_b
+                local[n_i:-1] = u_b
+                local[-1] = 0.0
+                values = local[part.table_rows].reshape(len(glued), 2, m)  # (nodes, 2, m)
+                u[glued.ravel()] = _turn(values, piece.angle).reshape(-1, m)
         return Solution(u.reshape(f.shape), time.perf_counter() - started, self.method)
 
     def release(self) -> None:

@@ -105,12 +105,27 @@ def block_teeth(ring: RingGear, crack) -> tuple[int, int]:
     return (crack.tooth + low) % z, count
 
 
+#: where intact pieces' meshes come from beside this process's memory (``set_mesh_store``)
+_STORE = None
+
+
+def set_mesh_store(store) -> None:
+    """Let ``store(compute, inputs)`` give the intact pieces' meshes (None: mesh them
+    here): it returns the ``FEMesh`` that ``compute()`` returns for ``inputs`` (ring,
+    first tooth, pitch count, options, plain), e.g. from a result cache on disk."""
+    global _STORE
+    _STORE = store
+
+
 @functools.lru_cache(maxsize=64)
 def piece_mesh(ring: RingGear, first: int, count: int, options: MeshOptions,
                plain: bool = False) -> FEMesh:
     """An intact piece's mesh, kept between calls: the plain pitch of tooth 0 (no support
     end) with ``plain``, else the pitches in place with their support ends."""
-    return block_mesh(ring, first, count, options, None, () if plain else None)
+    def compute() -> FEMesh:
+        return block_mesh(ring, first, count, options, None, () if plain else None)
+    return compute() if _STORE is None else _STORE(compute, (ring, first, count, options,
+                                                             plain))
 
 
 def ring_pieces(ring: RingGear, crack=None, options: MeshOptions = MeshOptions()

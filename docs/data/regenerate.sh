@@ -7,7 +7,10 @@
 #   docs/data/regenerate.sh                 every entry (the benchmark alone takes ~30 min)
 #   docs/data/regenerate.sh raba118_signal  only the entries named
 #
-# Then record the date and the hubvib version in the entry's "measured" and rebuild the docs.
+# After an entry's commands, its meta file gets the source key of the code that wrote it
+# ("source_key": the docs build and tests/docs fail while it is not the current one); at the
+# end the generated blocks of every page are refilled (python docs/generate.py --write).
+# Then record the date and the hubvib version in the entry's "measured".
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 PYTHON=${PYTHON:-python}
@@ -57,4 +60,7 @@ for entry in "${selected[@]}"; do
       [[ " ${keep[*]} " == *" $name "* ]] || rm -rf -- "$path"
     done
   fi
+  "$PYTHON" docs/generate.py --record-source "$entry"
 done
+echo "+ python docs/generate.py --write"
+"$PYTHON" docs/generate.py --write

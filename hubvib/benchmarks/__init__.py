@@ -9,6 +9,9 @@ is the figure to trust.  The figures and their baselines:
   the same mesh, and its error against finer uniform levels;
 - ``crack_case``: a crack case with one shared factorisation per level against separate
   ones (``estimate_ring`` + ``engaged_ring_mesh``, as the crack sweep did);
+- ``substructure``: a plane crack case by substructures (the crack study's default)
+  against the whole ring meshed and factorised;
+- ``elastic_case``: one elastic-ring crack case against the whole-ring plane crack case;
 - ``solid``: 3D c_ru against CalculiX 2.20 (``ccx``, SPOOLES, 2 threads) and against the
   previous FE path, same mesh and nodal loads;
 - ``memory``: peak memory of ``hubvib stiffness --solid`` and of the 3D solve alone;
@@ -29,6 +32,7 @@ from __future__ import annotations
 import time
 
 from hubvib.benchmarks.crack_case import crack_case
+from hubvib.benchmarks.elastic_case import elastic_case_figures
 from hubvib.benchmarks.substructure import substructure_speedup
 from hubvib.benchmarks.crack_growth import crack_growth_3d
 from hubvib.benchmarks.main_job import main_job
@@ -46,6 +50,11 @@ from hubvib.signal.benchmark import benchmark_signal
 from hubvib.validation import calculix as ccx
 
 
+#: why ``substructure_speedup_solid`` is null
+SOLID_NOT_SUBSTRUCTURED = ("the solid ring is not substructured: every solid case meshes "
+                           "and factorises the whole (half-width) ring")
+
+
 def run_benchmark(quick: bool = False, progress=None, scene_3d: bool = True,
                   ci: bool = False) -> dict:
     """Every figure of ``hubvib benchmark`` (SI: seconds, GB, N/m; ratios are baseline time
@@ -54,8 +63,10 @@ def run_benchmark(quick: bool = False, progress=None, scene_3d: bool = True,
     and the signal stage over two revolutions; ``scene_3d=False`` skips the 3D
     crack-growth scene (``crack_growth_3d_seconds`` is then null and said skipped).
     ``substructure_speedup_plane``: a plane crack case, whole ring over substructures
-    (``substructure_speedup_solid``: null, the solid ring is not substructured);
-    ``ci_seconds``: the wall time of ``.ci/run`` with ``ci``, else null."""
+    (``substructure_speedup_solid``: null, ``substructure_solid_skipped`` says why);
+    ``elastic_case_seconds``: one elastic-ring crack case beside the whole-ring plane crack
+    case (``elastic_case_baseline_seconds``); ``ci_seconds``: the wall time of ``.ci/run``
+    with ``ci``, else null."""
     say = progress or (lambda line: None)
     started = time.perf_counter()
     out = {"quick": quick}
@@ -64,6 +75,8 @@ def run_benchmark(quick: bool = False, progress=None, scene_3d: bool = True,
     out.update(crack_case(scale=2.0 if quick else 1.0, progress=say))
     out.update(substructure_speedup(scale=2.0 if quick else 1.0, progress=say))
     out["substructure_speedup_solid"] = None
+    out["substructure_solid_skipped"] = SOLID_NOT_SUBSTRUCTURED
+    out.update(elastic_case_figures(progress=say))
     out["ci_seconds"] = ci_seconds(say) if ci else None
     skipped = "skipped (--quick)"
     if quick:

@@ -6,7 +6,8 @@ import functools
 import time
 
 from hubvib.reducer import raba118
-from hubvib.fem.estimate import estimate_crack_case, estimate_ring
+from hubvib.fem.estimate import (PLANE_LEVELS, estimate_crack_case, estimate_ring,
+                                 level_error, level_ratios)
 from hubvib.fem.tooth_stiffness import engaged_ring_mesh
 from hubvib.meshing.crack import Crack
 from hubvib.meshing.levels import scaled_options
@@ -17,7 +18,7 @@ CRACK_DEPTH = 10e-3
 
 
 def crack_case(scale: float = 1.0, depth: float = CRACK_DEPTH, progress=None) -> dict:
-    """A crack case of the sweep (c_ru, c_r, engaged c_rp ratio; fine and coarse level) with
+    """A crack case of the sweep (c_ru, c_r, engaged c_rp ratio; three levels) with
     one factorisation per level against separate ones, same meshes (made beforehand) and
     the same intact reference curves (computed beforehand)."""
     ring, planet = raba118.ring_gear(), raba118.gear_body("planet")
@@ -27,10 +28,11 @@ def crack_case(scale: float = 1.0, depth: float = CRACK_DEPTH, progress=None) ->
     def separate():
         # the crack case's c_ru, c_r: the work-conjugate rim parts
         ring_part = estimate_ring(ring, crack, scale, mesher=mesher, definition="rim")
-        fine, coarse = (engaged_ring_mesh(planet, ring, crack, scaled_options(s), mesher=mesher)
-                        for s in (scale, 2 * scale))
-        return (ring_part.c_ru, ring_part.c_r, fine.mean_ratio, fine.min_ratio,
-                abs(fine.mean_ratio - coarse.mean_ratio))
+        options = [scaled_options(factor * scale) for factor in PLANE_LEVELS]
+        levels = [engaged_ring_mesh(planet, ring, crack, o, mesher=mesher) for o in options]
+        ratios = tuple(level.mean_ratio for level in levels)
+        return (ring_part.c_ru, ring_part.c_r, levels[-1].mean_ratio, levels[-1].min_ratio,
+                level_error(ratios, level_ratios(options)).error)
 
     def shared():
         e = estimate_crack_case(ring, planet, crack, scale, mesher=mesher)

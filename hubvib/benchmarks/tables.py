@@ -70,7 +70,7 @@ def annulus_table() -> list[dict]:
 
 def ring_table() -> list[dict]:
     """c_ru and c_r of the Raba ring, intact and with a 10 mm root crack, on the default
-    mesh with the error estimated against a mesh twice as coarse: the work-conjugate rim
+    mesh with its three-level error (``fem.estimate``): the work-conjugate rim
     parts, as ``hubvib stiffness`` prints them."""
     ring = raba118.ring_gear()
     rows = []

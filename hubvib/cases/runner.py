@@ -28,18 +28,20 @@ from contextlib import ExitStack
 from dataclasses import asdict, dataclass
 
 from hubvib.reducer.stages import gear_body, material, ring_gear
-from hubvib.fem.estimate import estimate_crack_case
+from hubvib.fem.estimate import PLANE_LEVELS, estimate_crack_case
 from hubvib.fem.mesh_cycle import GearPair
 from hubvib.fem.tooth_solid import SAMPLES, SolidToothLoad
 from hubvib.fem.tooth_stiffness import chebyshev_radii, contact_radii, set_intact_store
 from hubvib.meshing.cache import root_folder
 from hubvib.meshing.polyline_crack import PathCrack, path_ring_mesh
+from hubvib.meshing.ring_pieces import ring_pieces
 from hubvib.foundation.source_graph import source_key
 from hubvib.runtime.engines import Execution, check_reachable, run_cases
 from hubvib.runtime.fe_cache import (CacheEntryError, case_lock, entry_key, finite_positive,
                                      read_entry, write_entry)
 from hubvib.runtime.progress import progress as hubvib_progress
 from hubvib.runtime.tooth_curves import shared_intact_curve
+from hubvib.cases.piece_store import pieces_on_disk
 from hubvib.cases.results import PlaneCase, SolidCase, typed_case
 from hubvib.cases.sweep import ACCURACY, CrackSweep, crack_of, front_of
 
@@ -70,19 +72,34 @@ def case_inputs(sweep: CrackSweep, case) -> dict:
         depth, half_length = case
         return {"design": sweep.reducer.fingerprint(), "crack": asdict(crack_of(sweep, depth)),
                 "front": asdict(front_of(half_length)) if depth > 0 else None,
-                "levels": SOLID_LEVELS[-2:], "tooth_samples": SAMPLES, "half_width": True,
+                "levels": SOLID_LEVELS[-3:], "tooth_samples": SAMPLES, "half_width": True,
                 "quantities": "solid c_ru c_r pitch poor-half tooth-line-load half-width"}
-    return {"design": sweep.reducer.fingerprint(), "crack": asdict(crack_of(sweep, case)),
-            "scale": ACCURACY[sweep.accuracy], "quantities": "c_ru c_r c_rp_engaged"}
+    crack = crack_of(sweep, case)
+    return {"design": sweep.reducer.fingerprint(), "crack": asdict(crack),
+            "scale": ACCURACY[sweep.accuracy], "levels": PLANE_LEVELS,
+            "ring": mesher_of(sweep, crack).__name__, "quantities": "c_ru c_r c_rp_engaged"}
+
+
+def mesher_of(sweep: CrackSweep, crack):
+    """The plane ring's mesher of ``crack``: along a predicted path the whole ring
+    (``path_ring_mesh``), else the ring glued from pieces and solved by substructures
+    (``ring_pieces``) unless ``sweep.substructure`` is False (``ring_mesh``)."""
+    from hubvib.meshing.ring_mesh import ring_mesh
+
+    if isinstance(crack, PathCrack):
+        return path_ring_mesh
+    return ring_pieces if sweep.substructure else ring_mesh
 
 
 def fe_case(sweep: CrackSweep, case) -> PlaneCase | SolidCase:
     """c_ru, c_r, c_rp with error estimate and timing for one case (runs in a worker).
 
-    Plane: per mesh level one mesh, one assembly and one factorisation serve c_ru, c_r
-    and the cracked tooth's compliance (``fem.estimate.estimate_crack_case``).  Solid:
+    Plane: per mesh level (three, for the error bars) one mesh, one assembly and one
+    factorisation serve c_ru, c_r and the cracked tooth's compliance
+    (``fem.estimate.estimate_crack_case``), the ring glued from pieces and solved by
+    substructures unless ``sweep.substructure`` is False (``mesher_of``).  Solid:
     c_ru over every carrier position of one planet pitch and c_r (the work-conjugate rim
-    parts, the root-land readings beside them) on the last two
+    parts, the root-land readings beside them) on the three
     ``SOLID_LEVELS``, and on the fine one again with its poorly shaped cells at half
     stiffness; every solid case is mirror-symmetric about the face width's mid-plane
     (crack centred, loads and supports uniform across the width), so half the width is
@@ -107,8 +124,7 @@ def fe_case(sweep: CrackSweep, case) -> PlaneCase | SolidCase:
     depth = case
     crack = crack_of(sweep, depth)
     result = estimate_crack_case(ring_gear(design), gear_body(design, "planet"), crack,
-                                 ACCURACY[sweep.accuracy],
-                                 mesher=path_ring_mesh if isinstance(crack, PathCrack) else None,
+                                 ACCURACY[sweep.accuracy], mesher=mesher_of(sweep, crack),
                                  material=material(design), n_planets=design.n_planets)
     return PlaneCase(result, float(depth), time.perf_counter() - started)
 
@@ -266,7 +282,8 @@ class _Case:
                                "hubvib on every worker")
         set_intact_store(shared_intact_curve)  # the intact tooth curves: once per stage
         try:
-            return fe_case(self.sweep, case)
+            with pieces_on_disk():  # the intact pieces: once per design and mesh level
+                return fe_case(self.sweep, case)
         finally:
             set_intact_store(None)
 

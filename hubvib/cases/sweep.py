@@ -72,6 +72,7 @@ class CrackSweep:
     model: str = "plane"
     half_lengths: tuple[float, ...] = ()
     path: str = "straight"
+    substructure: bool = True
 
     @property
     def cases(self) -> list:

@@ -19,8 +19,9 @@ def add_parser(sub) -> None:
                         "(nested levels), the same c_ru, c_r from one tooth pitch "
                         "(c_ru_sector, c_r_sector: nested pitch levels), or an exact "
                         "benchmark")
-    p.add_argument("--out", type=Path, required=True, metavar="DIR")
-    p.add_argument("--json", action="store_true")
+    p.add_argument("--out", type=Path, required=True, metavar="DIR",
+                   help="output folder for the table (CSV) and the plot (PNG)")
+    p.add_argument("--json", action="store_true", help="machine-readable output (JSON)")
     p.set_defaults(handler=run)
 
 

@@ -14,7 +14,7 @@ def add_parser(sub) -> None:
     p.add_argument("action", choices=["check"])
     p.add_argument("file", help="design TOML file, or the name of a preset design "
                    f"({', '.join(preset_names())})")
-    p.add_argument("--json", action="store_true")
+    p.add_argument("--json", action="store_true", help="machine-readable output (JSON)")
     p.set_defaults(handler=run)
 
 

@@ -23,7 +23,7 @@ def add_parser(sub) -> None:
                    help="highest output order considered (capped at the Nyquist order N/2)")
     p.add_argument("--out", type=Path, metavar="DIR",
                    help="write error.csv, spectrum.csv, harmonics.csv and harmonics.png here")
-    p.add_argument("--json", action="store_true")
+    p.add_argument("--json", action="store_true", help="machine-readable output (JSON)")
     p.set_defaults(handler=run)
 
 

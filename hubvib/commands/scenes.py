@@ -6,7 +6,7 @@ import json
 
 def add_parser(sub) -> None:
     p = sub.add_parser("scenes", help="list the shipped scenes (run one with hubvib run NAME)")
-    p.add_argument("--json", action="store_true")
+    p.add_argument("--json", action="store_true", help="machine-readable output (JSON)")
     p.set_defaults(handler=run)
 
 

@@ -13,7 +13,7 @@ def add_parser(sub) -> None:
     p = sub.add_parser("stability", help="stiff/extreme cases: error vs 50-digit reference and time")
     p.add_argument("--repeats", type=int, default=20,
                    help=f"timed calls per case and method, 1..{MAX_REPEATS} (default 20)")
-    p.add_argument("--json", action="store_true")
+    p.add_argument("--json", action="store_true", help="machine-readable output (JSON)")
     p.set_defaults(handler=run)
 
 

@@ -33,9 +33,10 @@ def add_parser(sub) -> None:
                    help="roller angle phi2 [deg] (default 54)")
     p.add_argument("--lift-table", type=Path, metavar="FILE.csv",
                    help="sweep: CSV with columns phi2_deg, alpha1_deg, alpha3_deg")
-    p.add_argument("--finger-spacing", type=float, default=0.010, metavar="S4",
+    p.add_argument("--finger-spacing", type=float, default=None, metavar="S4",
                    help="S4, height of the spherical finger's contact part [m], > 0 (default "
-                        "0.010 = 2 r4, back-solved from the paper's spherical N3)")
+                        "0.010 = 2 r4, back-solved from the paper's spherical N3); with "
+                        "--fingers spherical or both")
     for flag, _, default, text in _GEAR_OPTIONS:
         p.add_argument(flag, type=float, default=default, help=f"{text} (paper: {default:g})")
     p.add_argument("--input-speed-rpm", type=float, default=0.0,
@@ -44,17 +45,23 @@ def add_parser(sub) -> None:
                    help="inertia moment M_U of the roller [N m] (default 0, quasi-static)")
     p.add_argument("--out", type=Path, metavar="DIR",
                    help="write the results (CSV) and, for a sweep, eta against phi2 (PNG)")
-    p.add_argument("--json", action="store_true")
+    p.add_argument("--json", action="store_true", help="machine-readable output (JSON)")
     p.set_defaults(handler=run)
 
 
 def run(args) -> int:
     from hubvib.companion.torus_screw.gear import TorusScrewGear
+    from hubvib.companion.torus_screw.gear import PAPER_FINGER_SPACING_M
     from hubvib.companion.torus_screw.run import run_torus_screw
+
+    from ._applies import refuse_ignored, value
 
     gear = TorusScrewGear(**{field: getattr(args, flag[2:].replace("-", "_"))
                              for flag, field, _, _ in _GEAR_OPTIONS})
-    result = run_torus_screw(gear, args.fingers, args.finger_spacing, args.input_speed_rpm,
+    refuse_ignored(args, (("--finger-spacing", args.fingers != "cylindrical",
+                           "to spherical fingers (--fingers spherical or both)"),))
+    spacing = value(args, "--finger-spacing", PAPER_FINGER_SPACING_M)
+    result = run_torus_screw(gear, args.fingers, spacing, args.input_speed_rpm,
                              args.inertia_moment,
                              (args.alpha1_deg, args.alpha3_deg, args.phi2_deg),
                              args.lift_table, args.out)

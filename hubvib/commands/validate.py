@@ -9,9 +9,10 @@ from hubvib.foundation.output import json_text, output_set, written_line
 
 def add_parser(sub) -> None:
     p = sub.add_parser("validate", help="scripted validation against published data")
-    p.add_argument("case", choices=["raba118"])
-    p.add_argument("--out", type=Path, default=Path("hubvib-out/validate-raba118"))
-    p.add_argument("--json", action="store_true")
+    p.add_argument("case", choices=["raba118"], help="the published case to compare with")
+    p.add_argument("--out", type=Path, default=Path("hubvib-out/validate-raba118"),
+                   metavar="DIR", help="output folder (default hubvib-out/validate-raba118)")
+    p.add_argument("--json", action="store_true", help="machine-readable output (JSON)")
     p.set_defaults(handler=run)
 
 

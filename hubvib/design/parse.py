@@ -121,6 +121,11 @@ BEARING = {"planet": _schema("design.bearings.planet", *_ROLLERS,
 SCHEMAS = (DESIGN, SUN, PLANET, RING, SUPPORTS, MATERIAL, LOAD, BEARINGS, *BEARING.values())
 
 
+#: tables that make a TOML file a scene (``hubvib.studies.scene``), not a design file
+SCENE_TABLES = frozenset({"reducer", "study", "crack", "output", "detection", "signal",
+                          "execution", "elastic"})
+
+
 def read_design(path: Path) -> ReducerDesign:
     """Read a design file (its ``[design]`` table), every key's type and range checked.
 
@@ -133,6 +138,12 @@ def read_design(path: Path) -> ReducerDesign:
     except tomllib.TOMLDecodeError as exc:
         raise DesignError(f"design file {str(path)!r} is not valid TOML: {exc}") from None
     if set(data) != {"design"}:
+        study = sorted(set(data) & SCENE_TABLES)
+        if study:
+            raise DesignError(
+                f"{str(path)!r} is a scene, not a design file (it has "
+                f"{', '.join(f'[{t}]' for t in study)}): run it with `hubvib run {path}`; a "
+                "design file holds one [design] table (docs/design.md)")
         raise DesignError(f"design file {str(path)!r}: expected one [design] table, found "
                           f"{sorted(data) or 'nothing'}")
     return table_design(data["design"], default_name=path.stem)

@@ -43,6 +43,7 @@ from hubvib.lumped.parameters import MASS_FIELDS
 from .drift import Drift
 from .pod import RECORD_LENGTHS, family_pod, monte_carlo_shifts, watched_by_drop
 from .mode_names import elastic_label
+from .options import DetectionOptions
 from .result import DetectionResult
 from .uncertainty import lognormal
 
@@ -259,9 +260,13 @@ class ElasticSpectrum:
     mode, the nominal record change over the change at the reference position (planet 1
     half a pitch away, faces open; ``reference_grid_hz``), by which every sampled reducer's
     change, solved at the reference position, is scaled, its intact frequency moved by the
-    nominal record's offset from the reference (None: the record is the reference).  A
-    shortcut: the Monte Carlo reducers share the nominal reducer's ratio of what the load
-    cycle does to the crack's change (zero scatter gives the nominal record exactly).
+    nominal record's offset from the reference (None: the record is the reference).  Where
+    the reference change is below ``RATIO_FLOOR`` of the record's (NaN ratio: the load
+    cycle moves a mode that the open crack half a pitch away hardly moves) the nominal
+    difference of the two changes is added instead, so that a ratio does not magnify the
+    sample's scatter.  A shortcut: the Monte Carlo reducers share the nominal reducer's
+    account of what the load cycle does to the crack's change (zero scatter gives the
+    nominal record exactly).
     """
 
     grid: tuple
@@ -308,7 +313,13 @@ class ElasticSpectrum:
             out[:, k] = batched_hz(op, samples, self.masks)[:, op.slot]
         if self.record_ratio is not None:  # the record, not the reference position
             offset = self.nominal_grid_hz[0] - self.reference_grid_hz[0]
-            out = out[:, :1] + offset + self.record_ratio[None] * (out - out[:, :1])
+            change = out - out[:, :1]
+            nominal_change = self.reference_grid_hz - self.reference_grid_hz[0]
+            added = (self.nominal_grid_hz - self.nominal_grid_hz[0]) - nominal_change
+            scaled = np.isfinite(self.record_ratio)
+            out = out[:, :1] + offset + np.where(
+                scaled[None], np.nan_to_num(self.record_ratio)[None] * change,
+                change + np.nan_to_num(added)[None])
         return out + samples.z[:, None, None] * self.fe_error_hz()[None]
 
     def _interpolated(self, values: np.ndarray, depths) -> np.ndarray:
@@ -378,10 +389,12 @@ class ElasticSpectrum:
         return replace(self, depths=tuple(float(d) for d in depths))
 
 
-def elastic_spectrum_model(depths, cases, fe_change_error: float = FE_CHANGE_ERROR
+def elastic_spectrum_model(depths, cases, fe_change_error: float = FE_CHANGE_ERROR,
+                           load: "RecordLoad | None | str" = "working", options=None
                            ) -> ElasticSpectrum:
     """The elastic spectrum model of ``cases`` (``ElasticCase`` per depth of ``depths``
-    [m], the first intact, each holding its ring operators)."""
+    [m], the first intact, each holding its ring operators); ``load`` and ``options`` as
+    :func:`record_frequencies`."""
     intact = cases[0]
     operators = tuple(depth_operators(case, intact, intact.ring_mass) for case in cases)
     masks = _mass_masks(intact.params, operators[0].mass)
@@ -397,14 +410,16 @@ def elastic_spectrum_model(depths, cases, fe_change_error: float = FE_CHANGE_ERR
     solved = np.array([batched_hz(op, unscattered(model), masks)[0, op.slot]
                        for op in operators])
     reference = np.where(np.isfinite(nominal), nominal, solved)
-    records = [record_frequencies(intact, case) for case in cases]
+    records = [record_frequencies(intact, case, load, options) for case in cases]
     if all(r.record_hz is r.reference_hz for r in records):  # today: the reference itself
         return replace(model, nominal_grid_hz=reference)
     record = np.array([padded(r.record_hz, reference.shape[1]) for r in records])
     record = np.where(np.isfinite(record), record, reference)
     change, moved = reference - reference[0], record - record[0]
     with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(np.abs(change) > 0, moved / change, 1.0)
+        ratio = np.where((np.abs(change) > 0) & (np.abs(change) >= RATIO_FLOOR * np.abs(moved)),
+                         moved / change, np.nan)
+    ratio[0] = 1.0
     return replace(model, nominal_grid_hz=record, record_ratio=ratio,
                    reference_grid_hz=reference)
 
@@ -414,40 +429,63 @@ class RecordFrequencies:
     """What a record sees of one crack depth, per intact mode (the intact case's "away"
     order) [Hz]: ``record_hz`` (NaN: no mode continues it), ``reference_hz`` (planet 1
     half a planet pitch from the cracked tooth, faces open: where the Monte Carlo reducers
-    are solved) and ``split_pair`` (bool)."""
+    are solved), ``split_pair`` (bool) and ``track``."""
 
     record_hz: np.ndarray
     reference_hz: np.ndarray
     split_pair: np.ndarray
+    track: object = None  # the loaded crack's ``RecordTrack`` (None: faces open)
 
 
-#: the share of the working torque a record's crack is loaded by; None: the faces open
-#: (the record sees the reference spectrum).  The loaded crack (``hubvib.elastic.loaded``)
-#: is used where a case carries it and this is set.
-RECORD_TORQUE_FRACTION = None
+#: reference change, as a share of the record's, below which a sampled reducer's record
+#: change is its reference change plus the nominal difference (not scaled by their ratio)
+RATIO_FLOOR = 0.25
 
 
-def record_frequencies(intact, case, torque_fraction: float | None = None
-                       ) -> RecordFrequencies:
+@dataclass(frozen=True)
+class RecordLoad:
+    """The load a record's crack is under: ``torque_fraction`` of the design's sun torque
+    [-] and the closure ``gap`` [m] (``hubvib.elastic.loaded``)."""
+
+    torque_fraction: float = 1.0
+    gap: float = 0.0
+
+
+#: the working load; None would leave the faces open (the record sees the reference)
+RECORD_LOAD = RecordLoad()
+
+
+def record_frequencies(intact, case, load: RecordLoad | None | str = "working",
+                       options=None) -> RecordFrequencies:
     """The one place the elastic ring's per-depth nominal frequencies come from: ``case``
     (an ``ElasticCase``) as a record sees it, its modes tracked to ``intact``'s (subspace
     match at least ``MIN_MATCH``).
 
-    Without a loaded crack: the "away" spectrum (planet 1 half a pitch from the crack,
-    faces open), the record's and the reference's the same array.  With
-    ``torque_fraction`` (default ``RECORD_TORQUE_FRACTION``: setting it to the working
-    load, 1.0, is the swap) and a case holding its loaded crack, the record track of
-    :func:`hubvib.elastic.loaded.record_track` (the faces opening and closing as the
-    planets pass) is what the record sees."""
+    With a load (default ``RECORD_LOAD``, the working load) and cases holding their pitch
+    spectra (a mounted ring), the record track of :func:`hubvib.elastic.loaded.record_track`
+    (the faces opening and closing as the planets pass; ``options``: the detection's
+    damping ratio and carrier speed, default theirs); otherwise the "away" spectrum
+    (planet 1 half a pitch from the crack, faces open), the record's and the reference's
+    the same array."""
     reference, split = tracked_to(intact.away, case.away, intact.ring_mass)
-    if torque_fraction is None:
-        torque_fraction = RECORD_TORQUE_FRACTION
-    if torque_fraction is None or not hasattr(case, "loaded"):
+    if isinstance(load, str):
+        load = RECORD_LOAD
+    if load is None or getattr(case, "pitch", None) is None or intact.pitch is None:
         return RecordFrequencies(reference, reference, split)
-    from hubvib.elastic.loaded import record_track  # the loaded crack's API
+    track = record_load_track(intact, case, load, options)
+    record = padded(np.asarray(track.record_hz, dtype=float), reference.size)
+    return RecordFrequencies(record, reference, split, track)
 
-    track = record_track(intact, case, torque_fraction=torque_fraction)
-    return RecordFrequencies(np.asarray(track.record_hz, dtype=float), reference, split)
+
+def record_load_track(intact, case, load: RecordLoad, options=None):
+    """``hubvib.elastic.loaded.record_track`` of ``case`` under ``load`` with the
+    detection's damping ratio and carrier speed (``options``, default theirs)."""
+    from hubvib.elastic.loaded import record_track
+
+    options = DetectionOptions() if options is None else options
+    return record_track(intact, case, torque_fraction=load.torque_fraction,
+                        closure_gap_m=load.gap, damping_ratio=options.damping_ratio,
+                        carrier_speed=options.carrier_speed)
 
 
 def sensor_visibility(spectrum, sensor_angle: float) -> np.ndarray:
@@ -508,6 +546,11 @@ class ElasticDetail:
         Each intact mode's content.
     in_contact_hz : ndarray (depths, modes)
         The tracked frequency with planet 1 on the cracked tooth [Hz] (NaN: not tracked).
+    open_hz : ndarray (depths, modes)
+        Faces open, planet 1 half a pitch from the crack [Hz] (the reference position).
+    tracks : tuple
+        Per depth the loaded crack's ``RecordTrack`` (None: faces open).
+    load : RecordLoad or None
     split_pair : ndarray (depths, modes) of bool
     visibility : ndarray (modes,)
         Radial amplitude at the sensor relative to the largest among the modes [-].
@@ -531,6 +574,26 @@ class ElasticDetail:
     sensor_angle: float
     lowest_ring_mode: tuple | None = None
     scatter: tuple = ()
+    open_hz: np.ndarray | None = None
+    tracks: tuple = ()
+    load: object = None
+
+    @property
+    def crack_states(self) -> tuple:
+        """Per depth ``(carrier_tooth, open_length_m)`` arrays over the pitch (None where
+        the depth has no loaded state: intact, faces open, or through the rim)."""
+        out = []
+        for track in self.tracks:
+            states = getattr(track, "states", ()) if track is not None else ()
+            out.append((np.array([s.carrier_tooth for s in states]),
+                        np.array([s.open_length_m for s in states])) if states else None)
+        return tuple(out)
+
+    @property
+    def open_share(self) -> np.ndarray:
+        """Per depth: share of carrier positions with the faces apart [-] (NaN: none)."""
+        return np.array([np.nan if t is None or not getattr(t, "states", ())
+                         else t.open_share for t in self.tracks])
 
     @property
     def in_contact_shift_hz(self) -> np.ndarray:
@@ -539,9 +602,11 @@ class ElasticDetail:
 
 
 def bilinear_hz(result: DetectionResult) -> np.ndarray:
-    """Breathing crack: open half a cycle, closed (= intact) the other [Hz], (depths,
-    modes): ``2 f_open f_intact / (f_open + f_intact)``."""
-    f, f0 = result.frequency_hz, result.intact_hz
+    """The textbook breathing crack beside the loaded one: open half a cycle, closed
+    (= intact) the other [Hz], (depths, modes): ``2 f_open f_intact / (f_open +
+    f_intact)`` with the open crack half a pitch away."""
+    f = result.detail.open_hz if result.detail.open_hz is not None else result.frequency_hz
+    f0 = f[0]
     return 2 * f * f0 / (f + f0)
 
 
@@ -566,12 +631,14 @@ def elastic_mode_rows(result: DetectionResult) -> list[dict]:
 
 def elastic_result(design, depths, crack_of, scene, options, cases: list | None = None,
                    added: tuple = (), refinement: str = "",
-                   left_out: tuple = ()) -> DetectionResult:
+                   left_out: tuple = (), load: RecordLoad | None | str = "working"
+                   ) -> DetectionResult:
     """The elastic ring's detection answer over ``depths`` [m] (the first 0).
 
     ``crack_of(depth)`` gives the ``Crack`` of a depth; ``cases``: the ``ElasticCase`` of
     every depth when computed elsewhere (a worker pool), else computed here; ``added``,
-    ``refinement``, ``left_out``: as :class:`.result.DetectionResult`.
+    ``refinement``, ``left_out``: as :class:`.result.DetectionResult`; ``load``: the
+    record's crack load (:class:`RecordLoad`; default the working load, None: faces open).
 
     Per depth the frequencies a record sees (:func:`record_frequencies`), each coupled
     mode tracked to the intact mode it continues; the change with planet 1 on the cracked
@@ -582,7 +649,8 @@ def elastic_result(design, depths, crack_of, scene, options, cases: list | None 
     at the sensor at least ``VISIBLE`` of the largest), ranked by their largest drop over
     the sweep against the scatter (:func:`.pod.watched_by_drop`).  Closed faces give the
     intact ring within the mesh's discretisation error, so the bilinear (breathing)
-    estimate is :func:`bilinear_hz`; the detection uses the open crack, the upper bound."""
+    estimate is :func:`bilinear_hz`; ``detail.open_hz`` keeps the open crack half a pitch
+    away beside the record."""
     if cases is None:
         cases = [cached_case(*a) for a in case_arguments(design, depths, crack_of, scene)]
     intact = cases[0]
@@ -598,27 +666,27 @@ def elastic_result(design, depths, crack_of, scene, options, cases: list | None 
     for j, (ref, match) in enumerate(zip(*assignment(intact_away, intact.on, mass))):
         if ref >= 0 and match >= MIN_MATCH:
             away_of_on[j] = ref
-    own = record_frequencies(intact, intact)
-    open_hz[0] = (intact_away.frequency_hz if own.record_hz is own.reference_hz
-                  else padded(own.record_hz, n))
-    if (away_of_on >= 0).any():
-        on_hz[0] = padded(tracked_to(intact.on, intact.on, mass, away_of_on)[0], n)
-    for k, case in enumerate(cases[1:], start=1):
-        seen = record_frequencies(intact, case)
-        open_hz[k], split[k] = seen.record_hz, seen.split_pair
+    record_hz = np.full((len(depths), n), np.nan)
+    tracks = []
+    for k, case in enumerate(cases):
+        seen = record_frequencies(intact, case, load, options)
+        record_hz[k], open_hz[k], split[k] = (padded(seen.record_hz, n),
+                                              padded(seen.reference_hz, n), seen.split_pair)
+        tracks.append(seen.track)
         if (away_of_on >= 0).any():
             on_hz[k] = padded(tracked_to(intact.on, case.on, mass, away_of_on)[0], n)
     lengths = tuple(sorted({*RECORD_LENGTHS, options.record_length}))
-    sigma = {t: options.sigma_hz(intact_away.frequency_hz, t) for t in lengths}
+    sigma = {t: options.sigma_hz(record_hz[0], t) for t in lengths}
     visibility = sensor_visibility(intact_away, scene.sensor_angle)
-    shift = open_hz - intact_away.frequency_hz
+    shift = record_hz - record_hz[0]
     watched = watched_by_drop(shift, sigma[options.record_length],
                               np.flatnonzero(visibility >= VISIBLE), options.watched_modes)
     rate = options.per_mode_rate(len(watched)) if watched else options.false_alarm_rate
     pod_nominal = {t: family_pod(shift, sigma[t], watched, rate) for t in lengths}
     pod, samples = pod_nominal, 0
     if intact.operators is not None and options.samples > 0:
-        sampled = monte_carlo_shifts(elastic_spectrum_model(depths, cases), options)
+        sampled = monte_carlo_shifts(elastic_spectrum_model(depths, cases, load=load,
+                                                            options=options), options)
         pod = {t: family_pod(sampled, sigma[t], watched, rate) for t in lengths}
         samples = options.samples
     c = intact_away.content
@@ -627,9 +695,10 @@ def elastic_result(design, depths, crack_of, scene, options, cases: list | None 
         tuple(x.harmonic_index for x in c), tuple(x.ring_share for x in c), on_hz, split,
         visibility, intact.k_rest, intact.foundation, intact.ring_dofs, scene.sensor_angle,
         intact.lowest_ring_mode, (options.scatter_masses, options.scatter_stiffnesses,
-                                  options.scatter_mounting, FE_CHANGE_ERROR))
+                                  options.scatter_mounting, FE_CHANGE_ERROR),
+        open_hz, tuple(tracks), load)
     labels = tuple(elastic_label(x, f) for x, f in zip(c, intact_away.frequency_hz))
     return DetectionResult(
-        "elastic", tuple(float(d) for d in depths), open_hz, labels, sigma, watched, pod,
+        "elastic", tuple(float(d) for d in depths), record_hz, labels, sigma, watched, pod,
         pod_nominal, options.detection_probability, options.false_alarm_rate,
         options.record_length, samples, tuple(added), refinement, tuple(left_out), detail)

@@ -4,8 +4,8 @@ Each sample is one reducer as built: every mass scattered by ``scatter_masses``,
 every spring but the ring support by ``scatter_stiffnesses`` and the ring
 support (the mounting under ``"series"``, the preset's ``c_ru``/``c_r`` under
 ``"ratio"``) by ``scatter_mounting``, each log-normal with that relative
-standard deviation and independent.  The FE error estimates (difference to a
-mesh twice as coarse) are taken as standard deviations of a discretisation
+standard deviation and independent.  The FE error estimates (three mesh
+levels, ``fem.three_level``) are taken as standard deviations of a discretisation
 error common to every depth of a sample: ``body(d) = FE(d) + z err(d)`` with one
 standard normal ``z`` per stiffness.  Under ``"direct"`` the ring support is the
 FE body itself and scatters only by that error.

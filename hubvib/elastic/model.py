@@ -8,7 +8,7 @@ given ring tooth and classes every mode below the band's top.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -30,7 +30,10 @@ class ElasticRing:
     """The coupled model's parts for one ring (one crack state).
 
     ``carrier_teeth``: the positions (planet 1's tooth) the basis serves; ``k_rest`` the
-    ring-planet spring without the ring body [N/m]; ``seconds`` per step.
+    ring-planet spring without the ring body [N/m]; ``seconds`` per step; ``contact``: the
+    crack faces' condensed contact (``crack_state.CrackContact``) when asked for;
+    ``positions``: the reduced ring for every position of ``more_positions``
+    (``fem.ring_positions``, with the crack pairs' responses when paired).
     """
 
     params: PlanetaryParameters
@@ -44,6 +47,8 @@ class ElasticRing:
     options: ElasticOptions
     carrier_teeth: tuple
     seconds: dict = field(default_factory=dict)
+    contact: object = None  # crack_state.CrackContact when the crack's faces are paired
+    positions: object = None  # fem.ring_positions.RingPositions for more carrier positions
 
     @property
     def label(self) -> str:
@@ -85,13 +90,18 @@ def out_of_contact_tooth(teeth: int, n_planets: int) -> int:
 
 def elastic_ring(design, crack: Crack | None = None, closed: bool = False,
                  options: ElasticOptions = ElasticOptions(), carrier_teeth=None,
-                 params: PlanetaryParameters | None = None, k_rest: float | None = None
-                 ) -> ElasticRing:
+                 params: PlanetaryParameters | None = None, k_rest: float | None = None,
+                 more_positions=(), crack_faces: bool = False) -> ElasticRing:
     """The elastic ring of ``design``; ``carrier_teeth`` (planet 1's ring tooth at each
     carrier position the spectrum is wanted at) defaults to the cracked tooth (0 when
     intact) and the position half a planet pitch away.  ``params``: the lumped model to
     couple to (default: the design's); ``k_rest``: the ring-planet spring without the ring
-    body [N/m] (default ``rest_stiffness(design, options.rest)``)."""
+    body [N/m] (default ``rest_stiffness(design, options.rest)``).
+
+    ``more_positions``: further carrier positions, each to get its own reduced ring
+    (``ElasticRing.positions``) from the same factorisation; ``crack_faces`` (an open
+    crack only): pair the crack's faces, add their static responses to every position's
+    ring and condense their contact (``ElasticRing.contact``)."""
     seconds = {}
     started = time.perf_counter()
     params = lumped_parameters(design) if params is None else params
@@ -120,18 +130,46 @@ def elastic_ring(design, crack: Crack | None = None, closed: bool = False,
                               body.patch_angles, body.directions, body.probe)
     engaged = sorted({k for c in carrier_teeth
                       for k in engagement(params, probe_ops, c).teeth})
+    more = sorted({k for c in more_positions
+                   for k in engagement(params, probe_ops, int(c)).teeth} - set(engaged))
+    pairs = None
+    if crack_faces and crack is not None and not closed:
+        from hubvib.fem.crack_pairs import crack_pairs
+
+        pairs = crack_pairs(body)
     t = time.perf_counter()
-    basis = ring_basis(body, engaged, options.cutoff_hz)
+    functionals = pairs.functionals if pairs is not None else (
+        np.zeros((body.ndofs, 0)) if len(more_positions) else None)  # responses kept
+    basis = ring_basis(body, engaged, options.cutoff_hz, more_teeth=more,
+                       functionals=functionals)
     seconds["basis"] = time.perf_counter() - t
-    V = basis.V
-    operators = RingOperators(basis.K, np.eye(basis.size), np.asarray(body.contact.T @ V).T,
-                              probe_ops.moment_sign, body.patch_angles, body.directions,
-                              np.asarray(body.probe @ V))
+    contact = positions = None
+    if basis.responses is not None:
+        from hubvib.fem.ring_positions import ring_positions
+
+        positions = ring_positions(body, basis, None if pairs is None else pairs.functionals)
+        if pairs is not None:
+            from .crack_state import crack_contact
+
+            contact = crack_contact(body, pairs, basis.responses.functional)
+        basis = replace(basis, responses=None)  # (dofs, many): not kept
+    seconds["positions"] = time.perf_counter() - t - seconds["basis"]
+    operators = basis_operators(body, basis, probe_ops.moment_sign)
     t = time.perf_counter()
     k_rest = rest_stiffness(design, options.rest) if k_rest is None else float(k_rest)
     seconds["rest"] = time.perf_counter() - t
     return ElasticRing(params, body, basis, operators, k_rest, foundation, crack,
-                       bool(closed and crack is not None), options, carrier_teeth, seconds)
+                       bool(closed and crack is not None), options, carrier_teeth, seconds,
+                       contact, positions)
+
+
+def basis_operators(body: RingBody, basis: RingBasis, moment_sign: np.ndarray
+                    ) -> RingOperators:
+    """The reduced ring of ``basis`` as the coupled model sees it (M = I)."""
+    V = basis.V
+    return RingOperators(basis.K, np.eye(basis.size), np.asarray(body.contact.T @ V).T,
+                         moment_sign, body.patch_angles, body.directions,
+                         np.asarray(body.probe @ V))
 
 
 def lowest_ring_mode(er: ElasticRing) -> tuple[float, int] | None:

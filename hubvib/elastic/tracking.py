@@ -28,21 +28,33 @@ class Tracked:
     split_pair: tuple
 
 
-def descriptors(spectrum, ring_mass: float) -> np.ndarray:
+def descriptors(spectrum, ring_mass: float, stride: int = 1) -> np.ndarray:
     """(features, modes): sqrt(m) x for the lumped DOFs, then the mid-rim displacements
-    scaled so that their squares sum to the ring's kinetic energy of a uniform motion."""
+    scaled so that their squares sum to the ring's kinetic energy of a uniform motion;
+    ``stride``: every stride-th probe point only (a lighter descriptor, for storing)."""
     modes = spectrum.modes
     lumped = np.sqrt(modes.lumped_mass)[:, None] * modes.lumped
-    probe = modes.probe * np.sqrt(ring_mass / (modes.probe.shape[0] / 2))
+    points = modes.probe.shape[0] // 2
+    probe = np.vstack([modes.probe[:points:stride], modes.probe[points::stride]])
+    probe = probe * np.sqrt(ring_mass / (probe.shape[0] / 2))
     return np.vstack([lumped, probe])
 
 
 def track_modes(reference, other, ring_mass: float, rtol: float = PAIR_RTOL) -> Tracked:
     """Which reference mode each mode of ``other`` continues (``ElasticSpectrum`` both)."""
-    a, b = descriptors(reference, ring_mass), descriptors(other, ring_mass)
+    return track_descriptors(descriptors(reference, ring_mass), reference.frequency_hz,
+                             descriptors(other, ring_mass), other.frequency_hz, rtol)
+
+
+def track_descriptors(a: np.ndarray, f_ref: np.ndarray, b: np.ndarray, f: np.ndarray,
+                      rtol: float = PAIR_RTOL) -> Tracked:
+    """``track_modes`` on stored descriptors: ``a`` (features, reference modes) at
+    frequencies ``f_ref`` [Hz], ``b`` (features, modes) at ``f`` [Hz]."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    f_ref, f = np.asarray(f_ref, dtype=float), np.asarray(f, dtype=float)
     b_norm = np.linalg.norm(b, axis=0)
     score = np.zeros((a.shape[1], b.shape[1]))
-    for group in frequency_groups(reference.frequency_hz, rtol):
+    for group in frequency_groups(f_ref, rtol):
         q, _ = np.linalg.qr(a[:, group])
         share = np.linalg.norm(q.T @ b, axis=0) ** 2 / np.where(b_norm > 0, b_norm, 1) ** 2
         score[group] = share
@@ -51,7 +63,6 @@ def track_modes(reference, other, ring_mass: float, rtol: float = PAIR_RTOL) -> 
     match = np.zeros(b.shape[1])
     ref[cols] = rows
     match[cols] = score[rows, cols]
-    f_ref, f = reference.frequency_hz, other.frequency_hz
     # a repeated frequency's members are interchangeable: its lower continuation is named
     # after its first member, the upper after the second
     for group in frequency_groups(f_ref, rtol):

@@ -464,18 +464,30 @@ def _previous_set(folder: Path) -> list[PurePosixPath]:
 
 @contextmanager
 def _signals_deferred():
-    """Ctrl-C and SIGTERM wait until the block is done (the moves take milliseconds)."""
-    deferrable = (hasattr(signal, "pthread_sigmask")
-                  and threading.current_thread() is threading.main_thread())
-    if not deferrable:
+    """Ctrl-C and SIGTERM wait until the block is done (the moves take milliseconds).
+
+    Their handlers are swapped for a recorder, not blocked with a signal mask: a mask is the
+    calling thread's, and the kernel hands a process-directed signal to any thread that does
+    not block it (a progress ticker, a pool's manager thread), after which Python ran the
+    handler in the main thread in the middle of the moves (the files in place, the list of
+    the set not)."""
+    if threading.current_thread() is not threading.main_thread():
         yield
         return
-    blocked = {signal.SIGINT, signal.SIGTERM}
-    previous = signal.pthread_sigmask(signal.SIG_BLOCK, blocked)
+    pending = []
+    stops = [s for s in (signal.SIGINT, getattr(signal, "SIGTERM", None)) if s is not None]
+    previous = {s: signal.signal(s, lambda signum, frame: pending.append(signum)) for s in stops}
     try:
         yield
     finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+        for signum, handler in previous.items():
+            signal.signal(signum, signal.SIG_DFL if handler is None else handler)
+        for signum in dict.fromkeys(pending):  # each once, in the order they came
+            handler = previous[signum]
+            if callable(handler):
+                handler(signum, None)
+            elif handler == signal.SIG_DFL:
+                signal.raise_signal(signum)
 
 
 def _non_finite(data, where: str):

@@ -17,11 +17,10 @@ def crack_plots(scene, result, study, folder: Path) -> list[Path]:
     """The study's PNG figures (each from the result cache when drawn before); with the
     elastic ring, its figures and (``scene.renders``) its watched modes' pictures.
 
-    The elastic figures read two optional attributes of ``result.elastic`` when present:
-    ``averaged_hz`` (depths, modes) [Hz], the record-averaged frequency of every mode
-    (its line in ``elastic_states.png``), and ``crack_states``, one ``(carrier_tooth,
-    open_length_m)`` pair of arrays per depth of ``result.elastic.depths`` (None for the
-    intact ring; ``crack_state.png``)."""
+    The elastic figures: the watched modes open (half a pitch away), record-averaged
+    (the loaded crack over the pitch) and closed (intact) against depth
+    (``elastic_states.png``) and the crack's open length over the pitch per depth
+    (``crack_state.png``), from ``result.elastic.detail``."""
     from hubvib.detection import plots as figures
     from hubvib.detection.crack_detection import cached_plot
 
@@ -51,8 +50,7 @@ def crack_plots(scene, result, study, folder: Path) -> list[Path]:
 
 def elastic_mode_label(elastic, i: int) -> str:
     """A watched elastic mode in a legend: number, intact frequency, class, diameters."""
-    return (f"mode {i + 1}: {elastic.intact_hz[i]:.1f} Hz {elastic.kind[i]}, "
-            f"n = {elastic.nodal_diameter[i]}")
+    return elastic.labels[i]
 
 
 def both_models_arguments(name: str, result, study) -> tuple:
@@ -93,14 +91,19 @@ def _elastic_plots(scene, result, study, folder: Path) -> list[Path]:
     watched = list(elastic.watched)
     plots = [cached_plot(folder / "frequency_both_models.png", figures.both_models_figure,
                          *both_models_arguments(name, result, study))]
+    detail = elastic.detail
+    reference = elastic.frequency_hz if detail.open_hz is None else detail.open_hz
     if watched:
-        averaged = getattr(elastic, "averaged_hz", None)
+        # the record's change drawn from the reference intact frequency: the three lines
+        # start together and differ by what the load cycle does to the change
+        averaged = (None if detail.open_hz is None else
+                    reference[0] + elastic.frequency_hz - elastic.frequency_hz[0])
         plots.append(cached_plot(
             folder / "elastic_states.png", figures.crack_states_figure, name,
-            np.asarray(elastic.depths, dtype=float), elastic.intact_hz[watched],
-            elastic.open_hz[:, watched], [elastic_mode_label(elastic, i) for i in watched],
+            np.asarray(elastic.depths, dtype=float), reference[0][watched],
+            reference[:, watched], [elastic_mode_label(elastic, i) for i in watched],
             None if averaged is None else np.asarray(averaged)[:, watched]))
-    states = getattr(elastic, "crack_states", None)
+    states = detail.crack_states if detail.tracks else None
     if states is not None:
         shown = [(d, s) for d, s in zip(elastic.depths, states) if s is not None]
         if shown:
@@ -114,7 +117,7 @@ def _elastic_plots(scene, result, study, folder: Path) -> list[Path]:
         from hubvib.render.schedule import render_elastic_modes
 
         plots += render_elastic_modes(scene.crack.reducer, scene.elastic, watched,
-                                      elastic.intact_hz[watched], elastic.k_rest, folder,
+                                      reference[0][watched], detail.k_rest, folder,
                                       scene.crack.tooth)
     return plots
 

@@ -118,8 +118,10 @@ def crack_report(result, plots: list[str], renders: list[str], fe_renders: list[
         "## Validation status", "",
         "- FE c_ru: annulus against the exact k_theta (curved P2 to 1e-7), error of each "
         "value estimated against "
-        + ("a mesh twice as coarse" if sweep.model == "plane" else
-           "the solid level before the default (`hubvib.meshing.levels.SOLID_LEVELS`; the "
+        + ("three mesh levels (the default, twice and four times as coarse: Richardson with "
+           "the observed order where it lies in 0.5..4, else the larger level difference)"
+           if sweep.model == "plane" else
+           "the three solid levels (the same rule (`hubvib.meshing.levels.SOLID_LEVELS`; the "
            "top report gives the error of each change)")
         + " (column `fe_c_ru_error_N_m`).",
         "- Series composition: tends to the FE values when the mounting stiffens and to the "

@@ -249,8 +249,8 @@ def pod_section(study) -> list[str]:
           for k, d in enumerate(pod.depths)], "",
         f"- Scatter (log-normal, relative standard deviation): masses "
         f"{100 * options.scatter_masses:g} %, springs {100 * options.scatter_stiffnesses:g} %, "
-        f"ring mounting {100 * options.scatter_mounting:g} %; FE error estimates (difference "
-        "to a mesh twice as coarse) as the standard deviation of a discretisation error common "
+        f"ring mounting {100 * options.scatter_mounting:g} %; FE error estimates (three mesh "
+        "levels: Richardson with the observed order in 0.5..4, else the larger difference) as the standard deviation of a discretisation error common "
         f"to all depths. {pod.samples} Monte Carlo samples per depth (batched lumped solves).",
         "- Record against mesh timing: "
         + (f"a record longer than one engagement ({1e3 * timing.pass_seconds:.3g} ms) sees the "

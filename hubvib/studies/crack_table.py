@@ -68,6 +68,10 @@ SCHEMA = Schema("crack", (
           allowed=_MOUNT, doc="... and c_r"),
     Field("model", "choice", choices=MODELS, default="plane",
           doc="plane, or solid: semi-elliptic root cracks in the solid ring"),
+    Field("substructure", "bool", default=True,
+          message="{label} = {value}, but it must be {allowed}",
+          doc="plane: only the crack's block meshed and factorised per case, the intact "
+              "pieces condensed once; false: the whole ring per case"),
     Field("half_lengths", "numbers", default=None, unit="m", check=_half_lengths_ok,
           allowed=f'1..{MAX_HALF_LENGTHS} ascending values > 0 [m] with model = "solid"',
           doc="solid only: one case per depth > 0 and half-length"),

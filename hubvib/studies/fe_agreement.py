@@ -1,10 +1,12 @@
-"""The plane crack cases by substructures against the published whole-ring figures: old
-value, new value and the old error bar of each (SI units).
+"""The plane crack cases as the crack study now computes them (the ring by substructures,
+three-level error bars) against the figures the whole-ring path published with its
+two-level bars: old value, new value, old bar, new bar of each (SI units).
 
 ``python -m hubvib.studies.fe_agreement PUBLISHED.json --out OUT.json`` reads the ``stiffness``
 rows of a crack scene's ``results.json`` (the whole-ring path wrote them), recomputes
 each depth's case (``fem.estimate.estimate_crack_case``, the ring by substructures) and
-writes one row per depth and quantity.
+writes one row per depth and quantity: whether the move lies within the larger of the
+two bars (``within``), the rule of the new bar (``fem.three_level``).
 """
 from __future__ import annotations
 
@@ -18,19 +20,34 @@ QUANTITIES = {"c_ru_N_m": ("c_ru", "fe_c_ru_N_m", "fe_c_ru_error_N_m"),
                                      "fe_c_rp_engaged_ratio_error")}
 
 
+def agreement_row(depth_mm: float, quantity: str, old: float, old_error: float,
+                  estimate) -> dict:
+    """One row: the published ``old`` value with its bar against the ``estimate``
+    (``fem.estimate.CrackCaseEstimate``) of the same depth."""
+    field = QUANTITIES[quantity][0]
+    new, bar = getattr(estimate, field), estimate.error_of(field)
+    change, larger = abs(new - old), max(old_error, bar.error)
+    return {"depth_mm": depth_mm, "quantity": quantity, "old": old, "new": new,
+            "old_error": old_error, "new_error": bar.error, "new_rule": bar.rule,
+            "new_order": None if bar.order != bar.order else bar.order,
+            "in_old_errors": change / old_error if old_error else None,
+            "in_larger_errors": change / larger if larger else None,
+            "within": change <= larger}
+
+
 def agreement_rows(published: dict, design=None) -> list[dict]:
-    """One row per depth of ``published`` (a crack scene's results) and quantity: depth
-    [mm], quantity, old, new, the old and the new error estimate, and |new - old| over the
-    old error (None where the old error is 0: the intact ratio, 1 by definition)."""
+    """One row per depth of ``published`` (a crack scene's results) and quantity
+    (``agreement_row``)."""
     from hubvib.reducer.stages import gear_body, material, ring_gear
     from hubvib.design import preset_design
     from hubvib.fem.estimate import estimate_crack_case
     from hubvib.meshing.crack import Crack
     from hubvib.meshing.ring_pieces import ring_pieces
+    from hubvib.cases.sweep import ACCURACY
 
     design = design or preset_design("raba118")
     crack = published["crack"]
-    scale = {"default": 1.0, "fast": 2.0}[crack["accuracy"]]
+    scale = ACCURACY[crack["accuracy"]]
     rows = []
     for row in published["stiffness"]:
         depth = row["depth_mm"] / 1e3
@@ -38,12 +55,9 @@ def agreement_rows(published: dict, design=None) -> list[dict]:
             ring_gear(design), gear_body(design, "planet"),
             Crack(crack["tooth"], depth, crack["angle"], crack["start"]), scale,
             mesher=ring_pieces, material=material(design), n_planets=design.n_planets)
-        for name, (field, old_key, error_key) in QUANTITIES.items():
-            old, bar = row[old_key], row[error_key]
-            new = getattr(estimate, field)
-            rows.append({"depth_mm": row["depth_mm"], "quantity": name, "old": old, "new": new,
-                         "old_error": bar, "new_error": getattr(estimate, f"{field}_error"),
-                         "in_old_errors": abs(new - old) / bar if bar else None})
+        for name, (_, old_key, error_key) in QUANTITIES.items():
+            rows.append(agreement_row(row["depth_mm"], name, row[old_key], row[error_key],
+                                      estimate))
     return rows
 
 

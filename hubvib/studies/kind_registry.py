@@ -168,7 +168,7 @@ class Scene:
         name = getattr(self.design, "name", None)
         if "design" in self.source:
             given = self.design is not None and key in self.design.lumped_fields
-            return f"design {name!r}'s {'lumped table' if given else 'geometry'}"
+            return f"the {'lumped table' if given else 'geometry'} of design {name!r}"
         preset = self.source.get("reducer", {}).get("preset", name)
         return f"the {preset} preset's table"
 

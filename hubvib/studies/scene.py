@@ -177,6 +177,7 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"scene {name!r} is not valid TOML: {exc}") from None
+    _refuse_design_file(data, name if base is None else str(base / f"{name}.toml"))
     check_keys(data, "", TOP_LEVEL | study_tables())
     reducer = _table(data, "reducer")
     study = _table(data, "study")
@@ -219,6 +220,19 @@ def parse_scene(text: str, name: str, base: Path | None = None) -> Scene:
     # before any FE
     check_detection_budget(scene.given("detection"), options, params)
     return scene
+
+
+def _refuse_design_file(data: dict, where: str) -> None:
+    """A design file given where a scene belongs (one ``[design]`` table of design keys and
+    nothing to compute) is named as such, with the two ways to use it."""
+    table = data.get("design")
+    if set(data) == {"design"} and isinstance(table, dict) and not set(table) <= {"file",
+                                                                                   "preset"}:
+        raise SceneError(
+            f"{where!r} is a design file (one [design] table), not a scene: check it with "
+            f"`hubvib design check {where}`, or run a study of it from a scene that names "
+            f"it, [design] file = \"{Path(where).name}\" beside a [crack] or [study] table "
+            "(docs/design.md)")
 
 
 def _design(data, reducer, base: Path | None):

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import dataclass
 
 from hubvib.reducer import bearing_stiffness, gear_body, material, ring_gear
 from hubvib.reducer.stages import FE_MESH, FE_RING, ISO_MESH, ISO_SINGLE, labelled
@@ -14,14 +15,113 @@ from hubvib.fem.estimate import RingEstimate, estimate_mesh, estimate_ring
 from hubvib.meshing.crack import Crack
 
 
-def bearing_rows(design) -> dict:
-    """c_p and c_c of the design's bearings (those it gives), with the time they took [s]."""
+@dataclass(frozen=True)
+class BearingStiffness:
+    """One bearing's stiffness (c_p or c_c, Palmgren line contact).
+
+    Attributes
+    ----------
+    tangent, secant : float
+        Tangent stiffness at the operating load (the lumped model's) and secant [N/m].
+    load : float
+        The load it is taken at [N].
+    rollers : int
+        Rollers of the bearing.
+    roller_length : float
+        Effective roller length [m].
+    method, secant_method : str
+        How ``hubvib design check`` names the two values.
+    seconds_total : float
+        Time it took [s].
+    sun_torque : float
+        The design's sun torque [N m] (the operating point).
+    """
+
+    tangent: float
+    secant: float
+    load: float
+    rollers: int
+    roller_length: float
+    method: str
+    secant_method: str
+    seconds_total: float
+    sun_torque: float
+
+    def to_dict(self) -> dict:
+        """The JSON row of ``hubvib stiffness`` (keys with units; ``value_N_m`` the tangent)."""
+        return {"tangent_N_m": self.tangent, "secant_N_m": self.secant, "load_N": self.load,
+                "rollers": self.rollers, "roller_length_m": self.roller_length,
+                "method": self.method, "secant_method": self.secant_method,
+                "value_N_m": self.tangent, "seconds_total": self.seconds_total,
+                "sun_torque_N_m": self.sun_torque}
+
+
+def bearing_rows(design) -> dict[str, BearingStiffness]:
+    """c_p and c_c of the design's bearings (those it gives), with the time they took [s]
+    (read from ``reducer.bearing_stiffness``'s rows: their edge)."""
     started = time.perf_counter()
     rows = bearing_stiffness(design)
-    for row in rows.values():
-        row.update(value_N_m=row["tangent_N_m"], seconds_total=time.perf_counter() - started,
-                   sun_torque_N_m=design.sun_torque)
-    return rows
+    seconds = time.perf_counter() - started
+    return {key: BearingStiffness(row["tangent_N_m"], row["secant_N_m"], row["load_N"],
+                                  row["rollers"], row["roller_length_m"], row["method"],
+                                  row["secant_method"], seconds, design.sun_torque)
+            for key, row in rows.items()}
+
+
+@dataclass(frozen=True)
+class StiffnessCase:
+    """One case of ``hubvib stiffness`` (intact, or cracked), typed.
+
+    Attributes
+    ----------
+    ring : fem.estimate.RingEstimate
+        The plane ring's c_ru and c_r (the rim parts; the root-land readings beside).
+    mesh : dict of str to fem.estimate.MeshEstimate
+        ``"c_sp"`` and ``"c_rp"``: the FE mesh stiffness over the mesh cycle.
+    bearings : dict of str to BearingStiffness
+        ``"c_p"`` and ``"c_c"`` where the design gives the bearing.
+    ring_solid : fem.estimate.RingEstimate or None
+        The solid ring's, on request.
+    cracked : bool
+        Whether ``mesh["c_rp"]`` carries the cracked tooth's engagement for this case.
+    """
+
+    ring: RingEstimate
+    mesh: dict
+    bearings: dict
+    ring_solid: RingEstimate | None = None
+    cracked: bool = False
+
+    def rings(self) -> dict[str, RingEstimate]:
+        """The ring estimates by row suffix (``""`` plane, ``" 3D"`` solid)."""
+        return {"": self.ring} | ({} if self.ring_solid is None else {" 3D": self.ring_solid})
+
+    def to_dict(self) -> dict[str, dict]:
+        """Quantity -> JSON row (``value_N_m``, ``error_N_m``, ``seconds_total``, ...): the
+        JSON of ``hubvib stiffness``, the output edge."""
+        rows = {}
+        for suffix, ring in self.rings().items():
+            rows.update(_ring_rows(ring, suffix))
+        rows.update({key: e.to_dict(engaged=self.cracked) for key, e in self.mesh.items()})
+        rows.update({key: b.to_dict() for key, b in self.bearings.items()})
+        return rows
+
+    def named_values(self) -> dict[str, float]:
+        """Every value by ``key (method)`` [N/m]: the names ``hubvib design check`` gives
+        its values (``hubvib.reducer.stages.labelled``), so one name holds one value
+        wherever it is printed."""
+        out = {}
+        for suffix, ring in self.rings().items():
+            out[labelled("c_ru", RING_METHODS[suffix])] = ring.c_ru
+            out[labelled("c_r", RING_METHODS[suffix])] = ring.c_r
+        for key, e in self.mesh.items():
+            out[labelled(key, FE_MESH)] = e.value
+            out[labelled(key, ISO_MESH)] = e.iso_c_gamma
+            out[labelled(key, ISO_SINGLE)] = e.iso_c_single
+        for key, b in self.bearings.items():
+            out[labelled(key, b.method)] = b.tangent
+            out[labelled(key, b.secant_method)] = b.secant
+        return out
 
 
 def stiffness_parts(crack_depth: float = 0.0, solid: bool = False) -> int:
@@ -31,10 +131,10 @@ def stiffness_parts(crack_depth: float = 0.0, solid: bool = False) -> int:
 
 
 def stiffness_table(design, crack_depth: float = 0.0, solver: str = "auto",
-                    solid: bool = False, on_part=None) -> dict[str, dict]:
+                    solid: bool = False, on_part=None) -> dict[str, StiffnessCase]:
     """Case name ("intact", and "crack D m" when ``crack_depth`` [m] > 0, a root crack at
-    tooth 0) -> quantity (c_ru, c_r, [c_ru 3D, c_r 3D,] c_sp, c_rp, c_p, c_c) -> its row
-    (``value_N_m``, ``error_N_m``, ``seconds_total``, ...: the JSON of ``hubvib stiffness``).
+    tooth 0) -> its ``StiffnessCase`` (c_ru, c_r, [c_ru 3D, c_r 3D,] c_sp, c_rp, c_p, c_c;
+    ``StiffnessCase.to_dict``: the JSON of ``hubvib stiffness``).
 
     ``on_part(label)`` is called after each FE part (``stiffness_parts`` of them: progress).
 
@@ -60,46 +160,24 @@ def stiffness_table(design, crack_depth: float = 0.0, solver: str = "auto",
     estimates = estimate_mesh(gear_body(design, "sun"), gear_body(design, "planet"), ring,
                               list(cases.values())[-1], material=steel)
     done("c_sp, c_rp")
-    mesh_rows = {key: e.to_dict() for key, e in estimates.items()}
-    intact_mesh_rows = {key: e.to_dict(engaged=False) for key, e in estimates.items()}
     bearings = bearing_rows(design)
     out = {}
     for name, crack in cases.items():
         ring_options = dict(solver=solver, material=steel, n_planets=design.n_planets,
                             definition="rim")
-        rows = _ring_rows(estimate_ring(ring, crack, **ring_options), "")
+        plane = estimate_ring(ring, crack, **ring_options)
         done(f"c_ru, c_r {name}")
+        solid_ring = None
         if solid:
-            rows.update(_ring_rows(estimate_ring(ring, crack, solid=True, **ring_options),
-                                   " 3D"))
+            solid_ring = estimate_ring(ring, crack, solid=True, **ring_options)
             done(f"c_ru, c_r {name}, solid")
-        rows.update(intact_mesh_rows if crack is None else mesh_rows)
-        rows.update(bearings)
-        out[name] = rows
+        out[name] = StiffnessCase(plane, estimates, bearings, solid_ring,
+                                  cracked=crack is not None)
     return out
 
 
 #: the methods of the ring rows' values, by row suffix ("" plane, " 3D" solid)
 RING_METHODS = {"": FE_RING, " 3D": f"{FE_RING}, solid"}
-
-
-def named_values(rows: dict) -> dict[str, float]:
-    """Every value of one case of ``stiffness_table`` by ``key (method)`` [N/m]: the names
-    ``hubvib design check`` gives its values (``hubvib.reducer.stages.labelled``), so one
-    name holds one value wherever it is printed."""
-    out = {}
-    for key, row in rows.items():
-        name, _, solid = key.partition(" ")
-        if name in ("c_ru", "c_r"):
-            out[labelled(name, RING_METHODS[f" {solid}" if solid else ""])] = row["value_N_m"]
-        elif key in ("c_sp", "c_rp"):
-            out[labelled(key, FE_MESH)] = row["value_N_m"]
-            out[labelled(key, ISO_MESH)] = row["iso_c_gamma_N_m"]
-            out[labelled(key, ISO_SINGLE)] = row["iso_c_single_N_m"]
-        elif key in ("c_p", "c_c"):
-            out[labelled(key, row["method"])] = row["tangent_N_m"]
-            out[labelled(key, row["secant_method"])] = row["secant_N_m"]
-    return out
 
 
 def _ring_rows(r: RingEstimate, suffix: str) -> dict:

@@ -9,7 +9,7 @@ import tomllib
 from dataclasses import fields
 from pathlib import Path
 
-from hubvib.fem.estimate import RING_KEYS, CrackCaseEstimate, RingEstimate
+from hubvib.fem.estimate import RING_KEYS, CrackCaseEstimate, MeshEstimate, RingEstimate
 
 ROOT = Path(__file__).parents[2]
 
@@ -19,28 +19,39 @@ FE_KEYS = frozenset(RING_KEYS.get(f.name, f.name)
                     for kind in (CrackCaseEstimate, RingEstimate) for f in fields(kind)
                     if f.name.startswith(("c_", "tooth_")))
 
+#: the dict keys of the FE rows of ``hubvib stiffness`` (``MeshEstimate.to_dict`` and the
+#: ring rows, ``studies.stiffness._ring_rows``): read typed in the modules that print them
+STIFFNESS_KEYS = frozenset(
+    {f"{f.name}_N_m" for f in fields(MeshEstimate)} | {"value_N_m", "error_N_m", "min_N_m",
+                                                       "max_N_m", "root_land_N_m",
+                                                       "root_land_error_N_m"})
+#: the modules of the stiffness study, its command and the crack report's stiffness tables
+STIFFNESS_MODULES = ("hubvib/studies/stiffness.py", "hubvib/commands/stiffness.py",
+                     "hubvib/reports/crack_tables.py",
+                     "hubvib/reports/mesh_stiffness_section.py")
+
 #: (file, function) where the dict form may be read by literal key: a JSON / CSV / cache
 #: edge that cannot read a typed case (the dict forms' ``from_dict`` read through the field
 #: names); empty while every reader reads the typed cases
 EDGES: set[tuple[str, str]] = set()
 
 
-def _unit_suffixes() -> frozenset[str]:
+def _unit_suffixes(keys=FE_KEYS) -> frozenset[str]:
     """Literal ends of f-string keys that can only name an FE quantity (``f"{q}_N_m"``;
     a bare ``_m`` names any length and is left out)."""
-    return frozenset(end for end in ("_" + key.split("_", 2)[-1] for key in FE_KEYS)
+    return frozenset(end for end in ("_" + key.split("_", 2)[-1] for key in keys)
                      if end != "_m")
 
 
-def string_key_reads(source: str) -> list[tuple[str, int, str]]:
-    """Each read of an FE key in ``source``: (enclosing function's qualified name, line,
-    key).  Counted: ``x["key"]`` and ``x[f"..._N_m"]`` when not assigned to, and
+def string_key_reads(source: str, keys=FE_KEYS) -> list[tuple[str, int, str]]:
+    """Each read of one of ``keys`` in ``source``: (enclosing function's qualified name,
+    line, key).  Counted: ``x["key"]`` and ``x[f"..._N_m"]`` when not assigned to, and
     ``x.get("key")`` / ``x.pop("key")``."""
     found: list[tuple[str, int, str]] = []
-    suffixes = _unit_suffixes()
+    suffixes = _unit_suffixes(keys)
 
     def key_of(node) -> str | None:
-        if isinstance(node, ast.Constant) and node.value in FE_KEYS:
+        if isinstance(node, ast.Constant) and node.value in keys:
             return node.value
         if isinstance(node, ast.JoinedStr) and node.values:
             last = node.values[-1]
@@ -84,6 +95,21 @@ def test_no_fe_key_is_read_outside_the_edges():
                          "edges (read the typed case instead, or list a true edge in EDGES):\n"
                          + "\n".join(f"{n}:{line} in {where}: {key}"
                                      for n, where, line, key in reads))
+
+
+def test_the_stiffness_rows_are_read_typed():
+    """The stiffness study, its command and the crack report's stiffness tables read the
+    typed estimates (``StiffnessCase``), never a row's ``"value_N_m"`` and the like."""
+    reads = [(name, *read) for name in STIFFNESS_MODULES
+             for read in string_key_reads((ROOT / name).read_text(encoding="utf-8"),
+                                          STIFFNESS_KEYS | FE_KEYS)]
+    assert reads == [], ("FE stiffness rows read by string key (read the typed "
+                         "StiffnessCase / MeshEstimate / RingEstimate instead):\n"
+                         + "\n".join(f"{n}:{line} in {where}: {key}"
+                                      for n, where, line, key in reads))
+    planted = 'def f(r):\n    return r["value_N_m"], r["iso_c_gamma_N_m"]\n'
+    assert [read[2] for read in string_key_reads(planted, STIFFNESS_KEYS)] == [
+        "value_N_m", "iso_c_gamma_N_m"], "the scan finds a planted stiffness-row read"
 
 
 def test_every_edge_still_reads_a_key():

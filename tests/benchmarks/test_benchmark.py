@@ -125,6 +125,10 @@ def test_quick_benchmark_runs():
         "substructure_rel_error_estimate"], "substructured vs whole-ring c_ru, c_r"
     assert figures["substructure_speedup_plane"] > 0
     assert figures["substructure_speedup_solid"] is None and figures["ci_seconds"] is None
+    assert "not substructured" in figures["substructure_solid_skipped"], "null with a reason"
+    assert figures["elastic_case_seconds"] > 0 and figures["elastic_case_baseline_seconds"] > 0
+    assert figures["elastic_case_ratio"] == pytest.approx(
+        figures["elastic_case_seconds"] / figures["elastic_case_baseline_seconds"], rel=1e-12)
     json.dumps(figures, allow_nan=False)
 
 

@@ -69,7 +69,8 @@ def _scene(text):
 
 
 @pytest.mark.parametrize("text, c_ru, c_r", [
-    ('[design]\npreset = "hub4"', "design 'hub4''s lumped table", "design 'hub4''s lumped table"),
+    ('[design]\npreset = "hub4"', "the lumped table of design 'hub4'",
+     "the lumped table of design 'hub4'"),
     ('[reducer]\npreset = "raba118"', "the raba118 preset's table", "the raba118 preset's table"),
     ('[reducer]\npreset = "raba118"\n[reducer.parameters]\nc_ru = 2e6',
      "the scene's [reducer.parameters]", "the raba118 preset's table"),
@@ -104,3 +105,11 @@ def test_preset_that_contradicts_the_params_file_is_refused(tmp_path, capsys):
     assert "'hub4'" in err, err
     assert main(["spectrum", "--preset", "hub4", "--params", str(params), "--json"]) == 0
     capsys.readouterr()
+
+
+def test_a_design_name_prints_as_given():
+    """A design named in lower case (or any case) keeps its spelling in the report's source
+    sentence: no capitalisation, no doubled quote before a possessive."""
+    scene = _scene('[design]\npreset = "hub4"\n[reducer.parameters]\nc_su = 1e8')
+    text = scene.lumped_source("c_ru")
+    assert "'hub4'" in text and "Hub4" not in text and "''" not in text, text

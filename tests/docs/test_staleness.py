@@ -1,0 +1,90 @@
+"""Generated docs that cannot go stale: the docs build refuses a committed block that is not
+what its marker generates now, and a docs/data entry written by other code than the
+current (its meta file's source key, recorded when docs/data/regenerate.sh reran it)."""
+import importlib.util
+import json
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).parents[2]
+DOCS = ROOT / "docs"
+
+
+def _module(name):
+    sys.path.insert(0, str(DOCS))
+    try:
+        spec = importlib.util.spec_from_file_location(f"docs_{name}", DOCS / f"{name}.py")
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        return module
+    finally:
+        sys.path.remove(str(DOCS))
+
+
+def test_data_entries_were_written_by_the_current_source():
+    """Each docs/data entry's meta file holds the source key of the hubvib modules its
+    commands import, as they are now (``docs/data/regenerate.sh ENTRY`` records it)."""
+    stale = _module("generate").stale_data()
+    assert not stale, (f"docs/data entries written by other code than the current: {stale}; "
+                       f"regenerate with docs/data/regenerate.sh {' '.join(stale)}")
+
+
+def test_a_recorded_source_key_is_current_until_the_code_changes(tmp_path, monkeypatch):
+    generate = _module("generate")
+    monkeypatch.setattr(generate, "DATA", tmp_path)
+    (tmp_path / "x.json").write_text("{}")
+    meta = tmp_path / "x.json.meta.json"
+    meta.write_text(json.dumps({"command": ["hubvib design check demo.toml > docs/data/x.json"]}))
+    assert generate.stale_data() == ["x.json"], "no key recorded: stale"
+    generate.record_source(["x.json"])
+    assert generate.stale_data() == []
+    assert json.loads(meta.read_text())["command"], "the other fields are kept"
+    recorded = json.loads(meta.read_text())
+    recorded["source_key"] = "0" * len(recorded["source_key"])  # written by other code
+    meta.write_text(json.dumps(recorded))
+    assert generate.stale_data() == ["x.json"]
+
+
+def test_the_modules_of_a_command_are_its_command_module_or_entry_point():
+    generate = _module("generate")
+    assert generate.command_modules("hubvib crack-path --out docs/data/p") == [
+        "hubvib.cli", "hubvib.commands.crack_path"]
+    assert generate.command_modules("python -m hubvib.studies.diagnosis_check --out x") == [
+        "hubvib.studies.diagnosis_check"]
+    with pytest.raises(ValueError, match="runs hubvib or python -m"):
+        generate.command_modules("bash make.sh")
+
+
+class _Page:
+    class file:
+        src_path = "page.md"
+
+
+def test_the_docs_build_refuses_a_stale_committed_block():
+    """A cli block whose committed output differs from what the command prints now stops
+    the build, naming the page and the marker; the current block passes and is expanded."""
+    pytest.importorskip("mkdocs")
+    from mkdocs.exceptions import PluginError
+
+    hooks = _module("hooks")
+    generate = hooks.generate
+    marker = "<!-- cli: hubvib design check demo4.toml ; exit=2 -->"
+    now = generate.render("cli", "hubvib design check demo4.toml ; exit=2")
+    page = f"# p\n\n{marker}\n{now}\n<!-- /cli -->\n"
+    assert hooks.on_page_markdown(page, _Page, {}, None) == f"# p\n\n{now}\n"
+    old = page.replace("n_planets = 4", "n_planets = 5")
+    with pytest.raises(PluginError, match="page.md: committed blocks not what"):
+        hooks.on_page_markdown(old, _Page, {}, None)
+
+
+def test_only_measured_blocks_escape_the_build_comparison():
+    """Every marker of the pages is compared with its generator by the docs build except the
+    LIVE ones (timings measured while it runs), and those are few."""
+    generate = _module("generate")
+    bodies = {body for page in DOCS.glob("*.md")
+              for _, body, _ in generate.blocks(page.read_text(encoding="utf-8"))}
+    assert generate.LIVE <= bodies, f"LIVE names no marker: {sorted(generate.LIVE - bodies)}"
+    assert generate.SLOW <= bodies, f"SLOW names no marker: {sorted(generate.SLOW - bodies)}"
+    assert len(generate.LIVE) <= 5, "measured blocks only"
