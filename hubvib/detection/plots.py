@@ -184,7 +184,7 @@ def map_figure(name: str, mmap, deepest: float | None = None,
     deepest = mmap.deepest if deepest is None else deepest
     shallowest = mmap.shallowest if shallowest is None else shallowest
     fig, axes = _axes(len(mmap.panels), layout="constrained")
-    fig.set_size_inches(7 * len(mmap.panels), 6.2)
+    fig.set_size_inches(max(7 * len(mmap.panels), 9), 6.2)
     entries = {}
     for ax, panel in zip(axes[0], mmap.panels):
         _map_panel(ax, panel, mmap.line_label, entries, shallowest)
@@ -197,7 +197,8 @@ def map_figure(name: str, mmap, deepest: float | None = None,
                       f"({mmap.panels[0].held})")
     if entries:
         fig.legend(list(entries.values()), [h.get_label() for h in entries.values()],
-                   loc="outside lower center", ncol=min(len(entries), 5), fontsize=9)
+                   loc="outside lower center",
+                   ncol=min(len(entries), 2 * len(mmap.panels) + 1), fontsize=9)
     return fig
 
 
@@ -227,8 +228,10 @@ def _map_panel(ax, panel, line_label: str, entries: dict, shallowest) -> None:
                 entries[label] = ax.plot(x, 1e3 * depth[:, j], lw=1.0, zorder=2,
                                          label=label, **style(j))[0]
     if np.isfinite(smallest).any():
+        # without carrier marks a point between undetectable mountings needs its own mark
         entries[line_label] = ax.plot(x, 1e3 * smallest, color="k", lw=1.8, zorder=3,
-                                      label=line_label)[0]
+                                      label=line_label,
+                                      marker="o" if carried is None else None, ms=5)[0]
     for lo, hi in _runs(x, ~np.isfinite(smallest)):
         entries["nothing of the sweep detectable"] = ax.axvspan(
             lo, hi, color="0.9", lw=0, zorder=0, label="nothing of the sweep detectable")
