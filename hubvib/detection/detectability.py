@@ -1,4 +1,5 @@
-"""Smallest detectable crack depth of every mode against the ring's mounting stiffness.
+"""Smallest detectable crack depth of every mode against the rigid ring's mounting
+stiffness (the rigid ring's side of :mod:`.mounting_map`).
 
 The mounting sits in series with the FE ring body (:mod:`.series`), so it
 decides how much of a body softening reaches the lumped ``c_ru`` and ``c_r``.
@@ -52,6 +53,8 @@ class DetectabilityMap:
     frequency_hz : ndarray
         Per swept name, the nominal intact frequencies [Hz], shape (mounts, modes).
     kind : tuple of str
+    depths : tuple of float
+        The sweep's depths [m], the first 0.
     """
 
     mounts: np.ndarray
@@ -60,6 +63,7 @@ class DetectabilityMap:
     carried_by: dict
     frequency_hz: dict
     kind: tuple
+    depths: tuple = ()
 
     def rows(self) -> list[dict]:
         rows = []
@@ -147,4 +151,5 @@ def detectability_map(model, options, timing, workers: int = 1) -> Detectability
         depth[swept] = np.array([r[1] for r in rows])
         carried[swept] = np.array([r[2] for r in rows])
         frequency[swept] = np.array([r[3] for r in rows])
-    return DetectabilityMap(mounts, fixed, depth, carried, frequency, results[-1][0])
+    return DetectabilityMap(mounts, fixed, depth, carried, frequency, results[-1][0],
+                            tuple(float(d) for d in base.depths))

@@ -540,23 +540,29 @@ def scene_ring(scene) -> str:
 
 def elastic_scene_model(scene):
     """The elastic-ring spectrum model of ``scene``'s crack sweep (its ``[elastic]`` table,
-    or the defaults), the ring's cases from the result cache or computed; a crack through
-    the rim is left out (it opens the ring)."""
-    from hubvib.reducer.stages import ring_gear
-    from hubvib.elastic.cases import cached_case
+    or the defaults) over the depths the crack study computes: the sweep's, less a crack
+    through the rim (it opens the ring), and those the study adds where the POD crosses
+    the required probability (:func:`.elastic_refinement.refined_elastic`, the function
+    ``hubvib run`` refines with).  The ring's cases come from the result cache, or are
+    computed."""
     from hubvib.cases.sweep import crack_of
+    from hubvib.reducer.stages import ring_gear
 
-    from .elastic_model import case_arguments
-    from .elastic_model import elastic_spectrum_model
+    from . import elastic_model
+    from .elastic_refinement import refined_elastic
 
     table = scene.elastic
     sweep = scene.crack
     ring = ring_gear(sweep.reducer)
     depths = tuple(d for d in sweep.depths
                    if d == 0 or not crack_of(sweep, d).is_through(ring))
-    cases = [cached_case(*a) for a in case_arguments(sweep.reducer, depths,
-                                                     lambda d: crack_of(sweep, d), table)]
-    return elastic_spectrum_model(depths, cases)
+    crack = lambda d: crack_of(sweep, d)  # noqa: E731
+    cases = [elastic_model.cached_case(*a)
+             for a in elastic_model.case_arguments(sweep.reducer, depths, crack, table)]
+    options = detection_options(scene)
+    first = elastic_model.elastic_result(sweep.reducer, depths, crack, table, options, cases)
+    refined, cases = refined_elastic(sweep.reducer, crack, table, options, first, cases)
+    return elastic_model.elastic_spectrum_model(refined.depths, cases)
 
 
 def scene_reference(scene, progress: bool = True, workers: int = 2, ring: str = "rigid"):

@@ -1,4 +1,5 @@
-"""Smallest detectable crack depth on the elastic ring against the ring's mounting (SI).
+"""Smallest detectable crack depth on the elastic ring against the ring's mounting (SI;
+the elastic ring's side of :mod:`.mounting_map`, through ``ElasticMounting``).
 
 The foundation of the elastic ring (``k_n`` and ``k_t`` per unit arc length on the
 support arcs, by default sized to the design's lumped ``c_r`` and ``c_ru``) is scaled by

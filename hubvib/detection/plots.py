@@ -166,59 +166,90 @@ MARGIN = 10 ** 0.2
 CARRIERS = (("c_ru", "tab:blue", "o"), ("c_r", "tab:orange", "s"), ("c_rp", "tab:green", "^"))
 
 
-def map_figure(name: str, dmap, deepest: float, shallowest: float | None = None):
-    """Smallest detectable depth against the mounting: over all modes a black line drawn
-    on top, and at each detecting mounting a large marker whose colour and shape name the
-    stiffness carrying the signal (the label rule of the modes table); mountings where
-    nothing of the sweep is detectable shaded.  Only what is drawn is in the legend (one,
-    below both panels); the sweep's shallowest crack is marked: nothing below it was
-    computed."""
-    fig, axes = _axes(2, layout="constrained")
-    fig.set_size_inches(14, 6.2)
+def map_figure(name: str, mmap, deepest: float | None = None,
+               shallowest: float | None = None):
+    """Smallest detectable depth against the mounting, for either ring model
+    (``mmap``: a :class:`.mounting_map.MountingMap`, or a rigid ``DetectabilityMap`` /
+    elastic ``ElasticMap`` it is made from), one panel per swept mounting: the line over
+    all modes (``any mode``; the elastic ring's family) drawn black on top; where the model
+    names the stiffness carrying the signal (the rigid ring), a large marker at each
+    detecting mounting whose colour and shape name it (the label rule of the modes table),
+    else each mode alone as a thin line; mountings where nothing of the sweep is detectable
+    shaded.  Only what is drawn is in the legend (one, below the panels); the sweep's
+    shallowest crack is marked: nothing below it was computed.  ``deepest`` and
+    ``shallowest`` [m] default to the map's depths."""
+    from .mounting_map import as_mounting_map
+
+    mmap = as_mounting_map(mmap)
+    deepest = mmap.deepest if deepest is None else deepest
+    shallowest = mmap.shallowest if shallowest is None else shallowest
+    fig, axes = _axes(len(mmap.panels), layout="constrained")
+    fig.set_size_inches(max(7 * len(mmap.panels), 9), 6.2)
     entries = {}
-    for ax, swept in zip(axes[0], ("c_ru_mount", "c_r_mount")):
-        depth, carried = dmap.depth[swept], dmap.carried_by[swept]
-        mounts = np.asarray(dmap.mounts, dtype=float)
-        smallest = np.asarray(dmap.smallest(swept), dtype=float)
-        for n, (carrier, colour, marker) in enumerate(CARRIERS):
+    for ax, panel in zip(axes[0], mmap.panels):
+        _map_panel(ax, panel, mmap.line_label, entries, shallowest)
+        ax.set_ylim(0, 1.05e3 * deepest)
+        ax.set_ylabel("smallest detectable crack depth [mm]")
+        if len(mmap.panels) > 1:
+            ax.set_title(f"{panel.axis_name} swept ({panel.held})", fontsize=10)
+    fig.suptitle(f"{name}: detectability against the ring mounting" if mmap.ring == "rigid"
+                 else f"{name}: {mmap.ring} ring, detectability against the foundation "
+                      f"({mmap.panels[0].held})")
+    if entries:
+        fig.legend(list(entries.values()), [h.get_label() for h in entries.values()],
+                   loc="outside lower center",
+                   ncol=min(len(entries), 2 * len(mmap.panels) + 1), fontsize=9)
+    return fig
+
+
+def _map_panel(ax, panel, line_label: str, entries: dict, shallowest) -> None:
+    """One swept mounting of :func:`map_figure` on ``ax``, its legend handles into
+    ``entries``; a stiff limit (``inf``, last) drawn one step past the stiffest value."""
+    values = np.asarray(panel.axis_values, dtype=float)
+    finite = values[np.isfinite(values)]
+    x = np.where(np.isfinite(values), values, finite[-1] * 3)
+    depth, carried = panel.depth, panel.carried_by
+    smallest = np.asarray(panel.any_mode, dtype=float)
+    if carried is not None:
+        for carrier, colour, marker in CARRIERS:
             masked = np.where((carried == carrier) & ~np.isnan(depth), depth, np.inf)
             best = masked.min(axis=1)
             # the marker where this stiffness carries the mode that sets the smallest depth
             at = np.isfinite(best) & np.isclose(best, smallest)
             if at.any():
                 entries[f"signal in {carrier}"] = ax.plot(
-                    mounts[at], 1e3 * best[at], ls="none", marker=marker, ms=11,
+                    x[at], 1e3 * best[at], ls="none", marker=marker, ms=11,
                     mfc=colour, mec="k", mew=0.8, color=colour, zorder=2,
                     label=f"signal in {carrier}")[0]
-        if np.isfinite(smallest).any():
-            entries["any mode"] = ax.plot(mounts, 1e3 * smallest, color="k", lw=1.8,
-                                          zorder=3, label="any mode")[0]
-        blind = ~np.isfinite(smallest)
-        for lo, hi in _runs(mounts, blind):
-            entries["nothing of the sweep detectable"] = ax.axvspan(
-                lo, hi, color="0.9", lw=0, zorder=0,
-                label="nothing of the sweep detectable")
-        if shallowest is not None:
-            entries["shallowest"] = ax.axhline(
-                1e3 * shallowest, color="0.4", lw=1.0, ls="-.", zorder=1,
-                label=f"shallowest crack computed {1e3 * shallowest:.3g} mm")
-        ax.set_xscale("log")
-        # explicit: where no mounting detects anything every curve is NaN, and a log axis
-        # cannot take its limits from no data
-        # a margin of a fifth of a decade: the end markers drawn whole
-        ax.set_xlim(float(np.min(mounts)) / MARGIN, float(np.max(mounts)) * MARGIN)
-        ax.set_ylim(0, 1.05e3 * deepest)
-        ax.set_xlabel(f"{swept} [N/m]")
-        ax.set_ylabel("smallest detectable crack depth [mm]")
-        other = dmap.fixed[swept]
-        ax.set_title(f"{swept} swept ({'c_r' if swept == 'c_ru_mount' else 'c_ru'}_mount "
-                     f"{'rigid' if math.isinf(other) else f'{other:.3g} N/m'})", fontsize=10)
-        ax.grid(True, which="both", alpha=0.3)
-    fig.suptitle(f"{name}: detectability against the ring mounting")
-    if entries:
-        fig.legend(list(entries.values()), [h.get_label() for h in entries.values()],
-                   loc="outside lower center", ncol=min(len(entries), 5), fontsize=9)
-    return fig
+    else:
+        for j, mode in enumerate(panel.mode_names):
+            if np.isfinite(depth[:, j]).any():
+                label = f"{mode}, alone"
+                entries[label] = ax.plot(x, 1e3 * depth[:, j], lw=1.0, zorder=2,
+                                         label=label, **style(j))[0]
+    if np.isfinite(smallest).any():
+        # without carrier marks a point between undetectable mountings needs its own mark
+        entries[line_label] = ax.plot(x, 1e3 * smallest, color="k", lw=1.8, zorder=3,
+                                      label=line_label,
+                                      marker="o" if carried is None else None, ms=5)[0]
+    for lo, hi in _runs(x, ~np.isfinite(smallest)):
+        entries["nothing of the sweep detectable"] = ax.axvspan(
+            lo, hi, color="0.9", lw=0, zorder=0, label="nothing of the sweep detectable")
+    if shallowest is not None:
+        entries["shallowest"] = ax.axhline(
+            1e3 * shallowest, color="0.4", lw=1.0, ls="-.", zorder=1,
+            label=f"shallowest crack computed {1e3 * shallowest:.3g} mm")
+    ax.set_xscale("log")
+    # explicit: where no mounting detects anything every curve is NaN, and a log axis
+    # cannot take its limits from no data; a margin of a fifth of a decade: the end
+    # markers drawn whole
+    ax.set_xlim(float(np.min(x)) / MARGIN, float(np.max(x)) * MARGIN)
+    if x.size > finite.size:
+        ax.axvline(finite[-1] * 1.7, color="0.6", lw=0.8)
+        ax.text(x[-1], 0.02, "clamped", transform=ax.get_xaxis_transform(), ha="center",
+                fontsize=8)
+    ax.set_xlabel(f"{panel.axis_name} [{panel.axis_unit}]")
+    ax.grid(True, which="both", alpha=0.3)
 
 
 def _runs(x: np.ndarray, mask: np.ndarray) -> list[tuple[float, float]]:

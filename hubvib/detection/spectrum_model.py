@@ -93,6 +93,13 @@ class RigidSpectrum:
         return observed_frequencies(self.crack, drawn, fraction, long, workers,
                                     depth_index=depth_index)
 
+    def mounting(self):
+        """How this model's mounting is scaled (:class:`.mounting_map.RigidMounting`: the
+        torsional and radial mounting stiffness in series with the FE ring body)."""
+        from .mounting_map import RigidMounting
+
+        return RigidMounting(self.crack)
+
     def mode_labels(self) -> tuple:
         """``rigid 13 (rotational, 4548.5 Hz)`` per mode (:func:`.result.rigid_label`)."""
         from hubvib.lumped import natural_modes

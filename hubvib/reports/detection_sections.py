@@ -210,56 +210,18 @@ def short_answer(name: str, model, study, sources: dict | None = None,
 
 
 def map_summary(dmap) -> list[str]:
-    """One sentence per mounting swept and stiffness carrying the signal."""
-    lines = []
-    for swept, carrier in (("c_ru_mount", "c_ru"), ("c_r_mount", "c_r")):
-        depth, carried = dmap.depth[swept], dmap.carried_by[swept]
-        own = np.where(carried == carrier, depth, np.nan)
-        rows = np.flatnonzero(~np.isnan(own).all(axis=1))
-        if rows.size == 0:
-            lines.append(f"- Modes with their signal in {carrier}: no crack of the sweep is "
-                         f"detectable for any {swept} from {dmap.mounts[0]:.3g} to "
-                         f"{dmap.mounts[-1]:.3g} N/m.")
-            continue
-        first = rows[0]
-        stiff = np.nanmin(own[-1]) if not np.isnan(own[-1]).all() else math.nan
-        lines.append(f"- Modes with their signal in {carrier}: detectable once {swept} >= "
-                     f"{dmap.mounts[first]:.3g} N/m (from {depth_mm(np.nanmin(own[first]))} mm "
-                     f"there; at {dmap.mounts[-1]:.3g} N/m from {depth_mm(stiff)} mm).")
-    rp = {s: np.where(dmap.carried_by[s] == "c_rp", dmap.depth[s], np.nan)
-          for s in ("c_ru_mount", "c_r_mount")}
-    every = np.concatenate([~np.isnan(v).all(axis=1) for v in rp.values()])
-    if every.any():
-        where = ("at every mounting swept" if every.all() else
-                 f"at {int(every.sum())} of the {every.size} mountings swept")
-        lines.append(f"- Modes with their signal in c_rp (the cracked tooth's mesh, behind no "
-                     f"mounting): detectable {where}, from "
-                     f"{depth_mm(np.nanmin(np.concatenate([v.ravel() for v in rp.values()])))} mm.")
-    return lines
+    """One sentence per mounting swept and stiffness carrying the signal
+    (:func:`.mounting_map_sections.map_summary`)."""
+    from hubvib.reports.mounting_map_sections import map_summary as summary
+
+    return summary(dmap)
 
 
 def map_table(dmap) -> list[str]:
-    """Per mounting value and sweep: the smallest detectable depth among the modes whose
-    signal is in the swept support, and among all modes."""
-    lines = ["| mounting [N/m] | c_ru_mount swept: via c_ru [mm] | mode | any mode [mm] "
-             "| c_r_mount swept: via c_r [mm] | mode | any mode [mm] |",
-             "|---:|---:|---|---:|---:|---|---:|"]
-    for m, mount in enumerate(dmap.mounts):
-        cells = []
-        for swept, carrier in (("c_ru_mount", "c_ru"), ("c_r_mount", "c_r")):
-            depth = dmap.depth[swept][m]
-            own = np.where(dmap.carried_by[swept][m] == carrier, depth, np.nan)
-            if np.isnan(own).all():
-                cells += ["not detectable", "-"]
-            else:
-                i = int(np.nanargmin(own))
-                cells += [depth_mm(own[i]), rigid_label(i, dmap.kind[i],
-                                                        dmap.frequency_hz[swept][m, i])]
-            cells.append("not detectable" if np.isnan(depth).all()
-                         else f"{depth_mm(np.nanmin(depth))} "
-                              f"({dmap.carried_by[swept][m, int(np.nanargmin(depth))]})")
-        lines.append(f"| {mount:.3g} | " + " | ".join(cells) + " |")
-    return lines
+    """The rigid map's table (:func:`.mounting_map_sections.map_table`)."""
+    from hubvib.reports.mounting_map_sections import map_table as table
+
+    return table(dmap)
 
 
 def pod_section(study) -> list[str]:

@@ -86,46 +86,19 @@ def finish_elastic(scene: Scene, begun, refine: bool = True) -> tuple:
     return result, cases[0].validity, cases[0]
 
 
-#: how the elastic ring's sweep resolves the POD crossing, in words
-REFINED = ("depths added by bisection below the first detectable one, per record length "
-           "(at most {most} each, shared where they coincide), until the POD {p:g} crossing "
-           "is bracketed within {width:g} mm or {floor:g} mm is reached")
-
-
 def refine_elastic(scene: Scene, result, cases: list, most: int | None = None):
     """``result`` (the elastic ring's ``DetectionResult`` over ``cases``) with depths added
     until, for records of 10, 60 and 600 s, the family POD's crossing of the detection
-    probability is resolved (:mod:`hubvib.detection.resolution`: bisection, at least 0.5
-    mm deep, at most ``MAX_ADDED`` per record length; a depth added for one length serves
-    the others).  Every new ``ElasticCase`` comes through the result cache."""
-    from hubvib.detection.elastic_model import cached_case, elastic_result
+    probability is resolved (:func:`hubvib.detection.elastic_refinement.refined_elastic`,
+    the function the diagnosis refines its elastic model with)."""
+    from hubvib.detection.elastic_refinement import refined_elastic
     from hubvib.detection.options import detection_options
-    from hubvib.detection.pod import RECORD_LENGTHS
-    from hubvib.detection.resolution import FLOOR, MAX_ADDED, RESOLUTION, next_depth
 
-    most = MAX_ADDED if most is None else most
-    sweep, es, options = scene.crack, _elastic_scene(scene), detection_options(scene)
-    words = REFINED.format(most=most, p=options.detection_probability,
-                           width=1e3 * RESOLUTION, floor=1e3 * FLOOR)
-    depths, cases, added = list(result.depths), list(cases), list(result.added_depths)
-    k_rest = cases[0].k_rest
-    for length in RECORD_LENGTHS:
-        for _ in range(most):
-            depth = next_depth(result.bracket(length))
-            if depth is None:
-                break
-            at = next(k for k, d in enumerate(depths + [float("inf")]) if d > depth)
-            depths.insert(at, depth)
-            cases.insert(at, cached_case(sweep.reducer, crack_of(sweep, depth), es, k_rest))
-            added.append(depth)
-            result = elastic_result(sweep.reducer, depths, lambda d: crack_of(sweep, d), es,
-                                    options, cases, tuple(sorted(added)), words,
-                                    result.left_out)
-    if not added:
-        from dataclasses import replace
-
-        result = replace(result, refinement=words + "; none was needed")
-    return result
+    sweep = scene.crack
+    refined, _ = refined_elastic(sweep.reducer, lambda d: crack_of(sweep, d),
+                                 _elastic_scene(scene), detection_options(scene), result,
+                                 cases, most)
+    return refined
 
 
 def elastic_load_sensitivity(scene: Scene, elastic) -> tuple:
@@ -147,17 +120,20 @@ def elastic_load_sensitivity(scene: Scene, elastic) -> tuple:
 
 def elastic_map_of(scene: Scene, elastic):
     """The elastic ring's detectability against the foundation scale when ``[elastic]
-    map`` asks (else None), its rings through the result cache."""
+    map`` asks (else None), a ``detection.mounting_map.MountingMap`` (its rings through
+    the result cache) over the sweep's depths (those the elastic ring is solved at)."""
     es = _elastic_scene(scene)
     if not es.map:
         return None
-    from hubvib.detection.elastic_map import elastic_map
+    from hubvib.detection.mounting_map import ElasticMounting
     from hubvib.detection.options import detection_options
     from hubvib.detection.pod import family_pod
 
     sweep = scene.crack
-    return elastic_map(sweep.reducer, elastic_depths(sweep), lambda d: crack_of(sweep, d), es,
-                       detection_options(scene), pod=family_pod, k_rest=elastic.detail.k_rest)
+    mounting = ElasticMounting(sweep.reducer, elastic_depths(sweep),
+                               lambda d: crack_of(sweep, d), es, pod=family_pod,
+                               k_rest=elastic.detail.k_rest)
+    return mounting.mounting_map(detection_options(scene))
 
 
 def elastic_depths(sweep) -> tuple:
