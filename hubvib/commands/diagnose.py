@@ -91,29 +91,66 @@ def run(args) -> int:
     scene = load_scene(args.scene)
     rings = rings_of(scene, args.ring)
     if args.record is not None:
-        if args.ring == "elastic":
-            raise ValueError("--ring = 'elastic' with --record: records are identified on the "
-                             "rigid ring's modes only; identify the frequencies and give "
-                             "them with --measured FILE.csv")
-        result, ref, found = diagnose_records(scene, args.record, args.baseline_record,
-                                              progress=not args.json)
-        if isinstance(result, NotIdentified):
-            if args.json:
-                print(json.dumps({"scene": scene.name, **result.to_dict(),
-                                  **ref.mesh_stiffness}, indent=2, allow_nan=False))
+        answers, measured_of, found = [], {}, None
+        if "rigid" in rings:
+            result, ref, found = diagnose_records(scene, args.record, args.baseline_record,
+                                                  progress=not args.json)
+            if isinstance(result, NotIdentified):
+                if len(rings) == 1:
+                    if args.json:
+                        print(json.dumps({"scene": scene.name, **result.to_dict(),
+                                          **ref.mesh_stiffness}, indent=2, allow_nan=False))
+                    else:
+                        _print_skipped(found)
+                        _print_not_identified(scene, result)
+                    return 0
+                answers.append(("rigid", "no mode of the model is identified in both records",
+                                None))
+                found = None
             else:
-                _print_skipped(found)
-                _print_not_identified(scene, result)
-            return 0
-        if len(rings) > 1 and not args.json:
-            _say("records are identified on the rigid ring's modes: the verdict is the "
-                 "rigid ring's (for the elastic ring give the identified frequencies with "
-                 "--measured)")
-        return _report(scene, found.measured, [("rigid", result, ref)], found, args.json)
+                answers.append(("rigid", result, ref))
+                measured_of["rigid"] = found.measured
+        if "elastic" in rings:
+            measured = _elastic_record_measured(scene, args.record, args.baseline_record)
+            measured_of["elastic"] = measured
+            answers.append(_diagnosed(scene, measured, "elastic", progress=not args.json,
+                                      fail=len(rings) == 1))
+        return _report(scene, measured_of, answers, found, args.json)
     measured = read_measured(args.measured)
     answers = [_diagnosed(scene, measured, ring, progress=not args.json, fail=len(rings) == 1)
                for ring in rings]
-    return _report(scene, measured, answers, None, args.json)
+    return _report(scene, {ring: measured for ring in rings}, answers, None, args.json)
+
+
+def _elastic_record_measured(scene, record: Path, baseline: Path):
+    """The elastic ring's watched coupled modes identified in both records
+    (``identification.elastic_records``) as measured frequencies with their scatter; a
+    record in which none is identified is refused, naming why per mode."""
+    import numpy as np
+
+    from hubvib.detection.measured import Measured
+    from hubvib.identification.elastic_records import scene_record_input
+
+    found = scene_record_input(scene, record, baseline)
+    zeta = scene.signal.damping_ratio
+    model = np.asarray(found.model_hz, dtype=float)
+    # a peak of the intact record further from the model's mode than the mode's half-power
+    # half-width is not that mode (the model does not hold it there)
+    near = np.abs(np.asarray(found.baseline_hz) - model) <= zeta * model
+    for m, f, g in zip(found.modes[~near], np.asarray(found.baseline_hz)[~near], model[~near]):
+        _say(f"elastic mode {m + 1}: identified at {f:.1f} Hz in the intact record, further "
+             f"than its half-power half-width ({zeta * g:.1f} Hz) from the model's {g:.1f} Hz: "
+             "left out")
+    if not near.any():
+        why = "; ".join(f"mode {m + 1}: {reason}" for m, reason in
+                        sorted(found.skipped_modes.items())[:6])
+        raise ValueError(f"--record: no coupled mode of the elastic ring is identified in "
+                         f"both records near its model frequency ({why})")
+    return Measured(np.asarray(found.frequency_hz, dtype=float)[near],
+                    np.asarray(found.modes, dtype=int)[near] + 1,
+                    np.asarray(found.baseline_hz, dtype=float)[near],
+                    tuple(range(1, int(near.sum()) + 1)), "--record",
+                    sigma_hz=np.asarray(found.sigma_hz, dtype=float)[near])
 
 
 def _diagnosed(scene, measured, ring: str, progress: bool, fail: bool):
@@ -131,9 +168,10 @@ def _diagnosed(scene, measured, ring: str, progress: bool, fail: bool):
     return ring, result, ref
 
 
-def _report(scene, measured, answers, found, as_json: bool) -> int:
+def _report(scene, measured_of: dict, answers, found, as_json: bool) -> int:
     """Print every ring's answer (JSON: the first at the top level as a single ring gives
-    it, the second under its ring's name)."""
+    it, the second under its ring's name); ``measured_of``: each ring's measured
+    frequencies; ``found``: the rigid ring's record identification (None: none)."""
     if all(ref is None for _, _, ref in answers):
         raise ValueError("; ".join(f"{ring} ring: {message}" for ring, message, _ in answers))
     if as_json:
@@ -158,7 +196,8 @@ def _report(scene, measured, answers, found, as_json: bool) -> int:
         if ref is None:
             _say(f"verdict: not diagnosed on the {ring} ring: {result}")
             continue
-        _print_answer(scene, measured, result, ref, found)
+        _print_answer(scene, measured_of[ring], result, ref,
+                      found if ring == "rigid" else None)
     return 0
 
 

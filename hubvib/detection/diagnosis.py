@@ -562,7 +562,9 @@ def elastic_scene_model(scene):
     options = detection_options(scene)
     first = elastic_model.elastic_result(sweep.reducer, depths, crack, table, options, cases)
     refined, cases = refined_elastic(sweep.reducer, crack, table, options, first, cases)
-    return elastic_model.elastic_spectrum_model(refined.depths, cases)
+    return elastic_model.elastic_spectrum_model(
+        refined.depths, cases, load=None if table.crack_load == "open" else "working",
+        options=options)
 
 
 def scene_reference(scene, progress: bool = True, workers: int = 2, ring: str = "rigid"):
