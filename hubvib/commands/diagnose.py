@@ -5,6 +5,7 @@ or ``--ring``."""
 from __future__ import annotations
 
 import json
+import sys
 import textwrap
 from pathlib import Path
 
@@ -138,9 +139,9 @@ def _elastic_record_measured(scene, record: Path, baseline: Path):
     # half-width is not that mode (the model does not hold it there)
     near = np.abs(np.asarray(found.baseline_hz) - model) <= zeta * model
     for m, f, g in zip(found.modes[~near], np.asarray(found.baseline_hz)[~near], model[~near]):
-        _say(f"elastic mode {m + 1}: identified at {f:.1f} Hz in the intact record, further "
-             f"than its half-power half-width ({zeta * g:.1f} Hz) from the model's {g:.1f} Hz: "
-             "left out")
+        print(f"elastic mode {m + 1}: identified at {f:.1f} Hz in the intact record, further "
+              f"than its half-power half-width ({zeta * g:.1f} Hz) from the model's {g:.1f} "
+              "Hz: left out", file=sys.stderr)  # stdout holds the answer (or the JSON)
     if not near.any():
         why = "; ".join(f"mode {m + 1}: {reason}" for m, reason in
                         sorted(found.skipped_modes.items())[:6])

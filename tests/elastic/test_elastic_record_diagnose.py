@@ -34,7 +34,7 @@ def test_identified_modes_near_the_model_become_measured(monkeypatch, capsys):
     assert np.allclose(measured.baseline_hz, [1001.0, 2990.0])
     assert np.allclose(measured.frequency_hz, [996.0, 2985.0])
     assert np.allclose(measured.sigma_hz, [1.5, 1.5])
-    assert "elastic mode 8: identified at 2050.0 Hz" in capsys.readouterr().out
+    assert "elastic mode 8: identified at 2050.0 Hz" in capsys.readouterr().err
 
 
 def test_nothing_identified_near_the_model_is_one_error(monkeypatch):
