@@ -134,15 +134,8 @@ def coupled_matrices(params: PlanetaryParameters, ring: RingOperators, carrier_t
     B = ring.contact[:, list(eng.teeth)]
     coupling_ring = (sp.csr_matrix(B) @ sp.diags(signs)).tocsr() if sp.issparse(B) else (
         np.asarray(B) * signs[None, :])  # (n_ring, N)
-    coupling_lumped = np.zeros((n_l, snapped.n_planets))
-    index = {name: i for i, name in enumerate(np.array(dof_names(snapped.n_planets))[keep])}
-    for i, (tooth, theta) in enumerate(zip(eng.teeth, eng.theta)):
-        e = ring.moment_sign[tooth] * ring.directions[tooth]
-        radial = np.array([math.cos(theta), math.sin(theta)])
-        tangential = np.array([-math.sin(theta), math.cos(theta)])
-        coupling_lumped[index[f"tau_{i + 1}"], i] = -e @ tangential
-        coupling_lumped[index[f"eta_{i + 1}"], i] = -e @ radial
-        coupling_lumped[index[f"u_{i + 1}"], i] = 1.0
+    coupling_lumped = lumped_coupling(ring, eng.teeth, eng.theta,
+                                      np.array(dof_names(snapped.n_planets))[keep])
     stiff = k_rest * np.asarray(factors, dtype=float)
     if sp.issparse(coupling_ring):
         weighted = coupling_ring @ sp.diags(stiff)
@@ -161,6 +154,22 @@ def coupled_matrices(params: PlanetaryParameters, ring: RingOperators, carrier_t
         M = sla.block_diag(np.asarray(ring.M), np.diag(mass))
     names = tuple(np.array(dof_names(snapped.n_planets))[keep])
     return CoupledMatrices(K, M, n_ring, names, mass, eng)
+
+
+def lumped_coupling(ring: RingOperators, teeth, theta, names) -> np.ndarray:
+    """The lumped end of each ring-planet mesh deformation, (len(names), N): planet i on
+    ring tooth ``teeth[i]`` at angle ``theta[i]`` [rad]; ``names`` the lumped DOFs' names
+    (the 9 + 3N model's without the ring's)."""
+    index = {name: i for i, name in enumerate(names)}
+    out = np.zeros((len(names), len(teeth)))
+    for i, (tooth, angle) in enumerate(zip(teeth, theta)):
+        e = ring.moment_sign[tooth] * ring.directions[tooth]
+        radial = np.array([math.cos(angle), math.sin(angle)])
+        tangential = np.array([-math.sin(angle), math.cos(angle)])
+        out[index[f"tau_{i + 1}"], i] = -e @ tangential
+        out[index[f"eta_{i + 1}"], i] = -e @ radial
+        out[index[f"u_{i + 1}"], i] = 1.0
+    return out
 
 
 @dataclass(frozen=True, eq=False)

@@ -27,7 +27,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 import scipy.linalg as sla
 
-from hubvib.lumped.elastic_ring import RingOperators, coupled_matrices, engagement
+from hubvib.lumped.elastic_ring import (RingOperators, coupled_matrices, engagement,
+                                        lumped_coupling)
 from hubvib.lumped.network import dof_names, spring_network
 from hubvib.lumped.parameters import PlanetaryParameters
 
@@ -113,22 +114,6 @@ class ElasticTimeModel:
         return np.einsum("r,zrm->zm", row, self.shapes[:, :self.n_ring])
 
 
-def _lumped_coupling(params: PlanetaryParameters, ring: RingOperators, teeth, theta,
-                     names) -> np.ndarray:
-    """Lumped end of each ring-planet mesh row (n_lumped, N), as
-    :func:`hubvib.lumped.elastic_ring.coupled_matrices` builds it."""
-    index = {name: i for i, name in enumerate(names)}
-    out = np.zeros((len(names), params.n_planets))
-    for i, (tooth, th) in enumerate(zip(teeth, theta)):
-        e = ring.moment_sign[tooth] * ring.directions[tooth]
-        radial = np.array([math.cos(th), math.sin(th)])
-        tangential = np.array([-math.sin(th), math.cos(th)])
-        out[index[f"tau_{i + 1}"], i] = -e @ tangential
-        out[index[f"eta_{i + 1}"], i] = -e @ radial
-        out[index[f"u_{i + 1}"], i] = 1.0
-    return out
-
-
 def mesh_rows(params: PlanetaryParameters, ring: RingOperators, position: int) -> np.ndarray:
     """Physical rows (2N, n) of the sun-planet, then ring-planet meshes with planet 1 on
     ring tooth ``position`` (ring coordinates first, as ``coupled_matrices`` orders them)."""
@@ -144,8 +129,7 @@ def mesh_rows(params: PlanetaryParameters, ring: RingOperators, position: int) -
     rows[:params.n_planets, n_ring:] = sun
     contact = np.asarray(ring.contact)[:, list(eng.teeth)] * ring.moment_sign[list(eng.teeth)]
     rows[params.n_planets:, :n_ring] = contact.T
-    rows[params.n_planets:, n_ring:] = _lumped_coupling(snapped, ring, eng.teeth, eng.theta,
-                                                        names).T
+    rows[params.n_planets:, n_ring:] = lumped_coupling(ring, eng.teeth, eng.theta, names).T
     return rows
 
 

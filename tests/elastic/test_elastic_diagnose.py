@@ -397,26 +397,11 @@ def test_the_loaded_record_swaps_in_through_one_seam(small, monkeypatch):
     and cases that carry their loaded crack, the nominal spectrum is the record's, the
     Monte Carlo reducers at zero scatter give it exactly, and each sampled change is the
     reference one times the nominal ratio 0.6 (the documented shortcut)."""
-    import sys
-    import types
-    from types import SimpleNamespace
-
     from hubvib.detection import elastic_model
 
     cases, reference_model = small
-    fake = types.ModuleType("hubvib.elastic.loaded")
-
-    def record_track(intact, case, torque_fraction=1.0, closure_gap_m=0.0, damping_ratio=0.02,
-                     carrier_speed=1.0):
-        seen = elastic_model.tracked_to(intact.away, case.away, intact.ring_mass)[0]
-        f0 = intact.away.frequency_hz
-        return SimpleNamespace(record_hz=f0 + 0.5 + 0.6 * (seen - f0),
-                               intact_record_hz=f0 + 0.5)
-
-    fake.record_track = record_track
-    monkeypatch.setitem(sys.modules, "hubvib.elastic.loaded", fake)
-    loaded = [SimpleNamespace(**{**{k: getattr(c, k) for k in c.__dataclass_fields__},
-                                 "pitch": True}) for c in cases]
+    loaded = _with_record(monkeypatch, cases,
+                          lambda f0, seen, intact: f0 + 0.5 + 0.6 * (seen - f0))
     model = elastic_model.elastic_spectrum_model(reference_model.grid, loaded)
     base = reference_model.nominal_grid_hz
     expected = base[0] + 0.5 + 0.6 * (base - base[0])
@@ -560,26 +545,11 @@ def test_a_record_change_the_reference_hardly_sees_is_added_not_scaled(small, mo
     what the record sees (here: the reference change times 0.1, plus -5 Hz), a sampled
     reducer's record change is its own reference change plus the nominal difference, so
     the ratio (which would be about 50) does not magnify the sample's scatter."""
-    import sys
-    import types
-    from types import SimpleNamespace
-
     from hubvib.detection import elastic_model
 
     cases, reference_model = small
-    fake = types.ModuleType("hubvib.elastic.loaded")
-
-    def record_track(intact, case, torque_fraction=1.0, closure_gap_m=0.0, damping_ratio=0.02,
-                     carrier_speed=1.0):
-        seen = elastic_model.tracked_to(intact.away, case.away, intact.ring_mass)[0]
-        f0 = intact.away.frequency_hz
-        extra = 0.0 if case is intact else -5.0
-        return SimpleNamespace(record_hz=f0 + 0.1 * (seen - f0) + extra)
-
-    fake.record_track = record_track
-    monkeypatch.setitem(sys.modules, "hubvib.elastic.loaded", fake)
-    loaded = [SimpleNamespace(**{**{k: getattr(c, k) for k in c.__dataclass_fields__},
-                                 "pitch": True}) for c in cases]
+    loaded = _with_record(monkeypatch, cases, lambda f0, seen, intact:
+                          f0 + 0.1 * (seen - f0) + (0.0 if intact else -5.0))
     model = elastic_model.elastic_spectrum_model(reference_model.grid, loaded)
     base = reference_model.nominal_grid_hz
     tracked = np.array([op.tracked for op in model.operators])
@@ -595,3 +565,29 @@ def test_a_record_change_the_reference_hardly_sees_is_added_not_scaled(small, mo
     check[0] = False
     assert np.allclose(change[check], ((plain - plain[0]) + added)[check], atol=1e-9), \
         "reference change plus the nominal difference where the ratio is not used"
+
+
+def _with_record(monkeypatch, cases, record_of):
+    """``cases`` as cases carrying a loaded crack, with ``hubvib.elastic.loaded.record_track``
+    faked: the record frequency ``record_of(f0, seen, intact)`` from the intact reference
+    ``f0``, the case's tracked reference spectrum ``seen`` and whether it is the intact
+    case."""
+    import sys
+    import types
+    from types import SimpleNamespace
+
+    from hubvib.detection import elastic_model
+
+    fake = types.ModuleType("hubvib.elastic.loaded")
+
+    def record_track(intact, case, torque_fraction=1.0, closure_gap_m=0.0, damping_ratio=0.02,
+                     carrier_speed=1.0):
+        seen = elastic_model.tracked_to(intact.away, case.away, intact.ring_mass)[0]
+        f0 = intact.away.frequency_hz
+        return SimpleNamespace(record_hz=record_of(f0, seen, case is intact),
+                               intact_record_hz=record_of(f0, f0, True))
+
+    fake.record_track = record_track
+    monkeypatch.setitem(sys.modules, "hubvib.elastic.loaded", fake)
+    return [SimpleNamespace(**{**{k: getattr(c, k) for k in c.__dataclass_fields__},
+                               "pitch": True}) for c in cases]
