@@ -49,7 +49,8 @@ def crack_plots(scene, result, study, folder: Path) -> list[Path]:
 
 
 def elastic_mode_label(elastic, i: int) -> str:
-    """A watched elastic mode in a legend: number, intact frequency, class, diameters."""
+    """A watched elastic mode in a legend: its one identity (model, nodal diameters, class,
+    intact frequency)."""
     return elastic.labels[i]
 
 

@@ -224,16 +224,6 @@ def test_bad_ring_flag_is_one_line_and_exit_2(tmp_path, capsys):
     assert code == 2 and len(err) == 1 and "--ring" in err[0] and "rigid, elastic" in err[0]
 
 
-def test_elastic_ring_with_records_is_refused(tmp_path, capsys):
-    a, b = tmp_path / "a.csv", tmp_path / "b.csv"
-    for p in (a, b):
-        p.write_text("time_s,acceleration_m_s2\n0,0\n")
-    code = main(["diagnose", "--scene", "raba118_crack", "--record", str(a),
-                 "--baseline-record", str(b), "--ring", "elastic"])
-    err = capsys.readouterr().err.strip().splitlines()
-    assert code == 2 and len(err) == 1 and "--measured" in err[0]
-
-
 def test_scene_ring_chooses_the_models():
     from types import SimpleNamespace
 

@@ -127,11 +127,14 @@ def test_the_report_draws_each_models_watched_modes():
     opened = 1000.0 - np.outer(DEPTHS, [10.0, 20.0, 30.0])
     elastic = SimpleNamespace(depths=tuple(DEPTHS), watched=(2, 0),
                               intact_hz=np.array([1000.0, 1000.0, 1000.0]),
-                              shift_hz=opened - 1000.0, kind=("ring", "mixed", "rotational"),
-                              nodal_diameter=(2, 3, 4))
+                              shift_hz=opened - 1000.0,
+                              labels=("elastic n=2 (ring, 1000.0 Hz)",
+                                      "elastic n=3 (mixed, 1000.0 Hz)",
+                                      "elastic n=4 (rotational, 1000.0 Hz)"))
     args = both_models_arguments("t", SimpleNamespace(elastic=elastic), study)
     name, rigid_depths, rigid, rigid_labels, elastic_depths, change, labels = args
     np.testing.assert_array_equal(rigid, shift[:, [12, 15]])
     np.testing.assert_array_equal(change, (opened - 1000.0)[:, [2, 0]])
-    assert labels == ["mode 3: 1000.0 Hz rotational, n = 4", "mode 1: 1000.0 Hz ring, n = 2"]
+    assert labels == ["elastic n=4 (rotational, 1000.0 Hz)", "elastic n=2 (ring, 1000.0 Hz)"], \
+        "each elastic mode by its one identity (class, nodal diameters, frequency)"
     assert "1300.0 Hz translational" in rigid_labels[0]
