@@ -12,7 +12,8 @@ forms no pair.  At pair i
   the slip ``s_i = t_i . (u_b - u_a)`` [m] with ``t_i`` the normal turned by +90 deg;
 - the path length ``length_i`` [m] is the share of the crack path the node stands for:
   a quarter of each adjacent edge for a vertex, half its edge for a midpoint (the lengths
-  sum to the crack's length).
+  sum to the crack's length less a quarter of the tip edge: the tip node is shared by both
+  faces and forms no pair).
 
 ``G_n @ u`` and ``G_t @ u`` give the openings and slips from a DOF vector of the body
 (its free DOFs); ``G_n.T @ lam`` is the load of pair forces ``lam`` [N] pushing the faces

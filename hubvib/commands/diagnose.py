@@ -112,10 +112,16 @@ def run(args) -> int:
                 answers.append(("rigid", result, ref))
                 measured_of["rigid"] = found.measured
         if "elastic" in rings:
-            measured = _elastic_record_measured(scene, args.record, args.baseline_record)
-            measured_of["elastic"] = measured
-            answers.append(_diagnosed(scene, measured, "elastic", progress=not args.json,
-                                      fail=len(rings) == 1))
+            try:
+                measured = _elastic_record_measured(scene, args.record, args.baseline_record)
+            except ValueError as error:
+                if len(rings) == 1:
+                    raise
+                answers.append(("elastic", str(error), None))
+            else:
+                measured_of["elastic"] = measured
+                answers.append(_diagnosed(scene, measured, "elastic", progress=not args.json,
+                                          fail=len(rings) == 1))
         return _report(scene, measured_of, answers, found, args.json)
     measured = read_measured(args.measured)
     answers = [_diagnosed(scene, measured, ring, progress=not args.json, fail=len(rings) == 1)

@@ -138,6 +138,10 @@ def _refuse_what_does_not_apply(args) -> None:
     if args.closure_gap is not None and not (math.isfinite(args.closure_gap)
                                              and 0 <= args.closure_gap <= 1e-3):
         raise ValueError(f"--closure-gap = {args.closure_gap!r} m, allowed 0..1e-3")
+    if depth > 0 and not faces and (args.out or args.render):
+        raise ValueError("--out, --render: the mode files are written for a ring with its "
+                         "faces fixed; add --open or --closed (the loaded crack gives a "
+                         "spectrum over the pitch, printed or --json)")
     if depth > 0 and not faces and args.mounting == "free":
         raise ValueError("--mounting free with a loaded crack: a free ring has no static "
                          "state under the working load; add --open or --closed, or mount it")

@@ -263,10 +263,10 @@ class ElasticSpectrum:
     nominal record's offset from the reference (None: the record is the reference).  Where
     the reference change is below ``RATIO_FLOOR`` of the record's (NaN ratio: the load
     cycle moves a mode that the open crack half a pitch away hardly moves) the nominal
-    difference of the two changes is added instead, so that a ratio does not magnify the
-    sample's scatter.  A shortcut: the Monte Carlo reducers share the nominal reducer's
-    account of what the load cycle does to the crack's change (zero scatter gives the
-    nominal record exactly).
+    difference of the two changes is added instead (and where the two changes differ in
+    sign), so that a ratio never exceeds ``1 / RATIO_FLOOR`` nor flips a sample's scatter.
+    A shortcut: the Monte Carlo reducers share the nominal reducer's account of what the
+    load cycle does to the crack's change (zero scatter gives the nominal record exactly).
     """
 
     grid: tuple
@@ -417,8 +417,8 @@ def elastic_spectrum_model(depths, cases, fe_change_error: float = FE_CHANGE_ERR
     record = np.where(np.isfinite(record), record, reference)
     change, moved = reference - reference[0], record - record[0]
     with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where((np.abs(change) > 0) & (np.abs(change) >= RATIO_FLOOR * np.abs(moved)),
-                         moved / change, np.nan)
+        ratio = np.where((np.abs(change) > 0) & (np.abs(change) >= RATIO_FLOOR * np.abs(moved))
+                         & (moved * change >= 0), moved / change, np.nan)
     ratio[0] = 1.0
     return replace(model, nominal_grid_hz=record, record_ratio=ratio,
                    reference_grid_hz=reference)
@@ -640,7 +640,8 @@ def elastic_mode_rows(result: DetectionResult) -> list[dict]:
                 if i < len(t.record_hz) else None for t in detail.tracks],
             "shift_in_contact_hz": [finite_or_none(x)
                                     for x in detail.in_contact_shift_hz[:, i]],
-            "shift_bilinear_hz": [finite_or_none(x) for x in bilinear_hz(result)[:, i] - f],
+            "shift_bilinear_hz": [finite_or_none(x) for x in
+                                  bilinear_hz(result)[:, i] - bilinear_hz(result)[0, i]],
             "split_pair": [bool(x) for x in detail.split_pair[:, i]]})
     return out
 
@@ -693,9 +694,15 @@ def elastic_result(design, depths, crack_of, scene, options, cases: list | None 
         tracks.append(seen.track)
         if (away_of_on >= 0).any():
             on_hz[k] = padded(tracked_to(intact.on, case.on, mass, away_of_on)[0], n)
+    # a mode the loaded record does not hold (the band's edge) is seen at the reference
+    record_hz = np.where(np.isfinite(record_hz) | ~np.isfinite(open_hz), record_hz, open_hz)
     lengths = tuple(sorted({*RECORD_LENGTHS, options.record_length}))
     sigma = {t: options.sigma_hz(record_hz[0], t) for t in lengths}
-    visibility = sensor_visibility(intact_away, scene.sensor_angle)
+    # the sensor from the cracked tooth's centre line, as the records place it
+    teeth = len(getattr(intact.operators, "patch_angles", ()))
+    tooth = crack_of(depths[-1]).tooth if len(depths) > 1 else 0
+    visibility = sensor_visibility(intact_away, (2 * math.pi * tooth / teeth if teeth else 0.0)
+                                   + scene.sensor_angle)
     shift = record_hz - record_hz[0]
     watched = watched_by_drop(shift, sigma[options.record_length],
                               np.flatnonzero(visibility >= VISIBLE), options.watched_modes)

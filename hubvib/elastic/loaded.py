@@ -463,7 +463,8 @@ def _record_track(intact_case, case, torque_fraction, closure_gap_m, damping_rat
         stick = ordered_frequencies(intact, pitch, variant.stick_index)
         slip = ordered_frequencies(intact, pitch, variant.slip_index)
         states, share = variant.states, variant.open_share
-        torque, gap = variant.torque_N_m, variant.closure_gap_m
+        # with no gap one state serves every torque of a sign: report the one asked
+        torque, gap = pitch.sun_torque_N_m * torque_fraction, variant.closure_gap_m
     record = _record(stick, dwell, damping_ratio, pass_hz)
     reference = intact.spectra[intact.base_index[intact.reference]].frequency_hz
     split = tuple(tuple(float(f) for f in peaks) if regime == "split" else ()

@@ -311,8 +311,13 @@ def scene_record_input(scene, record_path, baseline_path, damping_ratio: float |
     baseline = read_record(baseline_path, "--baseline-record")
     elastic = scene.elastic
     tooth = scene.crack.tooth if scene.crack is not None else 0
-    case = cached_case(scene.design, None, elastic, rest_stiffness(scene.design,
-                                                                   elastic.options.rest))
+    from hubvib.cases.sweep import crack_of
+
+    # the diagnosis's own intact case (the sweep's tooth at depth 0): the same ring, mode
+    # order and cache entry
+    intact = crack_of(scene.crack, 0.0) if scene.crack is not None else None
+    case = cached_case(scene.design, intact, elastic, rest_stiffness(scene.design,
+                                                                     elastic.options.rest))
     angle = 2 * math.pi * tooth / ring_gear(scene.design).teeth + elastic.sensor_angle
     zeta = scene.signal.damping_ratio if damping_ratio is None else float(damping_ratio)
     return identify_elastic_records(record, baseline, case, angle, zeta)

@@ -124,7 +124,13 @@ class Scene:
         (``ValueError``)."""
         default = section_of(name).default
         value = self.tables.get(name)
-        return default if value is None else value
+        value = default if value is None else value
+        if name == "signal" and self.design is not None:
+            # one working torque: the design's (the loaded crack, the records, the bearings)
+            from dataclasses import replace
+
+            value = replace(value, sun_torque_N_m=float(self.design.sun_torque))
+        return value
 
     def given(self, name: str):
         """The scene's parsed ``[name]`` section, or ``None`` when the scene has no such

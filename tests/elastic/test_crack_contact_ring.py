@@ -153,9 +153,8 @@ def _without_pairs(er, position):
 
 @pytest.mark.slow
 def test_record_of_the_intact_ring_against_itself(tmp_path, monkeypatch):
-    """The intact case's record against itself: no change; every record frequency within
-    the instantaneous range; with the crack, the stuck record no lower than the sliding
-    bound (interlacing at every position carries over to the dwell average)."""
+    """The intact case's record against itself: no change; with a 3 mm crack every record
+    frequency within the instantaneous range and the faces apart at some positions only."""
     from hubvib.elastic.cases import elastic_case
     from hubvib.elastic.loaded import record_track
     from hubvib.elastic.rest import rest_stiffness

@@ -85,3 +85,16 @@ def test_record_json(tmp_path, monkeypatch):
         assert m["instantaneous_min_hz"] <= m["frequency_hz"] <= m["instantaneous_max_hz"], (
             "the record's frequency lies within the instantaneous range")
         assert set(m) >= {"intact_hz", "frequency_slip_hz", "regime"}
+
+
+def test_mode_files_with_a_loaded_crack_are_refused(tmp_path, capsys):
+    """The loaded crack is a spectrum over the pitch: ``--out``/``--render`` (files of one
+    ring's modes) need the faces fixed, said in one line, exit 2, nothing written."""
+    from hubvib.cli import main
+
+    out = tmp_path / "out"
+    code = main(["modes", "--preset", "raba118", "--ring", "elastic", "--crack-depth",
+                 "0.003", "--out", str(out)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and "--open or --closed" in err[0], err
+    assert not out.exists()
