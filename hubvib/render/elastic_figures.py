@@ -130,7 +130,7 @@ def _state_label(state: str) -> str:
 
 def open_length_figure(name: str, depths, states: Sequence[tuple], ring_teeth: int | None = None):
     """The crack's open length [mm] against the carrier position (planet 1's ring tooth)
-    over a revolution, one curve per crack depth.
+    over one planet pitch (the pattern of every planet in turn), one curve per crack depth.
 
     Parameters
     ----------
@@ -161,6 +161,7 @@ def open_length_figure(name: str, depths, states: Sequence[tuple], ring_teeth: i
         ax.set_xlim(0, ring_teeth)
     ax.set_ylim(bottom=0.0, top=1.08e3 * max(float(np.max(depths, initial=0.0)), 1e-6))
     ax.grid(True, alpha=0.3)
-    ax.set_title(f"{name}: crack state over a carrier revolution", fontsize=12)
+    ax.set_title(f"{name}: crack state over one planet pitch (it repeats for each planet)",
+                 fontsize=12)
     _legend_below(fig, ax, ncol=min(4, max(len(depths), 1)))
     return fig

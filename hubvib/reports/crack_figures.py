@@ -108,12 +108,9 @@ def _elastic_plots(scene, result, study, folder: Path) -> list[Path]:
     if states is not None:
         shown = [(d, s) for d, s in zip(elastic.depths, states) if s is not None]
         if shown:
-            from hubvib.reducer.stages import ring_gear
-
             plots.append(cached_plot(
                 folder / "crack_state.png", figures.open_length_figure, name,
-                np.array([d for d, _ in shown]), [s for _, s in shown],
-                ring_gear(scene.crack.reducer).teeth))
+                np.array([d for d, _ in shown]), [s for _, s in shown]))
     if scene.renders and watched:
         from hubvib.render.schedule import render_elastic_modes
 
