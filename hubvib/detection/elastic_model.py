@@ -700,7 +700,7 @@ def elastic_result(design, depths, crack_of, scene, options, cases: list | None 
     sigma = {t: options.sigma_hz(record_hz[0], t) for t in lengths}
     # the sensor from the cracked tooth's centre line, as the records place it
     teeth = len(getattr(intact.operators, "patch_angles", ()))
-    tooth = crack_of(depths[-1]).tooth if len(depths) > 1 else 0
+    tooth = getattr(crack_of(depths[-1]), "tooth", 0) if len(depths) > 1 else 0
     visibility = sensor_visibility(intact_away, (2 * math.pi * tooth / teeth if teeth else 0.0)
                                    + scene.sensor_angle)
     shift = record_hz - record_hz[0]

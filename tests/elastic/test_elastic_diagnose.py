@@ -242,7 +242,8 @@ def test_scene_ring_chooses_the_models():
 @pytest.mark.slow
 def test_diagnose_on_the_elastic_ring_of_the_default_scene(tmp_path, capsys):
     """The default scene runs both rings: a measured 18 Hz drop of the elastic ring's
-    intact n = 4 mode against its own baseline is a crack on the elastic ring; the JSON
+    intact n = 4 mode against its own baseline is a crack on the elastic ring (its record
+    under the working load); the JSON
     gives both verdicts, the rigid ring's at the top level."""
     import json
 
@@ -257,7 +258,10 @@ def test_diagnose_on_the_elastic_ring_of_the_default_scene(tmp_path, capsys):
                  "--ring", "elastic", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["ring"] == "elastic" and out["verdict"] == "crack indicated", out
-    assert 0.001 < out["depth_m"] < 0.006
+    # under the working load this mode's record change is not monotone in depth (it drops
+    # 9 Hz at 3 mm and 24 Hz at 6 mm, and splits at 12 mm): one mode's 18 Hz lies beyond
+    # 3 mm and within the sweep's cracks that still have a tip
+    assert 0.003 < out["depth_m"] < 0.015
     assert main(["diagnose", "--scene", "raba118_crack", "--measured", str(path),
                  "--json"]) == 0
     both = json.loads(capsys.readouterr().out)
@@ -470,7 +474,7 @@ def test_a_shallow_pattern_is_diagnosed_between_the_added_depths(monkeypatch):
 
     scene, case_at, _, options = _refining_scene(monkeypatch)
     timing = mesh_timing(scene.crack.reducer, options.carrier_speed)
-    truth = 0.001
+    truth = 0.002  # between the added 1.88 and 2.25 mm, detectable with 10 s records
     at = [case_at(None, SimpleNamespace(depth=d), None, None) for d in (0.0, truth)]
     f = elastic_spectrum_model((0.0, truth), at).nominal_hz(options, timing)
     model = elastic_scene_model(scene)
@@ -488,13 +492,14 @@ def test_a_shallow_pattern_is_diagnosed_between_the_added_depths(monkeypatch):
 
 
 @pytest.mark.slow
-def test_the_default_scenes_elastic_diagnosis_resolves_a_1_mm_pattern():
+def test_the_default_scenes_elastic_diagnosis_resolves_a_2_mm_pattern():
     """``raba118_crack`` on the FE elastic ring (its cases through the result cache): the
     diagnosis's depth grid is the run's (the scene's depths less the crack through the
-    rim, plus the depths its refinement adds below 3 mm), and the mean pattern of a 1 mm
-    crack (the four modes it moves most against their scatter, computed on a 1 mm case of
-    its own, against the reducer's intact frequencies) is diagnosed with a 90 % interval
-    holding 1 mm below 3 mm, where the scene's depths alone say only "below 3 mm"."""
+    rim, plus the depths its refinement adds below 3 mm), and the mean pattern of a 2 mm
+    crack under the working load (the four modes it moves most against their scatter,
+    computed on a 2 mm case of its own, against the reducer's intact frequencies) is
+    diagnosed with a 90 % interval holding 2 mm below 3 mm, where the scene's depths alone
+    say only "below 3 mm"."""
     from hubvib.cases.sweep import crack_of
     from hubvib.detection import elastic_model
     from hubvib.detection.carrier import mesh_timing
@@ -516,7 +521,7 @@ def test_the_default_scenes_elastic_diagnosis_resolves_a_1_mm_pattern():
         return [elastic_model.cached_case(*a) for a in elastic_model.case_arguments(
             sweep.reducer, depths, lambda d: crack_of(sweep, d), scene.elastic)]
 
-    truth = 0.001
+    truth = 0.002  # between the added 1.88 and 2.25 mm, detectable with 10 s records
     f = elastic_spectrum_model((0.0, truth), cases((0.0, truth))).nominal_hz(options, timing)
     ref = reference(model, options, timing)
     modes = np.argsort(-np.abs(f[1] - f[0]) / ref.sigma_hz)[:4]
