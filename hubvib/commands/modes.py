@@ -147,6 +147,12 @@ def _refuse_what_does_not_apply(args) -> None:
                          "state under the working load; add --open or --closed, or mount it")
 
 
+def _state_row(state) -> dict:
+    """One carrier position's crack state for the JSON (SI)."""
+    return {"carrier_tooth": state.carrier_tooth, "open_length_m": state.open_length_m,
+            "max_gap_m": state.max_gap_m}
+
+
 def _design(args):
     from .design import design_from_argument
 
@@ -348,8 +354,7 @@ def _loaded_record(args, design, crack, options) -> int:
                      "instantaneous_max_hz": track.instantaneous_max_hz[i],
                      "frequency_slip_hz": track.slip_hz[i], "regime": track.regime[i],
                      "split_hz": list(track.split_hz[i])})
-    states = [{"carrier_tooth": s.carrier_tooth, "open_length_m": s.open_length_m,
-               "max_gap_m": s.max_gap_m} for s in track.states]
+    states = [_state_row(s) for s in track.states]
     head = {"ring": "elastic", "design": design.name, "state": f"{crack.start} crack "
             f"{1e3 * crack.depth:.3g} mm, faces as the working load leaves them",
             "mounting": options.mounting, "mesh": args.mesh, "torque_N_m": track.torque_N_m,
@@ -419,9 +424,7 @@ def _loaded_position(args, design, crack, options) -> int:
             "mounting": options.mounting, "mesh": args.mesh, "carrier_tooth": tooth,
             "engaged_teeth": list(teeth), "torque_N_m": fraction * design.sun_torque,
             "closure_gap_m": gap,
-            "crack_state": [{"carrier_tooth": state.carrier_tooth,
-                             "open_length_m": state.open_length_m,
-                             "max_gap_m": state.max_gap_m}],
+            "crack_state": [_state_row(state)],
             "open_pairs": int(sum(state.open_pairs)), "pairs": len(state.open_pairs),
             "band_hz": options.band_hz, "k_rest_N_m": er.k_rest}
     if args.json:

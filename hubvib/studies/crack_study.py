@@ -138,10 +138,11 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
         if elastic_cases is not None:
             started = time.perf_counter()
             with working("elastic ring"), timed("elastic"):
-                result.elastic, result.elastic_validity, intact = finish_elastic(
+                result.elastic, result.elastic_validity, cases = finish_elastic(
                     scene, elastic_cases)
-                result.mode_map = _mode_map(result, intact)
-                result.load_sensitivity = elastic_load_sensitivity(scene, result.elastic)
+                result.mode_map = _mode_map(result, cases[0])
+                result.load_sensitivity = elastic_load_sensitivity(scene, result.elastic,
+                                                                   cases)
                 result.elastic_map = elastic_map_of(scene, result.elastic)
             stage(f"elastic ring ({len(result.elastic.depths)} depths)", started)
         started = time.perf_counter()

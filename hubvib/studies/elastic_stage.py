@@ -71,8 +71,9 @@ def finish_elastic(scene: Scene, begun, refine: bool = True) -> tuple:
     cases ``begun_elastic`` began, with the depths :func:`refine_elastic` adds (``refine``),
     the rigid-ring model's validity band its intact case computed (planet 1 where the
     detection's statistic has it, half a planet pitch from the cracked tooth), and the
-    intact ``ElasticCase``."""
+    ``ElasticCase`` of every depth of the answer (the first intact)."""
     from hubvib.detection.elastic_model import cached_case, elastic_result
+    from hubvib.detection.elastic_refinement import refined_elastic
     from hubvib.detection.options import detection_options
 
     cases = [b.result() if hasattr(b, "result") else cached_case(*b) for b in begun]
@@ -82,8 +83,9 @@ def finish_elastic(scene: Scene, begun, refine: bool = True) -> tuple:
     result = elastic_result(sweep.reducer, depths, lambda d: crack_of(sweep, d), es, options,
                             cases, left_out=left_out_depths(sweep))
     if refine:
-        result = refine_elastic(scene, result, cases)
-    return result, cases[0].validity, cases[0]
+        result, cases = refined_elastic(sweep.reducer, lambda d: crack_of(sweep, d), es,
+                                        options, result, cases)
+    return result, cases[0].validity, cases
 
 
 def refine_elastic(scene: Scene, result, cases: list, most: int | None = None):
@@ -101,21 +103,18 @@ def refine_elastic(scene: Scene, result, cases: list, most: int | None = None):
     return refined
 
 
-def elastic_load_sensitivity(scene: Scene, elastic) -> tuple:
+def elastic_load_sensitivity(scene: Scene, elastic, cases: list) -> tuple:
     """The elastic ring's answer per closure gap and torque fraction
-    (``detection.load_sensitivity``) on the depths of ``elastic`` (the refined sweep; its
-    cases from the result cache), or () when its cases carry no loaded crack."""
-    from hubvib.detection.elastic_model import cached_case, case_arguments
+    (``detection.load_sensitivity``) on the depths of ``elastic`` (the refined sweep) and
+    their ``cases``, or () when the cases carry no loaded crack."""
     from hubvib.detection.load_sensitivity import load_sensitivity
     from hubvib.detection.options import detection_options
 
-    sweep, es = scene.crack, _elastic_scene(scene)
-    of = lambda d: crack_of(sweep, d)  # noqa: E731
-    cases = [cached_case(*a) for a in case_arguments(sweep.reducer, elastic.depths, of, es)]
     if cases[0].pitch is None:
         return ()
-    return load_sensitivity(sweep.reducer, elastic.depths, of, es, detection_options(scene),
-                            cases)
+    sweep = scene.crack
+    return load_sensitivity(sweep.reducer, elastic.depths, lambda d: crack_of(sweep, d),
+                            _elastic_scene(scene), detection_options(scene), cases)
 
 
 def elastic_map_of(scene: Scene, elastic):

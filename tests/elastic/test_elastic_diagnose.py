@@ -469,21 +469,16 @@ def test_a_shallow_pattern_is_diagnosed_between_the_added_depths(monkeypatch):
     from types import SimpleNamespace
 
     from hubvib.detection.carrier import mesh_timing
-    from hubvib.detection.diagnosis import CRACK, diagnose, elastic_scene_model
-    from hubvib.detection.measured import Measured
+    from hubvib.detection.diagnosis import diagnose, elastic_scene_model
 
     scene, case_at, _, options = _refining_scene(monkeypatch)
     timing = mesh_timing(scene.crack.reducer, options.carrier_speed)
-    truth = 0.002  # between the added 1.88 and 2.25 mm, detectable with 10 s records
+    truth = 0.001
     at = [case_at(None, SimpleNamespace(depth=d), None, None) for d in (0.0, truth)]
     f = elastic_spectrum_model((0.0, truth), at).nominal_hz(options, timing)
     model = elastic_scene_model(scene)
     ref = reference(model, options, timing)
-    modes = np.argsort(-np.abs(f[1] - f[0]) / ref.sigma_hz)[:4]
-    measured = Measured(f[1][modes], modes + 1, f[0][modes], (2, 3, 4, 5), "1 mm pattern")
-    refined = diagnose(measured, ref, options)
-    assert refined.verdict == CRACK and refined.below is None, refined.words
-    assert refined.depth_low <= truth <= refined.depth_high < 0.003, refined.words
+    measured = _resolved_pattern(f, ref, options, truth)
     kept = [d for d in model.depths if d == 0 or d >= 0.003]
     coarse_model = elastic_spectrum_model(
         kept, [case_at(None, SimpleNamespace(depth=d), None, None) for d in kept])
@@ -503,8 +498,7 @@ def test_the_default_scenes_elastic_diagnosis_resolves_a_2_mm_pattern():
     from hubvib.cases.sweep import crack_of
     from hubvib.detection import elastic_model
     from hubvib.detection.carrier import mesh_timing
-    from hubvib.detection.diagnosis import CRACK, diagnose, elastic_scene_model
-    from hubvib.detection.measured import Measured
+    from hubvib.detection.diagnosis import diagnose, elastic_scene_model
     from hubvib.detection.options import detection_options
     from hubvib.studies import elastic_stage
     from hubvib.studies.scene import load_scene
@@ -523,12 +517,7 @@ def test_the_default_scenes_elastic_diagnosis_resolves_a_2_mm_pattern():
 
     truth = 0.002  # between the added 1.88 and 2.25 mm, detectable with 10 s records
     f = elastic_spectrum_model((0.0, truth), cases((0.0, truth))).nominal_hz(options, timing)
-    ref = reference(model, options, timing)
-    modes = np.argsort(-np.abs(f[1] - f[0]) / ref.sigma_hz)[:4]
-    measured = Measured(f[1][modes], modes + 1, f[0][modes], (2, 3, 4, 5), "1 mm pattern")
-    refined = diagnose(measured, ref, options)
-    assert refined.verdict == CRACK and refined.below is None, refined.words
-    assert refined.depth_low <= truth <= refined.depth_high < 0.003, refined.words
+    measured = _resolved_pattern(f, reference(model, options, timing), options, truth)
     kept = tuple(d for d in model.depths if d == 0 or d >= 0.003)
     coarse = diagnose(measured, reference(elastic_spectrum_model(kept, cases(kept)), options,
                                           timing), options)
@@ -586,3 +575,19 @@ def _with_record(monkeypatch, cases, record_of):
     monkeypatch.setitem(sys.modules, "hubvib.elastic.loaded", fake)
     return [SimpleNamespace(**{**{k: getattr(c, k) for k in c.__dataclass_fields__},
                                "pitch": True}) for c in cases]
+
+
+def _resolved_pattern(f, ref, options, truth):
+    """The mean pattern of a ``truth`` [m] crack (``f``: intact and cracked frequencies, the
+    four modes it moves most against their scatter) diagnosed on ``ref``: a crack with a 90 %
+    interval holding ``truth`` below 3 mm; returns the measured pattern."""
+    from hubvib.detection.diagnosis import CRACK, diagnose
+    from hubvib.detection.measured import Measured
+
+    modes = np.argsort(-np.abs(f[1] - f[0]) / ref.sigma_hz)[:4]
+    measured = Measured(f[1][modes], modes + 1, f[0][modes], (2, 3, 4, 5),
+                        f"{1e3 * truth:g} mm pattern")
+    refined = diagnose(measured, ref, options)
+    assert refined.verdict == CRACK and refined.below is None, refined.words
+    assert refined.depth_low <= truth <= refined.depth_high < 0.003, refined.words
+    return measured

@@ -23,6 +23,7 @@ from hubvib.lumped import natural_modes
 from hubvib.lumped.elastic_ring import coupled_modes
 from hubvib.meshing.crack import Crack
 from hubvib.validation.ring_theory import thick_ring_hz, thin_ring_hz
+from tests.helpers.cli_output import run_cli
 
 BEAM = ElasticOptions(rest="beam")
 
@@ -185,30 +186,16 @@ def test_mounting_refused_by_name():
         ring_body(None, None, mounting="nailed")
 
 
-def _cli(argv):
-    import contextlib
-    import io
-    import json
-
-    from hubvib.cli import main
-
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        code = main(argv)
-    text = out.getvalue()
-    return code, (json.loads(text) if "--json" in argv and text.strip() else text), err.getvalue()
-
-
 def test_modes_rigid_is_the_spectrum_command():
     """``hubvib modes --ring rigid`` gives what ``hubvib spectrum`` gives, mode for mode."""
-    code, modes, _ = _cli(["modes", "--ring", "rigid", "--json"])
-    code2, spectrum, _ = _cli(["spectrum", "--json"])
+    code, modes, _ = run_cli(["modes", "--ring", "rigid", "--json"])
+    code2, spectrum, _ = run_cli(["spectrum", "--json"])
     assert code == code2 == 0
     assert modes["modes"] == spectrum["modes"]
 
 
 def test_modes_annulus_reports_ring_theory():
-    code, data, _ = _cli(["modes", "--annulus", "0.1", "0.12", "0.02", "--count", "6", "--json"])
+    code, data, _ = run_cli(["modes", "--annulus", "0.1", "0.12", "0.02", "--count", "6", "--json"])
     assert code == 0
     n2 = [m for m in data["modes"] if m["nodal_diameter"] == 2]
     assert len(n2) == 2
@@ -226,7 +213,7 @@ def test_modes_annulus_reports_ring_theory():
     (["modes", "--render"], "--out"),
 ])
 def test_modes_bad_input_is_one_line_exit_2(argv, words):
-    code, _, err = _cli(argv)
+    code, _, err = run_cli(argv)
     assert code == 2
     assert err.count("\n") == 1 and words in err, err
 

@@ -3,22 +3,11 @@
 study's numbers (one mesh, one number)."""
 from __future__ import annotations
 
-import contextlib
-import io
-import json
-
 import numpy as np
 import pytest
 
 from hubvib.cli import main
-
-
-def _cli(argv):
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        code = main(argv)
-    text = out.getvalue()
-    return code, (json.loads(text) if "--json" in argv and text.strip() else text), err.getvalue()
+from tests.helpers.cli_output import run_cli
 
 
 ANNULUS = ["--annulus", "0.1", "0.12", "0.02"]
@@ -43,7 +32,7 @@ ANNULUS = ["--annulus", "0.1", "0.12", "0.02"]
     (["modes", "--open"], "--open"),
 ])
 def test_flags_that_do_not_apply_are_refused(argv, words):
-    code, _, err = _cli(argv)
+    code, _, err = run_cli(argv)
     assert code == 2, f"{argv}: exit 2 expected"
     assert err.count("\n") == 1 and words in err, err
 
@@ -58,7 +47,7 @@ def test_intact_ring_prints_the_crack_studys_numbers(tmp_path, monkeypatch):
     from hubvib.elastic.rest import rest_stiffness
 
     monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path))
-    code, data, _ = _cli(["modes", "--preset", "raba118", "--json"])
+    code, data, _ = run_cli(["modes", "--preset", "raba118", "--json"])
     assert code == 0 and data["mesh"] == "study"
     design = preset_design("raba118")
     scene = ElasticScene()
@@ -71,7 +60,7 @@ def test_intact_ring_prints_the_crack_studys_numbers(tmp_path, monkeypatch):
 @pytest.mark.slow
 def test_record_json(tmp_path, monkeypatch):
     monkeypatch.setenv("HUBVIB_CACHE", str(tmp_path))
-    code, data, _ = _cli(["modes", "--preset", "raba118", "--crack-depth", "0.003", "--json"])
+    code, data, _ = run_cli(["modes", "--preset", "raba118", "--crack-depth", "0.003", "--json"])
     assert code == 0
     states = data["crack_state"]
     assert len(states) == 22 and [s["carrier_tooth"] for s in states] == list(range(22)), (
