@@ -258,9 +258,9 @@ def test_diagnose_on_the_elastic_ring_of_the_default_scene(tmp_path, capsys):
                  "--ring", "elastic", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["ring"] == "elastic" and out["verdict"] == "crack indicated", out
-    # under the working load this mode's record change is not monotone in depth (it drops
-    # 9 Hz at 3 mm and 24 Hz at 6 mm, and splits at 12 mm): one mode's 18 Hz lies beyond
-    # 3 mm and within the sweep's cracks that still have a tip
+    # under the working load this mode's record change is not monotone in depth (it
+    # splits where the crack grows deep): one mode's 18 Hz drop lies beyond the 3 mm
+    # change and within the sweep's cracks that still have a tip
     assert 0.003 < out["depth_m"] < 0.015
     assert main(["diagnose", "--scene", "raba118_crack", "--measured", str(path),
                  "--json"]) == 0
@@ -515,7 +515,7 @@ def test_the_default_scenes_elastic_diagnosis_resolves_a_2_mm_pattern():
         return [elastic_model.cached_case(*a) for a in elastic_model.case_arguments(
             sweep.reducer, depths, lambda d: crack_of(sweep, d), scene.elastic)]
 
-    truth = 0.002  # between the added 1.88 and 2.25 mm, detectable with 10 s records
+    truth = 0.002  # between two depths the refinement adds, detectable with 10 s records
     f = elastic_spectrum_model((0.0, truth), cases((0.0, truth))).nominal_hz(options, timing)
     measured = _resolved_pattern(f, reference(model, options, timing), options, truth)
     kept = tuple(d for d in model.depths if d == 0 or d >= 0.003)
