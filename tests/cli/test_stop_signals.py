@@ -83,7 +83,7 @@ def _check(process: subprocess.Popen, folder: Path, signum: int, when: str,
 
 
 @pytest.mark.parametrize("signum,twice", [
-    (signal.SIGTERM, True),
+    pytest.param(signal.SIGTERM, True, marks=pytest.mark.slow),
     pytest.param(signal.SIGTERM, False, marks=pytest.mark.slow),
     pytest.param(signal.SIGINT, False, marks=pytest.mark.slow),
     pytest.param(signal.SIGINT, True, marks=pytest.mark.slow)],
@@ -131,7 +131,8 @@ def test_a_stop_at_any_moment_of_a_crack_study_with_a_worker_pool(tmp_path, sign
         _check(process, folder, signum, f"{delay} s into hub4_crack")
 
 
-@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
+@pytest.mark.parametrize("signum", [signal.SIGTERM,
+                                    pytest.param(signal.SIGINT, marks=pytest.mark.slow)])
 def test_a_stop_while_the_imports_run_is_one_line(tmp_path, signum):
     """Early, while numpy and the rest are imported: an extension module's import turns the
     exception raised inside it into an ImportError that no longer names it (numpy: 'could

@@ -65,7 +65,7 @@ def _coverage(direct, errors, modes):
     assert verdicts.count(NOT_EXPLAINED) <= 8, "crack patterns are explained by a crack"
 
 
-@pytest.mark.parametrize("modes", [[11], [15, 16, 17]])
+@pytest.mark.parametrize("modes", [[11], pytest.param([15, 16, 17], marks=pytest.mark.slow)])
 def test_90_percent_interval_covers_the_true_depth_at_its_rate(direct, modes):
     _coverage(direct, student_errors, modes)
 
@@ -89,6 +89,7 @@ def _intact(direct, errors):
         f"crack verdicts on intact reducers {crack:.3f} vs false-alarm rate 0.01 (+3 sigma)"
 
 
+@pytest.mark.slow
 def test_intact_reducer_is_called_intact(direct):
     _intact(direct, student_errors)
 
@@ -307,6 +308,7 @@ def test_csv_damping_and_record_length_set_the_identification_scatter(direct):
         "scene defaults: 2 % damping, 10 s, SNR 100"
 
 
+@pytest.mark.slow
 def test_calibration_table_of_the_docs(direct):
     from hubvib.detection.calibration import calibrate
 

@@ -16,6 +16,7 @@ def _sources() -> list[Path]:
                   if "__pycache__" not in p.parts)
 
 
+@pytest.mark.slow
 def test_every_path_a_docstring_or_comment_names_exists():
     files = _sources()
     assert len(files) > 200, "the scan reads the whole package source and the tests"

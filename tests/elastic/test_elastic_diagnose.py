@@ -177,6 +177,7 @@ def test_fe_error_scales_each_change_by_one_common_factor(small):
     assert np.allclose(change, 2.0 * model.fe_change_error * np.abs(nominal), atol=1e-9)
 
 
+@pytest.mark.slow
 def test_elastic_calibration_on_student_t_noise(small):
     """Student-t errors (8 degrees of freedom, unit variance), a noise model the diagnosis
     was not tuned on, on the small elastic ring: intervals over depths uniform on the

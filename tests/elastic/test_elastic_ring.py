@@ -28,6 +28,7 @@ from tests.helpers.cli_output import run_cli
 BEAM = ElasticOptions(rest="beam")
 
 
+@pytest.mark.slow
 def test_annulus_against_curved_beam_and_thin_ring():
     """Plane-stress P2 FE of a free annulus against the Timoshenko curved beam (n = 2..6):
     the difference is the beam theory's O((h/R)^2) (halving h quarters it, observed order

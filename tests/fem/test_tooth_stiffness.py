@@ -122,6 +122,7 @@ def test_beam_compliance_scales_with_face_width_and_modulus():
 
 
 # mesh stiffness ---------------------------------------------------------------
+@pytest.mark.slow
 def test_sun_planet_mesh_stiffness_against_iso_6336_and_analytical(raba_pairs):
     """c_sp by FE vs ISO 6336-1 method B without C_M = 0.8 (the standard's factor from
     theoretical to measured values): mean within 10 % of c_gamma_alpha, single-pair maximum
@@ -143,6 +144,7 @@ def test_iso_stiffness_of_a_standard_pair():
     assert iso.mesh == pytest.approx(iso.single, rel=1e-12)  # 0.75 eps + 0.25 = 1 at eps = 1
 
 
+@pytest.mark.slow
 def test_ring_crack_lowers_c_rp_while_the_tooth_is_engaged(raba_pairs):
     """A 5 mm root crack at ring tooth 0: over that tooth's engagement the mesh stiffness is
     lower at every position where it carries load, never higher (to 1e-9), and unchanged

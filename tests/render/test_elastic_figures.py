@@ -64,6 +64,7 @@ def _overlaps(legend, ax) -> bool:
     return a.x0 < b.x1 and b.x0 < a.x1 and a.y0 < b.y1 and b.y0 < a.y1
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("averaged", [True, False])
 def test_crack_states_open_averaged_closed(tmp_path, averaged):
     """Per watched mode a panel with the open, (when given) record-averaged and closed
