@@ -258,23 +258,34 @@ def _elastic(args) -> int:
         print(f"the mounted ring's lowest elastic mode of its own: {lowest[0]:.1f} Hz (n = "
               f"{lowest[1]}); the rigid-ring model (hubvib spectrum) holds only well below it")
     extra = "  intact [Hz]  tracks" if tracked is not None else ""
-    print(f"{'mode':>4} {'f [Hz]':>10}  {'class':<13} {'n':>2} {'p':>2} {'ring':>5} mult{extra}")
+    print(f"{'mode':>4} {'f [Hz]':>10}  {'class':<13} {'n':>2} {'p':>2} {'ring':>5} mult "
+          f"{'pair, split [Hz]':<18}{extra}")
     for row in rows:
         p = "-" if row["harmonic_index"] is None else row["harmonic_index"]
         line = (f"{row['mode']:>4} {row['frequency_hz']:>10.1f}  {row['class']:<13} "
                 f"{row['nodal_diameter']:>2} {p:>2} {row['ring_share']:>5.2f} "
-                f"{row['multiplicity']:>4}")
+                f"{row['multiplicity']:>4} {_pair_words(row):<18}")
         if tracked is not None and row["tracks_intact_mode"] is not None:
             line += (f"  {row['intact_frequency_hz']:>11.1f}  mode {row['tracks_intact_mode']}"
                      + (" (split pair)" if row["split_pair"] else ""))
-        print(line)
+        print(line.rstrip())
     print("n: the ring's dominant nodal diameters; p: harmonic index under the planets' "
-          "symmetry; ring: the ring's share of the kinetic energy")
+          "symmetry; ring: the ring's share of the kinetic energy; class: 'ring' where the "
+          "ring holds the largest kinetic-energy share of the bodies, else the mode's type "
+          "under the planets' symmetry; mult 2: a pair by that symmetry (found by shape), "
+          "with its partner and split")
     if written:
         pictures = sum(1 for w in written if w.suffix == ".png")
         print(f"written: {written[0]}" + (f", {pictures} PNG files and coupled_modes.vtu in "
                                           f"{written[0].parent}" if pictures else ""))
     return 0
+
+
+def _pair_words(row) -> str:
+    """``with 4, 0.9`` for a mode paired by symmetry, ``-`` otherwise."""
+    if row.get("pair_mode") is None:
+        return "-"
+    return f"with {row['pair_mode']}, {row['pair_split_hz']:.1f}"
 
 
 def _annulus(args) -> int:
