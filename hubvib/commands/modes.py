@@ -165,13 +165,32 @@ def _rigid(args) -> int:
 
     from . import spectrum
 
-    spec = natural_modes(lumped_parameters(_design(args)))
+    design = _design(args)
+    spec = natural_modes(lumped_parameters(design))
+    differences = _differences(args, design)
     if args.json:
         print(json_text({"ring": "rigid", "method": spec.method, "n_rigid": spec.n_rigid,
-                         "modes": spec.rows()}))
+                         "modes": spec.rows(), "model_differences": differences.to_dict()}))
         return 0
-    return spectrum.run(argparse.Namespace(preset=args.preset, design=args.design,
+    code = spectrum.run(argparse.Namespace(preset=args.preset, design=args.design,
                                            params=None, set=[], method="jacobi", json=False))
+    print("\n".join(differences.lines()))
+    return code
+
+
+def _differences(args, design, er=None):
+    """The rigid ring's table against the FE ring on the asked mounting and mesh
+    (``hubvib.elastic.differences``); ``er``: the intact elastic ring already built, used
+    when its basis serves the band's carrier position."""
+    from hubvib.elastic.differences import cached_model_differences, model_differences
+    from hubvib.elastic.model import out_of_contact_tooth
+    from hubvib.reducer.stages import ring_gear
+
+    options = _options(args)
+    away = out_of_contact_tooth(ring_gear(design).teeth, design.n_planets)
+    if er is not None and er.crack is None and away in er.carrier_teeth:
+        return model_differences(design, options, away, er)
+    return cached_model_differences(design, options)
 
 
 def _options(args):
@@ -230,6 +249,8 @@ def _elastic(args) -> int:
     lowest = lowest_ring_mode(er)
     head["lowest_ring_mode"] = None if lowest is None else {
         "frequency_hz": lowest[0], "nodal_diameter": lowest[1]}
+    differences = _differences(args, design, er)
+    head["model_differences"] = differences.to_dict()
     written = []
     if args.out:
         from pathlib import Path
@@ -274,6 +295,7 @@ def _elastic(args) -> int:
           "ring holds the largest kinetic-energy share of the bodies, else the mode's type "
           "under the planets' symmetry; mult 2: a pair by that symmetry (found by shape), "
           "with its partner and split")
+    print("\n".join(differences.lines()))
     if written:
         pictures = sum(1 for w in written if w.suffix == ".png")
         print(f"written: {written[0]}" + (f", {pictures} PNG files and coupled_modes.vtu in "
