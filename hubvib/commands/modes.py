@@ -147,6 +147,15 @@ def _refuse_what_does_not_apply(args) -> None:
                          "state under the working load; add --open or --closed, or mount it")
 
 
+def _check_carrier_tooth(args, design) -> None:
+    """``--carrier-tooth`` within the design's ring teeth, refused by the flag's name."""
+    from ._applies import refuse_outside
+
+    teeth = design.ring.teeth
+    refuse_outside("--carrier-tooth", args.carrier_tooth, 0, teeth - 1,
+                   f"a tooth of the {teeth}-tooth ring of design {design.name!r}")
+
+
 def _state_row(state) -> dict:
     """One carrier position's crack state for the JSON (SI)."""
     return {"carrier_tooth": state.carrier_tooth, "open_length_m": state.open_length_m,
@@ -215,6 +224,7 @@ def _elastic(args) -> int:
     from hubvib.meshing.crack import Crack
 
     design = _design(args)
+    _check_carrier_tooth(args, design)
     options = _options(args)
     depth = 0.0 if args.crack_depth is None else args.crack_depth
     crack = Crack(depth=depth) if depth > 0 else None
@@ -289,6 +299,8 @@ def _elastic(args) -> int:
         if tracked is not None and row["tracks_intact_mode"] is not None:
             line += (f"  {row['intact_frequency_hz']:>11.1f}  mode {row['tracks_intact_mode']}"
                      + (" (split pair)" if row["split_pair"] else ""))
+        elif tracked is not None:
+            line += f"  {NOT_TRACKED:>11}"
         print(line.rstrip())
     print("n: the ring's dominant nodal diameters; p: harmonic index under the planets' "
           "symmetry; ring: the ring's share of the kinetic energy; class: 'ring' where the "
@@ -409,12 +421,13 @@ def _loaded_record(args, design, crack, options) -> int:
     print(f"{'mode':>4} {'record':>9} {'intact':>9} {'change':>8} {'min':>9} {'max':>9} "
           f"{'sliding':>9}  regime")
     for r in rows:
-        print(f"{r['mode']:>4} {r['frequency_hz']:>9.1f} {r['intact_hz']:>9.1f} "
-              f"{r['change_hz']:>8.2f} {r['instantaneous_min_hz']:>9.1f} "
-              f"{r['instantaneous_max_hz']:>9.1f} {r['frequency_slip_hz']:>9.1f}  "
+        print(f"{r['mode']:>4} {_hz(r['frequency_hz'], 9)} {_hz(r['intact_hz'], 9)} "
+              f"{_hz(r['change_hz'], 8, 2)} {_hz(r['instantaneous_min_hz'], 9)} "
+              f"{_hz(r['instantaneous_max_hz'], 9)} {_hz(r['frequency_slip_hz'], 9)}  "
               f"{r['regime']}" + (f" {r['split_hz']}" if r["split_hz"] else ""))
     print("record: what a record's identification returns (pressed faces stuck); min/max: "
-          "over the positions; sliding: the record with the pressed faces sliding (bound)")
+          "over the positions; sliding: the record with the pressed faces sliding (bound); "
+          f"'{NOT_TRACKED}': no mode of that state follows this one by shape")
     return 0
 
 
@@ -471,12 +484,24 @@ def _loaded_position(args, design, crack, options) -> int:
           f"{head['pairs']} node pairs), largest gap {1e6 * state.max_gap_m:.2f} um")
     print(f"{'mode':>4} {'f [Hz]':>10} {'sliding':>10} {'intact':>10}  {'class':<13} n")
     for row in rows:
-        intact_hz = "" if row["intact_hz"] is None else f"{row['intact_hz']:.1f}"
-        print(f"{row['mode']:>4} {row['frequency_hz']:>10.1f} {row['frequency_slip_hz']:>10.1f} "
-              f"{intact_hz:>10}  {row['class']:<13} {row['nodal_diameter']}")
+        print(f"{row['mode']:>4} {_hz(row['frequency_hz'], 10)} "
+              f"{_hz(row['frequency_slip_hz'], 10)} {_hz(row['intact_hz'], 10)}  "
+              f"{row['class']:<13} {row['nodal_diameter']}")
     print("f: pressed faces stuck (small vibrations stick); sliding: pressed faces free to "
-          "slide (the bound)")
+          f"slide (the bound); '{NOT_TRACKED}': no mode of that state follows this one by "
+          "shape")
     return 0
+
+
+#: what a table prints where a mode has no counterpart (NaN or None in the data)
+NOT_TRACKED = "not tracked"
+
+
+def _hz(value, width: int, digits: int = 1) -> str:
+    """``value`` [Hz] right-aligned in ``width``, or ``NOT_TRACKED`` for None, NaN, inf."""
+    if value is None or not math.isfinite(value):
+        return f"{NOT_TRACKED:>{width}}"
+    return f"{value:>{width}.{digits}f}"
 
 
 def _finite(data):
