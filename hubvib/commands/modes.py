@@ -178,7 +178,8 @@ def _rigid(args) -> int:
     spec = natural_modes(lumped_parameters(design))
     differences = _differences(args, design)
     if args.json:
-        print(json_text({"ring": "rigid", "method": spec.method, "n_rigid": spec.n_rigid,
+        print(json_text({"ring": "rigid", "design": design.name, "method": spec.method,
+                         "n_rigid": spec.n_rigid,
                          "modes": spec.rows(), "model_differences": differences.to_dict()}))
         return 0
     code = spectrum.run(argparse.Namespace(preset=args.preset, design=args.design,
