@@ -134,6 +134,8 @@ def model_differences(design, options: ElasticOptions = ElasticOptions(),
                           params=table)
     body, r_b = er.body, er.body.base_radius
     mass, stiffness = body.rigid_mass(), body.rigid_stiffness()
+    if options.mounting == "free":
+        stiffness = 0.0 * stiffness  # no mounting: round-off of K's rigid-motion null space
     elastic_hz = float(elastic_spectrum(er, carrier_tooth).frequency_hz[0])
     fe_rigid_hz, top, reason = math.nan, math.nan, ""
     if options.mounting == "free":
