@@ -24,7 +24,10 @@ k = 1 .. N - 1.  A mode whose turned shapes stay on its own line (mean share
 split [Hz] (the mesh's tooth count and the support pads break the symmetry a little).  A
 mode whose partner lies above the band's top counts 1.  For the rigid-ring (9 + 3N) model
 this reproduces Lin & Parker's multiplicities (rotational 1, translational 2, planet modes
-N - 3 for N = 4, 5).
+N - 3) for N = 3, 4, 5; from N = 6 on the rigid model's planet frequency holds several
+harmonic indices at once (a degeneracy beyond the symmetry's pairs), which this rule
+does not count.  The elastic ring separates those indices anyway
+(its nodal diameters differ), so there a planet mode is a pair or, for p = N/2, single.
 """
 from __future__ import annotations
 
@@ -75,11 +78,6 @@ class ModeContent:
     harmonic_share: float
     kind: str
     body_shares: tuple = ()
-
-    @property
-    def body(self) -> str:
-        """The body holding the largest kinetic-energy share."""
-        return BODIES[int(np.argmax(self.body_shares))] if self.body_shares else "ring"
 
 
 def diameter_content(probe_column: np.ndarray) -> np.ndarray:
