@@ -22,6 +22,13 @@ def refuse_ignored(args, rules) -> None:
             raise FlagError(f"{shown} applies only {needs}; drop it")
 
 
+def refuse_outside(flag: str, given, low: int, high: int, meaning: str) -> None:
+    """``FlagError`` naming ``flag`` and its allowed range ``low..high`` (``meaning`` says
+    what the range is) when the integer ``given`` lies outside it."""
+    if given is not None and not low <= given <= high:
+        raise FlagError(f"{flag} = {given!r}, allowed {low}..{high} ({meaning})")
+
+
 def value(args, flag: str, default):
     """The flag's value, or ``default`` when it was not given."""
     given = getattr(args, _attribute(flag))

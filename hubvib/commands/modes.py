@@ -147,6 +147,15 @@ def _refuse_what_does_not_apply(args) -> None:
                          "state under the working load; add --open or --closed, or mount it")
 
 
+def _check_carrier_tooth(args, design) -> None:
+    """``--carrier-tooth`` within the design's ring teeth, refused by the flag's name."""
+    from ._applies import refuse_outside
+
+    teeth = design.ring.teeth
+    refuse_outside("--carrier-tooth", args.carrier_tooth, 0, teeth - 1,
+                   f"a tooth of the {teeth}-tooth ring of design {design.name!r}")
+
+
 def _state_row(state) -> dict:
     """One carrier position's crack state for the JSON (SI)."""
     return {"carrier_tooth": state.carrier_tooth, "open_length_m": state.open_length_m,
@@ -165,13 +174,33 @@ def _rigid(args) -> int:
 
     from . import spectrum
 
-    spec = natural_modes(lumped_parameters(_design(args)))
+    design = _design(args)
+    spec = natural_modes(lumped_parameters(design))
+    differences = _differences(args, design)
     if args.json:
-        print(json_text({"ring": "rigid", "method": spec.method, "n_rigid": spec.n_rigid,
-                         "modes": spec.rows()}))
+        print(json_text({"ring": "rigid", "design": design.name, "method": spec.method,
+                         "n_rigid": spec.n_rigid,
+                         "modes": spec.rows(), "model_differences": differences.to_dict()}))
         return 0
-    return spectrum.run(argparse.Namespace(preset=args.preset, design=args.design,
+    code = spectrum.run(argparse.Namespace(preset=args.preset, design=args.design,
                                            params=None, set=[], method="jacobi", json=False))
+    print("\n".join(differences.lines()))
+    return code
+
+
+def _differences(args, design, er=None):
+    """The rigid ring's table against the FE ring on the asked mounting and mesh
+    (``hubvib.elastic.differences``); ``er``: the intact elastic ring already built, used
+    when its basis serves the band's carrier position."""
+    from hubvib.elastic.differences import cached_model_differences, model_differences
+    from hubvib.elastic.model import out_of_contact_tooth
+    from hubvib.reducer.stages import ring_gear
+
+    options = _options(args)
+    away = out_of_contact_tooth(ring_gear(design).teeth, design.n_planets)
+    if er is not None and er.crack is None and away in er.carrier_teeth:
+        return model_differences(design, options, away, er)
+    return cached_model_differences(design, options)
 
 
 def _options(args):
@@ -196,6 +225,7 @@ def _elastic(args) -> int:
     from hubvib.meshing.crack import Crack
 
     design = _design(args)
+    _check_carrier_tooth(args, design)
     options = _options(args)
     depth = 0.0 if args.crack_depth is None else args.crack_depth
     crack = Crack(depth=depth) if depth > 0 else None
@@ -230,6 +260,8 @@ def _elastic(args) -> int:
     lowest = lowest_ring_mode(er)
     head["lowest_ring_mode"] = None if lowest is None else {
         "frequency_hz": lowest[0], "nodal_diameter": lowest[1]}
+    differences = _differences(args, design, er)
+    head["model_differences"] = differences.to_dict()
     written = []
     if args.out:
         from pathlib import Path
@@ -258,23 +290,37 @@ def _elastic(args) -> int:
         print(f"the mounted ring's lowest elastic mode of its own: {lowest[0]:.1f} Hz (n = "
               f"{lowest[1]}); the rigid-ring model (hubvib spectrum) holds only well below it")
     extra = "  intact [Hz]  tracks" if tracked is not None else ""
-    print(f"{'mode':>4} {'f [Hz]':>10}  {'class':<13} {'n':>2} {'p':>2} {'ring':>5} mult{extra}")
+    print(f"{'mode':>4} {'f [Hz]':>10}  {'class':<13} {'n':>2} {'p':>2} {'ring':>5} mult "
+          f"{'pair, split [Hz]':<18}{extra}")
     for row in rows:
         p = "-" if row["harmonic_index"] is None else row["harmonic_index"]
         line = (f"{row['mode']:>4} {row['frequency_hz']:>10.1f}  {row['class']:<13} "
                 f"{row['nodal_diameter']:>2} {p:>2} {row['ring_share']:>5.2f} "
-                f"{row['multiplicity']:>4}")
+                f"{row['multiplicity']:>4} {_pair_words(row):<18}")
         if tracked is not None and row["tracks_intact_mode"] is not None:
             line += (f"  {row['intact_frequency_hz']:>11.1f}  mode {row['tracks_intact_mode']}"
                      + (" (split pair)" if row["split_pair"] else ""))
-        print(line)
+        elif tracked is not None:
+            line += f"  {NOT_TRACKED:>11}"
+        print(line.rstrip())
     print("n: the ring's dominant nodal diameters; p: harmonic index under the planets' "
-          "symmetry; ring: the ring's share of the kinetic energy")
+          "symmetry; ring: the ring's share of the kinetic energy; class: 'ring' where the "
+          "ring holds the largest kinetic-energy share of the bodies, else the mode's type "
+          "under the planets' symmetry; mult 2: a pair by that symmetry (found by shape), "
+          "with its partner and split")
+    print("\n".join(differences.lines()))
     if written:
         pictures = sum(1 for w in written if w.suffix == ".png")
         print(f"written: {written[0]}" + (f", {pictures} PNG files and coupled_modes.vtu in "
                                           f"{written[0].parent}" if pictures else ""))
     return 0
+
+
+def _pair_words(row) -> str:
+    """``with 4, 0.9`` for a mode paired by symmetry, ``-`` otherwise."""
+    if row.get("pair_mode") is None:
+        return "-"
+    return f"with {row['pair_mode']}, {row['pair_split_hz']:.1f}"
 
 
 def _annulus(args) -> int:
@@ -376,12 +422,13 @@ def _loaded_record(args, design, crack, options) -> int:
     print(f"{'mode':>4} {'record':>9} {'intact':>9} {'change':>8} {'min':>9} {'max':>9} "
           f"{'sliding':>9}  regime")
     for r in rows:
-        print(f"{r['mode']:>4} {r['frequency_hz']:>9.1f} {r['intact_hz']:>9.1f} "
-              f"{r['change_hz']:>8.2f} {r['instantaneous_min_hz']:>9.1f} "
-              f"{r['instantaneous_max_hz']:>9.1f} {r['frequency_slip_hz']:>9.1f}  "
+        print(f"{r['mode']:>4} {_hz(r['frequency_hz'], 9)} {_hz(r['intact_hz'], 9)} "
+              f"{_hz(r['change_hz'], 8, 2)} {_hz(r['instantaneous_min_hz'], 9)} "
+              f"{_hz(r['instantaneous_max_hz'], 9)} {_hz(r['frequency_slip_hz'], 9)}  "
               f"{r['regime']}" + (f" {r['split_hz']}" if r["split_hz"] else ""))
     print("record: what a record's identification returns (pressed faces stuck); min/max: "
-          "over the positions; sliding: the record with the pressed faces sliding (bound)")
+          "over the positions; sliding: the record with the pressed faces sliding (bound); "
+          f"'{NOT_TRACKED}': no mode of that state follows this one by shape")
     return 0
 
 
@@ -438,12 +485,24 @@ def _loaded_position(args, design, crack, options) -> int:
           f"{head['pairs']} node pairs), largest gap {1e6 * state.max_gap_m:.2f} um")
     print(f"{'mode':>4} {'f [Hz]':>10} {'sliding':>10} {'intact':>10}  {'class':<13} n")
     for row in rows:
-        intact_hz = "" if row["intact_hz"] is None else f"{row['intact_hz']:.1f}"
-        print(f"{row['mode']:>4} {row['frequency_hz']:>10.1f} {row['frequency_slip_hz']:>10.1f} "
-              f"{intact_hz:>10}  {row['class']:<13} {row['nodal_diameter']}")
+        print(f"{row['mode']:>4} {_hz(row['frequency_hz'], 10)} "
+              f"{_hz(row['frequency_slip_hz'], 10)} {_hz(row['intact_hz'], 10)}  "
+              f"{row['class']:<13} {row['nodal_diameter']}")
     print("f: pressed faces stuck (small vibrations stick); sliding: pressed faces free to "
-          "slide (the bound)")
+          f"slide (the bound); '{NOT_TRACKED}': no mode of that state follows this one by "
+          "shape")
     return 0
+
+
+#: what a table prints where a mode has no counterpart (NaN or None in the data)
+NOT_TRACKED = "not tracked"
+
+
+def _hz(value, width: int, digits: int = 1) -> str:
+    """``value`` [Hz] right-aligned in ``width``, or ``NOT_TRACKED`` for None, NaN, inf."""
+    if value is None or not math.isfinite(value):
+        return f"{NOT_TRACKED:>{width}}"
+    return f"{value:>{width}.{digits}f}"
 
 
 def _finite(data):

@@ -20,7 +20,7 @@ from hubvib.lumped.parameters import PlanetaryParameters
 from hubvib.meshing.crack import Crack
 from hubvib.meshing.ring_mesh import ring_mesh
 
-from .content import mode_content, multiplicities
+from .content import mode_content, pair_classes, pair_multiplicities, symmetry_pairs
 from .options import ElasticOptions
 from .rest import rest_stiffness
 
@@ -60,13 +60,16 @@ class ElasticRing:
 
 @dataclass(frozen=True, eq=False)
 class ElasticSpectrum:
-    """Coupled modes at one carrier position with each mode's content."""
+    """Coupled modes at one carrier position with each mode's content; ``pair_partner``:
+    per mode its partner's index in a pair by symmetry, or None (``content.symmetry_pairs``;
+    empty when not computed)."""
 
     modes: CoupledModes
     content: tuple
     multiplicity: tuple
     carrier_tooth: int
     ring: ElasticRing | None  # None once dropped for pickling
+    pair_partner: tuple = ()
 
     @property
     def frequency_hz(self) -> np.ndarray:
@@ -75,11 +78,17 @@ class ElasticSpectrum:
     def rows(self) -> list[dict]:
         """One dict per mode, for tables and JSON."""
         out = []
-        for i, (f, c, m) in enumerate(zip(self.frequency_hz, self.content, self.multiplicity)):
-            out.append({"mode": i + 1, "frequency_hz": float(f), "multiplicity": m,
-                        "class": c.kind, "nodal_diameter": c.nodal_diameter,
-                        "harmonic_index": c.harmonic_index, "ring_share": c.ring_share,
-                        "harmonic_share": c.harmonic_share})
+        f_all = self.frequency_hz
+        for i, (f, c, m) in enumerate(zip(f_all, self.content, self.multiplicity)):
+            row = {"mode": i + 1, "frequency_hz": float(f), "multiplicity": m,
+                   "class": c.kind, "nodal_diameter": c.nodal_diameter,
+                   "harmonic_index": c.harmonic_index, "ring_share": c.ring_share,
+                   "harmonic_share": c.harmonic_share}
+            if self.pair_partner:
+                j = self.pair_partner[i]
+                row["pair_mode"] = None if j is None else j + 1
+                row["pair_split_hz"] = None if j is None else float(abs(f_all[j] - f))
+            out.append(row)
         return out
 
 
@@ -205,7 +214,9 @@ def elastic_spectrum(er: ElasticRing, carrier_tooth: int | None = None) -> Elast
     spaced = er.params.equally_spaced(1e-9)
     content = tuple(mode_content(modes, j, er.params.n_planets, spaced)
                     for j in range(modes.omega.size))
-    return ElasticSpectrum(modes, content, multiplicities(modes.frequency_hz), tooth, er)
+    partner = symmetry_pairs(modes, modes.engagement.theta, spaced)
+    return ElasticSpectrum(modes, pair_classes(content, partner), pair_multiplicities(partner),
+                           tooth, er, partner)
 
 
 def lumped_equivalent(er: ElasticRing, carrier_tooth: int) -> PlanetaryParameters:

@@ -54,7 +54,7 @@ def crack_report(result, plots: list[str], renders: list[str], fe_renders: list[
         from hubvib.reports.elastic_sections import side_by_side
 
         lines += ([] if study is not None else ["## Short answer", "", *lead_lines(which)])
-        lines += side_by_side(result.rigid, result.elastic)
+        lines += side_by_side(result.rigid, result.elastic, result.elastic_validity)
     if result.mode_map:
         lines += mode_map_lines(result.mode_map)
     if study is not None:

@@ -17,14 +17,16 @@ def _answer(result: DetectionResult | None, length: float) -> str:
     return result.answer(length)
 
 
-def side_by_side(rigid: DetectionResult | None, elastic: DetectionResult) -> list[str]:
+def side_by_side(rigid: DetectionResult | None, elastic: DetectionResult,
+                 validity=None) -> list[str]:
     """Both models' POD crossing per record length (:mod:`hubvib.detection.resolution`),
-    and why they differ."""
+    and why they differ; ``validity``: the rigid-ring model's band
+    (``hubvib.elastic.validity.ValidityBand``) whose list of the ring's own modes the
+    report prints, read here for where those modes lie."""
     lengths = sorted(t for t in elastic.pod if rigid is None or t in rigid.pod)
     rows = ["| record | rigid ring (9 + 3N) | elastic ring |", "|---:|---|---|"]
     for t in lengths:
         rows.append(f"| {t:g} s | {_answer(rigid, t)} | {_answer(elastic, t)} |")
-    detail = elastic.detail
     watched = elastic.watched
     if watched:
         i = watched[0]
@@ -33,9 +35,6 @@ def side_by_side(rigid: DetectionResult | None, elastic: DetectionResult) -> lis
                 f"identification scatter of {elastic.sigma_hz[elastic.record_length][i]:.2f} Hz")
     else:
         best = "the sensor sees none of the modes the crack moves"
-    lowest = min((f for f, n, share in zip(elastic.intact_hz, detail.nodal_diameter,
-                                           detail.ring_share)
-                  if n >= 2 and share >= 0.3), default=None)
     added = ("" if not elastic.added_depths else
              " The elastic ring's depths " + ", ".join(f"{1e3 * d:.3g}" for d in
                                                        elastic.added_depths)
@@ -47,11 +46,30 @@ def side_by_side(rigid: DetectionResult | None, elastic: DetectionResult) -> lis
         f"{elastic.detection_probability:g} ({_scatter_words(elastic)}):", "", *rows, "",
         "They differ because the rigid-ring model has no mode of the ring's own: there the "
         "crack acts only through the ring body's c_ru, c_r in series with a soft mounting "
-        "and through one tooth pair's c_rp, which hardly move the lumped modes. The elastic "
-        "ring's coupled modes with nodal diameters 2-5 and breathing lie "
-        + (f"from {lowest:.0f} Hz on, " if lowest is not None else "")
-        + "below and inside the watched band, and the crack, cutting the rim they bend, "
-        f"moves them tens to hundreds of Hz: {best}.{added}", ""]
+        "and through one tooth pair's c_rp, which hardly move the lumped modes. "
+        + ring_modes_sentence(elastic, validity)
+        + f" The crack, cutting the rim they bend, moves them: {best}.{added}", ""]
+
+
+def ring_modes_sentence(elastic: DetectionResult, validity=None) -> str:
+    """Where the elastic ring's modes of the ring's own lie, read from the list the report
+    prints: the validity band's ring modes (``validity.ring_modes``), or without a band
+    the modes classed 'ring' (the ring holds the largest kinetic-energy share)."""
+    if validity is not None:
+        found = sorted((m.frequency_hz, m.nodal_diameter) for m in validity.ring_modes)
+        where = "listed with the validity band below"
+    else:
+        found = sorted((f, n) for f, n, kind in zip(elastic.intact_hz,
+                                                   elastic.detail.nodal_diameter,
+                                                   elastic.detail.kind) if kind == "ring")
+        where = "class 'ring' in the mode table"
+    if not found:
+        return ("The elastic ring has no coupled mode of the ring's own in its band "
+                f"({where}).")
+    diameters = sorted({int(n) for _, n in found})
+    return (f"The elastic ring's {len(found)} coupled modes of the ring's own ({where}; "
+            f"nodal diameters {', '.join(str(n) for n in diameters)}) lie from "
+            f"{found[0][0]:.0f} Hz on.")
 
 
 def _scatter_words(elastic: DetectionResult) -> str:
