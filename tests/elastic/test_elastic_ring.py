@@ -187,6 +187,7 @@ def test_mounting_refused_by_name():
         ring_body(None, None, mounting="nailed")
 
 
+@pytest.mark.slow
 def test_modes_rigid_is_the_spectrum_command():
     """``hubvib modes --ring rigid`` gives what ``hubvib spectrum`` gives, mode for mode."""
     code, modes, _ = run_cli(["modes", "--ring", "rigid", "--json"])
