@@ -39,8 +39,9 @@ class PadVariant:
     record length [s] -> the POD crossing in words on ``depths`` (scene's tooth, the
     counterpart); ``watched``, ``other_watched``: each one's alarm family (labels);
     ``shift_hz``, ``other_shift_hz``: per depth the record change of each one's best
-    watched mode [Hz]; ``samples``: Monte Carlo reducers behind the POD; ``how``: how
-    the depths were chosen, in words."""
+    watched mode [Hz]; ``sigma_hz``, ``other_sigma_hz``: that mode's identification
+    scatter with records of ``record_length`` [Hz] [s]; ``samples``: Monte Carlo
+    reducers behind the POD; ``how``: how the depths were chosen, in words."""
 
     scene_tooth: PadPosition
     other_tooth: PadPosition
@@ -52,6 +53,9 @@ class PadVariant:
     shift_hz: tuple
     other_shift_hz: tuple
     samples: int
+    sigma_hz: float = float("nan")
+    other_sigma_hz: float = float("nan")
+    record_length: float = float("nan")
     how: str = PAD_SOLVED
 
     @property
@@ -66,26 +70,38 @@ class PadVariant:
         return self.answer if position is self.scene_tooth else self.other_answer
 
     def to_dict(self) -> dict:
-        def side(position, answer, watched, shift):
+        def side(position, answer, watched, shift, sigma):
             return dict(position.to_dict(), place=position.place,
                         scene_tooth=position is self.scene_tooth,
                         answer={f"{t:g}": words for t, words in answer.items()},
                         watched=list(watched),
-                        best_watched_shift_hz=[finite_or_none(x) for x in shift])
+                        best_watched_shift_hz=[finite_or_none(x) for x in shift],
+                        best_watched_sigma_hz=finite_or_none(sigma))
 
         return {"depths_mm": [1e3 * d for d in self.depths], "depths_chosen": self.how,
                 "monte_carlo_samples": self.samples,
-                "variants": [side(self.scene_tooth, self.answer, self.watched, self.shift_hz),
+                "sigma_record_length_s": finite_or_none(self.record_length),
+                "variants": [side(self.scene_tooth, self.answer, self.watched, self.shift_hz,
+                                  self.sigma_hz),
                              side(self.other_tooth, self.other_answer, self.other_watched,
-                                  self.other_shift_hz)]}
+                                  self.other_shift_hz, self.other_sigma_hz)]}
 
 
-def _best_shift(result) -> tuple:
-    """Per depth the record change of ``result``'s best watched mode [Hz]."""
+def _best_shift(result, index=None) -> tuple:
+    """Per depth (of ``index``, default all) the record change of ``result``'s best
+    watched mode [Hz]."""
+    index = range(len(result.depths)) if index is None else index
     if not result.watched:
-        return tuple(np.nan for _ in result.depths)
+        return tuple(np.nan for _ in index)
     i = result.watched[0]
-    return tuple(float(x) for x in result.frequency_hz[:, i] - result.frequency_hz[0, i])
+    return tuple(float(result.frequency_hz[k, i] - result.frequency_hz[0, i]) for k in index)
+
+
+def _best_sigma(result, record_length: float) -> float:
+    """The identification scatter of ``result``'s best watched mode [Hz]."""
+    if not result.watched or record_length not in result.sigma_hz:
+        return float("nan")
+    return float(result.sigma_hz[record_length][result.watched[0]])
 
 
 def pad_variant(design, crack_of, scene, options, main, depths, ring) -> PadVariant:
@@ -127,15 +143,13 @@ def pad_variant(design, crack_of, scene, options, main, depths, ring) -> PadVari
     index = [list(main.depths).index(d) for d in solved]
     answer = {t: bracket(solved, np.asarray(main.pod[t])[index],
                          main.detection_probability).words() for t in main.lengths}
-    best = main.watched[0] if main.watched else None
-    shift = (tuple(np.nan for _ in solved) if best is None else
-             tuple(float(main.frequency_hz[k, best] - main.frequency_hz[0, best])
-                   for k in index))
+    length = options.record_length
     return PadVariant(
         crack_position(ring, reference), crack_position(ring, moved(depths[-1])),
         tuple(solved), answer, {t: result.answer(t) for t in result.lengths},
-        tuple(main.watched_labels()), tuple(result.watched_labels()), shift,
-        _best_shift(result), result.samples)
+        tuple(main.watched_labels()), tuple(result.watched_labels()),
+        _best_shift(main, index), _best_shift(result), result.samples,
+        _best_sigma(main, length), _best_sigma(result, length), float(length))
 
 
 def _record_lengths() -> tuple:

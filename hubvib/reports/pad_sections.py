@@ -37,12 +37,19 @@ def pad_variant_lines(variant, main=None) -> list[str]:
                     + " | ".join(answer.get(t, "-") for t in lengths) + " |")
     rows.append("")
     deepest = 1e3 * variant.depths[-1]
+
+    def change(shift, sigma, watched) -> str:
+        against = (f", {abs(shift) / sigma:.3g} times its {variant.record_length:g} s "
+                   f"scatter of {sigma:.2f} Hz" if math.isfinite(sigma) and sigma > 0
+                   and math.isfinite(shift) else "")
+        return f"{_hz(shift)} ({watched[0] if watched else '-'}{against})"
+
     rows.append(
         f"Record change of each one's best watched mode at {deepest:g} mm: "
-        f"{_hz(variant.shift_hz[-1])} ({variant.watched[0] if variant.watched else '-'}) "
-        f"with the scene's tooth, {_hz(variant.other_shift_hz[-1])} "
-        f"({variant.other_watched[0] if variant.other_watched else '-'}) with tooth "
-        f"{variant.other_tooth.tooth}.")
+        f"{change(variant.shift_hz[-1], variant.sigma_hz, variant.watched)} with the "
+        f"scene's tooth {variant.scene_tooth.tooth}, "
+        f"{change(variant.other_shift_hz[-1], variant.other_sigma_hz, variant.other_watched)}"
+        f" with tooth {variant.other_tooth.tooth}.")
     if main is not None:
         rows.append("With the depths added to resolve it, the scene's tooth gives: "
                     + "; ".join(f"{t:g} s: {main.answer(t)}" for t in lengths if t in main.pod)
