@@ -27,7 +27,7 @@ __all__ = ["PadVariant", "pad_variant", "PAD_SOLVED"]
 
 #: how the counterpart's depths are chosen, in words
 PAD_SOLVED = ("the scene's depths only, shallowest first, until every record length's "
-              "POD crossing is found (no depths added between them)")
+              "POD crossing is found; no depths added between them")
 
 
 @dataclass(frozen=True)

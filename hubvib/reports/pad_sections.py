@@ -26,7 +26,7 @@ def pad_variant_lines(variant, main=None) -> list[str]:
             "at the tooth of the other relation to them, the sensor as far from the cracked "
             "tooth, the planets placed from it: where the family POD crosses the required "
             f"probability on the depths {depths} mm ({variant.how}; "
-            f"{variant.samples} Monte Carlo reducers):", "",
+            f"{variant.samples} Monte Carlo reducers, as the main answer):", "",
             "| crack | tooth (crack mouth) | " + " | ".join(f"{t:g} s records" for t in lengths)
             + " |", "|---|---:|" + "---|" * len(lengths)]
     for position in (variant.on_pad, variant.between):
