@@ -144,9 +144,9 @@ SCHEMA = Schema("elastic", (
           doc="also the elastic ring's smallest detectable depth against the foundation "
           "stiffness (x 0.1 .. 100; needs mounting foundation)"),
     Field("pad_variant", "bool", default=False,
-          doc="also the smallest detectable depth with the crack at the nearest tooth of the "
-          "other relation to the support pads (between pads for a crack on a pad, and the "
-          "reverse), on the sweep's depths (needs a ring on pads)"),
+          doc="also the smallest detectable depth with the crack moved to the middle of the "
+          "gap beside its support pad (or, between pads, to the middle of the nearest pad), "
+          "on the sweep's depths (needs a ring on pads)"),
 ))
 
 
