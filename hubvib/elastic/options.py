@@ -91,7 +91,10 @@ class ElasticScene:
     (``hubvib.detection.elastic_map``; one reduced ring per crack depth); ``crack_load``:
     ``"working"`` (the crack's faces opening and closing under the design's sun torque as
     the planets pass, and the spectrum a record sees of it) or ``"open"`` (the faces free
-    at every moment, planet 1 half a planet pitch away: an upper bound of the change).
+    at every moment, planet 1 half a planet pitch away: an upper bound of the change);
+    ``pad_variant``: also the answer with the crack at the tooth of the other relation to
+    the support pads (between pads for a crack on one, and the reverse;
+    ``hubvib.detection.pad_variant``), on the sweep's depths.
     """
 
     ring: str = "rigid"
@@ -100,6 +103,7 @@ class ElasticScene:
                                                                            cutoff_factor=2.0))
     map: bool = False
     crack_load: str = "working"
+    pad_variant: bool = False
 
     @property
     def elastic(self) -> bool:
@@ -139,6 +143,10 @@ SCHEMA = Schema("elastic", (
     Field("map", "bool", default=False,
           doc="also the elastic ring's smallest detectable depth against the foundation "
           "stiffness (x 0.1 .. 100; needs mounting foundation)"),
+    Field("pad_variant", "bool", default=False,
+          doc="also the smallest detectable depth with the crack moved to the middle of the "
+          "gap beside its support pad (or, between pads, to the middle of the nearest pad), "
+          "on the sweep's depths (needs a ring on pads)"),
 ))
 
 
@@ -158,4 +166,4 @@ def parse_elastic_table(table: dict) -> ElasticScene:
         raise SceneError(f"[elastic] map = true scales the foundation: it needs mounting = "
                          f"foundation (not {options.mounting})")
     return ElasticScene(values["ring"], values["sensor_angle"], options, values["map"],
-                        values["crack_load"])
+                        values["crack_load"], values["pad_variant"])

@@ -79,6 +79,9 @@ def crack_report(result, plots: list[str], renders: list[str], fe_renders: list[
         from hubvib.reports.elastic_sections import load_sensitivity_lines
 
         lines += load_sensitivity_lines(result.load_sensitivity, result.elastic.record_length)
+        from hubvib.reports.pad_sections import pad_variant_lines
+
+        lines += pad_variant_lines(result.pad_variant, result.elastic)
     if result.elastic_map is not None:
         from hubvib.reports.elastic_map_sections import map_section
 

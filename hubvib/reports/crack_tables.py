@@ -86,6 +86,9 @@ def write_crack_tables(result, folder: Path) -> list[Path]:
         "load_sensitivity": [v.to_dict() for v in result.load_sensitivity] or None,
         "load_sensitivity_reason": (None if result.load_sensitivity else
                                     "the elastic ring did not run on a mounted ring"),
+        "pad_variant": None if result.pad_variant is None else result.pad_variant.to_dict(),
+        "pad_variant_reason": (None if result.pad_variant is not None else
+                               result.pad_variant_reason),
         "elastic_map": None if result.elastic_map is None else result.elastic_map.rows(),
         "elastic_map_reason": (None if result.elastic_map is not None else
                                "the elastic ring did not run" if result.elastic is None else

@@ -56,6 +56,8 @@ class CrackStudyResult:
     elastic_map: object = None  # hubvib.detection.elastic_map.ElasticMap, ``[elastic] map``
     mode_map: tuple = ()  # hubvib.detection.mode_map.ModePair per elastic mode
     load_sensitivity: tuple = ()  # hubvib.detection.load_sensitivity.LoadVariant each
+    pad_variant: object = None  # hubvib.detection.pad_variant.PadVariant, [elastic] pad_variant
+    pad_variant_reason: str = "the elastic ring did not run"  # why ``pad_variant`` is None
 
     @cached_property
     def rigid(self):

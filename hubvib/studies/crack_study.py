@@ -34,7 +34,8 @@ from hubvib.runtime.stage_seconds import timed
 from hubvib.studies.crack_result import CrackStudyResult
 from hubvib.studies.crack_table import crack_model, parse_crack_table, refuse_sweep_keys
 from hubvib.studies.elastic_stage import (begin_elastic, elastic_load_sensitivity,
-                                          elastic_map_of, finish_elastic)
+                                          elastic_map_of, elastic_pad_variant,
+                                          finish_elastic)
 from hubvib.studies.kind_registry import Scene, Study
 
 __all__ = ["CRACK_STUDY", "CrackStudyResult", "crack_study_from_fe", "run_crack_study"]
@@ -143,6 +144,8 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
                 result.mode_map = _mode_map(result, cases[0])
                 result.load_sensitivity = elastic_load_sensitivity(scene, result.elastic,
                                                                    cases)
+                result.pad_variant, result.pad_variant_reason = elastic_pad_variant(
+                    scene, result.elastic)
                 result.elastic_map = elastic_map_of(scene, result.elastic)
             stage(f"elastic ring ({len(result.elastic.depths)} depths)", started)
         started = time.perf_counter()

@@ -12,7 +12,8 @@ from hubvib.runtime.engines import EngineError, Execution, run_cases, submit
 from hubvib.studies.kind_registry import Scene
 
 __all__ = ["begin_elastic", "elastic_depths", "elastic_load_sensitivity", "elastic_map_of",
-           "finish_elastic", "refine_elastic", "THROUGH_RIM", "left_out_depths"]
+           "elastic_pad_variant", "finish_elastic", "refine_elastic", "THROUGH_RIM",
+           "left_out_depths"]
 
 #: why the elastic ring leaves a depth out
 THROUGH_RIM = ("through the rim: the ring is opened, its modes no longer continue the intact "
@@ -117,10 +118,42 @@ def elastic_load_sensitivity(scene: Scene, elastic, cases: list) -> tuple:
                             _elastic_scene(scene), detection_options(scene), cases)
 
 
+def elastic_pad_variant(scene: Scene, elastic) -> tuple:
+    """``(variant, reason)``: the elastic ring's answer with the crack on a support pad and
+    between pads (``detection.pad_variant.PadVariant``) on the sweep's depths, beside
+    ``elastic`` (the refined answer); ``(None, why not)`` when the scene
+    does not ask for it (``[elastic] pad_variant``) or the ring has no pads to move the
+    crack against."""
+    from hubvib.meshing.crack import Crack
+
+    es = _elastic_scene(scene)
+    if es is None or elastic is None:
+        return None, "the elastic ring did not run"
+    if not es.pad_variant:
+        return None, "the scene's [elastic] pad_variant is false"
+    sweep = scene.crack
+    ring = ring_gear(sweep.reducer)
+    if ring.supports.count == 0:
+        return None, "the ring is held all round its outer surface: it has no pads"
+    if es.options.mounting == "free":
+        return None, "the elastic ring is free ([elastic] mounting): no pad holds it"
+    depths = elastic_depths(sweep)
+    if len(depths) < 2 or depths[0] != 0:
+        return None, "the sweep has no crack depth the elastic ring is solved at"
+    if not isinstance(crack_of(sweep, depths[-1]), Crack):
+        return None, "the sweep's crack follows a predicted path, computed for its own tooth"
+    from hubvib.detection.options import detection_options
+    from hubvib.detection.pad_variant import pad_variant
+
+    return pad_variant(sweep.reducer, lambda d: crack_of(sweep, d), es,
+                       detection_options(scene), elastic, depths, ring), ""
+
+
 def elastic_map_of(scene: Scene, elastic):
     """The elastic ring's detectability against the foundation scale when ``[elastic]
     map`` asks (else None), a ``detection.mounting_map.MountingMap`` (its rings through
-    the result cache) over the sweep's depths (those the elastic ring is solved at)."""
+    the result cache) over the depths of ``elastic`` (the elastic ring's refined answer:
+    the sweep's depths the ring is solved at and those added to resolve its crossing)."""
     es = _elastic_scene(scene)
     if not es.map:
         return None
@@ -129,7 +162,7 @@ def elastic_map_of(scene: Scene, elastic):
     from hubvib.detection.pod import family_pod
 
     sweep = scene.crack
-    mounting = ElasticMounting(sweep.reducer, elastic_depths(sweep),
+    mounting = ElasticMounting(sweep.reducer, tuple(elastic.depths),
                                lambda d: crack_of(sweep, d), es, pod=family_pod,
                                k_rest=elastic.detail.k_rest)
     return mounting.mounting_map(detection_options(scene))
