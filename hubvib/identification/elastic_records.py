@@ -230,8 +230,8 @@ def model_spectrum(elastic_cases_or_model):
 
 
 def identify_elastic_records(record: Record, baseline_record: Record, elastic_cases_or_model,
-                             sensor_angle: float, damping_ratio: float = 0.02
-                             ) -> ElasticRecordInput:
+                             sensor_angle: float, damping_ratio: float = 0.02,
+                             record_hz=None) -> ElasticRecordInput:
     """The elastic model's modes identified in a record now and in the intact baseline.
 
     Parameters
@@ -247,6 +247,12 @@ def identify_elastic_records(record: Record, baseline_record: Record, elastic_ca
         cracked tooth's centre line ``2 pi k / z`` plus ``[elastic] sensor_angle_deg``).
     damping_ratio : float
         Modal damping assumed for the bands [-].
+    record_hz : array_like or None
+        The frequency each model mode shows in a record of the running reducer [Hz], in
+        the model's order (the Floquet modes over the mesh cycle,
+        ``hubvib.signal.elastic_floquet``; NaN or missing entries: the model's): the
+        bands, the fit's starting point and ``model_hz`` use it.  None: the model's
+        frequencies (mesh stiffnesses at their means).
 
     Returns
     -------
@@ -254,6 +260,11 @@ def identify_elastic_records(record: Record, baseline_record: Record, elastic_ca
         Rows in the model's mode order, each named by its group's strongest mode.
     """
     predicted, probe = model_spectrum(elastic_cases_or_model)
+    if record_hz is not None:
+        predicted = predicted.copy()
+        shown = np.asarray(record_hz, dtype=float)[:predicted.size]
+        known = np.isfinite(shown)
+        predicted[:shown.size][known] = shown[known]
     visibility = radial_visibility(probe, sensor_angle)
     bands, unseen = mode_bands(predicted, visibility, damping_ratio)
     groups = [g for peaks in bands for g in peaks]
@@ -294,13 +305,15 @@ def model_peaks(elastic_spectrum_or_case, sensor_angle: float, damping_ratio: fl
     return out
 
 
-def scene_record_input(scene, record_path, baseline_path, damping_ratio: float | None = None
-                       ) -> ElasticRecordInput:
+def scene_record_input(scene, record_path, baseline_path, damping_ratio: float | None = None,
+                       record_shift_hz=None) -> ElasticRecordInput:
     """:func:`identify_elastic_records` for a crack scene's elastic ring: the records read
     from files (CSV, WAV, UFF 58), the intact model the scene's cached elastic case (planet
     1 half a planet pitch from the cracked tooth), the sensor at ``[elastic]
     sensor_angle_deg`` from the cracked tooth's centre line, the damping the scene's
-    ``[signal] damping_ratio`` unless given."""
+    ``[signal] damping_ratio`` unless given; ``record_shift_hz``: per model mode, how far
+    the running reducer's mesh cycle moves the frequency a record shows [Hz]
+    (``hubvib.signal.elastic_record.scene_floquet_shift``; None: not at all)."""
     from hubvib.elastic.cases import cached_case
     from hubvib.elastic.rest import rest_stiffness
     from hubvib.reducer.stages import ring_gear
@@ -320,4 +333,10 @@ def scene_record_input(scene, record_path, baseline_path, damping_ratio: float |
                                                                      elastic.options.rest))
     angle = 2 * math.pi * tooth / ring_gear(scene.design).teeth + elastic.sensor_angle
     zeta = scene.signal.damping_ratio if damping_ratio is None else float(damping_ratio)
-    return identify_elastic_records(record, baseline, case, angle, zeta)
+    record_hz = None
+    if record_shift_hz is not None:
+        predicted, _ = model_spectrum(case)
+        shift = np.asarray(record_shift_hz, dtype=float)[:predicted.size]
+        record_hz = predicted.copy()
+        record_hz[:shift.size] += np.where(np.isfinite(shift), shift, 0.0)
+    return identify_elastic_records(record, baseline, case, angle, zeta, record_hz)

@@ -33,6 +33,12 @@ from .mesh_curves import MeshCurves
 from .mesh_phase import MeshPhasing
 
 
+#: sub-intervals of the mesh period per harmonic up to the highest kept mode
+STEPS_PER_HARMONIC = 2
+#: fewest sub-intervals of the mesh period
+MIN_STEPS = 64
+
+
 @dataclass(frozen=True)
 class FloquetModes:
     """Per kept mean-stiffness mode (the model's order), the frequency and damping of the
@@ -49,12 +55,15 @@ class FloquetModes:
         The mean-stiffness (eigen model) frequency of each mode at the position [Hz].
     mesh_hz : float
         The mesh frequency [Hz].
+    exponents : ndarray (2 m,)
+        Every Floquet exponent ``log(mu) / T`` (principal logarithm) [1/s].
     """
 
     frequency_hz: np.ndarray
     damping_ratio: np.ndarray
     mean_hz: np.ndarray
     mesh_hz: float
+    exponents: np.ndarray
 
     def record_hz(self) -> np.ndarray:
         """The record frequency of every mode, the mean-stiffness one where no Floquet
@@ -63,7 +72,8 @@ class FloquetModes:
 
 
 def floquet_modes(model: ElasticTimeModel, curves: MeshCurves, phasing: MeshPhasing,
-                  carrier_speed: float, position: int, steps: int = 400) -> FloquetModes:
+                  carrier_speed: float, position: int, steps: int | None = None
+                  ) -> FloquetModes:
     """The Floquet modes of the kept modes at carrier ``position`` over one mesh period.
 
     Parameters
@@ -75,16 +85,24 @@ def floquet_modes(model: ElasticTimeModel, curves: MeshCurves, phasing: MeshPhas
         [rad/s], > 0: the mesh period is one ring tooth pitch of carrier travel.
     position : int
         Carrier position (planet 1 on this ring tooth), 0 <= position < teeth.
-    steps : int
-        Sub-intervals of the mesh period, >= 8.
+    steps : int or None
+        Sub-intervals of the mesh period, >= 8 and enough to hold the highest kept mode's
+        harmonic; None: ``STEPS_PER_HARMONIC`` per harmonic of the mesh frequency up to the
+        highest kept mode, at least ``MIN_STEPS``.
     """
     if not (math.isfinite(carrier_speed) and carrier_speed > 0):
         raise ValueError(f"carrier_speed = {carrier_speed!r} rad/s; allowed: > 0 (a standing "
                          "carrier has no mesh cycle: its modes are the eigen model's)")
     if not 0 <= position < model.teeth:
         raise ValueError(f"position = {position!r}; allowed: 0 .. {model.teeth - 1}")
-    if steps < 8:
-        raise ValueError(f"steps = {steps!r}; allowed: >= 8")
+    mesh_hz = carrier_speed * model.teeth / (2 * math.pi)
+    needed = 2 * int(math.ceil(model.omega[position, model.kept - 1] / (2 * math.pi)
+                               / mesh_hz)) + 2
+    if steps is None:
+        steps = max(MIN_STEPS, STEPS_PER_HARMONIC * needed)
+    if steps < max(8, needed):
+        raise ValueError(f"steps = {steps!r}; allowed: >= {max(8, needed)} (the highest "
+                         "kept mode's harmonic of the mesh frequency)")
     from hubvib.foundation.blas import blas_threads
 
     with blas_threads(1):
@@ -127,4 +145,4 @@ def _floquet(model, curves, phasing, speed, p, steps):
         if not np.isfinite(frequency[j]) or abs(f - mean_hz[j]) < abs(frequency[j] - mean_hz[j]):
             frequency[j] = f
             zeta[j] = -pole.real / abs(pole)
-    return FloquetModes(frequency, zeta, mean_hz, 1.0 / period)
+    return FloquetModes(frequency, zeta, mean_hz, 1.0 / period, s)
