@@ -169,16 +169,20 @@ def mode_bands(predicted_hz, visibility, damping_ratio: float) -> tuple[list, di
 
 
 def identify_bands(record: Record, bands: list, skipped: dict,
-                   damping_ratio: float) -> ModeIdentification:
+                   damping_ratio: float, starts: dict | None = None,
+                   fits: dict | None = None) -> ModeIdentification:
     """Fit every band's peaks together (:func:`.multimode.identify_band`, lines notched);
-    indexed by each peak's naming mode, the other members skipped with the reason."""
+    indexed by each peak's naming mode, the other members skipped with the reason.
+    ``starts``: band number -> another record's fit of it, the start of this one's (the
+    baseline's, so that a record that differs a little lands in the same optimum);
+    ``fits``: if given, filled with band number -> this record's fit."""
     from .bfft import IdentificationError, IdentifiedMode
     from .multimode import identify_band
 
     skipped, helps = dict(skipped), {}
     found = {}
     nyquist = 0.5 * record.sample_rate
-    for peaks in bands:
+    for number, peaks in enumerate(bands):
         for g in peaks:
             for other in g.members[1:]:
                 skipped[other] = (f"one peak with mode {g.mode + 1} at the sensor (closer "
@@ -193,12 +197,14 @@ def identify_bands(record: Record, bands: list, skipped: dict,
             continue
         try:
             fit = identify_band(record.values, record.sample_rate, guesses, damping_ratio,
-                                low, high)
+                                low, high, start=(starts or {}).get(number))
         except IdentificationError as exc:
             for g in peaks:
                 skipped[g.mode] = str(exc)
                 helps[g.mode] = MORE_FORCING
             continue
+        if fits is not None:
+            fits[number] = fit
         order = np.argsort(guesses)
         for g, j in zip((peaks[i] for i in order), range(len(peaks))):
             if g.mode in skipped:  # fitted, not seen
@@ -268,8 +274,9 @@ def identify_elastic_records(record: Record, baseline_record: Record, elastic_ca
     visibility = radial_visibility(probe, sensor_angle)
     bands, unseen = mode_bands(predicted, visibility, damping_ratio)
     groups = [g for peaks in bands for g in peaks]
-    now = identify_bands(record, bands, unseen, damping_ratio)
-    intact = identify_bands(baseline_record, bands, unseen, damping_ratio)
+    fits = {}
+    intact = identify_bands(baseline_record, bands, unseen, damping_ratio, fits=fits)
+    now = identify_bands(record, bands, unseen, damping_ratio, starts=fits)
     pick_now = dict(zip(now.index, now.modes))
     pick_intact = dict(zip(intact.index, intact.modes))
     common = sorted(i for i in now.index if i in pick_intact)
