@@ -10,7 +10,12 @@ is identified as one mode (:mod:`.bfft`, the spectral lines of the running reduc
 out: mesh orders, planet-pass sidebands and shaft orders are deterministic lines at
 multiples of the carrier frequency, not modes), named by its member strongest at the sensor,
 and its model frequency is where the model's sensor spectrum peaks (:func:`group_peak`,
-every mode under the same white modal force, ASSUMED).
+every mode under the same white modal force, ASSUMED).  A running reducer's record shows
+its modes where the mesh cycle puts them (the Floquet modes, ``hubvib.signal.elastic_floquet``:
+up to hundreds of hertz from the mean-stiffness model on the Raba ring's 4.7-9 kHz modes);
+given those (``record_hz``), the bands, the fits' starting points and the model
+frequencies reported use them.  The record now is fitted from the baseline record's fit of
+each band, so that both land in the same optimum of a likelihood with several.
 
 :func:`identify_elastic_records` returns, for every group identified in both records, the
 frequency now, the baseline frequency and the identification scatter (root mean square of
