@@ -325,7 +325,8 @@ def scene_record_input(scene, record_path, baseline_path, damping_ratio: float |
     sensor_angle_deg`` from the cracked tooth's centre line, the damping the scene's
     ``[signal] damping_ratio`` unless given; ``record_shift_hz``: per model mode, how far
     the running reducer's mesh cycle moves the frequency a record shows [Hz]
-    (``hubvib.signal.elastic_record.scene_floquet_shift``; None: not at all)."""
+    (``hubvib.signal.elastic_record.scene_floquet_shift``), or a function of no argument
+    returning it (called once the records are read); None: not at all."""
     from hubvib.elastic.cases import cached_case
     from hubvib.elastic.rest import rest_stiffness
     from hubvib.reducer.stages import ring_gear
@@ -348,6 +349,8 @@ def scene_record_input(scene, record_path, baseline_path, damping_ratio: float |
     record_hz = None
     if record_shift_hz is not None:
         predicted, _ = model_spectrum(case)
+        if callable(record_shift_hz):
+            record_shift_hz = record_shift_hz()
         shift = np.asarray(record_shift_hz, dtype=float)[:predicted.size]
         record_hz = predicted.copy()
         record_hz[:shift.size] += np.where(np.isfinite(shift), shift, 0.0)
