@@ -173,6 +173,16 @@ def mode_bands(predicted_hz, visibility, damping_ratio: float) -> tuple[list, di
     return bands, skipped
 
 
+def rotating_pairs(frequency_hz, damping_ratio: float) -> set:
+    """Modes (0-based) with another mode closer than ``MERGE`` half-power bandwidths
+    ``2 zeta f``: the near-degenerate pairs of the ring, whose shapes turn with the
+    planets."""
+    f = np.asarray(frequency_hz, dtype=float)
+    close = np.abs(f[:, None] - f[None, :]) < MERGE * 2 * damping_ratio * f[:, None]
+    np.fill_diagonal(close, False)
+    return set(int(i) for i in np.flatnonzero(close.any(axis=1)))
+
+
 def identify_bands(record: Record, bands: list, skipped: dict,
                    damping_ratio: float, starts: dict | None = None,
                    fits: dict | None = None) -> ModeIdentification:
@@ -242,7 +252,7 @@ def model_spectrum(elastic_cases_or_model):
 
 def identify_elastic_records(record: Record, baseline_record: Record, elastic_cases_or_model,
                              sensor_angle: float, damping_ratio: float = 0.02,
-                             record_hz=None) -> ElasticRecordInput:
+                             record_hz=None, turning: bool = False) -> ElasticRecordInput:
     """The elastic model's modes identified in a record now and in the intact baseline.
 
     Parameters
@@ -264,6 +274,12 @@ def identify_elastic_records(record: Record, baseline_record: Record, elastic_ca
         ``hubvib.signal.elastic_floquet``; NaN or missing entries: the model's): the
         bands, the fit's starting point and ``model_hz`` use it.  None: the model's
         frequencies (mesh stiffnesses at their means).
+    turning : bool
+        The records are of a running reducer (the carrier turning): a mode with another
+        model mode within ``MERGE`` half-power bandwidths (a near-degenerate pair, split by
+        the planets, whatever either's visibility) is fitted with its band but not
+        reported: the carrier turns the pair's shapes past the fixed sensor, which sees
+        its peak modulated at the planet-pass frequency.
 
     Returns
     -------
@@ -271,6 +287,7 @@ def identify_elastic_records(record: Record, baseline_record: Record, elastic_ca
         Rows in the model's mode order, each named by its group's strongest mode.
     """
     predicted, probe = model_spectrum(elastic_cases_or_model)
+    paired = rotating_pairs(predicted, damping_ratio) if turning else set()
     if record_hz is not None:
         predicted = predicted.copy()
         shown = np.asarray(record_hz, dtype=float)[:predicted.size]
@@ -278,6 +295,10 @@ def identify_elastic_records(record: Record, baseline_record: Record, elastic_ca
         predicted[:shown.size][known] = shown[known]
     visibility = radial_visibility(probe, sensor_angle)
     bands, unseen = mode_bands(predicted, visibility, damping_ratio)
+    for i in paired:
+        unseen.setdefault(i, "one of a near-degenerate pair: the turning carrier turns its "
+                             "shapes past the sensor, which sees the peak modulated at the "
+                             "planet-pass frequency")
     groups = [g for peaks in bands for g in peaks]
     fits = {}
     intact = identify_bands(baseline_record, bands, unseen, damping_ratio, fits=fits)
@@ -354,4 +375,5 @@ def scene_record_input(scene, record_path, baseline_path, damping_ratio: float |
         shift = np.asarray(record_shift_hz, dtype=float)[:predicted.size]
         record_hz = predicted.copy()
         record_hz[:shift.size] += np.where(np.isfinite(shift), shift, 0.0)
-    return identify_elastic_records(record, baseline, case, angle, zeta, record_hz)
+    return identify_elastic_records(record, baseline, case, angle, zeta, record_hz,
+                                    turning=scene.signal.sun_speed_rpm > 0)
