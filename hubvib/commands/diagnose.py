@@ -137,8 +137,12 @@ def _elastic_record_measured(scene, record: Path, baseline: Path):
 
     from hubvib.detection.measured import Measured
     from hubvib.identification.elastic_records import scene_record_input
+    from hubvib.signal.elastic_record import scene_floquet_shift
 
-    found = scene_record_input(scene, record, baseline)
+    # a running reducer's record shows the Floquet modes over the mesh cycle, not the
+    # mean-stiffness ones
+    found = scene_record_input(scene, record, baseline,
+                               record_shift_hz=lambda: scene_floquet_shift(scene))
     zeta = scene.signal.damping_ratio
     model = np.asarray(found.model_hz, dtype=float)
     # a peak of the intact record further from the model's mode than the mode's half-power

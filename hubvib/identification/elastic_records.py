@@ -10,7 +10,12 @@ is identified as one mode (:mod:`.bfft`, the spectral lines of the running reduc
 out: mesh orders, planet-pass sidebands and shaft orders are deterministic lines at
 multiples of the carrier frequency, not modes), named by its member strongest at the sensor,
 and its model frequency is where the model's sensor spectrum peaks (:func:`group_peak`,
-every mode under the same white modal force, ASSUMED).
+every mode under the same white modal force, ASSUMED).  A running reducer's record shows
+its modes where the mesh cycle puts them (the Floquet modes, ``hubvib.signal.elastic_floquet``:
+up to hundreds of hertz from the mean-stiffness model on the Raba ring's 4.7-9 kHz modes);
+given those (``record_hz``), the bands, the fits' starting points and the model
+frequencies reported use them.  The record now is fitted from the baseline record's fit of
+each band, so that both land in the same optimum of a likelihood with several.
 
 :func:`identify_elastic_records` returns, for every group identified in both records, the
 frequency now, the baseline frequency and the identification scatter (root mean square of
@@ -168,17 +173,31 @@ def mode_bands(predicted_hz, visibility, damping_ratio: float) -> tuple[list, di
     return bands, skipped
 
 
+def rotating_pairs(frequency_hz, damping_ratio: float) -> set:
+    """Modes (0-based) with another mode closer than ``MERGE`` half-power bandwidths
+    ``2 zeta f``: the near-degenerate pairs of the ring, whose shapes turn with the
+    planets."""
+    f = np.asarray(frequency_hz, dtype=float)
+    close = np.abs(f[:, None] - f[None, :]) < MERGE * 2 * damping_ratio * f[:, None]
+    np.fill_diagonal(close, False)
+    return set(int(i) for i in np.flatnonzero(close.any(axis=1)))
+
+
 def identify_bands(record: Record, bands: list, skipped: dict,
-                   damping_ratio: float) -> ModeIdentification:
+                   damping_ratio: float, starts: dict | None = None,
+                   fits: dict | None = None) -> ModeIdentification:
     """Fit every band's peaks together (:func:`.multimode.identify_band`, lines notched);
-    indexed by each peak's naming mode, the other members skipped with the reason."""
+    indexed by each peak's naming mode, the other members skipped with the reason.
+    ``starts``: band number -> another record's fit of it, the start of this one's (the
+    baseline's, so that a record that differs a little lands in the same optimum);
+    ``fits``: if given, filled with band number -> this record's fit."""
     from .bfft import IdentificationError, IdentifiedMode
     from .multimode import identify_band
 
     skipped, helps = dict(skipped), {}
     found = {}
     nyquist = 0.5 * record.sample_rate
-    for peaks in bands:
+    for number, peaks in enumerate(bands):
         for g in peaks:
             for other in g.members[1:]:
                 skipped[other] = (f"one peak with mode {g.mode + 1} at the sensor (closer "
@@ -193,12 +212,14 @@ def identify_bands(record: Record, bands: list, skipped: dict,
             continue
         try:
             fit = identify_band(record.values, record.sample_rate, guesses, damping_ratio,
-                                low, high)
+                                low, high, start=(starts or {}).get(number))
         except IdentificationError as exc:
             for g in peaks:
                 skipped[g.mode] = str(exc)
                 helps[g.mode] = MORE_FORCING
             continue
+        if fits is not None:
+            fits[number] = fit
         order = np.argsort(guesses)
         for g, j in zip((peaks[i] for i in order), range(len(peaks))):
             if g.mode in skipped:  # fitted, not seen
@@ -230,8 +251,8 @@ def model_spectrum(elastic_cases_or_model):
 
 
 def identify_elastic_records(record: Record, baseline_record: Record, elastic_cases_or_model,
-                             sensor_angle: float, damping_ratio: float = 0.02
-                             ) -> ElasticRecordInput:
+                             sensor_angle: float, damping_ratio: float = 0.02,
+                             record_hz=None, turning: bool = False) -> ElasticRecordInput:
     """The elastic model's modes identified in a record now and in the intact baseline.
 
     Parameters
@@ -247,6 +268,18 @@ def identify_elastic_records(record: Record, baseline_record: Record, elastic_ca
         cracked tooth's centre line ``2 pi k / z`` plus ``[elastic] sensor_angle_deg``).
     damping_ratio : float
         Modal damping assumed for the bands [-].
+    record_hz : array_like or None
+        The frequency each model mode shows in a record of the running reducer [Hz], in
+        the model's order (the Floquet modes over the mesh cycle,
+        ``hubvib.signal.elastic_floquet``; NaN or missing entries: the model's): the
+        bands, the fit's starting point and ``model_hz`` use it.  None: the model's
+        frequencies (mesh stiffnesses at their means).
+    turning : bool
+        The records are of a running reducer (the carrier turning): a mode with another
+        model mode within ``MERGE`` half-power bandwidths (a near-degenerate pair, split by
+        the planets, whatever either's visibility) is fitted with its band but not
+        reported: the carrier turns the pair's shapes past the fixed sensor, which sees
+        its peak modulated at the planet-pass frequency.
 
     Returns
     -------
@@ -254,11 +287,22 @@ def identify_elastic_records(record: Record, baseline_record: Record, elastic_ca
         Rows in the model's mode order, each named by its group's strongest mode.
     """
     predicted, probe = model_spectrum(elastic_cases_or_model)
+    paired = rotating_pairs(predicted, damping_ratio) if turning else set()
+    if record_hz is not None:
+        predicted = predicted.copy()
+        shown = np.asarray(record_hz, dtype=float)[:predicted.size]
+        known = np.isfinite(shown)
+        predicted[:shown.size][known] = shown[known]
     visibility = radial_visibility(probe, sensor_angle)
     bands, unseen = mode_bands(predicted, visibility, damping_ratio)
+    for i in paired:
+        unseen.setdefault(i, "one of a near-degenerate pair: the turning carrier turns its "
+                             "shapes past the sensor, which sees the peak modulated at the "
+                             "planet-pass frequency")
     groups = [g for peaks in bands for g in peaks]
-    now = identify_bands(record, bands, unseen, damping_ratio)
-    intact = identify_bands(baseline_record, bands, unseen, damping_ratio)
+    fits = {}
+    intact = identify_bands(baseline_record, bands, unseen, damping_ratio, fits=fits)
+    now = identify_bands(record, bands, unseen, damping_ratio, starts=fits)
     pick_now = dict(zip(now.index, now.modes))
     pick_intact = dict(zip(intact.index, intact.modes))
     common = sorted(i for i in now.index if i in pick_intact)
@@ -294,13 +338,16 @@ def model_peaks(elastic_spectrum_or_case, sensor_angle: float, damping_ratio: fl
     return out
 
 
-def scene_record_input(scene, record_path, baseline_path, damping_ratio: float | None = None
-                       ) -> ElasticRecordInput:
+def scene_record_input(scene, record_path, baseline_path, damping_ratio: float | None = None,
+                       record_shift_hz=None) -> ElasticRecordInput:
     """:func:`identify_elastic_records` for a crack scene's elastic ring: the records read
     from files (CSV, WAV, UFF 58), the intact model the scene's cached elastic case (planet
     1 half a planet pitch from the cracked tooth), the sensor at ``[elastic]
     sensor_angle_deg`` from the cracked tooth's centre line, the damping the scene's
-    ``[signal] damping_ratio`` unless given."""
+    ``[signal] damping_ratio`` unless given; ``record_shift_hz``: per model mode, how far
+    the running reducer's mesh cycle moves the frequency a record shows [Hz]
+    (``hubvib.signal.elastic_record.scene_floquet_shift``), or a function of no argument
+    returning it (called once the records are read); None: not at all."""
     from hubvib.elastic.cases import cached_case
     from hubvib.elastic.rest import rest_stiffness
     from hubvib.reducer.stages import ring_gear
@@ -320,4 +367,13 @@ def scene_record_input(scene, record_path, baseline_path, damping_ratio: float |
                                                                      elastic.options.rest))
     angle = 2 * math.pi * tooth / ring_gear(scene.design).teeth + elastic.sensor_angle
     zeta = scene.signal.damping_ratio if damping_ratio is None else float(damping_ratio)
-    return identify_elastic_records(record, baseline, case, angle, zeta)
+    record_hz = None
+    if record_shift_hz is not None:
+        predicted, _ = model_spectrum(case)
+        if callable(record_shift_hz):
+            record_shift_hz = record_shift_hz()
+        shift = np.asarray(record_shift_hz, dtype=float)[:predicted.size]
+        record_hz = predicted.copy()
+        record_hz[:shift.size] += np.where(np.isfinite(shift), shift, 0.0)
+    return identify_elastic_records(record, baseline, case, angle, zeta, record_hz,
+                                    turning=scene.signal.sun_speed_rpm > 0)

@@ -36,6 +36,12 @@ class BandFit:
         Modal signal-to-noise ratio ``S_j / (4 zeta_j^2 S_e)`` [-].
     band_hz : tuple
         The band fitted [Hz].
+    parameters : ndarray
+        The fitted likelihood's parameters (per mode in the guesses' order ``f_j, ln zeta_j,
+        ln S_j``, then ``ln S_e``), a start for a fit of another record of the band.
+    median_level : float
+        The median periodogram ordinate of the band [unit^2/Hz] (a start's levels are
+        rescaled by the ratio of two records').
     """
 
     frequency_hz: np.ndarray
@@ -43,6 +49,8 @@ class BandFit:
     sigma_hz: np.ndarray
     snr: np.ndarray
     band_hz: tuple
+    parameters: np.ndarray = None
+    median_level: float = float("nan")
 
 
 def _psd(params: np.ndarray, f: np.ndarray, k: int, power: int = 4):
@@ -69,11 +77,14 @@ def _psd(params: np.ndarray, f: np.ndarray, k: int, power: int = 4):
 
 
 def identify_band(values, sample_rate: float, guesses_hz, damping_guess: float, low_hz: float,
-                  high_hz: float, lines: bool = True, acceleration: bool = True) -> BandFit:
+                  high_hz: float, lines: bool = True, acceleration: bool = True,
+                  start: BandFit | None = None) -> BandFit:
     """Fit the modes near ``guesses_hz`` [Hz] together in ``low_hz .. high_hz`` [Hz] of the
     record ``values`` sampled at ``sample_rate`` [Hz] (an acceleration, or with
     ``acceleration`` False a displacement); ``lines``: leave the spectral lines out
-    (:func:`.bfft.line_mask`).
+    (:func:`.bfft.line_mask`); ``start``: another record's fit of the same band and
+    guesses, whose parameters (PSD levels scaled by the two records' median ordinates)
+    start this fit, so that a record that differs a little is fitted in the same basin.
 
     Raises :class:`.bfft.IdentificationError` when a fitted frequency leaves the band or the
     fit carries no information on it."""
@@ -90,6 +101,7 @@ def identify_band(values, sample_rate: float, guesses_hz, damping_guess: float, 
         P, f = P[keep], f[keep]
     k = guesses.size
     level = float(np.median(P))
+    previous = start
     start = []
     for g in guesses:
         near = np.abs(f - g) < damping_guess * g
@@ -98,6 +110,12 @@ def identify_band(values, sample_rate: float, guesses_hz, damping_guess: float, 
                                                            1e-300))]
     start.append(math.log(max(float(np.percentile(P, 10)), 1e-300)))
     start = np.array(start)
+    if previous is not None and previous.parameters is not None \
+            and previous.parameters.size == start.size:
+        start = previous.parameters.copy()
+        rescale = math.log(level / previous.median_level)
+        start[2:3 * k:3] += rescale
+        start[-1] += rescale
     scale = np.ones_like(start)
     scale[0:3 * k:3] = damping_guess * guesses
 
@@ -129,5 +147,5 @@ def identify_band(values, sample_rate: float, guesses_hz, damping_guess: float, 
         raise IdentificationError(f"a fitted mode left its band {low_hz:.5g}..{high_hz:.5g} Hz")
     return BandFit(freq[order], zeta[order], sigma[order],
                    (S / (4 * zeta ** 2 * math.exp(p[-1])))[order], (float(low_hz),
-                                                                     float(high_hz)))
+                                                                     float(high_hz)), p, level)
 

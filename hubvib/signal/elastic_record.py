@@ -125,3 +125,38 @@ def scene_records(scene, progress=None, curves=None) -> list[DepthRecord]:
         out.append(rec)
     return out
 
+
+
+def scene_floquet_shift(scene, curves=None, progress=None) -> np.ndarray:
+    """Per coupled mode of the intact elastic ring (the eigen model's order with planet 1
+    half a planet pitch from the cracked tooth, the diagnosis's position), how far the
+    mesh cycle moves the frequency a record of the scene shows [Hz]: the Floquet mode's
+    frequency less the mean-stiffness one (:mod:`.elastic_floquet`; NaN where no Floquet
+    mode is attributed); ``curves``: the intact mesh curves already scaled (else the FE
+    ones, as :func:`scene_records`)."""
+    from hubvib.elastic.cases import carrier_positions
+    from hubvib.elastic.rest import rest_stiffness
+
+    from .elastic_floquet import floquet_modes
+    from .mesh_phase import design_phasing
+
+    options, elastic, sweep = scene.signal, scene.elastic, scene.crack
+    if sweep is None:
+        raise ValueError("the elastic ring's record frequencies need a [crack] table (its "
+                         "tooth)")
+    if curves is None:
+        from hubvib.cases.sweep import ACCURACY
+        from .mesh_curves import fe_mesh_curves
+
+        fe = fe_mesh_curves((0.0,), sweep.start, sweep.angle, ACCURACY[sweep.accuracy],
+                            progress, scene.design)[0]
+        curves = fe.to_preset(scene.params.c_sp, scene.params.c_rp)
+    er = elastic_ring_all_teeth(scene.design, None, elastic,
+                                rest_stiffness(scene.design, elastic.options.rest))
+    teeth = design_teeth(scene.design)
+    model = elastic_time_model(er.params, er.operators, er.k_rest, options.damping_ratio,
+                               options.sun_torque_N_m, KEEP_FACTOR * options.sample_rate_hz / 2)
+    away, _ = carrier_positions(scene.design, sweep.tooth)
+    found = floquet_modes(model, curves, design_phasing(scene.design),
+                          carrier_speed(options, teeth["ring"], teeth["sun"]), away)
+    return found.frequency_hz - found.mean_hz

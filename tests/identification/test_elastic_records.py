@@ -8,8 +8,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from hubvib.identification.elastic_records import (identify_elastic_records, mode_bands,
-                                                   radial_visibility)
+from hubvib.identification.elastic_records import (MERGE, identify_elastic_records,
+                                                   mode_bands, radial_visibility,
+                                                   rotating_pairs)
 from hubvib.identification.records import Record
 from hubvib.lumped.elastic_ring import coupled_modes
 from hubvib.signal.elastic_model import elastic_time_model
@@ -51,6 +52,13 @@ def test_bands_group_close_modes_and_leave_faint_ones_out():
     bands, skipped = mode_bands(f, vis, ZETA)
     assert [[g.members for g in b] for b in bands] == [[(1, 0)], [(3,)]]
     assert 2 in skipped and "not seen" in skipped[2]
+
+
+def test_rotating_pairs_are_the_modes_within_merge_bandwidths():
+    """At 2 % damping ``MERGE`` half-power bandwidths are 10 Hz at 1 kHz and 30 Hz at 3 kHz:
+    1000/1002 Hz is a pair, 3000/3050 Hz is not, 2000 Hz is alone."""
+    assert MERGE == 0.25, "the numbers below are for MERGE = 0.25"
+    assert rotating_pairs([1000.0, 1002.0, 2000.0, 3000.0, 3050.0], ZETA) == {0, 1}
 
 
 @pytest.mark.slow

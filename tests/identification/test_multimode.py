@@ -35,3 +35,22 @@ def test_close_modes_within_their_bounds_over_records():
             f"mode at {f:g} Hz: mean error {error:.3g} Hz, bound {bound:.3g} Hz")
         assert bound / 1.6 < spread < 1.6 * bound, (
             f"mode at {f:g} Hz: scatter {spread:.3g} Hz vs Cramer-Rao bound {bound:.3g} Hz")
+
+
+def test_warm_start_is_blind_to_the_sensor_gain():
+    """A record fitted from another record's fit of the same band: the same record at ten
+    times the gain (PSD levels times 100, rescaled by the median ordinates) starts at the
+    first fit's optimum and returns its frequencies and damping (to the optimiser's
+    tolerance: a gain carries no information on a frequency)."""
+    rng = np.random.default_rng(11)
+    fs = 4400.0
+    rec = simulate(MODES, ZETA, 20.0, fs, 100.0, rng)
+    band = (MODES.min() * (1 - 4 * ZETA), MODES.max() * (1 + 4 * ZETA))
+    first = identify_band(rec.values, fs, MODES, ZETA, *band, lines=False,
+                          acceleration=False)
+    again = identify_band(10.0 * rec.values, fs, MODES * 1.01, ZETA, *band, lines=False,
+                          acceleration=False, start=first)
+    assert np.allclose(again.frequency_hz, first.frequency_hz, rtol=0, atol=1e-3 * first.sigma_hz.min()), (
+        f"{again.frequency_hz} vs {first.frequency_hz} Hz (bounds {first.sigma_hz} Hz)")
+    assert np.allclose(again.damping_ratio, first.damping_ratio, rtol=1e-3), (
+        f"{again.damping_ratio} vs {first.damping_ratio}")
