@@ -160,6 +160,15 @@ def monodromy(model, curves, phasing, carrier_speed: float, position: int, scale
     return transition
 
 
+def mesh_steps(model, position: int, carrier_speed: float) -> int:
+    """Sub-intervals of the mesh period ``floquet_modes`` takes by default."""
+    from hubvib.signal.elastic_floquet import MIN_STEPS, STEPS_PER_HARMONIC
+
+    mesh_hz = carrier_speed * model.teeth / (2 * math.pi)
+    top = model.omega[position, model.kept - 1] / (2 * math.pi)
+    return max(MIN_STEPS, STEPS_PER_HARMONIC * (2 * int(math.ceil(top / mesh_hz)) + 2))
+
+
 def floquet_branches(model, curves, phasing, carrier_speed: float, position: int,
                      levels: int = LEVELS, steps: int | None = None) -> FloquetBranches:
     """Every kept mode's Floquet branch followed from the eigen model to the running
@@ -168,7 +177,6 @@ def floquet_branches(model, curves, phasing, carrier_speed: float, position: int
     from scipy.optimize import linear_sum_assignment
 
     from hubvib.foundation.blas import blas_threads
-    from hubvib.signal.elastic_floquet import MIN_STEPS, STEPS_PER_HARMONIC
 
     if levels < 1:
         raise ValueError(f"levels = {levels!r}; allowed: >= 1")
@@ -176,8 +184,7 @@ def floquet_branches(model, curves, phasing, carrier_speed: float, position: int
     mesh_hz = carrier_speed * model.teeth / (2 * math.pi)
     period = 1.0 / mesh_hz
     if steps is None:
-        needed = 2 * int(math.ceil(model.omega[position, m - 1] / (2 * math.pi) / mesh_hz)) + 2
-        steps = max(MIN_STEPS, STEPS_PER_HARMONIC * needed)
+        steps = mesh_steps(model, position, carrier_speed)
     omega = model.omega[position, :m]
     zeta = model.damping_ratio
     # the eigen model's exponents, in the state order (eta, eta') of each mode's eigenvector
