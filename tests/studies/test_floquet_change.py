@@ -109,3 +109,13 @@ def test_crack_changes_the_watched_modes_floquet_frequencies_as_the_eigen_ones(r
             assert abs(record[a] - floquet[a]) < 0.2, (
                 f"mode {mode}: change of floquet_modes' record frequency {record[a]:.3f} Hz "
                 f"within 0.2 Hz of the continued branch's {floquet[a]:.3f} Hz")
+
+
+def test_depths_must_start_intact(tmp_path, capsys):
+    from hubvib.studies.floquet_change import main
+
+    with pytest.raises(SystemExit) as stop:
+        main([str(tmp_path / "out.json"), "--depths-mm", "3,6"])
+    assert stop.value.code == 2, "argparse's usage error: exit 2"
+    assert "--depths-mm" in capsys.readouterr().err, "the message names the flag"
+    assert not (tmp_path / "out.json").exists(), "nothing written on bad input"
