@@ -175,11 +175,12 @@ def provenance(name: str, measured: str | None = None) -> str:
     commands that regenerate it (more than three: the script that runs them)."""
     when = f", measured {measured}" if measured else ""
     command = DATA_SOURCES[name]
+    how = f"`{command}`"
     if command.count("; ") >= 3:
         entry = name.rstrip("/")
-        command = (f"docs/data/regenerate.sh {entry}` (the {command.count('; ') + 1} "
-                   f"commands of `docs/data/{entry}.meta.json`")
-    return f"\n\n*Source: `docs/data/{name}`{when}; regenerate with `{command}`.*"
+        how = (f"`docs/data/regenerate.sh {entry}` (the {command.count('; ') + 1} "
+               f"commands of `docs/data/{entry}.meta.json`)")
+    return f"\n\n*Source: `docs/data/{name}`{when}; regenerate with {how}.*"
 
 
 def _meta(name: str) -> dict:
