@@ -15,11 +15,13 @@
 # After an entry's commands, its meta file gets the source key of the code that wrote it
 # ("source_key": the docs build and tests/docs fail while it is not the current one, or
 # missing unless docs/generate.py UNKEYED_EXEMPT names the entry); at the end the generated
-# blocks of every page are refilled (python docs/generate.py --write).
+# blocks of every page are refilled (python docs/generate.py --write; REFILL=0 leaves that
+# out, to rerun entries one call at a time and refill once after the last).
 # Then record the date and the hubvib version in the entry's "measured".
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 PYTHON=${PYTHON:-python}
+REFILL=${REFILL:-1}
 
 # cheap first; every docs/data entry once (tests/test_docs.py checks the list)
 ENTRIES=(
@@ -89,5 +91,7 @@ for entry in "${selected[@]}"; do
   fi
   "$PYTHON" docs/generate.py --record-source "$entry"
 done
-echo "+ python docs/generate.py --write"
-"$PYTHON" docs/generate.py --write
+if [[ $REFILL != 0 ]]; then
+  echo "+ python docs/generate.py --write"
+  "$PYTHON" docs/generate.py --write
+fi
