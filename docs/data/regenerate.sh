@@ -23,25 +23,26 @@ cd "$(dirname "$0")/../.."
 PYTHON=${PYTHON:-python}
 REFILL=${REFILL:-1}
 
-# cheap first; every docs/data entry once (tests/test_docs.py checks the list)
+# cheap first (fe_substructure.json reads raba118_crack's committed run: before it); every
+# docs/data entry once (tests/docs/test_docs_site.py checks the list)
 ENTRIES=(
+  raba118_signal
+  raba118_signal_noise0.5
+  raba118_signal_noise2
+  raba118_signal_planet_error
   stiffness_10mm.json
-  crack_path
-  crack_path_backup_ratio
   convergence
+  records
+  elastic_identification.json
+  raba118_crack_path
+  diagnosis
   convergence_work
   elastic_ring.json
   fe_substructure.json
   raba118_crack
-  raba118_crack_path
+  crack_path
   raba118_crack_3d_small
-  raba118_signal
-  raba118_signal_planet_error
-  raba118_signal_noise0.5
-  raba118_signal_noise2
-  records
-  elastic_identification.json
-  diagnosis
+  crack_path_backup_ratio
   benchmark.json
 )
 
