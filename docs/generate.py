@@ -98,6 +98,15 @@ def data_source_key(entry: str) -> str:
     return source_key(*modules)
 
 
+#: docs/data entries the docs build does not hold to a source key, each with the reason (what
+#: its page says under every block read from it); every other entry must carry one
+UNKEYED_EXEMPT = {
+    "benchmark.json": "its figures are timings of the machine that ran the benchmark, not "
+                      "outputs the code reproduces: a rerun measures anew rather than checks, "
+                      "so no source key could say they are current",
+}
+
+
 def stale_data() -> list[str]:
     """The docs/data entries whose meta file's "source_key" is not the current source's
     (recorded by ``python docs/generate.py --record-source ENTRY`` after its commands ran,
@@ -109,9 +118,35 @@ def stale_data() -> list[str]:
 
 
 def unkeyed_data() -> list[str]:
-    """The docs/data entries not regenerated since source keys are recorded: their age
-    against the code is unknown (the build names them; ``regenerate.sh ENTRY`` keys one)."""
-    return [entry for entry in data_entries() if "source_key" not in _meta(entry)]
+    """The docs/data entries with no source key recorded, leaving out those of
+    :data:`UNKEYED_EXEMPT`: their age against the code is unknown, so the docs build fails
+    on them as on a stale one (``regenerate.sh ENTRY`` keys one)."""
+    return [entry for entry in data_entries()
+            if "source_key" not in _meta(entry) and entry not in UNKEYED_EXEMPT]
+
+
+def data_problems() -> list[str]:
+    """Why the committed docs/data cannot be trusted as the current code's output, one
+    sentence per kind (stale, unkeyed), or nothing: what the docs build fails on."""
+    problems = []
+    stale = stale_data()
+    if stale:
+        problems.append(f"docs/data entries written by other code than the current: "
+                        f"{', '.join(stale)}")
+    unkeyed = unkeyed_data()
+    if unkeyed:
+        problems.append(f"docs/data entries with no source key (not exempt in "
+                        f"docs/generate.py UNKEYED_EXEMPT): {', '.join(unkeyed)}")
+    if problems:
+        problems.append(f"regenerate with docs/data/regenerate.sh {' '.join(stale + unkeyed)} "
+                        f"(or docs/data/regenerate.sh --stale)")
+    return problems
+
+
+def stale_or_unkeyed() -> list[str]:
+    """Every entry :func:`stale_data` or :func:`unkeyed_data` names, sorted: what
+    ``docs/data/regenerate.sh --stale`` reruns."""
+    return sorted(set(stale_data()) | set(unkeyed_data()))
 
 
 def record_source(entries: list[str]) -> None:
@@ -140,11 +175,12 @@ def provenance(name: str, measured: str | None = None) -> str:
     commands that regenerate it (more than three: the script that runs them)."""
     when = f", measured {measured}" if measured else ""
     command = DATA_SOURCES[name]
+    how = f"`{command}`"
     if command.count("; ") >= 3:
         entry = name.rstrip("/")
-        command = (f"docs/data/regenerate.sh {entry}` (the {command.count('; ') + 1} "
-                   f"commands of `docs/data/{entry}.meta.json`")
-    return f"\n\n*Source: `docs/data/{name}`{when}; regenerate with `{command}`.*"
+        how = (f"`docs/data/regenerate.sh {entry}` (the {command.count('; ') + 1} "
+               f"commands of `docs/data/{entry}.meta.json`)")
+    return f"\n\n*Source: `docs/data/{name}`{when}; regenerate with {how}.*"
 
 
 def _meta(name: str) -> dict:
@@ -292,8 +328,10 @@ def _benchmark() -> dict:
 
 def _benchmark_note() -> str:
     meta = _meta("benchmark.json")
-    return provenance("benchmark.json", meta.get("measured")) + (
-        f" *{meta['machine']}.*" if "machine" in meta else "")
+    return (provenance("benchmark.json", meta.get("measured"))
+            + (f" *{meta['machine']}.*" if "machine" in meta else "")
+            + f" *Not checked against the code like the other generated figures: "
+              f"{UNKEYED_EXEMPT['benchmark.json']}.*")
 
 
 #: what a table cell says for a figure the committed benchmark run does not hold (a run of
@@ -1403,7 +1441,7 @@ TABLES = {name: function for name, function in list(globals().items())
           and name not in {"markdown_table", "provenance", "table", "console", "render",
                            "expand", "fill", "blocks", "stale", "write_pages", "data_entries",
                            "command_modules", "data_source_key", "stale_data", "unkeyed_data",
-                           "record_source"}}
+                           "record_source", "data_problems", "stale_or_unkeyed"}}
 
 
 @lru_cache(maxsize=None)
@@ -1510,7 +1548,9 @@ def write_pages(pages: list[Path]) -> None:
 
 
 if __name__ == "__main__":
-    if sys.argv[1:2] == ["--record-source"]:
+    if sys.argv[1:2] == ["--stale"]:
+        print("\n".join(stale_or_unkeyed()))
+    elif sys.argv[1:2] == ["--record-source"]:
         record_source(sys.argv[2:] or data_entries())
     elif sys.argv[1:2] == ["--write"]:
         here = Path(__file__).resolve().parent

@@ -18,10 +18,11 @@
 An unknown marker, a table that raises or a command that fails stops the build, and so does
 a page whose committed block is not what its marker generates now (except the ``LIVE``
 ones, measured while the docs are built: timings), and a ``docs/data`` entry written by other
-code than the current (its meta file's "source_key", ``generate.stale_data``; an entry not
-regenerated since keys are recorded is named, ``generate.unkeyed_data``): the pages
-in the repository cannot go stale unnoticed, the slow blocks included (``mkdocs build
---strict`` runs every generator anyway).  ``docs/data/regenerate.sh [ENTRY ...]`` reruns the
+code than the current (its meta file's "source_key", ``generate.stale_data``) or with no
+source key at all (``generate.unkeyed_data``; only the entries of
+``generate.UNKEYED_EXEMPT`` go without one, each with its reason): the pages in the
+repository cannot go stale unnoticed, the slow blocks included (``mkdocs build --strict``
+runs every generator anyway).  ``docs/data/regenerate.sh [ENTRY ... | --stale]`` reruns the
 entries' commands, records their source key and refills the pages.
 """
 from __future__ import annotations
@@ -62,15 +63,9 @@ def source_tree(root: Path = ROOT) -> Path:
 
 @event_priority(100)  # before mkdocstrings reads its handler options
 def on_config(config):
-    stale = generate.stale_data()
-    if stale:
-        raise PluginError(f"docs/data entries written by other code than the current: "
-                          f"{', '.join(stale)}; regenerate with docs/data/regenerate.sh "
-                          f"{' '.join(stale)}")
-    unkeyed = generate.unkeyed_data()
-    if unkeyed:  # printed, not logged: a notice, which --strict would turn into a failure
-        print(f"docs/data entries with no source key yet (their age against the code is "
-              f"not checked): {', '.join(unkeyed)}", file=sys.stderr)
+    problems = generate.data_problems()
+    if problems:
+        raise PluginError("; ".join(problems))
     handlers = config["plugins"]["mkdocstrings"].config.setdefault("handlers", {})
     python = handlers.setdefault("python", {})
     python["paths"] = [str(source_tree())] + list(python.get("paths", []))
