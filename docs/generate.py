@@ -1418,6 +1418,43 @@ def elastic_identification() -> str:
     return scatter_table(data) + provenance("elastic_identification.json")
 
 
+
+def elastic_floquet_change() -> str:
+    """The crack's change of the coupled modes: the mean-stiffness eigen model the detection
+    uses against the Floquet modes over the mesh cycle that a running record shows
+    (``hubvib.studies.floquet_change``), with the default scene's watched modes marked; the
+    build fails when they are not the modes the default scene's report watches."""
+    data = json.loads((DATA / "floquet_change.json").read_text())
+    watched = _default_run()["elastic_ring"]["watched_modes"]
+    marked = [row["mode"] for row in data["modes"] if row["watched"]]
+    if sorted(marked) != sorted(watched):
+        raise ValueError(f"floquet_change.json watches modes {marked}, the default scene's "
+                         f"report {watched}: rerun its command with --watched "
+                         + ",".join(map(str, watched)))
+    depths = data["depths_mm"][1:]
+
+    def hz(x, digits=2):
+        return "-" if x is None else f"{x:.{digits}f}"
+
+    rows = []
+    for row in data["modes"]:
+        rows.append([f"{row['mode']}{' *' if row['watched'] else ''}",
+                     hz(row["eigen_hz"][0], 1),
+                     hz(row["floquet_hz"][0], 1) if row["unique_branch"] else "no branch"]
+                    + [f"{hz(e)} / {hz(f) if row['unique_branch'] else '-'}"
+                       for e, f in zip(row["eigen_change_hz"][1:], row["floquet_change_hz"][1:])]
+                    + [hz(row["sigma_hz"])])
+    header = (["mode", "eigen intact [Hz]", "Floquet intact [Hz]"]
+              + [f"change at {d:g} mm, eigen / Floquet [Hz]" for d in depths]
+              + [f"sigma at {data['record_length_s']:g} s [Hz]"])
+    return (markdown_table(header, rows, "l" + "r" * (len(header) - 1))
+            + f"\n\nFaces open; planet 1 at carrier position {data['carrier_position']} (the "
+            f"diagnosis's); mesh frequency {data['mesh_hz']:.1f} Hz. * a mode the default "
+            "scene's report watches; \"no branch\": the mode's Floquet exponent meets another "
+            "mode's on the way from the eigen model to the running reducer, so it has no change "
+            "of its own."
+            + provenance("floquet_change.json"))
+
 # ---------------------------------------------------------------- entry points
 
 #: markers whose text changes from run to run: tables measured while the docs are built

@@ -40,6 +40,7 @@ ENTRIES=(
   elastic_ring.json
   fe_substructure.json
   raba118_crack
+  floquet_change.json
   crack_path
   raba118_crack_3d_small
   crack_path_backup_ratio
