@@ -28,7 +28,9 @@ a sample's mode in that place is the nominal's by subspace match.
 """
 from __future__ import annotations
 
+import hashlib
 import math
+import weakref
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -111,9 +113,26 @@ def _lumped_spring_parts(params, ring, tooth: int, k_rest: float):
     return mats, names, parts
 
 
+#: per case, per intact case: its ``DepthOperators`` and their sampled spectra (kept while
+#: the cases live): a sweep refined depth by depth asks again for the depths it holds
+_OPERATORS = weakref.WeakKeyDictionary()
+
+
 def depth_operators(case, intact, ring_mass: float) -> DepthOperators:
     """The coupled model of ``case`` (an ``ElasticCase`` with its operators) at planet 1
-    away from the crack, its parts, and the slots of the intact modes of ``intact``."""
+    away from the crack, its parts, and the slots of the intact modes of ``intact`` (the
+    same object again for the same cases and ``ring_mass``)."""
+    try:
+        known = _OPERATORS.setdefault(case, weakref.WeakKeyDictionary()).setdefault(intact, {})
+    except TypeError:  # not weakly referable: computed every time
+        known = {}
+    key = float(ring_mass)
+    if key not in known:
+        known[key] = _depth_operators(case, intact, ring_mass)
+    return known[key]
+
+
+def _depth_operators(case, intact, ring_mass: float) -> DepthOperators:
     if case.operators is None:
         raise ValueError("the elastic case holds no ring operators: recompute it "
                          "(hubvib.elastic.cases.cached_case)")
@@ -174,10 +193,37 @@ def unscattered(model: "ElasticSpectrum", n: int = 1) -> ElasticSamples:
                           {k: ones for k in model.stiffness_names}, np.zeros(n))
 
 
+#: per depth's operators: sampled spectra by the samples' and masks' fingerprint
+_SAMPLED = weakref.WeakKeyDictionary()
+
+
+def _fingerprint(samples: ElasticSamples, masks: dict) -> bytes:
+    """A digest of every factor of ``samples`` and of ``masks``: equal draws, equal key."""
+    digest = hashlib.blake2b(digest_size=16)
+    for group in (samples.masses, samples.stiffness, masks):
+        for name in sorted(group):
+            digest.update(name.encode())
+            digest.update(np.ascontiguousarray(group[name]).tobytes())
+    digest.update(np.ascontiguousarray(samples.ring_mass).tobytes())
+    digest.update(np.ascontiguousarray(samples.z).tobytes())
+    return digest.digest()
+
+
 def batched_hz(op: DepthOperators, samples: ElasticSamples, masks: dict) -> np.ndarray:
     """Every sample's coupled frequencies at one depth [Hz], ascending, (n, dofs).
 
-    ``masks``: lumped mass field -> which lumped DOFs it is the mass of."""
+    ``masks``: lumped mass field -> which lumped DOFs it is the mass of.  The same draws at
+    the same operators are solved once (a read-only array is returned again)."""
+    known = _SAMPLED.setdefault(op, {})
+    key = (samples.n, _fingerprint(samples, masks))
+    if key not in known:
+        values = _batched_hz(op, samples, masks)
+        values.flags.writeable = False
+        known[key] = values
+    return known[key]
+
+
+def _batched_hz(op: DepthOperators, samples: ElasticSamples, masks: dict) -> np.ndarray:
     n = samples.n
     factors = np.column_stack([samples.stiffness.get(name, np.ones(n)) - 1.0
                                for name in op.names]) if op.names else np.zeros((n, 0))

@@ -399,24 +399,49 @@ def ordered_frequencies(intact: PitchSpectra, case: PitchSpectra, index) -> np.n
     reference by order.  The intact ring's modes keep their order over the pitch (a pair
     that veers as the planets turn, Raba's 2.6 / 2.8 kHz pair, exchanges shapes, not
     order), and a record's identification follows a branch, not a shape."""
-    from .tracking import track_descriptors
-
     if intact.carrier_teeth != case.carrier_teeth:
         raise ValueError(f"the intact case's positions {intact.carrier_teeth} are not the "
                          f"case's {case.carrier_teeth}")
     ref = intact.spectra[intact.base_index[intact.reference]]
+    rows = _ordered_rows(intact, case)
     out = np.full((len(index), ref.frequency_hz.size), np.nan)
     for p, i in enumerate(index):
-        here = intact.spectra[intact.base_index[p]]
-        to_ref = np.full(here.frequency_hz.size, -1)
-        common = min(here.frequency_hz.size, ref.frequency_hz.size)
-        to_ref[:common] = np.arange(common)
-        s = case.spectra[i]
-        to_here = np.asarray(track_descriptors(here.descriptors, here.frequency_hz,
-                                               s.descriptors, s.frequency_hz).reference)
-        for j, r in enumerate(to_here):
-            if r >= 0 and to_ref[r] >= 0:
-                out[p, to_ref[r]] = s.frequency_hz[j]
+        key = (p, int(i))
+        if key not in rows:
+            rows[key] = _ordered_row(intact, case, p, int(i), ref.frequency_hz.size)
+        out[p] = rows[key]
+    return out
+
+
+#: per case's and intact case's pitch spectra: each (position, spectrum) ordered as the
+#: intact reference (kept while both live): load variants share most of their spectra
+_ROWS = weakref.WeakKeyDictionary()
+
+
+def _ordered_rows(intact: PitchSpectra, case: PitchSpectra) -> dict:
+    try:
+        return _ROWS.setdefault(case, weakref.WeakKeyDictionary()).setdefault(intact, {})
+    except TypeError:  # not weakly referable: computed every time
+        return {}
+
+
+def _ordered_row(intact: PitchSpectra, case: PitchSpectra, p: int, i: int, n: int
+                 ) -> np.ndarray:
+    """Spectrum ``i`` of ``case`` at position ``p`` in the intact reference's order (n,)."""
+    from .tracking import track_descriptors
+
+    ref = intact.spectra[intact.base_index[intact.reference]]
+    here = intact.spectra[intact.base_index[p]]
+    to_ref = np.full(here.frequency_hz.size, -1)
+    common = min(here.frequency_hz.size, ref.frequency_hz.size)
+    to_ref[:common] = np.arange(common)
+    s = case.spectra[i]
+    to_here = np.asarray(track_descriptors(here.descriptors, here.frequency_hz,
+                                           s.descriptors, s.frequency_hz).reference)
+    out = np.full(n, np.nan)
+    for j, r in enumerate(to_here):
+        if r >= 0 and to_ref[r] >= 0:
+            out[to_ref[r]] = s.frequency_hz[j]
     return out
 
 
@@ -466,15 +491,32 @@ def _record_track(intact_case, case, torque_fraction, closure_gap_m, damping_rat
         # with no gap one state serves every torque of a sign: report the one asked
         torque, gap = pitch.sun_torque_N_m * torque_fraction, variant.closure_gap_m
     record = _record(stick, dwell, damping_ratio, pass_hz)
+    intact_record = _intact_record(intact, intact_hz, dwell, damping_ratio, pass_hz)
     reference = intact.spectra[intact.base_index[intact.reference]].frequency_hz
     split = tuple(tuple(float(f) for f in peaks) if regime == "split" else ()
                   for peaks, regime in zip(record.peaks_hz, record.regime))
     return RecordTrack(
         np.asarray(reference), np.asarray(record.frequency_hz),
-        np.asarray(_record(intact_hz, dwell, damping_ratio, pass_hz).frequency_hz),
+        np.asarray(intact_record.frequency_hz),
         np.asarray(record.instantaneous_min_hz), np.asarray(record.instantaneous_max_hz),
-        np.asarray(_record(slip, dwell, damping_ratio, pass_hz).frequency_hz), split,
+        np.asarray((record if np.array_equal(slip, stick, equal_nan=True) else
+                    _record(slip, dwell, damping_ratio, pass_hz)).frequency_hz), split,
         float(share), tuple(record.regime), tuple(states), float(torque), float(gap))
+
+
+#: the intact ring's record per pitch spectra, damping ratio and pass frequency
+_INTACT_RECORDS = weakref.WeakKeyDictionary()
+
+
+def _intact_record(intact: PitchSpectra, intact_hz, dwell, damping_ratio, pass_hz):
+    try:
+        known = _INTACT_RECORDS.setdefault(intact, {})
+    except TypeError:
+        known = {}
+    key = (float(damping_ratio), float(pass_hz), np.asarray(dwell).tobytes())
+    if key not in known:
+        known[key] = _record(intact_hz, dwell, damping_ratio, pass_hz)
+    return known[key]
 
 
 def _record(instantaneous_hz, dwell, damping_ratio, pass_hz):
