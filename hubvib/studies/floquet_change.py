@@ -29,7 +29,7 @@ The cracked modes are named after the intact modes they continue
 threshold are the detection's (:meth:`hubvib.detection.options.DetectionOptions.sigma_hz`;
 one-sided alarm at ``z sqrt(2) sigma`` with the per-mode rate for the watched modes).
 
-``python -m hubvib.studies.floquet_change OUT.json [--depths-mm 0,3,6] [--scene NAME]``
+``python -m hubvib.studies.floquet_change --out OUT.json [--depths-mm 0,3,6] [--scene NAME]``
 writes the table.
 """
 from __future__ import annotations
@@ -339,7 +339,7 @@ def main(argv=None) -> int:
         prog="python -m hubvib.studies.floquet_change",
         description="The crack's change of the elastic ring's modes: eigen model against "
                     "the Floquet modes a running record shows (JSON table).")
-    parser.add_argument("out", type=Path, help="JSON file to write")
+    parser.add_argument("--out", type=Path, required=True, help="JSON file to write")
     parser.add_argument("--scene", default="raba118_crack", help="scene name or TOML path")
     parser.add_argument("--depths-mm", default="0,3,6",
                         help="crack depths [mm], comma-separated, the first 0")

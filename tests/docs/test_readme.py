@@ -141,6 +141,7 @@ def test_elastic_ring_answer_quotes_the_committed_default_scene_run():
     watched = [elastic["modes"][m - 1]["frequency_hz"] for m in elastic["watched_modes"]]
     gap = {(v["torque_fraction"], v["closure_gap_m"]): v["answer"]["10"]
            for v in run["load_sensitivity"]}
+    pads = {v["place"]: v for v in run["pad_variant"]["variants"]}
     expected = [
         f"detected with 10 s records {crossing['10']} deep, with 60 s records "
         f"{crossing['60']}, with 600 s records {crossing['600']}",
@@ -154,7 +155,13 @@ def test_elastic_ring_answer_quotes_the_committed_default_scene_run():
         f"POD >= 0.9 over {elastic['monte_carlo_samples']} reducers",
         f"the watched modes lie at {min(watched) / 1e3:.1f}-{max(watched) / 1e3:.1f} kHz",
         f"closure gap of 1 um (roughness, residual compression) it is {gap[1.0, 1e-06]} at "
-        f"10 s, with 2 um {gap[1.0, 2e-06]}"]
+        f"10 s, with 2 um {gap[1.0, 2e-06]}",
+        f"the crack on a support pad (tooth {pads['on a support pad']['tooth']}) and between "
+        f"pads (tooth {pads['between pads']['tooth']}) are both detected "
+        f"{pads['on a support pad']['answer']['10']} at 10, 60 and 600 s"]
+    assert all(v["answer"][t] == pads["on a support pad"]["answer"]["10"]
+               for v in pads.values() for t in ("10", "60", "600")), \
+        "the README says one answer for both places and every record length"
     text = " ".join(README.split())
     for phrase in expected:
         assert phrase in text, f"README against docs/data/raba118_crack: {phrase!r}"

@@ -115,7 +115,7 @@ def test_depths_must_start_intact(tmp_path, capsys):
     from hubvib.studies.floquet_change import main
 
     with pytest.raises(SystemExit) as stop:
-        main([str(tmp_path / "out.json"), "--depths-mm", "3,6"])
+        main(["--out", str(tmp_path / "out.json"), "--depths-mm", "3,6"])
     assert stop.value.code == 2, "argparse's usage error: exit 2"
     assert "--depths-mm" in capsys.readouterr().err, "the message names the flag"
     assert not (tmp_path / "out.json").exists(), "nothing written on bad input"
