@@ -1,7 +1,8 @@
 """``report.html`` beside ``report.md``: one self-contained page a browser opens.
 
 Figures are embedded as data URIs (a mode shape's GIF animation, when one was written,
-replaces its still PNG), tables sort by a click on a column head (numbers as numbers),
+replaces its still PNG), tables sort by a click on a column head (numbers as numbers), a table wider than the page
+scrolls inside its own box,
 and links to other reports (the signal study's ``report.md``) point at their HTML.  No network, no
 external file: the page can be mailed or archived alone.
 """
@@ -18,7 +19,8 @@ _TYPES = {".png": "image/png", ".gif": "image/gif", ".jpg": "image/jpeg", ".svg"
 _STYLE = """
 body { font-family: system-ui, sans-serif; max-width: 1100px; margin: 2em auto; padding: 0 1em;
        line-height: 1.45; color: #222; }
-table { border-collapse: collapse; margin: 1em 0; font-size: 0.9em; }
+table { border-collapse: collapse; margin: 1em 0; font-size: 0.9em; display: block;
+        max-width: 100%; overflow-x: auto; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; }
 th { background: #f0f0f0; cursor: pointer; user-select: none; }
 th[aria-sort="ascending"]::after { content: " \\25B2"; }

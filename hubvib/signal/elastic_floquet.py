@@ -110,25 +110,38 @@ def floquet_modes(model: ElasticTimeModel, curves: MeshCurves, phasing: MeshPhas
                         int(steps))
 
 
-def _floquet(model, curves, phasing, speed, p, steps):
+def transition_path(model, curves, phasing, speed: float, position: int, steps: int,
+                    scale: float = 1.0) -> tuple:
+    """``(period, omega, path)``: the mesh period [s], the kept modes' mean-stiffness
+    angular frequencies [rad/s] at ``position`` and the state transition matrices from the
+    period's start to the end of each of its ``steps`` sub-intervals, (steps, 2 m, 2 m),
+    ``path[-1]`` the monodromy matrix; the mesh stiffness variation scaled by ``scale`` [-]
+    (1: the running reducer; 0: the eigen model)."""
     m = model.kept
     pitch = 2 * math.pi / model.teeth
     period = pitch / speed
     dt = period / steps
-    centre = model.patch_angles[p] - model.theta[0]
+    centre = model.patch_angles[position] - model.theta[0]
     angle = centre + ((np.arange(steps) + 0.5) / steps - 0.5) * pitch
-    U, W, _ = _mesh_terms(model, curves, phasing, angle, np.full(steps, p), 0.0)
-    omega = model.omega[p, :m]
+    U, W, _ = _mesh_terms(model, curves, phasing, angle, np.full(steps, position), 0.0)
+    omega = model.omega[position, :m]
     damping = np.diag(2 * model.damping_ratio * omega)
     zero, one = np.zeros((m, m)), np.eye(m)
     transition = np.eye(2 * m)
-    path = np.empty((steps, m, 2 * m))
+    path = np.empty((steps, 2 * m, 2 * m))
     for b in range(steps):
         rows = U[b][:, :m]
-        K = np.diag(omega ** 2) + rows.T @ (W[b][:, None] * rows)
-        A = np.block([[zero, one], [-K, -damping]])
-        transition = expm(A * dt) @ transition
-        path[b] = transition[:m]
+        K = np.diag(omega ** 2) + scale * rows.T @ (W[b][:, None] * rows)
+        transition = expm(np.block([[zero, one], [-K, -damping]]) * dt) @ transition
+        path[b] = transition
+    return period, omega, path
+
+
+def _floquet(model, curves, phasing, speed, p, steps):
+    m = model.kept
+    period, omega, full = transition_path(model, curves, phasing, speed, p, steps)
+    dt = period / steps
+    transition, path = full[-1], full[:, :m]
     mu, vectors = np.linalg.eig(transition)
     s = np.log(mu) / period
     t = (np.arange(steps) + 1) * dt

@@ -138,26 +138,9 @@ def monodromy(model, curves, phasing, carrier_speed: float, position: int, scale
     """The monodromy matrix (2 m, 2 m) of the kept modes at ``position`` over one mesh
     period with the mesh stiffness variation scaled by ``scale`` [-] (1: the running
     reducer, as :func:`hubvib.signal.elastic_floquet.floquet_modes`; 0: the eigen model)."""
-    from scipy.linalg import expm
+    from hubvib.signal.elastic_floquet import transition_path
 
-    from hubvib.signal.elastic_response import _mesh_terms
-
-    m = model.kept
-    pitch = 2 * math.pi / model.teeth
-    period = pitch / carrier_speed
-    dt = period / steps
-    centre = model.patch_angles[position] - model.theta[0]
-    angle = centre + ((np.arange(steps) + 0.5) / steps - 0.5) * pitch
-    U, W, _ = _mesh_terms(model, curves, phasing, angle, np.full(steps, position), 0.0)
-    omega = model.omega[position, :m]
-    damping = np.diag(2 * model.damping_ratio * omega)
-    zero, one = np.zeros((m, m)), np.eye(m)
-    transition = np.eye(2 * m)
-    for b in range(steps):
-        rows = U[b][:, :m]
-        K = np.diag(omega ** 2) + scale * rows.T @ (W[b][:, None] * rows)
-        transition = expm(np.block([[zero, one], [-K, -damping]]) * dt) @ transition
-    return transition
+    return transition_path(model, curves, phasing, carrier_speed, position, steps, scale)[2][-1]
 
 
 def mesh_steps(model, position: int, carrier_speed: float) -> int:

@@ -47,11 +47,15 @@ window.addEventListener("load", function () {
                                         function (r) { return r.cells[0].textContent.trim(); });
   var external = Array.prototype.filter.call(document.querySelectorAll("[src]"),
       function (e) { return !e.getAttribute("src").startsWith("data:"); }).length;
+  var page = document.body.getBoundingClientRect().right;
+  var wide = Array.prototype.filter.call(document.querySelectorAll("table, img"),
+      function (e) { return e.getBoundingClientRect().right > page + 1; }).length;
   var out = document.createElement("pre");
   out.id = "probe";
   out.textContent = JSON.stringify({images: images.length, shown: shown.length,
                                     errors: window.__errors, column: column,
-                                    sort: head.getAttribute("aria-sort"), external: external});
+                                    sort: head.getAttribute("aria-sort"), external: external,
+                                    wide: wide});
   document.body.appendChild(out);
 });
 </script>"""
@@ -120,3 +124,20 @@ def test_html_report_embeds_animations_and_links_html(tmp_path):
     page = write_html_report(tmp_path).read_text(encoding="utf-8")
     assert f"data:image/gif;base64,{base64.b64encode(gif).decode()}" in page
     assert 'href="signal/report.html"' in page and "<table>" in page
+
+
+@needs_browser
+def test_a_table_wider_than_the_page_scrolls_inside_its_box(tmp_path):
+    """A report table of 30 wide columns (wider than the page at any window size) stays
+    inside the page's column in the browser: no table or figure reaches past the body's
+    right edge (the page scrolls the table, not itself)."""
+    from hubvib.render.html import write_html_report
+
+    head = "| " + " | ".join(f"column {k} with a long head" for k in range(30)) + " |"
+    rule = "|" + "---:|" * 30
+    row = "| " + " | ".join(f"{k}.000000" for k in range(30)) + " |"
+    (tmp_path / "report.md").write_text(f"# wide\n\n{head}\n{rule}\n{row}\n",
+                                        encoding="utf-8")
+    result = _probe(write_html_report(tmp_path), table=0)
+    assert result["errors"] == [], result["errors"]
+    assert result["wide"] == 0, "a table or figure reaches past the page's right edge"
