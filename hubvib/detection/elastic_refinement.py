@@ -15,7 +15,7 @@ REFINED = ("depths added by bisection below the first detectable one, per record
 
 
 def refined_elastic(design, crack_of, scene, options, result, cases: list,
-                    most: int | None = None) -> tuple:
+                    most: int | None = None, pool=None) -> tuple:
     """``(result, cases)``: ``result`` (the elastic ring's ``DetectionResult`` over
     ``cases``, one ``ElasticCase`` per depth, the first intact) with depths added until, for
     records of 10, 60 and 600 s, the family POD's crossing of the detection probability is
@@ -24,7 +24,12 @@ def refined_elastic(design, crack_of, scene, options, result, cases: list,
     others), and the cases of every depth, added ones in depth order.
 
     ``crack_of(depth)``: the ``Crack`` of a depth [m]; ``scene``: the ``[elastic]`` table;
-    ``options``: the ``DetectionOptions``."""
+    ``options``: the ``DetectionOptions``.  With a worker ``pool``, while this process
+    computes the depth one record length asks for next, the depth each later record length
+    asks for now is computed on the pool (taken back here when no worker has started it):
+    the depths added, and so the answer, are those of the sequential rule."""
+    from hubvib.runtime.engines import submit
+
     from . import elastic_model
     from .pod import RECORD_LENGTHS
     from .resolution import FLOOR, MAX_ADDED, RESOLUTION, next_depth
@@ -34,17 +39,34 @@ def refined_elastic(design, crack_of, scene, options, result, cases: list,
                            width=1e3 * RESOLUTION, floor=1e3 * FLOOR)
     depths, cases, added = list(result.depths), list(cases), list(result.added_depths)
     k_rest = cases[0].k_rest
-    for length in RECORD_LENGTHS:
+    ahead = {}  # depth [m] -> the pool's future of its case
+
+    def case_of(depth):
+        future = ahead.pop(depth, None)
+        if future is not None and not future.cancel():
+            return future.result()
+        return elastic_model.cached_case(design, crack_of(depth), scene, k_rest)
+
+    for n, length in enumerate(RECORD_LENGTHS):
         for _ in range(most):
             depth = next_depth(result.bracket(length))
             if depth is None:
                 break
+            if pool is not None:
+                for later in RECORD_LENGTHS[n + 1:]:
+                    other = next_depth(result.bracket(later))
+                    if other not in (None, depth) and other not in depths \
+                            and other not in ahead:
+                        ahead[other] = submit(pool, elastic_model.cached_case, design,
+                                              crack_of(other), scene, k_rest)
             at = next(k for k, d in enumerate(depths + [float("inf")]) if d > depth)
             depths.insert(at, depth)
-            cases.insert(at, elastic_model.cached_case(design, crack_of(depth), scene, k_rest))
+            cases.insert(at, case_of(depth))
             added.append(depth)
             result = elastic_model.elastic_result(design, depths, crack_of, scene, options, cases,
                                     tuple(sorted(added)), words, result.left_out)
+    for future in ahead.values():  # asked ahead, then not needed
+        future.cancel()
     if not added:
         result = replace(result, refinement=words + "; none was needed")
     return result, cases

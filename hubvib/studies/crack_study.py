@@ -140,7 +140,7 @@ def _run(scene: Scene, staged: Path) -> CrackStudyResult:
             started = time.perf_counter()
             with working("elastic ring"), timed("elastic"):
                 result.elastic, result.elastic_validity, cases = finish_elastic(
-                    scene, elastic_cases)
+                    scene, elastic_cases, pool=pool)
                 result.mode_map = _mode_map(result, cases[0])
                 result.load_sensitivity = elastic_load_sensitivity(scene, result.elastic,
                                                                    cases)

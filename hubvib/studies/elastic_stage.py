@@ -67,12 +67,13 @@ def _computed_here(function, arguments: tuple, label: str) -> Future:
     return done
 
 
-def finish_elastic(scene: Scene, begun, refine: bool = True) -> tuple:
+def finish_elastic(scene: Scene, begun, refine: bool = True, pool=None) -> tuple:
     """The elastic ring's detection answer (``detection.result.DetectionResult``) from the
     cases ``begun_elastic`` began, with the depths :func:`refine_elastic` adds (``refine``),
     the rigid-ring model's validity band its intact case computed (planet 1 where the
     detection's statistic has it, half a planet pitch from the cracked tooth), and the
-    ``ElasticCase`` of every depth of the answer (the first intact)."""
+    ``ElasticCase`` of every depth of the answer (the first intact); with a worker
+    ``pool`` the refinement computes the depths it will ask for next there."""
     from hubvib.detection.elastic_model import cached_case, elastic_result
     from hubvib.detection.elastic_refinement import refined_elastic
     from hubvib.detection.options import detection_options
@@ -85,7 +86,7 @@ def finish_elastic(scene: Scene, begun, refine: bool = True) -> tuple:
                             cases, left_out=left_out_depths(sweep))
     if refine:
         result, cases = refined_elastic(sweep.reducer, lambda d: crack_of(sweep, d), es,
-                                        options, result, cases)
+                                        options, result, cases, pool=pool)
     return result, cases[0].validity, cases
 
 
