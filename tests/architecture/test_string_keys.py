@@ -9,6 +9,8 @@ import tomllib
 from dataclasses import fields
 from pathlib import Path
 
+import pytest
+
 from hubvib.fem.estimate import RING_KEYS, CrackCaseEstimate, MeshEstimate, RingEstimate
 
 ROOT = Path(__file__).parents[2]
@@ -87,6 +89,7 @@ def _source_files() -> list[tuple[str, Path]]:
                   for f in folder.glob("*.py"))
 
 
+@pytest.mark.slow
 def test_no_fe_key_is_read_outside_the_edges():
     reads = [(name, *read) for name, path in _source_files()
              for read in string_key_reads(path.read_text(encoding="utf-8"))

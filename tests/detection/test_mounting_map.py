@@ -75,6 +75,7 @@ def test_the_elastic_map_as_a_mounting_map_keeps_its_numbers_and_words():
     assert isinstance(ElasticMounting(None, (0.0,), None, None), Mounting)
 
 
+@pytest.mark.slow
 def test_the_elastic_map_figure_is_the_rigid_maps_function(tmp_path):
     """The elastic map through ``plots.map_figure``: one panel over the foundation scale,
     the family line drawn over the modes alone, the scale where nothing is detectable

@@ -75,6 +75,7 @@ def _map(carriers: dict):
                            fixed={"c_ru_mount": 1e8, "c_r_mount": 1e6}, smallest=smallest)
 
 
+@pytest.mark.slow
 def test_map_figure_draws_what_its_legend_names_with_any_mode_on_top(tmp_path):
     """Only c_ru carries a signal: no 'signal in c_rp' entry without a mark; the 'any
     mode' line over the markers and visible; the legend off the data; the PNG written."""

@@ -39,6 +39,7 @@ def test_plain_eigh_fails_where_jacobi_holds():
     assert error > 1e-3
 
 
+@pytest.mark.slow
 def test_stability_report_rows_cover_every_case_and_method():
     rows = stability.run(lumped_preset("raba118"), repeats=1)
     assert len(rows) == len(CASES) * len(lumped.METHODS) + 1

@@ -37,6 +37,7 @@ def _written(fig, path) -> np.ndarray:
     return image
 
 
+@pytest.mark.slow
 def test_both_models_each_curve_told_apart_on_its_own_scale(tmp_path):
     """The rigid ring moves its modes by about 1 Hz, the elastic ring by hundreds: one
     panel each, every curve with its own colour, marker and line style."""
