@@ -2,7 +2,6 @@
 whose source key is not the current code's and on one with no key at all, except the few
 entries ``docs/generate.py`` exempts with a reason; ``docs/data/regenerate.sh --stale``
 reruns exactly the entries the build fails on."""
-import importlib.util
 import json
 import os
 import shutil
@@ -13,20 +12,11 @@ from types import SimpleNamespace
 
 import pytest
 
+from tests.helpers.docs_modules import docs_module
+
 ROOT = Path(__file__).parents[2]
 DOCS = ROOT / "docs"
 COMMAND = "hubvib design check demo.toml > docs/data/{}"
-
-
-def _module(name, folder=DOCS):
-    sys.path.insert(0, str(folder))
-    try:
-        spec = importlib.util.spec_from_file_location(f"docs_{name}", folder / f"{name}.py")
-        module = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(module)
-        return module
-    finally:
-        sys.path.remove(str(folder))
 
 
 def _plant(data: Path, entry: str, key: str | None = None) -> None:
@@ -44,7 +34,7 @@ def _mkdocs_config():
 
 
 def test_every_data_entry_carries_a_source_key_or_an_exemption():
-    generate = _module("generate")
+    generate = docs_module("generate")
     unkeyed = generate.unkeyed_data()
     assert not unkeyed, (f"docs/data entries with no source key: {unkeyed}; regenerate with "
                          f"docs/data/regenerate.sh {' '.join(unkeyed)}")
@@ -54,7 +44,7 @@ def test_an_unkeyed_entry_fails_the_build_and_an_exempt_one_does_not(tmp_path, m
     pytest.importorskip("mkdocs")
     from mkdocs.exceptions import PluginError
 
-    hooks = _module("hooks")
+    hooks = docs_module("hooks")
     generate = hooks.generate
     monkeypatch.setattr(generate, "DATA", tmp_path)
     _plant(tmp_path, "x.json")
@@ -79,7 +69,7 @@ def test_an_unkeyed_entry_fails_the_build_and_an_exempt_one_does_not(tmp_path, m
 def test_exemptions_name_entries_and_their_pages_say_why():
     """Each exemption names an entry of docs/data and gives its reason; the benchmark's
     reason stands under every generated block read from it."""
-    generate = _module("generate")
+    generate = docs_module("generate")
     entries = set(generate.data_entries())
     for entry, reason in generate.UNKEYED_EXEMPT.items():
         assert entry in entries, f"UNKEYED_EXEMPT names {entry}, not a docs/data entry"
@@ -101,7 +91,7 @@ def test_regenerate_stale_lists_the_stale_and_unkeyed_entries(tmp_path):
     data.mkdir(parents=True)
     shutil.copy(DOCS / "generate.py", tmp_path / "docs")
     shutil.copy(DOCS / "data" / "regenerate.sh", data)
-    generate = _module("generate", tmp_path / "docs")
+    generate = docs_module("generate", tmp_path / "docs")
     assert generate.DATA == data
     _plant(data, "stiffness_10mm.json")  # unkeyed, listed in ENTRIES
     _plant(data, "crack_path")  # unkeyed, listed in ENTRIES

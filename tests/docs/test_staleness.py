@@ -1,38 +1,27 @@
 """Generated docs that cannot go stale: the docs build refuses a committed block that is not
 what its marker generates now, and a docs/data entry written by other code than the
 current (its meta file's source key, recorded when docs/data/regenerate.sh reran it)."""
-import importlib.util
 import json
-import sys
 from pathlib import Path
 
 import pytest
+
+from tests.helpers.docs_modules import docs_module
 
 ROOT = Path(__file__).parents[2]
 DOCS = ROOT / "docs"
 
 
-def _module(name):
-    sys.path.insert(0, str(DOCS))
-    try:
-        spec = importlib.util.spec_from_file_location(f"docs_{name}", DOCS / f"{name}.py")
-        module = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(module)
-        return module
-    finally:
-        sys.path.remove(str(DOCS))
-
-
 def test_data_entries_were_written_by_the_current_source():
     """Each docs/data entry's meta file holds the source key of the hubvib modules its
     commands import, as they are now (``docs/data/regenerate.sh ENTRY`` records it)."""
-    stale = _module("generate").stale_data()
+    stale = docs_module("generate").stale_data()
     assert not stale, (f"docs/data entries written by other code than the current: {stale}; "
                        f"regenerate with docs/data/regenerate.sh {' '.join(stale)}")
 
 
 def test_a_recorded_source_key_is_current_until_the_code_changes(tmp_path, monkeypatch):
-    generate = _module("generate")
+    generate = docs_module("generate")
     monkeypatch.setattr(generate, "DATA", tmp_path)
     (tmp_path / "x.json").write_text("{}")
     meta = tmp_path / "x.json.meta.json"
@@ -49,7 +38,7 @@ def test_a_recorded_source_key_is_current_until_the_code_changes(tmp_path, monke
 
 
 def test_the_modules_of_a_command_are_its_command_module_or_entry_point():
-    generate = _module("generate")
+    generate = docs_module("generate")
     assert generate.command_modules("hubvib crack-path --out docs/data/p") == [
         "hubvib.cli", "hubvib.commands.crack_path"]
     assert generate.command_modules("python -m hubvib.studies.diagnosis_check --out x") == [
@@ -69,7 +58,7 @@ def test_the_docs_build_refuses_a_stale_committed_block():
     pytest.importorskip("mkdocs")
     from mkdocs.exceptions import PluginError
 
-    hooks = _module("hooks")
+    hooks = docs_module("hooks")
     generate = hooks.generate
     marker = "<!-- cli: hubvib design check demo4.toml ; exit=2 -->"
     now = generate.render("cli", "hubvib design check demo4.toml ; exit=2")
@@ -83,7 +72,7 @@ def test_the_docs_build_refuses_a_stale_committed_block():
 def test_only_measured_blocks_escape_the_build_comparison():
     """Every marker of the pages is compared with its generator by the docs build except the
     LIVE ones (timings measured while it runs), and those are few."""
-    generate = _module("generate")
+    generate = docs_module("generate")
     bodies = {body for page in DOCS.glob("*.md")
               for _, body, _ in generate.blocks(page.read_text(encoding="utf-8"))}
     assert generate.LIVE <= bodies, f"LIVE names no marker: {sorted(generate.LIVE - bodies)}"
