@@ -95,11 +95,9 @@ def floquet_modes(model: ElasticTimeModel, curves: MeshCurves, phasing: MeshPhas
                          "carrier has no mesh cycle: its modes are the eigen model's)")
     if not 0 <= position < model.teeth:
         raise ValueError(f"position = {position!r}; allowed: 0 .. {model.teeth - 1}")
-    mesh_hz = carrier_speed * model.teeth / (2 * math.pi)
-    needed = 2 * int(math.ceil(model.omega[position, model.kept - 1] / (2 * math.pi)
-                               / mesh_hz)) + 2
+    needed = _harmonics(model, position, carrier_speed)
     if steps is None:
-        steps = max(MIN_STEPS, STEPS_PER_HARMONIC * needed)
+        steps = default_steps(model, position, carrier_speed)
     if steps < max(8, needed):
         raise ValueError(f"steps = {steps!r}; allowed: >= {max(8, needed)} (the highest "
                          "kept mode's harmonic of the mesh frequency)")
@@ -108,6 +106,19 @@ def floquet_modes(model: ElasticTimeModel, curves: MeshCurves, phasing: MeshPhas
     with blas_threads(1):
         return _floquet(model, curves, phasing, float(carrier_speed), int(position),
                         int(steps))
+
+
+def _harmonics(model, position: int, carrier_speed: float) -> int:
+    """Sub-intervals the highest kept mode's harmonic of the mesh frequency needs."""
+    mesh_hz = carrier_speed * model.teeth / (2 * math.pi)
+    return 2 * int(math.ceil(model.omega[position, model.kept - 1] / (2 * math.pi)
+                             / mesh_hz)) + 2
+
+
+def default_steps(model, position: int, carrier_speed: float) -> int:
+    """Sub-intervals of the mesh period :func:`floquet_modes` takes by default:
+    ``STEPS_PER_HARMONIC`` per harmonic up to the highest kept mode, at least ``MIN_STEPS``."""
+    return max(MIN_STEPS, STEPS_PER_HARMONIC * _harmonics(model, position, carrier_speed))
 
 
 def transition_path(model, curves, phasing, speed: float, position: int, steps: int,

@@ -145,11 +145,9 @@ def monodromy(model, curves, phasing, carrier_speed: float, position: int, scale
 
 def mesh_steps(model, position: int, carrier_speed: float) -> int:
     """Sub-intervals of the mesh period ``floquet_modes`` takes by default."""
-    from hubvib.signal.elastic_floquet import MIN_STEPS, STEPS_PER_HARMONIC
+    from hubvib.signal.elastic_floquet import default_steps
 
-    mesh_hz = carrier_speed * model.teeth / (2 * math.pi)
-    top = model.omega[position, model.kept - 1] / (2 * math.pi)
-    return max(MIN_STEPS, STEPS_PER_HARMONIC * (2 * int(math.ceil(top / mesh_hz)) + 2))
+    return default_steps(model, position, carrier_speed)
 
 
 def floquet_branches(model, curves, phasing, carrier_speed: float, position: int,
