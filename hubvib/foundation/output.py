@@ -406,7 +406,8 @@ def output_set(folder: Path):
                 f"({len(done)} finished file(s) discarded: "
                 f"{', '.join(p.as_posix() for p in done) or 'none'})", name) from None
         finally:
-            shutil.rmtree(stage, ignore_errors=True)
+            with _signals_deferred():  # a stop that comes now still removes the whole stage
+                shutil.rmtree(stage, ignore_errors=True)
 
 
 def _inside(filename, folder: Path, stage: Path) -> str:

@@ -32,3 +32,23 @@ def test_a_ctrl_c_taken_by_another_thread_waits_for_the_whole_set(tmp_path, monk
     names = sorted(p.name for p in (tmp_path / "out").iterdir())
     assert names == [output.MANIFEST_NAME, "a.csv", "b.csv"], (
         f"the set moved completely, its list written, nothing else left: {names}")
+
+
+def test_a_ctrl_c_while_the_stage_is_removed_still_removes_all_of_it(tmp_path, monkeypatch):
+    """The stop that comes right after the set moved into place, while the emptied stage
+    folder is removed: the removal finishes first, then the stop is raised."""
+    rmtree = output.shutil.rmtree
+
+    def rmtree_while_signalled(path, *args, **kwargs):
+        if output.STAGE_PREFIX in str(path):
+            signal.raise_signal(signal.SIGINT)
+        rmtree(path, *args, **kwargs)
+
+    monkeypatch.setattr(output.shutil, "rmtree", rmtree_while_signalled)
+    with pytest.raises(KeyboardInterrupt):
+        with output.output_set(tmp_path / "out") as stage:
+            (stage / "sub").mkdir()
+            (stage / "sub" / "a.csv").write_text("1\n")
+    names = sorted(p.name for p in (tmp_path / "out").iterdir())
+    assert names == [output.MANIFEST_NAME, "sub"], (
+        f"the set in place, the stage and the lock gone: {names}")
