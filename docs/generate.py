@@ -1419,6 +1419,16 @@ def elastic_identification() -> str:
 
 
 
+def record_loop() -> str:
+    """The elastic ring's closed loop from records (``hubvib.studies.record_loop``): per
+    true depth the verdicts and the intervals that hold it, the coverage and the false
+    alarms with their binomial intervals."""
+    from hubvib.studies.record_loop import loop_table
+
+    data = json.loads((DATA / "record_loop.json").read_text())
+    return loop_table(data) + provenance("record_loop.json")
+
+
 def elastic_floquet_change() -> str:
     """The crack's change of the coupled modes: the mean-stiffness eigen model the detection
     uses against the Floquet modes over the mesh cycle that a running record shows

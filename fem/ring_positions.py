@@ -90,12 +90,17 @@ def ring_positions(body: RingBody, basis: RingBasis, functionals=None) -> RingPo
     with blas_threads(1):
         S = np.hstack([raw.first, raw.second, raw.functional])
         MS, Mphi = body.M @ S, body.M @ phi
+        step = np.empty_like(S)  # (dofs, many): updated in place, not allocated anew
         for _ in range(2):  # twice: Gram-Schmidt to round-off (M S updated, not remade)
             C = phi.T @ MS
-            S, MS = S - phi @ C, MS - Mphi @ C
+            S -= np.matmul(phi, C, out=step)
+            MS -= np.matmul(Mphi, C, out=step)
+        del step
         norm = 1 / np.sqrt(np.einsum("ij,ij->j", S, MS))
-        S, MS = S * norm, MS * norm
+        S *= norm
+        MS *= norm
         gram_M = S.T @ MS
+        del MS
         gram_K = S.T @ (body.K @ S)
         rows = np.zeros((0, body.ndofs)) if functionals is None else functionals.T
         phi_rows, static_rows = np.asarray(rows @ phi), np.asarray(rows @ S)

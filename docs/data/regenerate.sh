@@ -34,6 +34,7 @@ ENTRIES=(
   convergence
   records
   elastic_identification.json
+  record_loop.json
   raba118_crack_path
   diagnosis
   convergence_work

@@ -131,37 +131,23 @@ def run(args) -> int:
 
 def _elastic_record_measured(scene, record: Path, baseline: Path):
     """The elastic ring's watched coupled modes identified in both records
-    (``identification.elastic_records``) as measured frequencies with their scatter; a
-    record in which none is identified is refused, naming why per mode."""
-    import numpy as np
-
-    from hubvib.detection.measured import Measured
-    from hubvib.identification.elastic_records import scene_record_input
+    (``detection.from_records.elastic_measured``) as measured frequencies with their
+    scatter; a record in which none is identified is refused, naming why per mode."""
+    from hubvib.detection.from_records import elastic_measured
+    from hubvib.identification.readers import read_record
     from hubvib.signal.elastic_record import scene_floquet_shift
 
     # a running reducer's record shows the Floquet modes over the mesh cycle, not the
     # mean-stiffness ones
-    found = scene_record_input(scene, record, baseline,
-                               record_shift_hz=lambda: scene_floquet_shift(scene))
-    zeta = scene.signal.damping_ratio
-    model = np.asarray(found.model_hz, dtype=float)
-    # a peak of the intact record further from the model's mode than the mode's half-power
-    # half-width is not that mode (the model does not hold it there)
-    near = np.abs(np.asarray(found.baseline_hz) - model) <= zeta * model
-    for m, f, g in zip(found.modes[~near], np.asarray(found.baseline_hz)[~near], model[~near]):
-        print(f"elastic mode {m + 1}: identified at {f:.1f} Hz in the intact record, further "
-              f"than its half-power half-width ({zeta * g:.1f} Hz) from the model's {g:.1f} "
-              "Hz: left out", file=sys.stderr)  # stdout holds the answer (or the JSON)
-    if not near.any():
-        why = "; ".join(f"mode {m + 1}: {reason}" for m, reason in
-                        sorted(found.skipped_modes.items())[:6])
+    measured, left_out = elastic_measured(
+        scene, read_record(record, "--record"), read_record(baseline, "--baseline-record"),
+        lambda: scene_floquet_shift(scene))
+    for line in left_out[:len(left_out) - (measured is None)]:
+        print(line, file=sys.stderr)  # stdout holds the answer (or the JSON)
+    if measured is None:
         raise ValueError(f"--record: no coupled mode of the elastic ring is identified in "
-                         f"both records near its model frequency ({why})")
-    return Measured(np.asarray(found.frequency_hz, dtype=float)[near],
-                    np.asarray(found.modes, dtype=int)[near] + 1,
-                    np.asarray(found.baseline_hz, dtype=float)[near],
-                    tuple(range(1, int(near.sum()) + 1)), "--record",
-                    sigma_hz=np.asarray(found.sigma_hz, dtype=float)[near])
+                         f"both records near its model frequency ({left_out[-1]})")
+    return measured
 
 
 def _diagnosed(scene, measured, ring: str, progress: bool, fail: bool):

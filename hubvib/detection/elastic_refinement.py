@@ -26,9 +26,10 @@ def refined_elastic(design, crack_of, scene, options, result, cases: list,
     ``crack_of(depth)``: the ``Crack`` of a depth [m]; ``scene``: the ``[elastic]`` table;
     ``options``: the ``DetectionOptions``.  With a worker ``pool``, while this process
     computes the depth one record length asks for next, the depth each later record length
-    asks for now is computed on the pool (taken back here when no worker has started it):
-    the depths added, and so the answer, are those of the sequential rule."""
-    from hubvib.runtime.engines import submit
+    asks for now is computed on the pool (taken back here when no worker has begun it,
+    ``runtime.claims``): the depths added, and so the answer, are those of the sequential
+    rule."""
+    from hubvib.runtime.claims import Claims
 
     from . import elastic_model
     from .pod import RECORD_LENGTHS
@@ -41,32 +42,38 @@ def refined_elastic(design, crack_of, scene, options, result, cases: list,
     k_rest = cases[0].k_rest
     ahead = {}  # depth [m] -> the pool's future of its case
 
+    claims = Claims() if pool is not None else None
+
     def case_of(depth):
         future = ahead.pop(depth, None)
-        if future is not None and not future.cancel():
+        if future is not None and not claims.claim(repr(depth)):  # a worker has begun it
             return future.result()
         return elastic_model.cached_case(design, crack_of(depth), scene, k_rest)
 
-    for n, length in enumerate(RECORD_LENGTHS):
-        for _ in range(most):
-            depth = next_depth(result.bracket(length))
-            if depth is None:
-                break
-            if pool is not None:
-                for later in RECORD_LENGTHS[n + 1:]:
-                    other = next_depth(result.bracket(later))
-                    if other not in (None, depth) and other not in depths \
-                            and other not in ahead:
-                        ahead[other] = submit(pool, elastic_model.cached_case, design,
-                                              crack_of(other), scene, k_rest)
-            at = next(k for k, d in enumerate(depths + [float("inf")]) if d > depth)
-            depths.insert(at, depth)
-            cases.insert(at, case_of(depth))
-            added.append(depth)
-            result = elastic_model.elastic_result(design, depths, crack_of, scene, options, cases,
-                                    tuple(sorted(added)), words, result.left_out)
-    for future in ahead.values():  # asked ahead, then not needed
-        future.cancel()
+    try:
+        for n, length in enumerate(RECORD_LENGTHS):
+            for _ in range(most):
+                depth = next_depth(result.bracket(length))
+                if depth is None:
+                    break
+                if pool is not None:
+                    for later in RECORD_LENGTHS[n + 1:]:
+                        other = next_depth(result.bracket(later))
+                        if other not in (None, depth) and other not in depths \
+                                and other not in ahead:
+                            ahead[other] = claims.submit(pool, repr(other),
+                                                         elastic_model.cached_case, design,
+                                                         crack_of(other), scene, k_rest)
+                at = next(k for k, d in enumerate(depths + [float("inf")]) if d > depth)
+                depths.insert(at, depth)
+                cases.insert(at, case_of(depth))
+                added.append(depth)
+                result = elastic_model.elastic_result(
+                    design, depths, crack_of, scene, options, cases, tuple(sorted(added)),
+                    words, result.left_out)
+    finally:
+        if claims is not None:  # asked ahead and not begun: not needed, dropped
+            claims.close()
     if not added:
         result = replace(result, refinement=words + "; none was needed")
     return result, cases

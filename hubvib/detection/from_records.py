@@ -175,3 +175,41 @@ def diagnose_records(scene, record_path, baseline_path, progress: bool = True,
         return NotIdentified(found.skipped(), what_would_help(found.helps()), record.duration,
                              baseline.duration, options.damping_ratio), ref, found
     return diagnose(found.measured, ref, options), ref, found
+
+
+#: share of a mode's half-power half-width ``zeta f`` within which its intact peak must lie
+#: of the model's running frequency to count as that mode: on intact records of seeds the
+#: closed loop does not use, the peaks of the modes the model places well lie within 10 Hz
+#: (0.2 %) of it, the misplaced ones 60-150 Hz (0.7-2.2 %) away
+NEAR_SHARE = 0.5
+
+
+def elastic_measured(scene, record, baseline, record_shift_hz=None):
+    """``(measured, left_out)``: the scene's elastic-ring modes identified in ``record`` and
+    its intact ``baseline`` (``identification.Record``;
+    ``identification.elastic_records.scene_identification`` with the scene's intact case,
+    sensor and damping; ``record_shift_hz`` as there) as measured
+    frequencies with their scatter (``detection.measured.Measured``), the modes whose
+    intact peak lies further from the model's mode than ``NEAR_SHARE`` of its half-power
+    half-width left out (the model does not hold them there, or the peak is another
+    mode's: one line each in ``left_out``); ``measured``
+    is None when no mode is left, and ``left_out`` then ends with why each was skipped."""
+    from hubvib.identification.elastic_records import scene_identification
+
+    found = scene_identification(scene, record, baseline, None, record_shift_hz)
+    zeta = scene.signal.damping_ratio
+    model = np.asarray(found.model_hz, dtype=float)
+    base = np.asarray(found.baseline_hz, dtype=float)
+    near = np.abs(base - model) <= NEAR_SHARE * zeta * model
+    left_out = [f"elastic mode {m + 1}: identified at {f:.1f} Hz in the intact record, "
+                f"further than {NEAR_SHARE:g} of its half-power half-width "
+                f"({NEAR_SHARE * zeta * g:.1f} Hz) from the model's {g:.1f} Hz: left out"
+                for m, f, g in zip(found.modes[~near], base[~near], model[~near])]
+    if not near.any():
+        why = "; ".join(f"mode {m + 1}: {reason}" for m, reason in
+                        sorted(found.skipped_modes.items())[:6])
+        return None, left_out + [why]
+    return Measured(np.asarray(found.frequency_hz, dtype=float)[near],
+                    np.asarray(found.modes, dtype=int)[near] + 1, base[near],
+                    tuple(range(1, int(near.sum()) + 1)), "--record",
+                    sigma_hz=np.asarray(found.sigma_hz, dtype=float)[near]), left_out

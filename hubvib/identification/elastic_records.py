@@ -338,28 +338,23 @@ def model_peaks(elastic_spectrum_or_case, sensor_angle: float, damping_ratio: fl
     return out
 
 
-def scene_record_input(scene, record_path, baseline_path, damping_ratio: float | None = None,
-                       record_shift_hz=None) -> ElasticRecordInput:
-    """:func:`identify_elastic_records` for a crack scene's elastic ring: the records read
-    from files (CSV, WAV, UFF 58), the intact model the scene's cached elastic case (planet
-    1 half a planet pitch from the cracked tooth), the sensor at ``[elastic]
-    sensor_angle_deg`` from the cracked tooth's centre line, the damping the scene's
-    ``[signal] damping_ratio`` unless given; ``record_shift_hz``: per model mode, how far
-    the running reducer's mesh cycle moves the frequency a record shows [Hz]
-    (``hubvib.signal.elastic_record.scene_floquet_shift``), or a function of no argument
-    returning it (called once the records are read); None: not at all."""
+def scene_identification(scene, record: Record, baseline: Record,
+                         damping_ratio: float | None = None,
+                         record_shift_hz=None) -> ElasticRecordInput:
+    """:func:`identify_elastic_records` for a crack scene's elastic ring: the intact model
+    the scene's cached elastic case (planet 1 half a planet pitch from the cracked tooth),
+    the sensor at ``[elastic] sensor_angle_deg`` from the cracked tooth's centre line, the
+    damping the scene's ``[signal] damping_ratio`` unless given; ``record_shift_hz``: per
+    model mode, how far the running reducer's mesh cycle moves the frequency a record shows
+    [Hz] (``hubvib.signal.elastic_record.scene_floquet_shift``), or a function of no
+    argument returning it (called once the model is at hand); None: not at all."""
+    from hubvib.cases.sweep import crack_of
     from hubvib.elastic.cases import cached_case
     from hubvib.elastic.rest import rest_stiffness
     from hubvib.reducer.stages import ring_gear
 
-    from .readers import read_record
-
-    record = read_record(record_path, "--record")
-    baseline = read_record(baseline_path, "--baseline-record")
     elastic = scene.elastic
     tooth = scene.crack.tooth if scene.crack is not None else 0
-    from hubvib.cases.sweep import crack_of
-
     # the diagnosis's own intact case (the sweep's tooth at depth 0): the same ring, mode
     # order and cache entry
     intact = crack_of(scene.crack, 0.0) if scene.crack is not None else None

@@ -100,6 +100,16 @@ def cached_result(kind: str, inputs, modules: tuple[str, ...], compute, expected
     return pickle.loads(payload)
 
 
+def cached_entry(kind: str, inputs, modules: tuple[str, ...], expected: type):
+    """The entry :func:`cached_result` would load for these arguments (checked), or None
+    when there is none (nothing is computed)."""
+    try:
+        path = entry_path(kind, inputs, modules)
+    except (pickle.PicklingError, TypeError, AttributeError, OSError):
+        return None
+    return _load(path, expected)
+
+
 def _load(path: Path, expected: type):
     try:
         data = path.read_bytes()

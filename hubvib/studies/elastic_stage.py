@@ -8,7 +8,8 @@ from concurrent.futures import Future
 
 from hubvib.cases.sweep import crack_of
 from hubvib.reducer.stages import ring_gear
-from hubvib.runtime.engines import EngineError, Execution, run_cases, submit
+from hubvib.runtime.claims import Claims
+from hubvib.runtime.engines import EngineError, Execution, run_cases
 from hubvib.studies.kind_registry import Scene
 
 __all__ = ["begin_elastic", "elastic_depths", "elastic_load_sensitivity", "elastic_map_of",
@@ -30,10 +31,11 @@ def begin_elastic(scene: Scene, pool):
     process (no pool); None when the scene runs the rigid ring only.
 
     With a pool every case is queued there, behind what is queued already, and this
-    process takes back the cases no worker has started, the deepest first, and computes
-    them here (as a worker would: one BLAS thread) until the workers reach the rest: while
-    they run the FE cases ahead, it would only wait for them.  The intact case brings the
-    rigid-ring model's validity band, computed from its own ring."""
+    process computes, the deepest first, every case no worker has begun (each claimed by
+    whoever begins it first, ``runtime.claims``; the executor's call queue included), as a
+    worker would (one BLAS thread): while the workers run the FE cases and renders ahead,
+    it would only wait for them.  The intact case brings the rigid-ring model's validity
+    band, computed from its own ring."""
     elastic = _elastic_scene(scene)
     if elastic is None:
         return None
@@ -46,11 +48,12 @@ def begin_elastic(scene: Scene, pool):
         return arguments
     work = [(cached_case, a, f"elastic ring at {1e3 * d:g} mm")
             for a, d in zip(arguments, depths)]
-    futures = [submit(pool, function, *a) for function, a, _ in work]
-    for k in reversed(range(len(futures))):
-        if not futures[k].cancel():  # a worker has it: the earlier ones are theirs too
-            break
-        futures[k] = _computed_here(*work[k])
+    with Claims() as claims:
+        futures = [claims.submit(pool, str(k), function, *a)
+                   for k, (function, a, _) in enumerate(work)]
+        for k in reversed(range(len(futures))):
+            if claims.claim(str(k)):  # no worker has begun it (queued, or in the call queue)
+                futures[k] = _computed_here(*work[k])
     return futures
 
 

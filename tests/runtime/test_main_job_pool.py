@@ -29,7 +29,10 @@ class _CountingPool:
         self.submitted = []
 
     def submit(self, function, *args):
-        self.submitted.append(function.__name__)
+        from hubvib.runtime.claims import claimed_call
+
+        # a claimed task (``runtime.claims``): the work it wraps
+        self.submitted.append((args[2] if function is claimed_call else function).__name__)
         return None
 
 
@@ -72,13 +75,15 @@ def test_renders_are_submitted_only_when_the_render_cache_lacks_them(cache):
 
 
 class _StartedPool(_CountingPool):
-    """A ``_CountingPool`` whose workers have started the first ``started`` cases it is
-    given (their futures cannot be cancelled), the rest still queued; it records the BLAS
-    environment of each submit (what a worker spawned there would get)."""
+    """A ``_CountingPool`` whose workers have begun the first ``started`` cases it is given
+    (claimed them, ``runtime.claims``; their futures cannot be cancelled) and moved the next
+    ``queued`` to the executor's call queue (cannot be cancelled either, not begun), the
+    rest still queued; it records the BLAS environment of each submit (what a worker
+    spawned there would get)."""
 
-    def __init__(self, started):
+    def __init__(self, started, queued=0):
         super().__init__()
-        self.started, self.environments = started, []
+        self.started, self.queued, self.environments = started, queued, []
 
     def submit(self, function, *args):
         import os
@@ -88,21 +93,26 @@ class _StartedPool(_CountingPool):
 
         self.environments.append({key: os.environ.get(key) for key in SINGLE_THREADED})
         super().submit(function, *args)
+        from hubvib.runtime.claims import _claim
+
         future = Future()
-        if len(self.submitted) <= self.started:
+        if len(self.submitted) <= self.started + self.queued:
             future.set_running_or_notify_cancel()
+        if len(self.submitted) <= self.started:
+            assert _claim(args[0], args[1]), "a worker claims a case no one has"
         return future
 
 
-@pytest.mark.parametrize("started", [99, 5])
+@pytest.mark.parametrize("started,queued", [(99, 0), (5, 0), (2, 3)])
 def test_elastic_cases_the_workers_have_not_started_are_computed_here(cache, monkeypatch,
-                                                                      started):
+                                                                      started, queued):
     """Counter, not time: the default scene queues one elastic case per depth (the crack
     through the rim left out), each submitted with one BLAS thread in the environment
-    (``runtime.engines.SINGLE_THREADED``), as the FE cases; what no worker has started is
-    taken back and computed in this process, the deepest cases first, with one BLAS thread
-    as on a worker (the same digits); the cases come back as finished futures in depth
-    order."""
+    (``runtime.engines.SINGLE_THREADED``), as the FE cases; what no worker has begun is
+    computed in this process, the deepest cases first, with one BLAS thread as on a worker
+    (the same digits), also a case the executor has moved to its call queue (its future
+    cannot be cancelled, and the workers may be busy with a render for seconds); the
+    cases come back as finished futures in depth order."""
     from hubvib.detection import elastic_model as detection_elastic
     from hubvib.elastic import rest
     from hubvib.foundation.blas import blas_thread_counts
@@ -119,7 +129,7 @@ def test_elastic_cases_the_workers_have_not_started_are_computed_here(cache, mon
     scene = load_scene(None)
     depths = elastic_stage.elastic_depths(scene.crack)
     assert len(depths) == len(scene.crack.depths) - 1
-    pool = _StartedPool(started)
+    pool = _StartedPool(started, queued)
     begun = elastic_stage.begin_elastic(scene, pool)
     assert pool.submitted == ["case_here"] * len(depths)
     assert pool.environments == [SINGLE_THREADED] * len(depths), pool.environments
@@ -129,9 +139,9 @@ def test_elastic_cases_the_workers_have_not_started_are_computed_here(cache, mon
     assert all(threads == {1} for _, threads in here), f"one BLAS thread, as a worker: {here}"
     for k, future in enumerate(begun):
         if k < len(depths) - taken:
-            assert future.running(), "a case a worker has started stays the worker's"
+            assert future.running(), "a case a worker has begun stays the worker's"
         else:
-            assert future.result() == ("case", depths[k])
+            assert future.result(timeout=0) == ("case", depths[k])
 
 
 def test_no_renders_no_pool_work(cache):
