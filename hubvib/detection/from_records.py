@@ -178,10 +178,9 @@ def diagnose_records(scene, record_path, baseline_path, progress: bool = True,
 
 
 #: share of a mode's half-power half-width ``zeta f`` within which its intact peak must lie
-#: of the model's running frequency to count as that mode: on intact records of seeds the
-#: closed loop does not use, the peaks of the modes the model places well lie within 10 Hz
-#: (0.2 %) of it, the misplaced ones 60-150 Hz (0.7-2.2 %) away
-NEAR_SHARE = 0.5
+#: of the model's running frequency to count as that mode (the choice: docs/signal.md,
+#: "The coupled modes from the records")
+NEAR_SHARE = 0.25
 
 
 def elastic_measured(scene, record, baseline, record_shift_hz=None):

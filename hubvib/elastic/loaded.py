@@ -156,9 +156,8 @@ def _light_modes(mats, probe: np.ndarray, Z: np.ndarray | None, band_hz: float
     (``coupled_matrices``, ring M = I) with its ring coordinates restricted to the columns
     of ``Z`` (orthonormal; None: all).  The restriction of the assembled model is the model
     of the restricted ring (the couplings are linear in the ring's contact rows).  The mass
-    is diagonal, so the problem is made standard by scaling; at this size (tens of
-    coordinates) LAPACK's divide and conquer on the whole spectrum is faster than the
-    MRRR driver on the part below the band."""
+    is diagonal, so the problem is made standard by scaling; the whole spectrum is solved
+    (tens of coordinates) and the part below the band kept."""
     n = mats.n_ring
     K = np.asarray(mats.K)
     if Z is not None:

@@ -165,3 +165,16 @@ def test_elastic_ring_answer_quotes_the_committed_default_scene_run():
     text = " ".join(README.split())
     for phrase in expected:
         assert phrase in text, f"README against docs/data/raba118_crack: {phrase!r}"
+
+
+def test_record_loop_sentence_quotes_the_committed_loop():
+    """The README's closed-loop figures are those of docs/data/record_loop.json."""
+    import json
+
+    data = json.loads((ROOT / "docs" / "data" / "record_loop.json").read_text())
+    s = data["summary"]
+    text = " ".join(README.split())
+    phrase = (f"hold the true depth in {s['covered']} of {s['cracked']} cracked records "
+              f"({100 * s['coverage']:.0f} %)")
+    assert phrase in text, f"README should say {phrase!r} (docs/data/record_loop.json)"
+    assert f"{s['records']} simulated records" in text

@@ -1,7 +1,7 @@
 """``hubvib diagnose --record --ring elastic``: the coupled modes identified in both records
 become measured frequencies with their scatter, a peak of the intact record further from
-its model mode than half the mode's half-power half-width is left out (named), and nothing
-identified is one line."""
+its model mode than a quarter of the mode's half-power half-width is left out (named), and
+nothing identified is one line."""
 from types import SimpleNamespace
 
 import numpy as np
@@ -27,7 +27,7 @@ def test_identified_modes_near_the_model_become_measured(monkeypatch):
     from hubvib.identification import elastic_records
 
     model = [1000.0, 2000.0, 3000.0]
-    # the second mode's intact peak lies 2.5 % (more than zeta / 2 = 1 %) from its model
+    # the second mode's intact peak lies 2.5 % (more than zeta / 4 = 0.5 %) from its model
     # mode, the third 0.33 %
     found = _found([1001.0, 2050.0, 2990.0], model)
     monkeypatch.setattr(elastic_records, "scene_identification", lambda *a, **k: found)

@@ -13,8 +13,10 @@ def test_a_key_is_claimed_once_and_none_after_close():
     assert claims.claim("a") and not claims.claim("a"), "the second claim of a key fails"
     assert claims.claim("b")
     claims.close()
-    assert not os.path.exists(folder), "closing removes the claim files"
-    assert not claims.claim("c"), "after close nothing is claimed: unstarted work is dropped"
+    assert not os.path.exists(folder) and not os.path.exists(folder + ".closed"), \
+        "closing removes the claim files"
+    assert claimed_call(folder, "c", os.getpid) is NOT_CLAIMED, \
+        "after close a worker claims nothing: unstarted work is dropped"
 
 
 def test_the_loser_of_a_claim_does_nothing():
@@ -40,3 +42,15 @@ def test_claims_hold_between_processes():
         assert not claims.claim("theirs")
         folder = claims.folder
     assert claimed_call(folder, "late", os.getpid) is NOT_CLAIMED, "after close: dropped"
+
+
+def test_a_vanished_folder_leaves_every_claim_to_this_process():
+    """A temporary-folder cleaner removing the claims: this process claims every key (it
+    computes the work itself), a worker none; still each piece once."""
+    import shutil
+
+    with Claims() as claims:
+        shutil.rmtree(claims.folder)
+        assert claims.claim("a") and claims.claim("a")
+        assert claimed_call(claims.folder, "a", os.getpid) is NOT_CLAIMED
+    assert NOT_CLAIMED is not None

@@ -40,7 +40,7 @@ def test_a_record_without_an_interval_does_not_hold_its_depth():
     data = {"summary": s, "rows": [record_loop._row_dict(r) for r in rows]}
     table = loop_table(data)
     assert "| 3.00 | 3 | 1 | 1 | 2.00 | 3.50 |" in table, table
-    assert "in 1 of 3 (33 %" in table and "1 of 2 called a crack" in table
+    assert "in 1 of 3 (33 %" in table and "1 of 2 (50 %" in table and "90 %" in table
 
 
 def test_seeds_differ_from_the_shipped_records_and_between_records():
@@ -67,3 +67,11 @@ def test_one_intact_and_one_cracked_record_are_diagnosed_and_kept(tmp_path, monk
 
     monkeypatch.setattr("hubvib.runtime.process_pool.worker_pool", no_pool)
     assert record_loop.loop_rows(record_loop.DEFAULT_SCENE, [0.0045], 1, 1) == rows
+
+
+@pytest.mark.parametrize("depths", ["0,1.5", "1.5,1.5", "x", ""])
+def test_bad_depths_are_one_line_and_exit_2(depths, capsys):
+    with pytest.raises(SystemExit) as stop:
+        record_loop.main(["--depths-mm", depths, "--records", "1", "--intact", "0"])
+    err = capsys.readouterr().err
+    assert stop.value.code == 2 and err.count("\n") == 1 and "--depths-mm" in err, err
