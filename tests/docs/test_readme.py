@@ -178,3 +178,5 @@ def test_record_loop_sentence_quotes_the_committed_loop():
               f"({100 * s['coverage']:.0f} %)")
     assert phrase in text, f"README should say {phrase!r} (docs/data/record_loop.json)"
     assert f"{s['records']} simulated records" in text
+    assert ("intact records are not called cracked" in text) == (s["false_alarms"] == 0), \
+        f"{s['false_alarms']} false alarms in docs/data/record_loop.json"
