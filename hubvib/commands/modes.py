@@ -169,8 +169,9 @@ def _design(args):
 
 
 def _rigid(args) -> int:
-    from hubvib.reducer.stages import lumped_parameters
+    from hubvib.detection.mode_names import rigid_label
     from hubvib.lumped import natural_modes
+    from hubvib.reducer.stages import lumped_parameters
 
     from . import spectrum
 
@@ -178,10 +179,14 @@ def _rigid(args) -> int:
     spec = natural_modes(lumped_parameters(design))
     differences = _differences(args, design)
     if args.json:
+        rows = [row | {"label": rigid_label(row["mode"] - 1, row["kind"], row["frequency_hz"])}
+                for row in spec.rows()]
         print(json_text({"ring": "rigid", "design": design.name, "method": spec.method,
                          "n_rigid": spec.n_rigid,
-                         "modes": spec.rows(), "model_differences": differences.to_dict()}))
+                         "modes": rows, "model_differences": differences.to_dict()}))
         return 0
+    print(f"{design.name}: rigid ring (the 9 + 3N model); reports name its mode K 'rigid K' "
+          "(the elastic ring numbers its own modes)")
     code = spectrum.run(argparse.Namespace(preset=args.preset, design=args.design,
                                            params=None, set=[], method="jacobi", json=False))
     print("\n".join(differences.lines()))
@@ -220,6 +225,7 @@ MESH_NAMES = {"study": "the crack study's ring mesh ([elastic] of 'hubvib run')"
 
 
 def _elastic(args) -> int:
+    from hubvib.detection.mode_names import elastic_label
     from hubvib.elastic.model import elastic_ring, elastic_spectrum, lowest_ring_mode
     from hubvib.elastic.tracking import track_modes
     from hubvib.meshing.crack import Crack
@@ -243,6 +249,7 @@ def _elastic(args) -> int:
         tracked = track_modes(intact, spec, er.body.rigid_mass()[0, 0])
     rows = spec.rows()
     for i, row in enumerate(rows):
+        row["label"] = elastic_label(spec.content[i], row["frequency_hz"])
         if tracked is not None:
             ref = tracked.reference[i]
             row["tracks_intact_mode"] = ref + 1 if ref >= 0 else None
@@ -307,7 +314,8 @@ def _elastic(args) -> int:
           "symmetry; ring: the ring's share of the kinetic energy; class: 'ring' where the "
           "ring holds the largest kinetic-energy share of the bodies, else the mode's type "
           "under the planets' symmetry; mult 2: a pair by that symmetry (found by shape), "
-          "with its partner and split")
+          "with its partner and split; reports name a coupled mode 'elastic n=N (class, "
+          "f Hz)', not by its number here (the rigid ring numbers its own modes)")
     print("\n".join(differences.lines()))
     if written:
         pictures = sum(1 for w in written if w.suffix == ".png")

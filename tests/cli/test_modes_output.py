@@ -64,3 +64,34 @@ def test_untracked_mode_prints_a_word_not_nan():
             if re.match(r"^\s*\d+\s+\d", line)}
     for mode in untracked:
         assert "not tracked" in rows[mode], rows[mode]
+
+
+def test_rigid_modes_name_their_model():
+    """Mode numbers of the two ring models mean different modes: the rigid table says
+    whose numbers they are, and each JSON row carries the label the report prints
+    (``detection.mode_names.rigid_label``: ``rigid K (type, f Hz)``)."""
+    code, text, err = run_cli(["modes", "--preset", "raba118", "--ring", "rigid"])
+    assert code == 0, err
+    assert text.splitlines()[0].startswith("raba118: rigid ring (the 9 + 3N model)")
+    code, out, err = run_cli(["modes", "--preset", "raba118", "--ring", "rigid", "--json"])
+    assert code == 0, err
+    rows = out["modes"]
+    assert len(rows) == 18
+    for row in rows:
+        assert row["label"] == (f"rigid {row['mode']} ({row['kind']}, "
+                                f"{row['frequency_hz']:.1f} Hz)"), row
+    assert len({row["label"] for row in rows}) == 18, "one label per mode"
+
+
+@pytest.mark.slow
+def test_elastic_modes_carry_the_reports_label():
+    """Each coupled mode of ``hubvib modes --ring elastic --json`` carries the label the
+    report and detection print (``elastic_label``: nodal diameter, class, frequency), one
+    per mode."""
+    code, out, err = run_cli(["modes", "--preset", "raba118", "--ring", "elastic", "--json"])
+    assert code == 0, err
+    rows = out["modes"]
+    for row in rows:
+        assert row["label"] == (f"elastic n={row['nodal_diameter']} ({row['class']}, "
+                                f"{row['frequency_hz']:.1f} Hz)"), row
+    assert len({row["label"] for row in rows}) == len(rows), "one label per mode"
