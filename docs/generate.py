@@ -37,6 +37,7 @@ from __future__ import annotations
 import atexit
 import contextlib
 import csv
+import hashlib
 import io
 import json
 import math
@@ -51,7 +52,8 @@ from pathlib import Path
 
 import numpy as np
 
-DATA = Path(__file__).resolve().parent / "data"
+ROOT = Path(__file__).resolve().parents[1]
+DATA = ROOT / "docs" / "data"
 
 # Every entry of docs/data (a file, or a folder "name/") has a meta file
 # docs/data/<name>.meta.json: "command", the exact shell commands, run from the repository
@@ -89,13 +91,32 @@ def command_modules(command: str) -> list[str]:
     raise ValueError(f"a docs/data command runs hubvib or python -m, not {command!r}")
 
 
+#: what a command's output is written to (the word after these is not an input)
+_OUTPUT_FLAGS = {"--out", ">"}
+
+
+def command_inputs(command: str) -> list[Path]:
+    """The repository files a regenerating command reads besides the code: every shipped
+    scene (a command may name one, or read its default scene) and each argument that is a
+    file of the repository, the word after ``--out`` or ``>`` left out."""
+    argv = shlex.split(command)
+    named = {ROOT / word for i, word in enumerate(argv)
+             if not (i and argv[i - 1] in _OUTPUT_FLAGS) and (ROOT / word).is_file()}
+    return sorted(named | set((ROOT / "scenes").glob("*.toml")))
+
+
 def data_source_key(entry: str) -> str:
     """The source key (``hubvib.foundation.source_graph``) of every hubvib module the
-    entry's commands import: what its "source_key" must be for the data to be current."""
+    entry's commands import, hashed with the bytes of every input file they read
+    (:func:`command_inputs`): what its "source_key" must be for the data to be current."""
     from hubvib.foundation.source_graph import source_key
 
-    modules = sorted({m for c in _meta(entry)["command"] for m in command_modules(c)})
-    return source_key(*modules)
+    commands = _meta(entry)["command"]
+    modules = sorted({m for c in commands for m in command_modules(c)})
+    digest = hashlib.sha256(source_key(*modules).encode())
+    for path in sorted({p for c in commands for p in command_inputs(c)}):
+        digest.update(str(path.relative_to(ROOT)).encode() + b"\0" + path.read_bytes())
+    return digest.hexdigest()
 
 
 #: docs/data entries the docs build does not hold to a source key, each with the reason (what

@@ -23,7 +23,7 @@ cd "$(dirname "$0")/../.."
 PYTHON=${PYTHON:-python}
 REFILL=${REFILL:-1}
 
-# cheap first (fe_substructure.json reads raba118_crack's committed run: before it); every
+# cheap first (fe_substructure.json reads raba118_crack's committed run: after it); every
 # docs/data entry once (tests/docs/test_docs_site.py checks the list)
 ENTRIES=(
   raba118_signal
@@ -39,8 +39,8 @@ ENTRIES=(
   diagnosis
   convergence_work
   elastic_ring.json
-  fe_substructure.json
   raba118_crack
+  fe_substructure.json
   floquet_change.json
   crack_path
   raba118_crack_3d_small

@@ -37,7 +37,7 @@ import numpy as np
 
 from hubvib.elastic.cases import cached_case
 from hubvib.elastic.tracking import track_modes
-from hubvib.foundation.output import finite_or_none
+from hubvib.foundation.output import explained, finite_or_none
 from hubvib.lumped.elastic_ring import RING_DOFS, coupled_matrices
 from hubvib.lumped.network import mass_diagonal, spring_network
 from hubvib.lumped.parameters import MASS_FIELDS
@@ -667,7 +667,7 @@ def elastic_mode_rows(result: DetectionResult) -> list[dict]:
     detail = result.detail
     out = []
     for i, f in enumerate(result.intact_hz):
-        out.append({
+        out.append(explained({
             "mode": i + 1, "label": result.labels[i], "frequency_hz": float(f),
             "class": detail.kind[i], "nodal_diameter": detail.nodal_diameter[i],
             "harmonic_index": detail.harmonic_index[i], "ring_share": detail.ring_share[i],
@@ -675,21 +675,44 @@ def elastic_mode_rows(result: DetectionResult) -> list[dict]:
             "sigma_hz": {f"{t:g}": float(s[i]) for t, s in result.sigma_hz.items()},
             "shift_record_hz": [finite_or_none(x) for x in result.shift_hz[:, i]],
             "shift_open_hz": [finite_or_none(x) for x in _open_shift(result)[:, i]],
-            "record": [None if t is None else {
-                "frequency_hz": finite_or_none(t.record_hz[i]),
-                "intact_hz": finite_or_none(t.intact_record_hz[i]),
-                "instantaneous_min_hz": finite_or_none(t.instantaneous_min_hz[i]),
-                "instantaneous_max_hz": finite_or_none(t.instantaneous_max_hz[i]),
-                "frequency_slip_hz": finite_or_none(t.slip_hz[i]),
-                "regime": t.regime[i] if i < len(t.regime) else None,
-                "split_hz": list(t.split_hz[i]) if i < len(t.split_hz) else []}
-                if i < len(t.record_hz) else None for t in detail.tracks],
+            "record": [None if t is None or i >= len(t.record_hz) else _record_row(t, i)
+                       for t in detail.tracks],
             "shift_in_contact_hz": [finite_or_none(x)
                                     for x in detail.in_contact_shift_hz[:, i]],
             "shift_bilinear_hz": [finite_or_none(x) for x in
                                   bilinear_hz(result)[:, i] - bilinear_hz(result)[0, i]],
-            "split_pair": [bool(x) for x in detail.split_pair[:, i]]})
+            "split_pair": [bool(x) for x in detail.split_pair[:, i]]}, **MODE_ROW_NULLS))
     return out
+
+
+#: why a per-depth entry of an elastic mode's row is null
+MODE_ROW_NULLS = {
+    "shift_record_hz": "null at a depth where the mode is not tracked (no mode of the "
+                       "cracked ring's spectrum matches it by shape)",
+    "shift_open_hz": "null at a depth where the mode is not tracked with the faces open, "
+                     "planet 1 half a pitch away (no mode matches it by shape)",
+    "shift_bilinear_hz": "null where shift_open_hz is (the bilinear estimate is built from it)",
+    "shift_in_contact_hz": "null where the mode is not tracked with planet 1 on the cracked "
+                           "tooth (no mode of that spectrum matches it by shape, intact "
+                           "included)",
+    "record": "null at a depth without a loaded state (intact, faces open or through the "
+              "rim: the open-crack answer holds there) or whose pitch spectra lack the mode",
+}
+
+
+def _record_row(track, i: int) -> dict:
+    """Mode ``i`` of a depth's record over the pitch (JSON-ready)."""
+    why = "the mode is not tracked over the pitch at this depth"
+    return explained({
+        "frequency_hz": finite_or_none(track.record_hz[i]),
+        "intact_hz": finite_or_none(track.intact_record_hz[i]),
+        "instantaneous_min_hz": finite_or_none(track.instantaneous_min_hz[i]),
+        "instantaneous_max_hz": finite_or_none(track.instantaneous_max_hz[i]),
+        "frequency_slip_hz": finite_or_none(track.slip_hz[i]),
+        "regime": track.regime[i] if i < len(track.regime) else None,
+        "split_hz": list(track.split_hz[i]) if i < len(track.split_hz) else []},
+        frequency_hz=why, intact_hz=why, instantaneous_min_hz=why, instantaneous_max_hz=why,
+        frequency_slip_hz=why, regime=why)
 
 
 def elastic_result(design, depths, crack_of, scene, options, cases: list | None = None,

@@ -17,7 +17,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from hubvib.elastic.loaded import CLOSURE_GAPS, TORQUE_FRACTIONS
-from hubvib.foundation.output import finite_or_none
+from hubvib.foundation.output import explained, finite_or_none
 
 from .elastic_model import RecordLoad, elastic_result
 
@@ -41,10 +41,13 @@ class LoadVariant:
     depths: tuple
 
     def to_dict(self) -> dict:
-        return {"torque_fraction": self.torque_fraction, "closure_gap_m": self.gap,
-                "answer": {f"{t:g}": words for t, words in self.answer.items()},
-                "open_share": [finite_or_none(x) for x in self.open_share],
-                "watched": list(self.watched), "depths_m": list(self.depths)}
+        return explained(
+            {"torque_fraction": self.torque_fraction, "closure_gap_m": self.gap,
+             "answer": {f"{t:g}": words for t, words in self.answer.items()},
+             "open_share": [finite_or_none(x) for x in self.open_share],
+             "watched": list(self.watched), "depths_m": list(self.depths)},
+            open_share="null at a depth without a loaded state (intact: no crack faces; or "
+                       "the faces open at every position, through the rim)")
 
 
 def load_sensitivity(design, depths, crack_of, scene, options, cases) -> tuple:

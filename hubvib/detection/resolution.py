@@ -65,9 +65,12 @@ class Bracket:
         return f"between {1e3 * self.low:.3g} and {1e3 * self.high:.3g} mm"
 
     def to_dict(self) -> dict:
-        return {"low_mm": 1e3 * self.low,
-                "high_mm": None if self.high is None else 1e3 * self.high,
-                "resolved": self.resolved, "words": self.words()}
+        out = {"low_mm": 1e3 * self.low,
+               "high_mm": None if self.high is None else 1e3 * self.high,
+               "resolved": self.resolved, "words": self.words()}
+        if self.high is None:
+            out["high_mm_reason"] = self.words()
+        return out
 
 
 def bracket(depths, pod, probability: float) -> Bracket:

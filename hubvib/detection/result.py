@@ -123,6 +123,8 @@ class DetectionResult:
             "first_detectable_mm": {f"{t:g}": (None if self.first_detectable(t) is None
                                                else 1e3 * self.first_detectable(t))
                                     for t in self.lengths},
+            "first_detectable_mm_reason": {f"{t:g}": self.answer(t) for t in self.lengths
+                                           if self.first_detectable(t) is None},
             "pod_crossing": {f"{t:g}": self.bracket(t).to_dict() for t in self.lengths},
             "family_pod": {f"{t:g}": [float(p) for p in v] for t, v in self.pod.items()},
             "family_pod_nominal": {f"{t:g}": [float(p) for p in v]

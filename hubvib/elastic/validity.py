@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from hubvib.foundation.output import finite_or_none
+from hubvib.foundation.output import explained, finite_or_none
 
 from .content import PAIR_RTOL, diameter_content, frequency_groups
 from .model import elastic_ring, elastic_spectrum, lowest_ring_mode, lumped_equivalent
@@ -133,13 +133,23 @@ class ValidityBand:
 
     def rows(self) -> list[dict]:
         """One dict per rigid-model mode (JSON-ready; NaN as None)."""
-        return [{"mode": p.mode, "rigid_hz": p.rigid_hz,
+        rows = []
+        for p in self.paired:
+            why = (f"no coupled mode pairs with rigid mode {p.mode}: none is assigned to it "
+                   f"that matches it by shape (subspace match >= {MIN_MATCH:g}) without the "
+                   f"ring's own deformation dominating it (its best match to any coupled "
+                   f"mode: {p.match:.2f})")
+            rows.append(explained(
+                {"mode": p.mode, "rigid_hz": p.rigid_hz,
                  "elastic_hz": finite_or_none(p.elastic_hz),
                  "relative_difference": finite_or_none(p.relative_difference), "match": p.match,
                  "ring_share": finite_or_none(p.ring_share),
                  "deformation_share": finite_or_none(p.deformation_share),
                  "nodal_diameter": p.nodal_diameter,
-                 "inside_band": bool(p.rigid_hz < self.band_top_hz)} for p in self.paired]
+                 "inside_band": bool(p.rigid_hz < self.band_top_hz)},
+                elastic_hz=why, relative_difference=why, ring_share=why,
+                deformation_share=why, nodal_diameter=why))
+        return rows
 
 
 def rigid_fit(er) -> np.ndarray:

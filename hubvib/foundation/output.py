@@ -190,6 +190,17 @@ def finite_or_none(x) -> float | None:
     return x if math.isfinite(x) else None
 
 
+def explained(payload: dict, **reasons: str) -> dict:
+    """``payload`` with ``<key>_reason`` beside each ``key`` of ``reasons`` whose value is
+    null or a list holding a null: the rule that every null a results file writes says why."""
+    out = dict(payload)
+    for key, why in reasons.items():
+        value = payload.get(key)
+        if value is None or (isinstance(value, list) and any(v is None for v in value)):
+            out[f"{key}_reason"] = why
+    return out
+
+
 def json_text(data, indent: int | None = 2) -> str:
     """Standard JSON (no NaN or Infinity); a non-finite number is a ``ValueError`` naming it."""
     try:

@@ -12,7 +12,7 @@ from dataclasses import asdict
 from pathlib import Path
 
 from hubvib.detection.mesh_stiffness import family_depths, iso_c_rp
-from hubvib.foundation.output import write_csv, write_json
+from hubvib.foundation.output import explained, write_csv, write_json
 from hubvib.reports.answer import answer_line, lead
 from hubvib.reports.provenance import json_safe, provenance
 
@@ -42,7 +42,10 @@ def write_crack_tables(result, folder: Path) -> list[Path]:
                   write_csv(folder / "detectability_map.csv", study.map.rows())]
     files.append(write_json(folder / "results.json", json_safe(_reasons_for_nulls({
         "scene": scene.name, **provenance(), "parameters": result.model.params.to_dict(),
-        "crack": {k: v for k, v in asdict(scene.crack).items() if k != "design"},
+        "crack": explained({k: v for k, v in asdict(scene.crack).items() if k != "design"},
+                           **{key: f"not set in the scene's [crack] table: the mounting the "
+                                   f"study used is mounting.{key}_N_m"
+                              for key in ("c_ru_mount", "c_r_mount")}),
         "mounting": {"apply": result.model.apply, "c_ru_mount_N_m": result.model.c_ru_mount,
                      "c_r_mount_N_m": result.model.c_r_mount},
         "detection": None if study is None else {
@@ -62,7 +65,13 @@ def write_crack_tables(result, folder: Path) -> list[Path]:
         "short_answer": None if which.leader is None else {
             "ring": which.leader.ring, "line": answer_line(which),
             "comparison": None if which.other is None else which.other.ring,
-            "comparison_why": which.reason or None},
+            "comparison_why": which.reason or None,
+            "comparison_reason": (None if which.other is not None else
+                                  f"only the {which.leader.ring} ring's answer: the other "
+                                  "ring model did not run, or the rigid ring's validity "
+                                  "band is unknown"),
+            "comparison_why_reason": (None if which.reason else
+                                      "no second ring model to compare with")},
         "stiffness": result.stiffness_rows(), "modes": result.mode_rows(),
         "frequencies": result.frequency_rows(),
         "mesh_stiffness": dict(result.model.mesh_stiffness(),
@@ -99,14 +108,22 @@ def write_crack_tables(result, folder: Path) -> list[Path]:
 
 
 def _reasons_for_nulls(payload: dict) -> dict:
-    """``payload`` with each ``<key>_reason`` kept only beside a null ``<key>`` (and in
-    the nested dicts one level down, as the elastic ring's)."""
+    """``payload`` with each ``<key>_reason`` left out beside a ``<key>`` that holds a
+    value (a null, a list holding one, or a mapping of reasons keeps it), in every nested
+    dict too."""
     out = {}
     for key, value in payload.items():
-        if key.endswith("_reason") and payload.get(key[:-len("_reason")], 0) is not None:
+        if key.endswith("_reason") and _holds_a_value(payload.get(key[:-len("_reason")], 0),
+                                                      value):
             continue
         out[key] = (_reasons_for_nulls(value) if isinstance(value, dict) else value)
     return out
+
+
+def _holds_a_value(value, reason) -> bool:
+    if value is None or isinstance(reason, dict):
+        return False
+    return not (isinstance(value, list) and any(v is None for v in value))
 
 
 def _validity_record(band) -> dict:

@@ -26,6 +26,7 @@ import math
 import numpy as np
 from scipy.stats import norm
 
+from hubvib.foundation.output import explained
 from hubvib.identification.law import fisher_sigma_hz
 from hubvib.identification.modes import identifiable
 from hubvib.identification.records import Record
@@ -72,7 +73,10 @@ def frequency_route(params, curves: list[MeshCurves], phasing: MeshPhasing,
         pod = [float(1 - m) for m in miss]
     depths = [1e3 * c.depth for c in curves]
     seen = next((d for d, p in zip(depths, pod) if p >= 0.9), None)
-    return {"modes": [i + 1 for i in modes], "sigma_hz": sigma.tolist(),
-            "shift_hz": shift.tolist(), "pod": pod, "first_depth_seen_mm": seen,
-            "record_s": record_s, "damping_ratio": damping_ratio, "snr": SNR,
-            "skipped_modes": {str(i + 1): why for i, why in sorted(skipped.items())}}
+    return explained(
+        {"modes": [i + 1 for i in modes], "sigma_hz": sigma.tolist(),
+         "shift_hz": shift.tolist(), "pod": pod, "first_depth_seen_mm": seen,
+         "record_s": record_s, "damping_ratio": damping_ratio, "snr": SNR,
+         "skipped_modes": {str(i + 1): why for i, why in sorted(skipped.items())}},
+        first_depth_seen_mm=(f"no depth of the sweep reaches POD 0.9 by the frequency route"
+                             if modes else "no mode is identifiable from these records"))

@@ -42,6 +42,8 @@ import math
 import numpy as np
 from scipy.signal import lfilter
 
+from hubvib.foundation.output import explained
+
 from .indicators import INDICATORS, GearOrders, ensemble_variances, indicators
 from .records import synchronous_average, synchronous_averages
 
@@ -190,7 +192,7 @@ def detection_rates(depths, clean, angle: np.ndarray, points: int, gear: GearOrd
     for j, name in enumerate(INDICATORS):
         pod = [float(a[:, j].mean()) for a in alarms]
         seen = next((1e3 * d for d, p in zip(depths[1:], pod[1:]) if p >= SEEN), None)
-        out["indicators"][name] = {
+        out["indicators"][name] = explained({
             "direction": "increasing" if direction[j] > 0 else "decreasing",
             "threshold": float(threshold[j] * direction[j]),
             "false_alarm_measured": pod[0], "pod": pod,
@@ -198,5 +200,7 @@ def detection_rates(depths, clean, angle: np.ndarray, points: int, gear: GearOrd
             "false_alarm_coloured": float(coloured_alarms[:, j].mean()),
             "auc": [auc(scores[0][:, j], s[:, j]) for s in scores],
             "first_depth_seen_mm": seen,
-            "roc": [roc_curve(scores[0][:, j], s[:, j]) for s in scores[1:]]}
+            "roc": [roc_curve(scores[0][:, j], s[:, j]) for s in scores[1:]]},
+            first_depth_seen_mm=f"no cracked depth of the sweep raises this indicator's "
+                                f"alarm rate to {SEEN:g}")
     return out

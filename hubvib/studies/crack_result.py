@@ -12,6 +12,7 @@ import numpy as np
 
 from hubvib.cases.results import PlaneCase
 from hubvib.detection.mode_names import mode_names
+from hubvib.foundation.output import explained
 from hubvib.detection.model import CrackModel
 from hubvib.lumped import Spectrum, frequency_sensitivity
 from hubvib.studies.kind_registry import Scene
@@ -171,6 +172,14 @@ class CrackStudyResult:
                         "pod_at_deepest": float(pod.pod[-1, i]),
                         "detectable_depth_mm": (None if math.isnan(detectable[i])
                                                 else 1e3 * float(detectable[i]))}
-            rows.append(row)
+            deepest = f"{1e3 * self.depths[-1]:.3g} mm"
+            rows.append(explained(
+                row, smallest_detectable_depth_mm=(
+                    f"no depth of the sweep (up to {deepest}) moves this mode by the "
+                    f"scene's threshold of {self.scene.threshold_percent:g} %"),
+                detectable_depth_mm=(
+                    f"at no depth of the sweep (up to {deepest}) does this mode alone reach "
+                    f"POD {pod.detection_probability:g} with a shift larger than the FE "
+                    "error of what carries it" if pod is not None else "")))
         return rows
 

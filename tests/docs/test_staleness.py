@@ -78,3 +78,31 @@ def test_only_measured_blocks_escape_the_build_comparison():
     assert generate.LIVE <= bodies, f"LIVE names no marker: {sorted(generate.LIVE - bodies)}"
     assert generate.SLOW <= bodies, f"SLOW names no marker: {sorted(generate.SLOW - bodies)}"
     assert len(generate.LIVE) <= 5, "measured blocks only"
+
+
+def test_an_edited_input_file_makes_its_entry_stale(tmp_path, monkeypatch):
+    """The key covers the files a command reads besides the code: a scene or design file it
+    names and every shipped scene; the file it writes (after ``--out`` or ``>``) is not an
+    input."""
+    generate = docs_module("generate")
+    monkeypatch.setattr(generate, "ROOT", tmp_path)
+    monkeypatch.setattr(generate, "DATA", tmp_path / "docs" / "data")
+    data = tmp_path / "docs" / "data"
+    data.mkdir(parents=True)
+    (tmp_path / "scenes").mkdir()
+    shipped, named = tmp_path / "scenes" / "a.toml", tmp_path / "own.toml"
+    shipped.write_text("[study]\n")
+    named.write_text("[design]\n")
+    (data / "x.json").write_text("{}")
+    (data / "x.json.meta.json").write_text(json.dumps(
+        {"command": ["hubvib design check own.toml > docs/data/x.json"]}))
+    generate.record_source(["x.json"])
+    assert generate.stale_data() == []
+    (data / "x.json").write_text('{"new": 1}')
+    assert generate.stale_data() == [], "the output is not an input"
+    for path in (named, shipped):
+        before = path.read_text()
+        path.write_text(before + "# edited\n")
+        assert generate.stale_data() == ["x.json"], f"{path.name} edited"
+        path.write_text(before)
+        assert generate.stale_data() == []
