@@ -946,6 +946,18 @@ def diagnosis_check() -> str:
     return text + provenance("diagnosis/")
 
 
+def diagnosis_check_elastic() -> str:
+    """``diagnosis_check`` on the elastic ring's watched coupled modes of the default scene
+    (its command names them by number: checked against the default run's labels)."""
+    text = (DATA / "diagnosis" / "diagnosis_check_elastic.md").read_text().strip()
+    watched = _default_run()["elastic_ring"]["watched_labels"]
+    if f"modes {'; '.join(watched)}," not in text.splitlines()[0]:
+        raise ValueError(f"docs/data/diagnosis/diagnosis_check_elastic.md is not of the "
+                         f"default scene's watched coupled modes {watched}: rerun its command "
+                         "with their numbers (results.json elastic_ring.watched_modes)")
+    return text + provenance("diagnosis/")
+
+
 def diagnosis_family_pod() -> str:
     """Family POD of the watched modes per depth and record length, default scene, with
     and without drift between the records (``pod_family.csv`` of ``hubvib run``)."""
@@ -1012,7 +1024,7 @@ def diagnosis_mode13() -> str:
              f"{shifts[d]['record_shift_series_hz']:.3g}",
              f"{shifts[d]['record_shift_ratio_hz']:.3g}"] for d in depths]
     return (markdown_table(["depth [mm]", "factor series", "factor ratio",
-                            "mode 13 series [Hz]", "mode 13 ratio [Hz]"], body, "rrrrr")
+                            "rigid mode 13 series [Hz]", "rigid mode 13 ratio [Hz]"], body, "rrrrr")
             + provenance("raba118_crack/", f"{run['date']}, hubvib {run['hubvib_version']}"))
 
 

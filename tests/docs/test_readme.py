@@ -108,7 +108,7 @@ def test_crack_answer_paragraph_quotes_the_committed_default_scene_run():
     first = {s: first_depth_mm(detection["family_pod"][s]) for s in ("10", "60", "600")}
     ratio = run["c_rp_other_method_family_pod"]["family_detectable_depth_m"]
     expected = [f"scatters by {min(sigma):.2f}-{max(sigma):.2f} Hz",
-                f"mode 13 ({mode13['frequency_intact_hz']:.1f} Hz) moves "
+                f"rigid mode 13 ({mode13['frequency_intact_hz']:.1f} Hz) moves "
                 f"{at_3mm['record_shift_series_hz']:.2f} Hz at 3 mm and "
                 f"{mode13['record_shift_at_deepest_hz']:.2f} Hz through the rim",
                 f"detectable on that model, with 600 s records from {first['600']} mm",
