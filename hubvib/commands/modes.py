@@ -385,6 +385,7 @@ def _torque_fraction(args, design) -> tuple[float, float]:
 
 def _loaded_record(args, design, crack, options) -> int:
     """The record's spectrum over the planet pitch about the loaded crack."""
+    from hubvib.detection.mode_names import elastic_label
     from hubvib.elastic.cases import cached_case, elastic_case
     from hubvib.elastic.loaded import CLOSURE_GAPS, TORQUE_FRACTIONS, record_track
     from hubvib.elastic.options import ElasticScene
@@ -399,9 +400,13 @@ def _loaded_record(args, design, crack, options) -> int:
     case = cached_case(design, crack, scene, k_rest) if stored else elastic_case(
         design, crack, scene, k_rest, (fraction,), (gap,))
     track = record_track(intact, case, fraction, gap)
+    away = intact.away
     rows = []
     for i in range(track.reference_hz.size):
-        rows.append({"mode": i + 1, "frequency_hz": track.record_hz[i],
+        rows.append({"mode": i + 1,
+                     "label": (elastic_label(away.content[i], away.frequency_hz[i])
+                               if i < away.frequency_hz.size else None),
+                     "frequency_hz": track.record_hz[i],
                      "intact_hz": track.intact_record_hz[i],
                      "change_hz": track.change_hz[i],
                      "instantaneous_min_hz": track.instantaneous_min_hz[i],
@@ -428,15 +433,18 @@ def _loaded_record(args, design, crack, options) -> int:
     print("a record over many carrier revolutions; frequencies [Hz], in the order of the "
           "intact ring's modes half a pitch from the cracked tooth:")
     print(f"{'mode':>4} {'record':>9} {'intact':>9} {'change':>8} {'min':>9} {'max':>9} "
-          f"{'sliding':>9}  regime")
+          f"{'sliding':>9}  {'regime':<9} name")
     for r in rows:
         print(f"{r['mode']:>4} {_hz(r['frequency_hz'], 9)} {_hz(r['intact_hz'], 9)} "
               f"{_hz(r['change_hz'], 8, 2)} {_hz(r['instantaneous_min_hz'], 9)} "
               f"{_hz(r['instantaneous_max_hz'], 9)} {_hz(r['frequency_slip_hz'], 9)}  "
-              f"{r['regime']}" + (f" {r['split_hz']}" if r["split_hz"] else ""))
+              f"{r['regime']:<9} {r['label'] or ''}"
+              + (f" {r['split_hz']}" if r["split_hz"] else ""))
     print("record: what a record's identification returns (pressed faces stuck); min/max: "
           "over the positions; sliding: the record with the pressed faces sliding (bound); "
-          f"'{NOT_TRACKED}': no mode of that state follows this one by shape")
+          f"'{NOT_TRACKED}': no mode of that state follows this one by shape; name: the "
+          "intact coupled mode as reports name it (nodal diameter, class, its frequency half "
+          "a pitch from the cracked tooth)")
     return 0
 
 

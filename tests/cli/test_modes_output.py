@@ -95,3 +95,21 @@ def test_elastic_modes_carry_the_reports_label():
         assert row["label"] == (f"elastic n={row['nodal_diameter']} ({row['class']}, "
                                 f"{row['frequency_hz']:.1f} Hz)"), row
     assert len({row["label"] for row in rows}) == len(rows), "one label per mode"
+
+
+@pytest.mark.slow
+def test_loaded_record_names_its_modes_as_the_report_does():
+    """``hubvib modes --crack-depth`` (the record over the pitch) names each row by the
+    intact coupled mode half a pitch from the crack: the labels of the default run's
+    elastic ring (committed ``docs/data/raba118_crack/results.json``), mode by mode."""
+    import json
+
+    committed = json.loads((Path(__file__).parents[2] / "docs" / "data" / "raba118_crack"
+                            / "results.json").read_text())
+    labels = [m["label"] for m in committed["elastic_ring"]["modes"]]
+    code, out, err = run_cli(["modes", "--preset", "raba118", "--crack-depth", "0.003",
+                              "--json"])
+    assert code == 0, err
+    got = [row["label"] for row in out["modes"]]
+    n = min(len(got), len(labels))
+    assert n >= 20 and got[:n] == labels[:n]
