@@ -25,6 +25,7 @@ from hubvib.foundation.blas import blas_threads
 from hubvib.runtime.progress import progress
 
 from .budget import estimate
+from .mode_names import rigid_label
 from .pod import pod_study
 from .series import DIRECT, SERIES
 
@@ -71,11 +72,12 @@ class DetectabilityMap:
             for m, mount in enumerate(self.mounts):
                 for i, kind in enumerate(self.kind):
                     depth = self.depth[swept][m, i]
+                    f = float(self.frequency_hz[swept][m, i])
                     rows.append({
                         "swept": swept, "mount_N_m": float(mount),
                         "other_mount_N_m": _finite(self.fixed[swept]),
-                        "mode": i + 1, "kind": kind,
-                        "frequency_intact_hz": float(self.frequency_hz[swept][m, i]),
+                        "mode": i + 1, "mode_label": rigid_label(i, kind, f), "kind": kind,
+                        "frequency_intact_hz": f,
                         "smallest_detectable_depth_mm": (None if math.isnan(depth)
                                                          else 1e3 * float(depth)),
                         "signal_in": str(self.carried_by[swept][m, i])})

@@ -31,7 +31,7 @@ import numpy as np
 from hubvib.elastic.mounting_basis import cached_family_ring, ring_operators_at
 from hubvib.elastic.options import ElasticScene
 from hubvib.elastic.tracking import track_modes
-from hubvib.foundation.output import finite_or_none
+from hubvib.foundation.output import explained, finite_or_none
 
 from .elastic_model import MIN_MATCH, VISIBLE, sensor_visibility, tracked_to
 from .options import DetectionOptions
@@ -102,9 +102,13 @@ class ElasticMap:
     def rows(self) -> list[dict]:
         """One dict per scale (JSON-ready; NaN as None; the clamped ring's scale None)."""
         out = []
+        clamped_why = "the clamped ring: no foundation to scale"
+        undetected = "no depth of the sweep reaches the detection probability"
+        untracked = "the mode is not tracked on this foundation"
+        no_ring_mode = "no elastic mode of the ring's own in the basis"
         for k, s in enumerate(self.scales):
             clamped = bool(np.isinf(s))
-            out.append({
+            out.append(explained({
                 "scale": None if clamped else float(s), "clamped": clamped,
                 "k_n_N_m2": None if clamped else s * self.foundation[0],
                 "k_t_N_m2": None if clamped else s * self.foundation[1],
@@ -112,11 +116,16 @@ class ElasticMap:
                 "lowest_ring_mode_hz": finite_or_none(self.lowest_ring_mode_hz[k]),
                 "lowest_ring_mode_n": self.lowest_ring_mode_n[k],
                 "watched_hz": list(self.watched[k]),
-                "modes": [{"frequency_hz": finite_or_none(self.modes_hz[k, j]),
-                           "smallest_detectable_depth_mm": _mm(self.mode_depth[k, j]),
-                           "largest_drop_hz": finite_or_none(self.mode_drop_hz[k, j])}
+                "modes": [explained({"frequency_hz": finite_or_none(self.modes_hz[k, j]),
+                                     "smallest_detectable_depth_mm": _mm(self.mode_depth[k, j]),
+                                     "largest_drop_hz": finite_or_none(self.mode_drop_hz[k, j])},
+                                    frequency_hz=untracked, largest_drop_hz=untracked,
+                                    smallest_detectable_depth_mm=undetected)
                           for j in range(self.modes_hz.shape[1])],
-                "family_pod": [float(p) for p in self.family_pod[k]]})
+                "family_pod": [float(p) for p in self.family_pod[k]]},
+                scale=clamped_why, k_n_N_m2=clamped_why, k_t_N_m2=clamped_why,
+                smallest_detectable_depth_mm=undetected, lowest_ring_mode_hz=no_ring_mode,
+                lowest_ring_mode_n=no_ring_mode, watched_hz=untracked))
         return out
 
 

@@ -128,7 +128,8 @@ class CrackStudyResult:
         for k, depth in enumerate(self.depths):
             for i, kind in enumerate(self.kind):
                 rows.append({"depth_mm": 1e3 * depth, "mode": i + 1,
-                             "mode_name": self.names[i], "kind": kind,
+                             "mode_name": self.names[i], "mode_label": self.labels[i],
+                             "kind": kind,
                              "omega_rad_s": float(self.omega[k, i]),
                              "frequency_hz": float(self.omega[k, i] / (2 * math.pi)),
                              "shift_hz": float((self.omega[k, i] - self.omega[0, i]) / (2 * math.pi)),

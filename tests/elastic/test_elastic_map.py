@@ -72,6 +72,10 @@ def test_map_lines_name_every_scale_and_the_gaps():
     rows = emap.rows()
     assert rows[2]["smallest_detectable_depth_mm"] is None
     assert rows[0]["modes"][1]["smallest_detectable_depth_mm"] == pytest.approx(6.0)
+    from tests.helpers.null_reasons import unexplained_nulls
+
+    assert unexplained_nulls({"rows": rows}) == [], "every null of the map says why"
+    assert "reaches the detection probability" in rows[2]["smallest_detectable_depth_mm_reason"]
 
 
 # --------------------------------------------------------------------- on the FE ring
