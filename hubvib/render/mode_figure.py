@@ -35,6 +35,8 @@ PLANET_ARROW = "#0a5a42"
 #: the arrowhead's size [pt], at most and at least: a short arrow gets a smaller head, so
 #: its length still shows the motion's size
 HEAD_PT = (14.0, 22.0)
+#: the ring's outer radius as drawn, as a fraction of its pitch radius
+RING_OUTER = 1.18
 
 
 def arrow_colour(name: str) -> str:
@@ -62,7 +64,7 @@ def _geometry(params) -> dict:
         phi = np.linspace(0, 2 * math.pi, n, endpoint=False)
         return np.column_stack([radius * np.cos(phi), radius * np.sin(phi)])
 
-    bodies = {"ring": ([circle(1.18 * r_r), toothed_outline(r_r, teeth["ring"], -2.5e-3)],
+    bodies = {"ring": ([circle(RING_OUTER * r_r), toothed_outline(r_r, teeth["ring"], -2.5e-3)],
                        np.zeros(2), r_r),
               "sun": ([toothed_outline(r_s, teeth["sun"], 2.5e-3), circle(0.35 * r_s)],
                       np.zeros(2), r_s)}
@@ -146,7 +148,8 @@ def mode_figure(params, shape: np.ndarray, title: str):
                                zorder=2 if name != "carrier" else 3))
         ax.add_patch(PathPatch(_path(outlines, name != "carrier"), facecolor="none", edgecolor="0.15", lw=1.0,
                                ls=(0, (4, 3)), zorder=4))
-    limit = 1.25 * ring_radius
+    # the moved ring whole (a translation of AMPLITUDE cut its outer edge off)
+    limit = (RING_OUTER + AMPLITUDE + 0.03) * ring_radius
     scale = 0.8 * SIZE_IN * 72 / (2 * limit)  # points per metre (the axes: ~80 % wide)
     for name in order:
         _, centre, radius = bodies[name]

@@ -140,3 +140,21 @@ def test_the_carriers_turn_clear_of_the_suns():
     boxes = {a.get_gid(): a.get_window_extent(renderer) for a in _arrows(fig)}
     sun, carrier = boxes["turn sun"], boxes["turn carrier"]
     assert not sun.overlaps(carrier), (sun, carrier)
+
+
+def test_every_moved_body_inside_the_picture():
+    """The ring translating by the full AMPLITUDE stays inside the axes (its outer edge
+    was cut flat at the old limit of 1.25 ring radii)."""
+    from matplotlib.patches import PathPatch
+
+    for index in range(SPECTRUM.shapes.shape[1]):
+        fig = mode_figure(PARAMS, SPECTRUM.shapes[:, index], "t")
+        ax = fig.axes[0]
+        low, high = ax.get_xlim()
+        for patch in ax.patches:
+            if isinstance(patch, PathPatch):
+                xy = patch.get_path().vertices
+                assert low < xy.min() and xy.max() < high, f"mode {index + 1}: cut off"
+        import matplotlib.pyplot as plt
+
+        plt.close(fig)
