@@ -50,8 +50,11 @@ PER_PANEL = 8
 
 
 def relative_shift_figure(name: str, depths: np.ndarray, omega: np.ndarray, kind):
-    """Instantaneous relative frequency shift [%] (planet 1 on the cracked tooth) against
-    crack depth, moving modes only, at most :data:`PER_PANEL` curves per panel."""
+    """Size of the instantaneous relative frequency shift [%] (planet 1 on the cracked
+    tooth) against crack depth on a log axis, moving modes only, at most
+    :data:`PER_PANEL` curves per panel, each panel's legend below it.  The modes move by
+    parts per million to per cent: on a linear axis most lay on zero under the one that
+    moves most."""
     relative = omega / omega[0] - 1
     moving = moving_modes(relative)
     panels = [moving[j:j + PER_PANEL] for j in range(0, max(moving.size, 1), PER_PANEL)]
@@ -60,20 +63,33 @@ def relative_shift_figure(name: str, depths: np.ndarray, omega: np.ndarray, kind
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(len(panels), 1, figsize=(9, 4 * len(panels)), squeeze=False,
+    fig, axes = plt.subplots(len(panels), 1, figsize=(9, 5.6 * len(panels)), squeeze=False,
                              layout="constrained")
+    names = mode_names(omega[0])
     for ax, modes in zip(axes[:, 0], panels):
+        sizes = []
         for n, i in enumerate(modes):
-            ax.plot(1e3 * depths, 100 * relative[:, i], **style(n),
-                    label=_label(i, omega[0, i] / (2 * math.pi), kind[i],
-                                 mode_names(omega[0])[i]))
+            size = 100 * np.abs(relative[:, i])
+            size = np.where(size > 0, size, np.nan)  # the intact ring: no shift to draw
+            sizes.append(size)
+            ax.plot(1e3 * depths, size, **(style(n) | {"linestyle": LINES[n % len(LINES)],
+                                                       "markersize": 5}),
+                    label=_label(i, omega[0, i] / (2 * math.pi), kind[i], names[i]))
         if depths.size > 1:
             ax.axvline(1e3 * depths[1], color="0.6", lw=0.8, ls="-.",
                        label=f"shallowest crack computed {1e3 * depths[1]:.3g} mm")
         ax.set_xlabel("crack depth [mm]")
-        ax.set_ylabel("instantaneous frequency shift [%]")
-        ax.grid(True, alpha=0.3)
-        _legend(ax)
+        ax.set_ylabel("|instantaneous frequency shift| [%] (log axis)")
+        ax.grid(True, which="both", alpha=0.3)
+        if sizes and np.isfinite(np.concatenate(sizes)).any():
+            ax.set_yscale("log")
+            shown = np.concatenate(sizes)
+            shown = shown[np.isfinite(shown)]
+            ax.set_ylim(shown.min() / 2, shown.max() * 2)
+        if ax.get_legend_handles_labels()[0] and modes.size:
+            ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2)
+        else:
+            ax.text(0.5, 0.5, "no mode moves", transform=ax.transAxes, ha="center")
     fig.suptitle(f"{name}: relative shift with planet 1 on the cracked tooth "
                  "(instantaneous; a record sees the time average)", fontsize=10)
     return fig
@@ -121,7 +137,8 @@ def pod_figure(name: str, pod, modes):
     """POD against depth: left the watched modes together per record length with the
     required POD and the false-alarm rate (linear axis); right each of ``modes`` (0-based)
     alone on a log axis, where the small single-mode PODs (near the false-alarm rate) are
-    told apart.  Legends below the panels."""
+    told apart, with the rate each mode alone alarms at (where its curve starts).  One
+    legend below the panels."""
     fig, axes = _axes(2, layout="constrained")
     family, single = axes[0]
     fig.set_size_inches(13, 6.5)
@@ -131,11 +148,15 @@ def pod_figure(name: str, pod, modes):
         family.plot(depth_mm, pod.family_pod[T], color=("k", "tab:blue", "tab:red")[n],
                     lw=2.0, ls=("-", "--", ":")[n], marker=("o", "s", "^")[n], ms=5,
                     label=f"watched modes together, {T:g} s records", zorder=3)
-    for ax in (family, single):
+    # a mode alone alarms at its own threshold's rate (Sidak share of the family's): the
+    # single-mode curves start on that line, not on the family's
+    rates = ((family, pod.false_alarm_rate, "false-alarm rate of the family"),
+             (single, pod.per_mode_rate, "false-alarm rate of each mode alone"))
+    for ax, rate, words in rates:
         ax.axhline(pod.detection_probability, color="0.35", lw=1.0, ls=(0, (6, 3)),
                    label=f"required POD {pod.detection_probability:g}", zorder=1)
-        ax.axhline(pod.false_alarm_rate, color="0.35", lw=1.0, ls=(0, (1, 2)),
-                   label=f"false-alarm rate {pod.false_alarm_rate:g}", zorder=1)
+        ax.axhline(rate, color="0.35", lw=1.0, ls=(0, (1, 2)), label=f"{words} {rate:.3g}",
+                   zorder=1)
         if len(pod.depths) > 1:
             ax.axvline(depth_mm[1], color="0.6", lw=0.8, ls="-.", zorder=1,
                        label=f"shallowest crack computed {depth_mm[1]:.3g} mm")
@@ -144,7 +165,7 @@ def pod_figure(name: str, pod, modes):
         ax.grid(True, which="both", alpha=0.3)
     family.set_ylim(-0.02, 1.02)
     family.set_title("watched modes together", fontsize=10)
-    floor = 0.2 * pod.false_alarm_rate
+    floor = 0.5 * min(pod.per_mode_rate, pod.false_alarm_rate)
     for n, i in enumerate(modes):
         single.plot(depth_mm, np.maximum(pod.pod[:, i], floor), **(style(n) | {
                     "linestyle": LINES[n % len(LINES)], "markersize": 6}), zorder=3,
@@ -155,8 +176,13 @@ def pod_figure(name: str, pod, modes):
                      f"clipped at {floor:.2g})", fontsize=10)
     fig.suptitle(f"{name}: probability of detection ({pod.samples} Monte Carlo samples)",
                  fontsize=11)
+    # one legend below both panels: two side by side ran into each other at a legible size
+    entries = {}
     for ax in (family, single):
-        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            entries.setdefault(label, handle)
+    fig.legend(list(entries.values()), list(entries), loc="outside lower center", ncol=3,
+               fontsize=9)
     return fig
 
 
@@ -198,7 +224,7 @@ def map_figure(name: str, mmap, deepest: float | None = None,
     if entries:
         fig.legend(list(entries.values()), [h.get_label() for h in entries.values()],
                    loc="outside lower center",
-                   ncol=min(len(entries), 2 * len(mmap.panels) + 1), fontsize=9)
+                   ncol=min(len(entries), 2 * len(mmap.panels) + 1), fontsize=10)
     return fig
 
 

@@ -22,15 +22,19 @@ CAPTIONS = {
                                   "parameter, both axes logarithmic; one line per mode.",
     "shift_percent.png": "Frequency shift [%] of every mode against the swept parameter (log "
                          "axis); the dotted line is the detection threshold.",
-    "frequency_vs_depth.png": "Relative frequency shift [%] of each mode against crack depth "
-                              "[mm], planet 1 on the cracked tooth.",
+    "frequency_vs_depth.png": "Size of the relative frequency shift [%] of each mode that "
+                              "moves against crack depth [mm] (log axis: the modes move by "
+                              "parts per million to per cent), planet 1 on the cracked "
+                              "tooth; at most eight modes per panel, each panel's legend "
+                              "below it.",
     "shift_vs_depth.png": "Frequency drop a record sees [Hz] of each mode against crack depth "
                           "[mm] (log axis); the grey band spans the alarm thresholds of the "
                           "watched modes, from the lowest to the highest.",
     "pod.png": "Probability of detection against crack depth [mm]: left the watched modes "
                "together per record length (linear axis), right each watched mode alone on a "
                "log axis (its POD lies near the false-alarm rate); dashed grey: the required "
-               "POD, dotted grey: the false-alarm rate; legends below the panels.",
+               "POD, dotted grey: the false-alarm rate, left the family's, right each mode "
+               "alone's (where its curve starts); the legend below the panels.",
     "detectability_map.png": "Smallest detectable crack depth [mm] against the mounting "
                              "stiffness swept [N/m] (log axis): black line over all modes, a "
                              "large marker where a mode sets it, its colour and shape naming "
@@ -48,11 +52,12 @@ CAPTIONS = {
                             "the mean ratio, dashed at the minimum; the shaded band is the "
                             "time the cracked tooth is in mesh.",
     "frequency_both_models.png": "The watched modes' frequency change from the intact "
-                                 "ring [Hz] against crack depth [mm], as a record sees it: "
-                                 "left the rigid ring (9 + 3N model, record-averaged with "
-                                 "planet 1 meshing the cracked tooth part of the time), right "
-                                 "the elastic ring (crack open, planet 1 half a planet pitch "
-                                 "away), each on a scale of its own; one colour, marker and "
+                                 "ring [Hz] against crack depth [mm]: left the rigid ring "
+                                 "(9 + 3N model), right the elastic ring (FE ring coupled), "
+                                 "each on a scale of its own and titled with what its change "
+                                 "is (a record's under the working load, the elastic ring's "
+                                 "the table's 'record' column; or the crack held open where "
+                                 "the load cycle was not computed); one colour, marker and "
                                  "line style per mode.",
     "elastic_states.png": "Elastic ring: each watched mode's frequency [Hz] against crack "
                           "depth [mm], one panel per mode on a scale of its own: red solid "
@@ -109,8 +114,9 @@ _PATTERNS = (
     (re.compile(r"mode_(\d+)\.png"),
      "Mode {n} of the lumped model: sun orange, planets green, ring purple, carrier grey; "
      "dashed outlines: the bodies at rest, filled: moved by the mode (largest displacement "
-     f"drawn as {100 * AMPLITUDE:g} % of the ring radius); black arrows: each body's "
-     f"translation from its centre and its turn as a curved arrow around it (largest "
+     f"drawn as {100 * AMPLITUDE:g} % of the ring radius); arrows, each in a dark shade "
+     f"of its body's colour: the body's translation from its centre and its turn as a "
+     f"curved arrow around it (largest "
      f"{100 * ARROW:g} % of the ring radius)."),
     (re.compile(r"mode_(\d+)\.gif"),
      "Mode {n} of the lumped model, animated: sun orange, planets green, ring purple, "

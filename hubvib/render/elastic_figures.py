@@ -43,11 +43,20 @@ def _legend_below(fig, ax, ncol: int = 2) -> None:
         fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=9)
 
 
+#: what the elastic ring's change is, by whether the crack's load cycle was computed
+ELASTIC_RECORD = "a record's change under the working load (crack breathing)"
+ELASTIC_OPEN = "crack held open, planet 1 half a planet pitch away"
+RIGID_RECORD = "a record's change, planet 1 on the cracked tooth part of the time"
+
+
 def both_models_figure(name: str, rigid_depths, rigid_change_hz, rigid_labels: Sequence[str],
-                       elastic_depths, elastic_change_hz, elastic_labels: Sequence[str]):
+                       elastic_depths, elastic_change_hz, elastic_labels: Sequence[str],
+                       elastic_statistic: str = ELASTIC_OPEN,
+                       rigid_statistic: str = RIGID_RECORD):
     """The watched modes' frequency change from the intact ring [Hz] against crack depth,
     the rigid ring (9 + 3N model) on the left and the elastic ring on the right, each on a
-    scale of its own (they differ by two orders of magnitude).
+    scale of its own (they differ by two orders of magnitude), each panel's title saying
+    what its change is (``rigid_statistic``, ``elastic_statistic``).
 
     Parameters
     ----------
@@ -58,9 +67,10 @@ def both_models_figure(name: str, rigid_depths, rigid_change_hz, rigid_labels: S
         One legend label per column.
     """
     fig, axes = _figure(1, 2, (14, 6.4))
-    panels = (("rigid ring (9 + 3N model)", rigid_depths, rigid_change_hz, rigid_labels),
-              ("elastic ring (FE ring coupled)", elastic_depths, elastic_change_hz,
-               elastic_labels))
+    panels = ((f"rigid ring (9 + 3N model)\n{rigid_statistic}", rigid_depths,
+               rigid_change_hz, rigid_labels),
+              (f"elastic ring (FE ring coupled)\n{elastic_statistic}", elastic_depths,
+               elastic_change_hz, elastic_labels))
     for ax, (title, depths, change, labels) in zip(axes[0], panels):
         change = np.asarray(change, dtype=float).reshape(len(depths), -1)
         for j, label in enumerate(labels):

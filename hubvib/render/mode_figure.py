@@ -7,7 +7,8 @@ the carrier as arms to the planet centres, planet coordinates in the carrier fra
 scales, both stated in the picture: the bodies are moved so the largest displacement is
 ``AMPLITUDE`` of the ring radius, the arrows so the largest motion is ``ARROW`` of it (arc
 length for a turn, at the arrow's own radius: the arrow's length is the motion's size).
-Motions below ``SMALLEST`` of the largest get no arrow.
+Motions below ``SMALLEST`` of the largest get no arrow; each body's arrows are a dark
+shade of its colour (the sun's and the carrier's both start at the centre).
 """
 from __future__ import annotations
 
@@ -27,7 +28,29 @@ DPI = 100
 #: text sizes [pt] at the saved size
 TITLE_PT = 14
 TEXT_PT = 12
-ARROW_COLOUR = "#111111"
+#: each body's arrows: a dark shade of its colour, so the sun's and the carrier's arrows,
+#: both from the centre, are told apart; a white rim keeps them visible over any fill
+ARROW_COLOURS = {"sun": "#8c3500", "ring": "#2f2a75", "carrier": "#111111"}
+PLANET_ARROW = "#0a5a42"
+#: the arrowhead's size [pt], at most and at least: a short arrow gets a smaller head, so
+#: its length still shows the motion's size
+HEAD_PT = (14.0, 22.0)
+#: the ring's outer radius as drawn, as a fraction of its pitch radius
+RING_OUTER = 1.18
+
+
+def arrow_colour(name: str) -> str:
+    return ARROW_COLOURS.get(name, PLANET_ARROW)
+
+
+def _arrow_style(name: str, length: float, scale: float) -> dict:
+    """Colour, rim and head of the arrow of body ``name`` that is ``length`` [m] long in a
+    picture of ``scale`` points per metre."""
+    from matplotlib import patheffects
+
+    head = min(max(0.5 * length * scale, HEAD_PT[0]), HEAD_PT[1])
+    return {"color": arrow_colour(name), "mutation_scale": head, "lw": 2.6, "zorder": 6,
+            "path_effects": [patheffects.withStroke(linewidth=4.6, foreground="white")]}
 
 
 def _geometry(params) -> dict:
@@ -41,7 +64,7 @@ def _geometry(params) -> dict:
         phi = np.linspace(0, 2 * math.pi, n, endpoint=False)
         return np.column_stack([radius * np.cos(phi), radius * np.sin(phi)])
 
-    bodies = {"ring": ([circle(1.18 * r_r), toothed_outline(r_r, teeth["ring"], -2.5e-3)],
+    bodies = {"ring": ([circle(RING_OUTER * r_r), toothed_outline(r_r, teeth["ring"], -2.5e-3)],
                        np.zeros(2), r_r),
               "sun": ([toothed_outline(r_s, teeth["sun"], 2.5e-3), circle(0.35 * r_s)],
                       np.zeros(2), r_s)}
@@ -84,18 +107,15 @@ def _path(outlines, holes: bool = True):
     return MplPath(np.array(vertices), codes)
 
 
-def _arc_arrow(ax, centre, radius, sweep, gid: str, **style):
+def _arc_arrow(ax, centre, radius, sweep, gid: str, start: float = 35.0, **style):
     """A curved arrow around ``centre`` at ``radius`` [m] over ``sweep`` [rad] (sign:
-    counter-clockwise positive), starting on the body's upper right."""
+    counter-clockwise positive), starting at ``start`` [deg] (the body's upper right)."""
     from matplotlib.patches import FancyArrowPatch
     from matplotlib.path import Path as MplPath
 
-    start = math.radians(35.0)
-    phi = start + np.linspace(0.0, sweep, max(8, int(abs(sweep) / 0.05)))
+    phi = math.radians(start) + np.linspace(0.0, sweep, max(8, int(abs(sweep) / 0.05)))
     points = centre + radius * np.column_stack([np.cos(phi), np.sin(phi)])
-    ax.add_patch(FancyArrowPatch(path=MplPath(points), arrowstyle="-|>", mutation_scale=22,
-                                 lw=2.6, color=style.get("color", ARROW_COLOUR), zorder=6,
-                                 gid=gid))
+    ax.add_patch(FancyArrowPatch(path=MplPath(points), arrowstyle="-|>", gid=gid, **style))
 
 
 def mode_figure(params, shape: np.ndarray, title: str):
@@ -128,20 +148,26 @@ def mode_figure(params, shape: np.ndarray, title: str):
                                zorder=2 if name != "carrier" else 3))
         ax.add_patch(PathPatch(_path(outlines, name != "carrier"), facecolor="none", edgecolor="0.15", lw=1.0,
                                ls=(0, (4, 3)), zorder=4))
+    # the moved ring whole (a translation of AMPLITUDE cut its outer edge off)
+    limit = (RING_OUTER + AMPLITUDE + 0.03) * ring_radius
+    scale = 0.8 * SIZE_IN * 72 / (2 * limit)  # points per metre (the axes: ~80 % wide)
     for name in order:
         _, centre, radius = bodies[name]
         dx, dy, angle = motions[name]
         translation, turn = sizes[name]
         if translation >= SMALLEST * largest:
             tip = centre + arrow * np.array([dx, dy])
-            ax.add_patch(FancyArrowPatch(centre, tip, arrowstyle="-|>", mutation_scale=22,
-                                         lw=2.6, color=ARROW_COLOUR, zorder=6,
-                                         shrinkA=0, shrinkB=0, gid=f"translation {name}"))
+            ax.add_patch(FancyArrowPatch(centre, tip, arrowstyle="-|>", shrinkA=0, shrinkB=0,
+                                         gid=f"translation {name}",
+                                         **_arrow_style(name, arrow * translation, scale)))
         if turn >= SMALLEST * largest:
             at = {"ring": 1.09 * ring_radius, "carrier": 0.5 * r_c}.get(name, 0.65 * radius)
             sweep = math.copysign(min(arrow * turn / at, math.radians(300)), angle)
-            _arc_arrow(ax, centre, at, sweep, f"turn {name}")
-    limit = 1.25 * ring_radius
+            # the carrier's turn lies over the sun: it starts on the side opposite the
+            # sun's, so the two arcs do not run into each other
+            _arc_arrow(ax, centre, at, sweep, f"turn {name}",
+                       215.0 if name == "carrier" else 35.0,
+                       **_arrow_style(name, abs(sweep) * at, scale))
     ax.set_xlim(-limit, limit)
     ax.set_ylim(-limit, limit)
     ax.set_aspect("equal")
@@ -156,8 +182,9 @@ def mode_figure(params, shape: np.ndarray, title: str):
                Patch(facecolor=COLOURS["ring"], alpha=0.8, label="ring"),
                Patch(facecolor=COLOURS["carrier"], alpha=0.8, label="carrier"),
                Line2D([], [], color="0.15", lw=1.0, ls=(0, (4, 3)), label="at rest"),
-               Line2D([], [], color=ARROW_COLOUR, lw=2.6, marker=">", ms=9,
-                      label="translation, turn (curved)")]
+               Line2D([], [], color=ARROW_COLOURS["carrier"], lw=2.6, marker=">", ms=9,
+                      label="arrows: translation, turn (curved),\nin a dark shade of the "
+                            "body's colour")]
     fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=TEXT_PT,
                frameon=False)
     return fig

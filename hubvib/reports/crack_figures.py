@@ -57,8 +57,11 @@ def elastic_mode_label(elastic, i: int) -> str:
 def both_models_arguments(name: str, result, study) -> tuple:
     """The arguments of ``render.elastic_figures.both_models_figure``: the rigid ring's
     watched modes (record-averaged change of the detection study; without one the
-    instantaneous change of the modes that move most) and the elastic ring's."""
+    instantaneous change of the modes that move most) and the elastic ring's, each with
+    the words for what its change is (the elastic ring's: a record's under the load cycle
+    when its tracks were computed, else the crack held open)."""
     from hubvib.detection.mode_names import mode_names
+    from hubvib.render.elastic_figures import ELASTIC_OPEN, ELASTIC_RECORD, RIGID_RECORD
 
     if study is not None:
         pod = study.pod
@@ -68,6 +71,7 @@ def both_models_arguments(name: str, result, study) -> tuple:
         rigid_change = pod.nominal.shift_hz[:, rigid]
         rigid_depths = np.asarray(pod.depths, dtype=float)
         rigid_labels = [f"{names[i]}: {f0[i]:.1f} Hz {pod.kind[i]}" for i in rigid]
+        rigid_statistic = RIGID_RECORD
     else:
         hz = np.asarray(result.omega, dtype=float) / (2 * np.pi)
         change = hz - hz[0]
@@ -77,11 +81,16 @@ def both_models_arguments(name: str, result, study) -> tuple:
         rigid_depths = np.asarray(result.depths, dtype=float)
         rigid_labels = [f"{names[i]}: {hz[0, i]:.1f} Hz {result.kind[i]} (instantaneous)"
                         for i in rigid]
+        rigid_statistic = "instantaneous change, planet 1 on the cracked tooth"
     elastic = result.elastic
     watched = list(elastic.watched)
+    detail = getattr(elastic, "detail", None)
+    loaded = (detail is not None and detail.open_hz is not None
+              and any(t is not None for t in detail.tracks))
     return (name, rigid_depths, rigid_change, rigid_labels,
             np.asarray(elastic.depths, dtype=float), elastic.shift_hz[:, watched],
-            [elastic_mode_label(elastic, i) for i in watched])
+            [elastic_mode_label(elastic, i) for i in watched],
+            ELASTIC_RECORD if loaded else ELASTIC_OPEN, rigid_statistic)
 
 
 def _elastic_plots(scene, result, study, folder: Path) -> list[Path]:

@@ -24,6 +24,26 @@ def test_frequency_figure_has_at_most_eight_named_curves_per_panel():
     assert len(modes) == 18 and len(fig.axes) == 3
 
 
+def test_frequency_figure_tells_apart_modes_moving_by_ppm_to_per_cent():
+    """The modes move by parts per million to per cent: on a linear axis all but the
+    largest lay on zero.  On the log axis each curve's end lies apart from the others',
+    each panel's legend below it (off the data)."""
+    from tests.helpers.figure_checks import covered_by_legends, overlapping_texts
+
+    depths = np.linspace(0, 0.024, 9)
+    drop = 1e-8 * 10 ** (np.arange(18) / 3)  # 1e-8 .. 5e-3, a third of a decade apart
+    omega = 1000.0 * (1 + np.arange(18)) * (1 - np.outer(depths / 0.024, drop))
+    fig = relative_shift_figure("t", depths, omega, ("translational",) * 18)
+    for ax in fig.axes:
+        assert ax.get_yscale() == "log"
+        curves = [line for line in ax.get_lines() if "Hz" in line.get_label()]
+        ends = np.sort([ax.transData.transform((24.0, line.get_ydata()[-1]))[1]
+                        for line in curves])
+        assert np.diff(ends).min() > 8, f"curve ends {np.diff(ends)} pixels apart"
+        assert not _intersects(ax.get_legend(), ax), "legend below its panel"
+    assert covered_by_legends(fig) == [] and overlapping_texts(fig) == []
+
+
 def test_map_figure_where_no_mounting_detects_anything():
     """The 3D crack-growth study's short cracks: every depth of the map is NaN (nothing
     detectable at any mounting); the log-scaled mounting axis still gets its limits (it
@@ -124,7 +144,8 @@ def _pod_study(single):
         nominal=SimpleNamespace(frequency_hz=frequency),
         family_pod={10.0: np.linspace(0.01, 0.05, 9), 60.0: np.linspace(0.01, 0.36, 9),
                     600.0: np.minimum(1.0, np.linspace(0.01, 3.0, 9))},
-        detection_probability=0.9, false_alarm_rate=0.01, samples=2000)
+        detection_probability=0.9, false_alarm_rate=0.01, per_mode_rate=0.00251,
+        samples=2000)
 
 
 def test_pod_single_modes_are_told_apart_on_their_own_log_panel(tmp_path):
@@ -152,7 +173,19 @@ def test_pod_single_modes_are_told_apart_on_their_own_log_panel(tmp_path):
                                              for line in curves])[:, 1])
     assert np.diff(ends).min() > 10, f"the curves end apart (pixels {np.diff(ends)})"
     assert covered_by_legends(fig) == [] and overlapping_texts(fig) == []
+    (legend,) = fig.legends
     for ax in (family, alone):
-        assert not _intersects(ax.get_legend(), ax), "legend below its panel"
+        assert not _intersects(legend, ax), "the legend below the panels"
+    named = [t.get_text() for t in legend.get_texts()]
+    assert len(named) == len(set(named)) == 3 + 4 + 4, \
+        "three record lengths, four modes, the required POD, two false-alarm rates, the " \
+        "shallowest crack: each once"
+    # each panel's false-alarm line is the rate its curves start at: the family's 0.01 on
+    # the left, each mode's own 0.00251 on the right (the single curves once started
+    # below the family's line drawn there)
+    rates = {ax: [line.get_ydata()[0] for line in ax.get_lines()
+                  if "false-alarm" in line.get_label()] for ax in (family, alone)}
+    assert rates[family] == [0.01] and rates[alone] == [0.00251]
+    assert alone.get_ylim()[0] < 0.00251, "the per-mode rate inside the log panel"
     out = save_figure(fig, tmp_path / "pod.png")
     assert _image(out).std() > 10

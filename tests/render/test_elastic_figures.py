@@ -9,8 +9,9 @@ pytest.importorskip("matplotlib")
 
 from hubvib.foundation.output import save_figure  # noqa: E402
 from hubvib.render.captions import caption  # noqa: E402
-from hubvib.render.elastic_figures import (both_models_figure, crack_states_figure,  # noqa: E402
-                                           open_length_figure)
+from hubvib.render.elastic_figures import (ELASTIC_OPEN, ELASTIC_RECORD,  # noqa: E402
+                                           RIGID_RECORD, both_models_figure,
+                                           crack_states_figure, open_length_figure)
 from tests.helpers.figure_checks import (clipped_texts, covered_by_legends,  # noqa: E402
                                          hidden_series, overlapping_texts, series,
                                          squashed_series, unnamed_series)
@@ -57,6 +58,12 @@ def test_both_models_each_curve_told_apart_on_its_own_scale(tmp_path):
     assert squashed_series(fig, series(fig)) == [], "each panel on a scale of its own"
     _written(fig, tmp_path / "frequency_both_models.png")
     assert "rigid" in caption("frequency_both_models.png")
+    assert ELASTIC_OPEN in right.get_title() and RIGID_RECORD in left.get_title()
+    loaded = both_models_figure("t", DEPTHS, rigid, ["r"] * 4, DEPTHS, elastic, ["e"] * 4,
+                                ELASTIC_RECORD)
+    assert ELASTIC_RECORD in loaded.axes[1].get_title(), "the panel says what its change is"
+    # the caption leaves it to the titles: it once called the record's change "crack open"
+    assert "crack open" not in caption("frequency_both_models.png")
 
 
 def _overlaps(legend, ax) -> bool:
@@ -134,7 +141,14 @@ def test_the_report_draws_each_models_watched_modes():
                                       "elastic n=3 (mixed, 1000.0 Hz)",
                                       "elastic n=4 (rotational, 1000.0 Hz)"))
     args = both_models_arguments("t", SimpleNamespace(elastic=elastic), study)
-    name, rigid_depths, rigid, rigid_labels, elastic_depths, change, labels = args
+    (name, rigid_depths, rigid, rigid_labels, elastic_depths, change, labels, elastic_is,
+     rigid_is) = args
+    assert elastic_is == ELASTIC_OPEN and rigid_is == RIGID_RECORD, \
+        "without the load cycle the elastic change is the open crack's"
+    track = SimpleNamespace()
+    elastic.detail = SimpleNamespace(open_hz=opened, tracks=(None, track, track))
+    assert both_models_arguments("t", SimpleNamespace(elastic=elastic), study)[7] == \
+        ELASTIC_RECORD, "with the load cycle it is a record's change"
     np.testing.assert_array_equal(rigid, shift[:, [12, 15]])
     np.testing.assert_array_equal(change, (opened - 1000.0)[:, [2, 0]])
     assert labels == ["elastic n=4 (rotational, 1000.0 Hz)", "elastic n=2 (ring, 1000.0 Hz)"], \

@@ -10,8 +10,9 @@ pytest.importorskip("matplotlib")
 
 from hubvib.lumped import natural_modes  # noqa: E402
 from hubvib.reducer import lumped_preset  # noqa: E402
-from hubvib.render.mode_figure import (ARROW, DPI, SIZE_IN, SMALLEST, TEXT_PT,  # noqa: E402
-                                       mode_figure, save_mode_figure)
+from hubvib.render.mode_figure import (ARROW, DPI, HEAD_PT, SIZE_IN, SMALLEST,  # noqa: E402
+                                       TEXT_PT, arrow_colour, mode_figure,
+                                       save_mode_figure)
 from hubvib.render.lumped_geometry import motion as _motion  # noqa: E402
 
 PARAMS = lumped_preset("raba118")
@@ -89,5 +90,71 @@ def test_text_at_least_12_pt_and_one_dashed_outline_per_body(tmp_path):
 
     image = matplotlib.image.imread(out)
     assert image.shape[:2] == (round(SIZE_IN * DPI),) * 2
-    dark = image[..., :3].max(axis=2) < 0.15
-    assert dark.mean() > 0.002, "black arrows drawn"
+    from matplotlib.colors import to_rgb
+
+    drawn = [np.abs(image[..., :3] - to_rgb(arrow_colour(n))).max(axis=2) < 0.06
+             for n in ("sun", "planet 1")]
+    assert all(d.mean() > 0.0003 for d in drawn), "the sun's and the planets' arrows drawn"
+
+
+def _luminance(colour) -> float:
+    from matplotlib.colors import to_rgb
+
+    return float(np.dot(to_rgb(colour), (0.2126, 0.7152, 0.0722)))
+
+
+def test_arrows_from_the_centre_told_apart_by_their_bodys_colour():
+    """Sun, ring and carrier all translate from the centre: their arrows (once all black,
+    one over the other) each in a dark shade of the body's colour, the three different,
+    each darker than its body's fill and rimmed in white; a short arrow's head shrinks
+    with it (down to HEAD_PT[0]) so its length still shows the motion."""
+    from hubvib.render.lumped_geometry import COLOURS, PLANET_COLOUR
+
+    index = next(i for i in range(SPECTRUM.shapes.shape[1])
+                 if all(math.hypot(*_motions(i)[0][n][:2]) > 0.1 * max(
+                     max(math.hypot(dx, dy), abs(a) * PARAMS.d_p / 2)
+                     for dx, dy, a in _motions(i)[0].values())
+                        for n in ("sun", "ring", "carrier")))
+    arrows = {a.get_gid(): a for a in _arrows(mode_figure(PARAMS, SPECTRUM.shapes[:, index],
+                                                          "t"))}
+    centre = [arrows[f"translation {n}"] for n in ("sun", "ring", "carrier")]
+    colours = {tuple(np.round(a.get_edgecolor(), 3)) for a in centre}
+    assert len(colours) == 3, "the sun's, ring's and carrier's arrows in three colours"
+    for gid, a in arrows.items():
+        body = gid.split(" ", 1)[1]
+        fill = COLOURS.get(body, PLANET_COLOUR)
+        assert _luminance(a.get_edgecolor()) < 0.6 * _luminance(fill), gid
+        assert any(getattr(e, "_gc", {}).get("foreground") == "white"
+                   for e in a.get_path_effects()), f"{gid}: white rim"
+        assert HEAD_PT[0] <= a.get_mutation_scale() <= HEAD_PT[1]
+    heads = sorted(a.get_mutation_scale() for a in arrows.values())
+    assert heads[0] < heads[-1], "a shorter arrow, a smaller head"
+
+
+def test_the_carriers_turn_clear_of_the_suns():
+    """In a rotational mode sun and carrier both turn about the centre, the carrier's arc
+    over the sun's body: the two arcs lie on opposite sides (they once ran into each other
+    on the sun's upper right)."""
+    fig = mode_figure(PARAMS, SPECTRUM.shapes[:, _first("rotational")], "t")
+    renderer = fig.canvas.get_renderer()
+    boxes = {a.get_gid(): a.get_window_extent(renderer) for a in _arrows(fig)}
+    sun, carrier = boxes["turn sun"], boxes["turn carrier"]
+    assert not sun.overlaps(carrier), (sun, carrier)
+
+
+def test_every_moved_body_inside_the_picture():
+    """The ring translating by the full AMPLITUDE stays inside the axes (its outer edge
+    was cut flat at the old limit of 1.25 ring radii)."""
+    from matplotlib.patches import PathPatch
+
+    for index in range(SPECTRUM.shapes.shape[1]):
+        fig = mode_figure(PARAMS, SPECTRUM.shapes[:, index], "t")
+        ax = fig.axes[0]
+        low, high = ax.get_xlim()
+        for patch in ax.patches:
+            if isinstance(patch, PathPatch):
+                xy = patch.get_path().vertices
+                assert low < xy.min() and xy.max() < high, f"mode {index + 1}: cut off"
+        import matplotlib.pyplot as plt
+
+        plt.close(fig)
