@@ -105,14 +105,14 @@ _PATTERNS = (
      "nodal diameters."),
     (re.compile(r"elastic_mode_(\d+)_([a-z]+)_n(\d+)_(\d+)Hz_(?P<mounting>foundation|clamped|free)"
                 r"\.png"),
-     "Elastic ring, watched coupled mode {n} (best first): {kind} mode at {hz} Hz, ring "
-     "nodal diameters n = {diameters}, the intact ring {mounting}, planet 1 half a planet "
+     "Elastic ring, the watched coupled mode ranked {n} (best first): elastic "
+     "n={diameters}, a {kind} mode at {hz} Hz, the intact ring {mounting}, planet 1 half a planet "
      "pitch from the cracked tooth. The ring's deformed FE mesh coloured by its "
      "displacement magnitude relative to its largest value (scale at the right), the sun "
      "orange, planets green, carrier grey moved by the same mode, grey outline at rest; "
      f"largest displacement drawn as {100 * AMPLITUDE:g} % of the ring radius."),
     (re.compile(r"mode_(\d+)\.png"),
-     "Mode {n} of the lumped model: sun orange, planets green, ring purple, carrier grey; "
+     "Rigid mode {n} (the 9 + 3N lumped model): sun orange, planets green, ring purple, carrier grey; "
      "dashed outlines: the bodies at rest, filled: moved by the mode (largest displacement "
      f"drawn as {100 * AMPLITUDE:g} % of the ring radius); arrows, each in a dark shade "
      f"of its body's colour: the body's translation from its centre and its turn as a "

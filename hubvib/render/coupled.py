@@ -72,9 +72,11 @@ def mounting_of(er) -> str:
 def mode_title(spectrum, j: int, mounting: str) -> str:
     """What a coupled mode's picture says about it: number, frequency, class, nodal
     diameters, ring share and the mounting."""
+    from hubvib.detection.mode_names import elastic_label
+
     content = spectrum.content[j]
-    return (f"coupled mode {j + 1}: {spectrum.frequency_hz[j]:.1f} Hz, {content.kind}, ring "
-            f"nodal diameters n = {content.nodal_diameter},\nring share "
+    return (f"{elastic_label(content, spectrum.frequency_hz[j])}: the elastic ring's coupled "
+            f"mode {j + 1}, ring nodal diameters n = {content.nodal_diameter},\nring share "
             f"{content.ring_share:.2f}; ring {mounting}")
 
 

@@ -183,7 +183,7 @@ def render_mode(params, spectrum, index: int, folder: Path, gif: bool = False,
     folder = Path(folder)
     shape = spectrum.shapes[:, index]
     omega = spectrum.omega[index]
-    title = (f"mode {index + 1}: {omega / (2 * math.pi):.2f} Hz ({omega:.1f} rad/s), "
+    title = (f"rigid mode {index + 1}: {omega / (2 * math.pi):.2f} Hz ({omega:.1f} rad/s), "
              f"{spectrum.kind[index]}")
     stem = f"mode_{index + 1:02d}"
     files = [write_atomically(folder / f"{stem}.png",

@@ -249,12 +249,17 @@ def test_watched_coupled_modes_have_a_colour_bar_and_a_caption_naming_them(tmp_p
         assert titles == [coupled.BAR_TITLE] and ranges == [(0.0, 1.0)]
         title = "\n".join(texts)
         for fact in (f"{spectrum.frequency_hz[j]:.1f} Hz", content.kind,
-                     f"n = {content.nodal_diameter}", "Winkler foundation"):
+                     f"n = {content.nodal_diameter}", "Winkler foundation",
+                     f"coupled mode {j + 1}"):
             assert fact in title, f"{fact!r} missing from the picture's title {title!r}"
         words = caption(path.name)
         assert path.name.startswith(f"elastic_mode_{rank + 1:02d}_{content.kind}_")
         for fact in (f"{content.kind} mode at {spectrum.frequency_hz[j]:.0f} Hz",
-                     f"n = {content.nodal_diameter}", "Winkler foundation"):
+                     f"elastic n={content.nodal_diameter}", "Winkler foundation",
+                     f"ranked {rank + 1} (best first)"):
             assert fact in words, f"{fact!r} missing from the caption {words!r}"
+        label = (f"elastic n={content.nodal_diameter} ({content.kind}, "
+                 f"{spectrum.frequency_hz[j]:.1f} Hz)")
+        assert label in title, f"the picture names the mode as reports do: {title!r}"
         image = _image(path)
         assert image.std() > 20
