@@ -96,19 +96,25 @@ def ring_positions(body: RingBody, basis: RingBasis, functionals=None) -> RingPo
             S -= np.matmul(phi, C, out=step)
             MS -= np.matmul(Mphi, C, out=step)
         del step
-        norm = 1 / np.sqrt(np.einsum("ij,ij->j", S, MS))
+        # the sparse products and the column sums read S row by row: one row-major copy
+        # serves them all (each would copy a column-major S; the sums are the same)
+        S_rows = np.ascontiguousarray(S)  # S itself when row-major already
+        norm = 1 / np.sqrt(np.einsum("ij,ij->j", S_rows, MS))
         S *= norm
+        if not np.shares_memory(S_rows, S):
+            S_rows *= norm
         MS *= norm
         gram_M = S.T @ MS
         del MS
-        gram_K = S.T @ (body.K @ S)
+        gram_K = S.T @ (body.K @ S_rows)
         rows = np.zeros((0, body.ndofs)) if functionals is None else functionals.T
-        phi_rows, static_rows = np.asarray(rows @ phi), np.asarray(rows @ S)
+        phi_rows, static_rows = np.asarray(rows @ phi), np.asarray(rows @ S_rows)
         contact_T = body.contact.T
         probe = body.probe
         out = RingPositions(
             basis.K[:basis.modes, :basis.modes], np.asarray(contact_T @ phi).T,
-            np.asarray(contact_T @ S).T, np.asarray(probe @ phi), np.asarray(probe @ S),
+            np.asarray(contact_T @ S_rows).T, np.asarray(probe @ phi),
+            np.asarray(probe @ S_rows),
             phi_rows, static_rows, 0.5 * (gram_M + gram_M.T), 0.5 * (gram_K + gram_K.T),
             {int(k): i for i, k in enumerate(raw.teeth)},
             {int(k): z + i for i, k in enumerate(raw.teeth)},
