@@ -200,10 +200,10 @@ def _report(scene, measured_of: dict, answers, found, as_json: bool) -> int:
 
 def _print_answer(scene, measured, result, ref, found) -> None:
     if found is not None:
-        damping = ", ".join(f"{100 * m.damping_ratio:.3g} % (mode {i + 1})"
+        damping = ", ".join(f"{100 * m.damping_ratio:.3g} % (rigid mode {i + 1})"
                             for i, m in zip(found.now.index, found.now.modes)
                             if i + 1 in result.modes)
-        _say(f"identified in both records (Bayesian FFT, one mode per band): modes "
+        _say(f"identified in both records (Bayesian FFT, one mode per band): rigid modes "
               f"{', '.join(str(m) for m in result.modes)}; their damping identified in the "
               f"record now: {damping}")
         _print_skipped(found)

@@ -68,27 +68,29 @@ class RecordInput:
 _PAIR = re.compile("^" + re.escape(DEGENERATE).replace(r"\{other\}", r"(\d+)") + "$")
 
 
-def skipped_lines(skipped: dict[int, str]) -> list[str]:
-    """The skipped modes (1-based -> why) as short lines: the degenerate pairs on one line,
-    every other mode on its own."""
+def skipped_lines(skipped: dict[int, str], model: str = "rigid") -> list[str]:
+    """The skipped modes (1-based -> why) of the ``model`` ring's spectrum as short lines,
+    each naming the model: the degenerate pairs on one line, every other mode on its own."""
     pairs, lines = set(), []
     for mode, why in skipped.items():
         match = _PAIR.match(why)
         if match:
             pairs.add(tuple(sorted((mode, int(match.group(1))))))
         else:
-            lines.append(f"mode {mode}: {why}")
+            lines.append(f"{model} mode {mode}: {why}")
     if pairs:
-        lines.insert(0, f"modes {', '.join(f'{a}/{b}' for a, b in sorted(pairs))}: degenerate "
-                     "pairs (close modes), which a single-mode fit cannot separate")
+        listed = ", ".join(f"{a}/{b}" for a, b in sorted(pairs))
+        lines.insert(0, f"{model} modes {listed}: degenerate pairs (close modes), which a "
+                     "single-mode fit cannot separate")
     return lines
 
 
 _VALUE = re.compile(r"^(.*?)(\d[\d.e+-]*)( %| s| Hz)$")
 
 
-def what_would_help(helps: dict[int, str]) -> list[str]:
-    """The distinct remedies of ``helps`` (mode -> remedy), each with the modes it serves;
+def what_would_help(helps: dict[int, str], model: str = "rigid") -> list[str]:
+    """The distinct remedies of ``helps`` (mode of the ``model`` ring -> remedy), each with
+    the modes it serves, named with their model;
     a remedy with a number per mode (damping below, records of at least, a sample rate
     above) is one line with the number of each mode."""
     grouped: dict[str, list] = {}
@@ -98,7 +100,7 @@ def what_would_help(helps: dict[int, str]) -> list[str]:
         match = _VALUE.match(text)
         if match:
             head, value, unit = match.groups()
-            grouped.setdefault(head.rstrip(), []).append(f"{value}{unit} (mode {mode})")
+            grouped.setdefault(head.rstrip(), []).append(f"{value}{unit} ({model} mode {mode})")
         else:
             grouped.setdefault(text, []).append(mode)
     lines = []
@@ -106,7 +108,7 @@ def what_would_help(helps: dict[int, str]) -> list[str]:
         if items and isinstance(items[0], str):
             lines.append(f"{head} {', '.join(items)}")
         else:
-            label = "mode" if len(items) == 1 else "modes"
+            label = f"{model} mode" if len(items) == 1 else f"{model} modes"
             lines.append(f"{head} ({label} {', '.join(str(m) for m in items)})")
     return lines
 
@@ -205,7 +207,7 @@ def elastic_measured(scene, record, baseline, record_shift_hz=None):
                 f"({NEAR_SHARE * zeta * g:.1f} Hz) from the model's {g:.1f} Hz: left out"
                 for m, f, g in zip(found.modes[~near], base[~near], model[~near])]
     if not near.any():
-        why = "; ".join(f"mode {m + 1}: {reason}" for m, reason in
+        why = "; ".join(f"elastic mode {m + 1}: {reason}" for m, reason in
                         sorted(found.skipped_modes.items())[:6])
         return None, left_out + [why]
     return Measured(np.asarray(found.frequency_hz, dtype=float)[near],

@@ -200,7 +200,7 @@ def identify_bands(record: Record, bands: list, skipped: dict,
     for number, peaks in enumerate(bands):
         for g in peaks:
             for other in g.members[1:]:
-                skipped[other] = (f"one peak with mode {g.mode + 1} at the sensor (closer "
+                skipped[other] = (f"one peak with elastic mode {g.mode + 1} at the sensor (closer "
                                   f"than {MERGE:g} half-power bandwidth)")
         guesses = np.array([g.peak_hz for g in peaks])
         low = guesses.min() * (1 - BAND * damping_ratio)

@@ -106,8 +106,8 @@ _PATTERNS = (
     (re.compile(r"elastic_mode_(\d+)_([a-z]+)_n(\d+)_(\d+)Hz_(?P<mounting>foundation|clamped|free)"
                 r"\.png"),
      "Elastic ring, the watched coupled mode ranked {n} (best first): elastic "
-     "n={diameters}, a {kind} mode at {hz} Hz, the intact ring {mounting}, planet 1 half a planet "
-     "pitch from the cracked tooth. The ring's deformed FE mesh coloured by its "
+     "n={diameters}, a {kind} mode at {hz} Hz, the intact ring {mounting}, planet 1 half a "
+     "planet pitch from the cracked tooth. The ring's deformed FE mesh coloured by its "
      "displacement magnitude relative to its largest value (scale at the right), the sun "
      "orange, planets green, carrier grey moved by the same mode, grey outline at rest; "
      f"largest displacement drawn as {100 * AMPLITUDE:g} % of the ring radius."),

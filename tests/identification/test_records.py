@@ -263,3 +263,19 @@ def test_records_without_an_identifiable_mode_get_a_verdict_not_an_error(
     assert data["depth_m"] is None and data["what_would_help"]
     assert set(map(int, data["skipped_modes"])) == set(range(1, 19)), "a reason per mode"
     assert all(len(why) < 160 for why in data["skipped_modes"].values())
+
+
+def test_skipped_modes_and_remedies_name_their_ring_model():
+    """A mode number means different modes in the two ring models: each line of what was
+    not identified, and each remedy's modes, says whose number it is."""
+    from hubvib.detection.from_records import DEGENERATE, skipped_lines, what_would_help
+
+    lines = skipped_lines({3: DEGENERATE.format(other=4), 4: DEGENERATE.format(other=3),
+                           9: "no resonance found in its band"}, "rigid")
+    assert lines[0].startswith("rigid modes 3/4: degenerate pairs"), lines
+    helps = what_would_help({10: "modal damping below 0.765 %", 15: "modal damping below "
+                             "1.65 %", 1: "a longer record", 2: "a longer record"}, "elastic")
+    for line in lines:
+        assert line.startswith("rigid mode"), line
+    assert helps == ["modal damping below 0.765 % (elastic mode 10), 1.65 % (elastic mode 15)",
+                     "a longer record (elastic modes 1, 2)"]
