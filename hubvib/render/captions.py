@@ -112,7 +112,8 @@ _PATTERNS = (
      "orange, planets green, carrier grey moved by the same mode, grey outline at rest; "
      f"largest displacement drawn as {100 * AMPLITUDE:g} % of the ring radius."),
     (re.compile(r"mode_(\d+)\.png"),
-     "Rigid mode {n} (the 9 + 3N lumped model): sun orange, planets green, ring purple, carrier grey; "
+     "Rigid mode {n} (the 9 + 3N lumped model): sun orange, planets green, ring purple, "
+     "carrier grey; "
      "dashed outlines: the bodies at rest, filled: moved by the mode (largest displacement "
      f"drawn as {100 * AMPLITUDE:g} % of the ring radius); arrows, each in a dark shade "
      f"of its body's colour: the body's translation from its centre and its turn as a "
