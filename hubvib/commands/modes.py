@@ -225,7 +225,7 @@ MESH_NAMES = {"study": "the crack study's ring mesh ([elastic] of 'hubvib run')"
 
 
 def _elastic(args) -> int:
-    from hubvib.detection.mode_names import elastic_label
+    from hubvib.elastic.content import elastic_label
     from hubvib.elastic.model import elastic_ring, elastic_spectrum, lowest_ring_mode
     from hubvib.elastic.tracking import track_modes
     from hubvib.meshing.crack import Crack
@@ -385,7 +385,7 @@ def _torque_fraction(args, design) -> tuple[float, float]:
 
 def _loaded_record(args, design, crack, options) -> int:
     """The record's spectrum over the planet pitch about the loaded crack."""
-    from hubvib.detection.mode_names import elastic_label
+    from hubvib.elastic.content import elastic_label
     from hubvib.elastic.cases import cached_case, elastic_case
     from hubvib.elastic.loaded import CLOSURE_GAPS, TORQUE_FRACTIONS, record_track
     from hubvib.elastic.options import ElasticScene

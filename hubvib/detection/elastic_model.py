@@ -36,6 +36,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from hubvib.elastic.cases import cached_case
+from hubvib.elastic.content import elastic_label
 from hubvib.elastic.tracking import track_modes
 from hubvib.foundation.output import explained, finite_or_none
 from hubvib.lumped.elastic_ring import RING_DOFS, coupled_matrices
@@ -44,7 +45,6 @@ from hubvib.lumped.parameters import MASS_FIELDS
 
 from .drift import Drift
 from .pod import RECORD_LENGTHS, family_pod, monte_carlo_shifts, watched_by_drop
-from .mode_names import elastic_label
 from .options import DetectionOptions
 from .result import DetectionResult
 from .uncertainty import lognormal

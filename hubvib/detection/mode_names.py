@@ -5,8 +5,8 @@ A repeated frequency of the intact reducer (cyclic symmetry) splits when the cra
 the symmetry.  Its shapes at the intact state are any basis of the pair's plane, so MAC
 alone may hand the lower number to either member.  Here the members of a split pair are
 numbered by frequency at every depth: the lower number is the lower member, in every table,
-file and figure.  Detection output names a mode with its model: :func:`rigid_label`,
-:func:`elastic_label`.
+file and figure.  Detection output names a mode with its model: :func:`rigid_label`, and
+``hubvib.elastic.content.elastic_label`` (with the coupled modes' classes).
 """
 from __future__ import annotations
 
@@ -76,9 +76,3 @@ def mode_names(omega0) -> list[str]:
 def rigid_label(i: int, kind: str, frequency_hz: float) -> str:
     """``rigid 13 (rotational, 4548.5 Hz)``: mode ``i`` (0-based) of the 9 + 3N model."""
     return f"rigid {i + 1} ({kind}, {frequency_hz:.1f} Hz)"
-
-
-def elastic_label(content, frequency_hz: float) -> str:
-    """``elastic n=4 (translational, 4715.6 Hz)``: a coupled mode of the elastic ring by its
-    dominant nodal diameters, class and intact frequency."""
-    return f"elastic n={content.nodal_diameter} ({content.kind}, {frequency_hz:.1f} Hz)"

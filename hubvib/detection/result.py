@@ -38,7 +38,7 @@ class DetectionResult:
         What a record of the nominal reducer sees [Hz] (NaN: no mode continues it).
     labels : tuple of str
         Each mode's identity (:func:`.mode_names.rigid_label`,
-        :func:`.mode_names.elastic_label`).
+        ``hubvib.elastic.content.elastic_label``).
     sigma_hz : dict
         Record length [s] -> identification scatter of each mode [Hz].
     watched : tuple of int

@@ -286,3 +286,10 @@ def multiplicities(frequency_hz: np.ndarray, rtol: float = PAIR_RTOL) -> tuple:
         for i in group:
             out[i] = int(group.size)
     return tuple(out)
+
+
+def elastic_label(content, frequency_hz: float) -> str:
+    """``elastic n=4 (translational, 4715.6 Hz)``: a coupled mode of the elastic ring by its
+    dominant nodal diameters, class and intact frequency [Hz] (the name every report,
+    table and picture gives it)."""
+    return f"elastic n={content.nodal_diameter} ({content.kind}, {frequency_hz:.1f} Hz)"

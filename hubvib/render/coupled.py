@@ -72,7 +72,7 @@ def mounting_of(er) -> str:
 def mode_title(spectrum, j: int, mounting: str) -> str:
     """What a coupled mode's picture says about it: number, frequency, class, nodal
     diameters, ring share and the mounting."""
-    from hubvib.detection.mode_names import elastic_label
+    from hubvib.elastic.content import elastic_label
 
     content = spectrum.content[j]
     return (f"{elastic_label(content, spectrum.frequency_hz[j])}: the elastic ring's coupled "
