@@ -165,9 +165,28 @@ def data_problems() -> list[str]:
 
 
 def stale_or_unkeyed() -> list[str]:
-    """Every entry :func:`stale_data` or :func:`unkeyed_data` names, sorted: what
-    ``docs/data/regenerate.sh --stale`` reruns."""
-    return sorted(set(stale_data()) | set(unkeyed_data()))
+    """Every entry :func:`stale_data` or :func:`unkeyed_data` names, and every entry whose
+    commands read the files of one of those (:func:`readers_of`: rerunning it rewrites
+    their input), sorted: what ``docs/data/regenerate.sh --stale`` reruns."""
+    return sorted(readers_of(set(stale_data()) | set(unkeyed_data())))
+
+
+def readers_of(entries: set[str]) -> set[str]:
+    """``entries`` and, transitively, every docs/data entry whose commands read a file of
+    one of them (an input of :func:`command_inputs` inside ``docs/data/<entry>``)."""
+    found = set(entries)
+    while True:
+        written = {(DATA / e).resolve() for e in found}
+        more = {e for e in data_entries() if e not in found
+                and any(_inside(path.resolve(), written)
+                        for c in _meta(e)["command"] for path in command_inputs(c))}
+        if not more:
+            return found
+        found |= more
+
+
+def _inside(path: Path, places: set[Path]) -> bool:
+    return path in places or any(p in places for p in path.parents)
 
 
 def record_source(entries: list[str]) -> None:

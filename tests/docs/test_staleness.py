@@ -106,3 +106,26 @@ def test_an_edited_input_file_makes_its_entry_stale(tmp_path, monkeypatch):
         assert generate.stale_data() == ["x.json"], f"{path.name} edited"
         path.write_text(before)
         assert generate.stale_data() == []
+
+
+def test_an_entry_reading_another_reruns_with_it(tmp_path, monkeypatch):
+    """An entry whose command reads another entry's committed files (as fe_substructure
+    reads raba118_crack's results.json) is rerun whenever that one is: rerunning the first
+    rewrites the second's input."""
+    generate = docs_module("generate")
+    monkeypatch.setattr(generate, "ROOT", tmp_path)
+    monkeypatch.setattr(generate, "DATA", tmp_path / "docs" / "data")
+    data = tmp_path / "docs" / "data"
+    (data / "run").mkdir(parents=True)
+    (tmp_path / "scenes").mkdir()
+    (data / "run" / "results.json").write_text("{}")
+    (data / "agree.json").write_text("{}")
+    (data / "other.json").write_text("{}")
+    for name, command in (("run", "hubvib run x --out docs/data/run"),
+                          ("agree.json", "python -m hubvib.studies.fe_agreement "
+                           "docs/data/run/results.json --out docs/data/agree.json"),
+                          ("other.json", "hubvib design check y > docs/data/other.json")):
+        (data / f"{name}.meta.json").write_text(json.dumps({"command": [command]}))
+    assert generate.readers_of({"run"}) == {"run", "agree.json"}
+    assert generate.readers_of({"agree.json"}) == {"agree.json"}
+    assert generate.stale_or_unkeyed() == ["agree.json", "other.json", "run"], "unkeyed: all"
