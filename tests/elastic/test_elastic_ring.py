@@ -189,11 +189,14 @@ def test_mounting_refused_by_name():
 
 @pytest.mark.slow
 def test_modes_rigid_is_the_spectrum_command():
-    """``hubvib modes --ring rigid`` gives what ``hubvib spectrum`` gives, mode for mode."""
+    """``hubvib modes --ring rigid`` gives what ``hubvib spectrum`` gives, mode for mode,
+    each row with the label the report prints besides."""
     code, modes, _ = run_cli(["modes", "--ring", "rigid", "--json"])
     code2, spectrum, _ = run_cli(["spectrum", "--json"])
     assert code == code2 == 0
+    labels = [row.pop("label") for row in modes["modes"]]
     assert modes["modes"] == spectrum["modes"]
+    assert labels[12] == "rigid 13 (translational, 4548.5 Hz)", labels
 
 
 def test_modes_annulus_reports_ring_theory():
