@@ -12,12 +12,19 @@ from .parameters import PlanetaryParameters
 from .sweep import sweep
 
 
+#: relative frequency change at or below which a shift is the eigensolver's round-off
+ROUND_OFF = 1e-10
+
+
 @dataclass(frozen=True)
 class FrequencyShift:
     """Per-mode shift; modes matched by shape along a continuation path.
 
     ``omega_base``, ``omega_modified`` [rad/s]; ``percent`` is
-    ``100 (omega_modified - omega_base) / omega_base``.
+    ``100 (omega_modified - omega_base) / omega_base``.  A change within
+    :data:`ROUND_OFF` of the base frequency is exactly 0: a mode the parameter does not
+    touch (its sign would be the eigensolver's round-off, which differs between BLAS
+    builds).
     """
 
     parameter: str
@@ -29,7 +36,8 @@ class FrequencyShift:
 
     @property
     def delta_rad_s(self) -> np.ndarray:
-        return self.omega_modified - self.omega_base
+        delta = self.omega_modified - self.omega_base
+        return np.where(np.abs(delta) <= ROUND_OFF * np.abs(self.omega_base), 0.0, delta)
 
     @property
     def delta_hz(self) -> np.ndarray:

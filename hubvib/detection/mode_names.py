@@ -73,6 +73,13 @@ def mode_names(omega0) -> list[str]:
     return names
 
 
+def rigid_curve_label(name: str, frequency_hz: float, kind: str) -> str:
+    """A rigid-ring mode in a figure's legend or row:
+    ``rigid 13 (split pair 13/14, lower): 4548.5 Hz translational`` (``name`` from
+    :func:`mode_names`, ``frequency_hz`` its intact frequency)."""
+    return f"rigid {name}: {frequency_hz:.1f} Hz {kind}"
+
+
 def rigid_label(i: int, kind: str, frequency_hz: float) -> str:
     """``rigid 13 (rotational, 4548.5 Hz)``: mode ``i`` (0-based) of the 9 + 3N model."""
     return f"rigid {i + 1} ({kind}, {frequency_hz:.1f} Hz)"

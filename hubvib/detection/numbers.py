@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import math
 
-#: relative frequency change below which a shift is round-off of the eigensolver
-ROUND_OFF = 1e-10
+from hubvib.lumped.shift import ROUND_OFF
+
 
 
 def number(value, digits: int = 3, zero: float = 0.0, sign: bool = False) -> str:

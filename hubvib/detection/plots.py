@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from .mode_names import mode_names
+from .mode_names import mode_names, rigid_curve_label
 from .numbers import ROUND_OFF
 
 COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
@@ -42,7 +42,7 @@ def _axes(ncols: int = 1, **options):
 
 
 def _label(i: int, frequency_hz: float, kind: str, name: str | None = None) -> str:
-    return f"{name or i + 1}: {frequency_hz:.1f} Hz {kind}"
+    return rigid_curve_label(name or str(i + 1), frequency_hz, kind)
 
 
 #: curves per panel at most: more cannot be told apart
@@ -337,7 +337,7 @@ def carrier_figure(name: str, carrier, kind):
     rows.set_ylim(y[-1] - 0.7, 0.7)
     rows.set_xlabel("|frequency change| while planet 1 meshes the cracked tooth [%] (log "
                     "axis)")
-    rows.set_ylabel("mode: intact frequency, type")
+    rows.set_ylabel("rigid mode: intact frequency, type")
     rows.grid(True, which="both", axis="x", alpha=0.3)
     # above the rows, where it covers none of them
     rows.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2)

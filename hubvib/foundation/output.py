@@ -191,13 +191,15 @@ def finite_or_none(x) -> float | None:
 
 
 def explained(payload: dict, **reasons: str) -> dict:
-    """``payload`` with ``<key>_reason`` beside each ``key`` of ``reasons`` whose value is
-    null or a list holding a null: the rule that every null a results file writes says why."""
-    out = dict(payload)
-    for key, why in reasons.items():
-        value = payload.get(key)
-        if value is None or (isinstance(value, list) and any(v is None for v in value)):
-            out[f"{key}_reason"] = why
+    """``payload`` with ``<key>_reason`` right after each ``key`` of ``reasons`` whose value
+    is null or a list holding a null: the rule that every null a results file writes says
+    why.  A key ``payload`` does not hold gets no reason: there is no null to explain."""
+    out = {}
+    for key, value in payload.items():
+        out[key] = value
+        if key in reasons and (value is None or (isinstance(value, list)
+                                                 and any(v is None for v in value))):
+            out[f"{key}_reason"] = reasons[key]
     return out
 
 

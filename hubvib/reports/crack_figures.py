@@ -60,7 +60,7 @@ def both_models_arguments(name: str, result, study) -> tuple:
     instantaneous change of the modes that move most) and the elastic ring's, each with
     the words for what its change is (the elastic ring's: a record's under the load cycle
     when its tracks were computed, else the crack held open)."""
-    from hubvib.detection.mode_names import mode_names
+    from hubvib.detection.mode_names import mode_names, rigid_curve_label
     from hubvib.render.elastic_figures import ELASTIC_OPEN, ELASTIC_RECORD, RIGID_RECORD
 
     if study is not None:
@@ -70,7 +70,7 @@ def both_models_arguments(name: str, result, study) -> tuple:
         names = mode_names(f0)
         rigid_change = pod.nominal.shift_hz[:, rigid]
         rigid_depths = np.asarray(pod.depths, dtype=float)
-        rigid_labels = [f"{names[i]}: {f0[i]:.1f} Hz {pod.kind[i]}" for i in rigid]
+        rigid_labels = [rigid_curve_label(names[i], f0[i], pod.kind[i]) for i in rigid]
         rigid_statistic = RIGID_RECORD
     else:
         hz = np.asarray(result.omega, dtype=float) / (2 * np.pi)
@@ -79,8 +79,8 @@ def both_models_arguments(name: str, result, study) -> tuple:
         names = mode_names(hz[0])
         rigid_change = change[:, rigid]
         rigid_depths = np.asarray(result.depths, dtype=float)
-        rigid_labels = [f"{names[i]}: {hz[0, i]:.1f} Hz {result.kind[i]} (instantaneous)"
-                        for i in rigid]
+        rigid_labels = [rigid_curve_label(names[i], hz[0, i], result.kind[i])
+                        + " (instantaneous)" for i in rigid]
         rigid_statistic = "instantaneous change, planet 1 on the cracked tooth"
     elastic = result.elastic
     watched = list(elastic.watched)

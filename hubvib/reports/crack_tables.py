@@ -40,7 +40,7 @@ def write_crack_tables(result, folder: Path) -> list[Path]:
         files += [write_csv(folder / "pod.csv", study.pod.rows()),
                   write_csv(folder / "pod_family.csv", study.pod.family_rows()),
                   write_csv(folder / "detectability_map.csv", study.map.rows())]
-    files.append(write_json(folder / "results.json", json_safe(_reasons_for_nulls({
+    files.append(write_json(folder / "results.json", json_safe(explained({
         "scene": scene.name, **provenance(), "parameters": result.model.params.to_dict(),
         "crack": explained({k: v for k, v in asdict(scene.crack).items() if k != "design"},
                            **{key: f"not set in the scene's [crack] table: the mounting the "
@@ -61,17 +61,13 @@ def write_crack_tables(result, folder: Path) -> list[Path]:
             "pass_seconds": study.timing.pass_seconds,
             "watched_modes": [int(i) + 1 for i in study.watched_modes()],
             "answer": result.rigid.to_dict()},
-        "detection_reason": None if study is not None else "the scene runs no detection study",
-        "short_answer": None if which.leader is None else {
+        "short_answer": None if which.leader is None else explained({
             "ring": which.leader.ring, "line": answer_line(which),
             "comparison": None if which.other is None else which.other.ring,
-            "comparison_why": which.reason or None,
-            "comparison_reason": (None if which.other is not None else
-                                  f"only the {which.leader.ring} ring's answer: the other "
-                                  "ring model did not run, or the rigid ring's validity "
-                                  "band is unknown"),
-            "comparison_why_reason": (None if which.reason else
-                                      "no second ring model to compare with")},
+            "comparison_why": which.reason or None},
+            comparison=(f"only the {which.leader.ring} ring's answer: the other ring model "
+                        "did not run, or the rigid ring's validity band is unknown"),
+            comparison_why="no second ring model to compare with"),
         "stiffness": result.stiffness_rows(), "modes": result.mode_rows(),
         "frequencies": result.frequency_rows(),
         "mesh_stiffness": dict(result.model.mesh_stiffness(),
@@ -79,51 +75,27 @@ def write_crack_tables(result, folder: Path) -> list[Path]:
                                c_rp_methods_differ=result.c_rp_comparison is not None),
         "c_rp_methods": (None if result.c_rp_comparison is None
                          else result.c_rp_comparison.rows()),
-        "c_rp_methods_reason": (None if result.c_rp_comparison is not None else
-                                "the lumped c_rp is the FE intact one: both methods agree"),
         "c_rp_other_method_family_pod": _other_family_pod(result.c_rp_comparison),
-        "c_rp_other_method_family_pod_reason": _other_reason(result.c_rp_comparison),
         "elastic_ring": None if result.elastic is None else dict(
             _elastic_json(result.elastic),
             validity=None if result.elastic_validity is None
             else _validity_record(result.elastic_validity)),
-        "elastic_ring_reason": (None if result.elastic is not None else
-                                "the scene's [elastic] ring is \"rigid\" (or its crack is "
-                                "no plane sweep)"),
         "mode_map": [p.row() for p in result.mode_map] or None,
-        "mode_map_reason": None if result.mode_map else "the elastic ring did not run",
         "load_sensitivity": [v.to_dict() for v in result.load_sensitivity] or None,
-        "load_sensitivity_reason": (None if result.load_sensitivity else
-                                    "the elastic ring did not run on a mounted ring"),
         "pad_variant": None if result.pad_variant is None else result.pad_variant.to_dict(),
-        "pad_variant_reason": (None if result.pad_variant is not None else
-                               result.pad_variant_reason),
-        "elastic_map": None if result.elastic_map is None else result.elastic_map.rows(),
-        "elastic_map_reason": (None if result.elastic_map is not None else
-                               "the elastic ring did not run" if result.elastic is None else
-                               "the scene's [elastic] map is false")}))))
+        "elastic_map": None if result.elastic_map is None else result.elastic_map.rows()},
+        detection="the scene runs no detection study",
+        c_rp_methods="the lumped c_rp is the FE intact one: both methods agree",
+        c_rp_other_method_family_pod=_other_reason(result.c_rp_comparison),
+        elastic_ring="the scene's [elastic] ring is \"rigid\" (or its crack is no plane sweep)",
+        mode_map="the elastic ring did not run",
+        load_sensitivity="the elastic ring did not run on a mounted ring",
+        pad_variant=result.pad_variant_reason,
+        elastic_map=("the elastic ring did not run" if result.elastic is None else
+                     "the scene's [elastic] map is false")))))
     if result.elastic is not None:
         files.append(write_csv(folder / "elastic_ring.csv", _elastic_csv(result.elastic)))
     return files
-
-
-def _reasons_for_nulls(payload: dict) -> dict:
-    """``payload`` with each ``<key>_reason`` left out beside a ``<key>`` that holds a
-    value (a null, a list holding one, or a mapping of reasons keeps it), in every nested
-    dict too."""
-    out = {}
-    for key, value in payload.items():
-        if key.endswith("_reason") and _holds_a_value(payload.get(key[:-len("_reason")], 0),
-                                                      value):
-            continue
-        out[key] = (_reasons_for_nulls(value) if isinstance(value, dict) else value)
-    return out
-
-
-def _holds_a_value(value, reason) -> bool:
-    if value is None or isinstance(reason, dict):
-        return False
-    return not (isinstance(value, list) and any(v is None for v in value))
 
 
 def _validity_record(band) -> dict:
@@ -137,26 +109,25 @@ def _elastic_json(elastic) -> dict:
     from hubvib.detection.elastic_model import elastic_mode_rows
 
     detail = elastic.detail
-    return {**elastic.to_dict(),
-            "family_pod_nominal": {f"{t:g}": [float(p) for p in v]
-                                   for t, v in elastic.pod_nominal.items()},
-            "scatter": None if not detail.scatter else dict(zip(
-                ("masses", "stiffnesses", "mounting", "fe_change_error"), detail.scatter)),
-            "k_rest_N_m": detail.k_rest, "ring_dofs": detail.ring_dofs,
-            "foundation_N_m2": None if detail.foundation is None else {
-                "normal": detail.foundation[0], "tangential": detail.foundation[1]},
-            "foundation_reason": (None if detail.foundation is not None else
-                                  "the ring is clamped on its support arcs"),
-            "sensor_angle_deg": math.degrees(detail.sensor_angle),
-            "lowest_ring_mode": None if detail.lowest_ring_mode is None else {
-                "frequency_hz": detail.lowest_ring_mode[0],
-                "nodal_diameter": detail.lowest_ring_mode[1]},
-            "lowest_ring_mode_reason": (None if detail.lowest_ring_mode is not None else
-                                        "no elastic mode of the ring's own in its basis"),
-            "crack_state": _crack_state_rows(elastic),
-            "crack_state_reason": (None if any(t is not None for t in detail.tracks) else
-                                   "the faces are taken open (no loaded crack)"),
-            "modes": elastic_mode_rows(elastic)}
+    return explained({
+        **elastic.to_dict(),
+        "family_pod_nominal": {f"{t:g}": [float(p) for p in v]
+                               for t, v in elastic.pod_nominal.items()},
+        "scatter": None if not detail.scatter else dict(zip(
+            ("masses", "stiffnesses", "mounting", "fe_change_error"), detail.scatter)),
+        "k_rest_N_m": detail.k_rest, "ring_dofs": detail.ring_dofs,
+        "foundation_N_m2": None if detail.foundation is None else {
+            "normal": detail.foundation[0], "tangential": detail.foundation[1]},
+        "sensor_angle_deg": math.degrees(detail.sensor_angle),
+        "lowest_ring_mode": None if detail.lowest_ring_mode is None else {
+            "frequency_hz": detail.lowest_ring_mode[0],
+            "nodal_diameter": detail.lowest_ring_mode[1]},
+        "crack_state": _crack_state_rows(elastic),
+        "modes": elastic_mode_rows(elastic)},
+        scatter="the answer was built without the detection study's scatter",
+        foundation_N_m2="the ring is clamped on its support arcs",
+        lowest_ring_mode="no elastic mode of the ring's own in its basis",
+        crack_state="the faces are taken open (no loaded crack)")
 
 
 def _crack_state_rows(elastic) -> list[dict] | None:
@@ -221,13 +192,11 @@ def _track_value(elastic, k: int, i: int, name: str) -> float:
     return float(values[i]) if values is not None and i < len(values) else float("nan")
 
 
-def _other_reason(comparison) -> str | None:
-    """Why results.json has no family POD under the other c_rp method (None: it has)."""
+def _other_reason(comparison) -> str:
+    """Why results.json would have no family POD under the other c_rp method."""
     if comparison is None:
         return "the lumped c_rp is the FE intact one: both methods agree"
-    if comparison.other_pod is None:
-        return "the detection study did not run"
-    return None
+    return "the detection study did not run"
 
 
 def _other_family_pod(comparison) -> dict | None:

@@ -282,7 +282,7 @@ def carrier_section(study) -> list[str]:
         "sidebands are: above 1 rad the mode's peak splits and a single shifted line is no "
         "longer what a peak picker finds.", "",
         "Spectrum at the deepest crack in and out of engagement (modes that differ):", "",
-        "| mode | out of engagement [Hz] | planet 1 on the crack [Hz] | difference [%] "
+        "| rigid mode | out of engagement [Hz] | planet 1 on the crack [Hz] | difference [%] "
         "| long record [Hz] | modulation index [rad] |",
         "|---:|---:|---:|---:|---:|---:|"]
     observed = carrier.omega_observed[-1]

@@ -165,6 +165,13 @@ def report_markdown(result: StudyResult, plot_names: list[str]) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _mode_label(result: StudyResult, i: int) -> str:
+    from hubvib.detection.mode_names import mode_names, rigid_curve_label
+
+    hz = result.baseline.omega / (2 * np.pi)
+    return rigid_curve_label(mode_names(hz)[i], hz[i], result.baseline.kind[i])
+
+
 def _frequency_figure(result: StudyResult):
     import matplotlib
 
@@ -177,7 +184,7 @@ def _frequency_figure(result: StudyResult):
     fig, ax = plt.subplots(figsize=(7, 5))
     for i in range(omega.shape[1]):
         ax.plot(values[order], omega[order, i], marker="o", ms=3,
-                label=f"{i + 1} {result.baseline.kind[i]}")
+                label=_mode_label(result, i))
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel(f"{result.scene.study.parameter} [SI]")
@@ -197,7 +204,7 @@ def _shift_figure(result: StudyResult):
     values = [s.modified_value for s in result.shifts]
     for i in range(result.baseline.omega.size):
         ax.plot(values, [s.percent[i] for s in result.shifts], marker="o", ms=3,
-                label=f"{i + 1} {result.baseline.kind[i]}")
+                label=_mode_label(result, i))
     ax.axhline(-result.scene.threshold_percent, color="k", ls=":", lw=0.8)
     ax.set_xscale("log")
     ax.set_xlabel(f"{result.scene.study.parameter} [SI]")

@@ -189,3 +189,19 @@ def test_pod_single_modes_are_told_apart_on_their_own_log_panel(tmp_path):
     assert alone.get_ylim()[0] < 0.00251, "the per-mode rate inside the log panel"
     out = save_figure(fig, tmp_path / "pod.png")
     assert _image(out).std() > 10
+
+
+def test_rigid_curves_are_named_by_their_model():
+    """Every curve of the rigid ring's crack figures names its model and its mode the way
+    the tables do (``detection.mode_names``): ``rigid 2 (split pair 2/3, lower): ...``."""
+    from hubvib.detection.mode_names import mode_names
+
+    depths = np.linspace(0, 0.024, 5)
+    omega = 1000.0 * np.array([1.0, 2.0, 2.0, 3.0]) * (1 - np.outer(depths, [1, 2, 3, 4]))
+    fig = relative_shift_figure("t", depths, omega, ("rotational",) * 4)
+    curves = [line.get_label() for ax in fig.axes for line in ax.get_lines()
+              if "Hz" in line.get_label()]
+    names = mode_names(omega[0])
+    assert curves == [f"rigid {n}: {f:.1f} Hz rotational"
+                      for n, f in zip(names, omega[0] / (2 * np.pi))]
+    assert curves[1].startswith("rigid 2 (split pair 2/3, lower)")

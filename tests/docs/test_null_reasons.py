@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from hubvib.foundation.output import explained
-from tests.helpers.null_reasons import unexplained_nulls
+from tests.helpers.null_reasons import stray_reasons, unexplained_nulls
 
 DATA = Path(__file__).parents[2] / "docs" / "data"
 RESULTS = sorted(DATA.glob("**/results.json"))
@@ -20,8 +20,11 @@ def test_committed_results_are_found():
 
 @pytest.mark.parametrize("path", RESULTS, ids=lambda p: str(p.relative_to(DATA)))
 def test_every_null_in_a_committed_results_file_says_why(path):
-    missing = unexplained_nulls(json.loads(path.read_text()))
+    payload = json.loads(path.read_text())
+    missing = unexplained_nulls(payload)
     assert not missing, f"{path.relative_to(DATA)}: nulls without a reason: {missing[:10]}"
+    stray = stray_reasons(payload)
+    assert not stray, f"{path.relative_to(DATA)}: reasons beside no null: {stray[:10]}"
 
 
 def test_the_rule_finds_each_kind_of_unexplained_null():
@@ -38,19 +41,15 @@ def test_the_rule_finds_each_kind_of_unexplained_null():
 
 def test_explained_adds_a_reason_only_beside_a_null():
     row = explained({"a": None, "b": 1.0, "c": [1.0, None], "d": [1.0]},
-                    a="no a", b="no b", c="no c", d="no d")
-    assert row == {"a": None, "b": 1.0, "c": [1.0, None], "d": [1.0],
-                   "a_reason": "no a", "c_reason": "no c"}
+                    a="no a", b="no b", c="no c", d="no d", e="no e")
+    assert list(row.items()) == [("a", None), ("a_reason", "no a"), ("b", 1.0),
+                                 ("c", [1.0, None]), ("c_reason", "no c"), ("d", [1.0])], \
+        "a reason right after its null; none beside a value, none for a key not written"
+    assert unexplained_nulls(row) == [] and stray_reasons(row) == []
 
 
-def test_the_results_file_keeps_a_reason_only_where_a_null_is():
-    """``results.json``'s pruning: a reason beside a value goes, one beside a null, a list
-    holding a null or a mapping of reasons stays (at any depth)."""
-    from hubvib.reports.crack_tables import _reasons_for_nulls
-
-    kept = _reasons_for_nulls({"a": 1, "a_reason": "x", "b": None, "b_reason": "y",
-                               "c": {"10": None}, "c_reason": {"10": "z"},
-                               "d": [None], "d_reason": "w", "e": {"f": 2, "f_reason": "q"}})
-    assert kept == {"a": 1, "b": None, "b_reason": "y", "c": {"10": None},
-                    "c_reason": {"10": "z"}, "d": [None], "d_reason": "w", "e": {"f": 2}}
-    assert unexplained_nulls(kept) == []
+def test_the_stray_reason_rule_finds_a_reason_beside_a_value():
+    assert stray_reasons({"a": 1, "a_reason": "x", "b": None, "b_reason": "y",
+                          "c": {"10": None}, "c_reason": {"10": "z"}, "d": [None],
+                          "d_reason": "w", "e": [{"f": 2, "f_reason": "q"}],
+                          "g_reason": "v"}) == ["/a_reason", "/e[0]/f_reason", "/g_reason"]

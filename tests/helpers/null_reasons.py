@@ -28,3 +28,23 @@ def unexplained_nulls(payload, path: str = "", reasons: dict | None = None) -> l
         elif isinstance(value, dict):
             found += unexplained_nulls(value, where, reason if isinstance(reason, dict) else None)
     return found
+
+
+def stray_reasons(payload, path: str = "") -> list[str]:
+    """The paths of the ``<key>_reason`` strings in ``payload`` (parsed JSON) standing beside
+    a ``<key>`` that holds a value (no null to explain) or beside no ``<key>`` at all."""
+    if isinstance(payload, list):
+        return [p for i, item in enumerate(payload) for p in stray_reasons(item, f"{path}[{i}]")]
+    if not isinstance(payload, dict):
+        return []
+    found = []
+    for key, value in payload.items():
+        if key.endswith("_reason") and isinstance(value, str):
+            base = key[:-len("_reason")]
+            held = payload.get(base, 0)
+            if base not in payload or not (held is None or (
+                    isinstance(held, list) and any(v is None for v in held))):
+                found.append(f"{path}/{key}")
+        elif isinstance(value, (dict, list)):
+            found += stray_reasons(value, f"{path}/{key}")
+    return found
