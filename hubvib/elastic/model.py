@@ -33,7 +33,10 @@ class ElasticRing:
     ring-planet spring without the ring body [N/m]; ``seconds`` per step; ``contact``: the
     crack faces' condensed contact (``crack_state.CrackContact``) when asked for;
     ``positions``: the reduced ring for every position of ``more_positions``
-    (``fem.ring_positions``, with the crack pairs' responses when paired).
+    (``fem.ring_positions``, with the crack pairs' responses when paired);
+    ``tooth_compliance``: per tooth of those positions ``b^T K^-1 b`` [m/N] (``b`` its
+    contact functional) of a mounted ring, from the basis's factorisation (empty when
+    none was kept or the ring is free).
     """
 
     params: PlanetaryParameters
@@ -49,6 +52,7 @@ class ElasticRing:
     seconds: dict = field(default_factory=dict)
     contact: object = None  # crack_state.CrackContact when the crack's faces are paired
     positions: object = None  # fem.ring_positions.RingPositions for more carrier positions
+    tooth_compliance: dict = field(default_factory=dict)
 
     @property
     def label(self) -> str:
@@ -153,6 +157,7 @@ def elastic_ring(design, crack: Crack | None = None, closed: bool = False,
                        functionals=functionals)
     seconds["basis"] = time.perf_counter() - t
     contact = positions = None
+    compliance = {}
     if basis.responses is not None:
         from hubvib.fem.ring_positions import ring_positions
 
@@ -161,6 +166,11 @@ def elastic_ring(design, crack: Crack | None = None, closed: bool = False,
             from .crack_state import crack_contact
 
             contact = crack_contact(body, pairs, basis.responses.functional)
+        if body.mounting != "free":  # the factor was K's (no shift): first = K^-1 b
+            loads = body.contact[:, list(basis.responses.teeth)]
+            loads = loads.toarray() if hasattr(loads, "toarray") else np.asarray(loads)
+            compliance = dict(zip(basis.responses.teeth,
+                                  np.einsum("ij,ij->j", loads, basis.responses.first)))
         basis = replace(basis, responses=None)  # (dofs, many): not kept
     seconds["positions"] = time.perf_counter() - t - seconds["basis"]
     operators = basis_operators(body, basis, probe_ops.moment_sign)
@@ -169,7 +179,7 @@ def elastic_ring(design, crack: Crack | None = None, closed: bool = False,
     seconds["rest"] = time.perf_counter() - t
     return ElasticRing(params, body, basis, operators, k_rest, foundation, crack,
                        bool(closed and crack is not None), options, carrier_teeth, seconds,
-                       contact, positions)
+                       contact, positions, compliance)
 
 
 def basis_operators(body: RingBody, basis: RingBasis, moment_sign: np.ndarray

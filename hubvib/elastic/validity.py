@@ -235,17 +235,23 @@ def local_contact_compliance(er, teeth) -> np.ndarray:
     """Compliance of the ring at each tooth's contact beyond its rigid motion on the
     mounting [m/N]: ``b^T K^-1 b - b^T R (R^T K R)^-1 R^T b`` (``b`` the contact functional,
     ``R`` the ring's rigid motions): the ring tooth and the rim under one planet's load,
-    statically condensed.  Raises ``ValueError`` for a free ring (no mounting: ``K`` is
-    singular)."""
-    import scipy.sparse.linalg as spla
-
+    statically condensed.  ``b^T K^-1 b`` comes from the basis's factorisation where the
+    ring kept it (``ElasticRing.tooth_compliance``), else from a factorisation of K.
+    Raises ``ValueError`` for a free ring (no mounting: ``K`` is singular)."""
     body = er.body
     if er.options.mounting == "free":
         raise ValueError("mounting = 'free': the ring has no mounting, so its contact "
                          "compliance is not defined; use 'foundation' or 'clamped'")
-    B = body.contact[:, list(teeth)]
+    teeth = [int(k) for k in teeth]
+    B = body.contact[:, teeth]
     B = B.toarray() if hasattr(B, "toarray") else np.asarray(B)
-    full = np.einsum("ij,ij->j", B, spla.splu(body.K.tocsc()).solve(B))
+    kept = er.tooth_compliance
+    if all(k in kept for k in teeth):
+        full = np.array([kept[k] for k in teeth], dtype=float)
+    else:
+        import scipy.sparse.linalg as spla
+
+        full = np.einsum("ij,ij->j", B, spla.splu(body.K.tocsc()).solve(B))
     RB = body.rigid.T @ B
     rigid = np.einsum("ij,ij->j", RB, np.linalg.solve(body.rigid_stiffness(), RB))
     return full - rigid
