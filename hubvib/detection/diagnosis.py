@@ -144,13 +144,14 @@ def pair_modes(measured: Measured, ref: Reference) -> np.ndarray:
     n, source = ref.n_modes, measured.source
     count = measured.frequency_hz.size
     if count > n:
-        raise MeasuredError(f"{source}: {count} frequencies, but the model has only {n} modes")
+        raise MeasuredError(f"{source}: {count} frequencies, but the {ref.ring} ring's model "
+                            f"has only {n} modes")
     low, high = ref.window()
     if measured.mode is not None:
         for mode, line in zip(measured.mode, measured.lines):
             if mode > n:
-                raise MeasuredError(f"{source} line {line}: mode = {mode}, but the model has "
-                                    f"{n} modes (1..{n})")
+                raise MeasuredError(f"{source} line {line}: mode = {mode}, but the {ref.ring} "
+                                    f"ring's model has {n} modes (1..{n})")
         index = measured.mode - 1
     else:
         cost = np.abs(measured.frequency_hz[:, None] - ref.nominal_hz[0][None, :])
@@ -168,11 +169,12 @@ def pair_modes(measured: Measured, ref: Reference) -> np.ndarray:
                 raise MeasuredError(
                     f"{source} line {line}: {column} = {value:g} Hz is far from every model "
                     f"mode; the model's modes span {low.min():.4g}..{high.max():.4g} Hz, the "
-                    f"nearest is mode {i + 1} at {ref.nominal_hz[0, i]:.4g} Hz "
+                    f"nearest is {ref.ring} mode {i + 1} at {ref.nominal_hz[0, i]:.4g} Hz "
                     f"(range {low[i]:.4g}..{high[i]:.4g} Hz)")
             raise MeasuredError(
                 f"{source} line {line}: {column} = {value:g} Hz lies outside the range of its "
-                f"mode {i + 1} ({low[i]:.4g}..{high[i]:.4g} Hz); it fits mode(s) "
+                f"{ref.ring} mode {i + 1} ({low[i]:.4g}..{high[i]:.4g} Hz); it fits "
+                f"{ref.ring} mode(s) "
                 f"{', '.join(str(j + 1) for j in inside)}")
     return index
 

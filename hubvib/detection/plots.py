@@ -352,7 +352,7 @@ def carrier_figure(name: str, carrier, kind):
                     label=f"cracked tooth in mesh ({timing.pass_seconds * 1e3:.3g} ms)")
     passage.set_xlabel("carrier angle from the start of the engagement [deg]")
     passage.set_ylabel("frequency change [%]")
-    passage.set_title(f"one passage, mode {strongest + 1} "
+    passage.set_title(f"one passage, rigid {names[strongest]} "
                       f"({out[strongest] / (2 * math.pi):.1f} Hz)", fontsize=9)
     shown = 100 * np.concatenate([relative[:, strongest], low[:, strongest]])
     span = np.ptp(shown) or 1.0

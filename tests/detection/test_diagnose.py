@@ -250,9 +250,9 @@ def test_cli_with_stdout_closed_exits_141_quietly(cli, capsys, monkeypatch, dire
     ("frequency_hz,mode\n53.5,1\n85.4,1\n", "line 3: mode = 1 repeats line 2"),
     ("frequency_hz,mode\n53.5,x\n", "line 2: mode = 'x', but it must be a mode number"),
     ("frequency_hz,baseline_hz\n53.5\n", "line 2: 1 value"),
-    ("frequency_hz,mode\n53.5,40\n", "line 2: mode = 40, but the model has 18 modes"),
+    ("frequency_hz,mode\n53.5,40\n", "line 2: mode = 40, but the rigid ring's model has 18 modes"),
     ("frequency_hz\n" + "\n".join(str(50 + 10 * i) for i in range(19)) + "\n",
-     "19 frequencies, but the model has only 18 modes"),
+     "19 frequencies, but the rigid ring's model has only 18 modes"),
     ("frequency_hz\n70.8\n25000\n", "line 3: frequency_hz = 25000 Hz is far from every model"),
     ("frequency_hz,damping_ratio\n70.8,0.7\n", r"line 2: damping_ratio = '0.7', but it must be "
                                               r"a damping ratio in \(0, 0.5\)"),
@@ -260,7 +260,7 @@ def test_cli_with_stdout_closed_exits_141_quietly(cli, capsys, monkeypatch, dire
     ("frequency_hz,sigma_hz\n70.8,x\n", r"line 2: sigma_hz = 'x', but it must be a standard"),
     ("frequency_hz,sigma_hz,record_s\n70.8,1,10\n", "give either sigma_hz or damping_ratio"),
     ("frequency_hz,mode\n303.7,1\n", r"line 2: frequency_hz = 303.7 Hz lies outside the range "
-                                     r"of its mode 1"),
+                                     r"of its rigid mode 1"),
 ])
 def test_bad_measured_csv_exits_2_naming_the_line(cli, capsys, text, message):
     assert cli(text) == 2

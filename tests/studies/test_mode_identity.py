@@ -77,6 +77,7 @@ def _follow(result, folder, mode):
     fig = carrier_figure("test", carrier, result.kind)
     labels = [t.get_text() for t in fig.axes[0].get_yticklabels()]
     assert any(t.startswith(f"rigid {name}: ") for t in labels), labels
+    assert fig.axes[1].get_title().startswith("one passage, rigid "), fig.axes[1].get_title()
     return text, float(pod_row["shift_hz"]), float(row["frequency_intact_hz"])
 
 
