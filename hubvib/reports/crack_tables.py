@@ -125,7 +125,7 @@ def _elastic_json(elastic) -> dict:
         "crack_state": _crack_state_rows(elastic),
         "modes": elastic_mode_rows(elastic)},
         scatter="the answer was built without the detection study's scatter",
-        foundation_N_m2="the ring is clamped on its support arcs",
+        foundation_N_m2="the ring is on no foundation: clamped on its support arcs, or free",
         lowest_ring_mode="no elastic mode of the ring's own in its basis",
         crack_state="the faces are taken open (no loaded crack)")
 
