@@ -73,6 +73,10 @@ def drift_model(params, frequency_hz, options, method: str = "jacobi") -> Drift:
     return Drift(per_kelvin, f * mesh, options.temperature_std, options.mesh_load_std)
 
 
+#: relative difference of two compensation variances below which they are the same
+TIE = 1e-9
+
+
 def references(shift_hz: np.ndarray, sigma_hz: np.ndarray, drift: Drift,
                frequency_hz: np.ndarray, watched: np.ndarray,
                separation: float = 0.0) -> np.ndarray:
@@ -81,7 +85,9 @@ def references(shift_hz: np.ndarray, sigma_hz: np.ndarray, drift: Drift,
     that lie more than ``separation`` times the watched mode's frequency away from it
     and from every watched mode (their identification bands must not overlap: the law
     holds for well-separated modes), the one leaving the least variance of
-    ``s_i - (f_i / f_r) s_r``; -1 where none does."""
+    ``s_i - (f_i / f_r) s_r``; -1 where none does.  Variances within :data:`TIE` of each
+    other are equal (the members of a repeated pair): the lower mode number is taken, so
+    the choice is not the eigensolver's round-off."""
     f = np.asarray(frequency_hz, dtype=float)
     still = np.flatnonzero(np.abs(shift_hz) < 0.1 * sigma_hz)
     chosen = []
@@ -96,7 +102,7 @@ def references(shift_hz: np.ndarray, sigma_hz: np.ndarray, drift: Drift,
                    + (drift.temperature_std * (drift.per_kelvin_hz[i]
                                                - q * drift.per_kelvin_hz[r])) ** 2
                    + (drift.load_std * (drift.per_load_hz[i] - q * drift.per_load_hz[r])) ** 2)
-            if var < value:
+            if var < value * (1 - TIE):
                 best, value = int(r), var
         chosen.append(best)
     return np.array(chosen, dtype=int)

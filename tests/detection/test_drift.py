@@ -66,3 +66,23 @@ def test_compensation_removes_a_uniform_shift_exactly(drift):
     watched, refs = np.array([12, 15]), np.array([7, 7])
     uniform = 1e-3 * f0
     np.testing.assert_allclose(compensate(uniform, f0, watched, refs), 0.0, atol=1e-9)
+
+
+def test_a_repeated_pair_gives_its_lower_member_as_reference(drift):
+    """The members of a repeated frequency leave the same variance up to the eigensolver's
+    round-off, whose sign differs between BLAS builds: the lower mode number is taken
+    whichever member round-off favours."""
+    params, f0, model = drift
+    watched = np.array([12, 15, 14, 17])
+    sigma = OPTIONS.sigma_hz(f0)
+    refs = references(np.zeros(18), sigma, model, f0, watched, 0.12)
+    for nudge in (1 + 1e-13, 1 - 1e-13):
+        for r in set(refs.tolist()):
+            twin = [j for j in range(18) if j != r and abs(f0[j] / f0[r] - 1) < 1e-9]
+            if not twin:
+                continue
+            assert r < twin[0], f"reference {r + 1} is the upper member of {r + 1}/{twin[0] + 1}"
+            pushed = sigma.copy()
+            pushed[twin[0]] = sigma[r] * nudge
+            np.testing.assert_array_equal(
+                references(np.zeros(18), pushed, model, f0, watched, 0.12), refs)
