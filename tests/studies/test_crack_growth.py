@@ -182,8 +182,9 @@ def test_poor_cells_do_not_move_c_ru():
     estimate (default solid level against the one before it).  The crack's change of c_ru
     moves more than its own error estimate (measured: 12 % of the change at half
     stiffness, against 8 % from the levels), so the sweep reports the half-stiffness
-    change per case: halving is the worse direction, and it stays within a quarter of
-    the change.  Deepest and longest crack of the shipped scene, on the half-width meshes
+    change per case; either direction stays within a quarter of the change.  Which
+    direction is worse depends on the mesh gmsh builds on the machine (halving on one,
+    doubling on another, by 1.3x): the per-case estimate should take the larger.  Deepest and longest crack of the shipped scene, on the half-width meshes
     the crack cases solve (``fe_case``)."""
     from hubvib.reducer.stages import ring_gear
     from hubvib.design.presets import raba118
@@ -218,7 +219,7 @@ def test_poor_cells_do_not_move_c_ru():
     for factor in (0.5, 2.0):
         assert abs(c_ru["cracked", factor] - c_ru["cracked", 1.0]) < value_error
     halved, doubled = (abs(change(f) - change(1.0)) for f in (0.5, 2.0))
-    assert doubled <= halved <= 0.25 * abs(change(1.0))
+    assert max(doubled, halved) <= 0.25 * abs(change(1.0)), (halved, doubled, change(1.0))
 
 
 #: the shipped 3D scene cut to the deepest crack at its shortest and longest half-length
